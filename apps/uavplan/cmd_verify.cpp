@@ -1,0 +1,49 @@
+// uavplan verify SCENARIO PLAN: print every violation; exit 0 when the plan holds.
+#include <iostream>
+
+#include "commands.h"
+#include "uavplan/evaluation/verifier.h"
+#include "uavplan/io/input_error.h"
+#include "uavplan/io/plan_io.h"
+#include "uavplan/io/scenario_io.h"
+
+namespace uavplan::cli {
+namespace {
+
+int run_verify(const std::string& scenario_path, const std::string& plan_path) {
+  Scenario sc;
+  Plan plan;
+  try {
+    sc = load_scenario(scenario_path);
+    plan = load_plan(plan_path);
+    for (std::size_t i = 0; i < plan.uavs.size(); ++i)
+      if (!sc.find_uav(plan.uavs[i].id))
+        throw InputError(plan_path, 0, "uavs[" + std::to_string(i) + "].id",
+                         "UAV '" + plan.uavs[i].id + "' is not in the scenario " + scenario_path);
+  } catch (const InputError& e) {
+    std::cerr << e.what() << "\n";
+    return kExitBadInput;
+  }
+  const auto violations = verify_plan(sc, plan);
+  for (const auto& v : violations) std::cout << describe(v) << "\n";
+  if (violations.empty()) {
+    std::cout << "plan holds: " << plan.uavs.size() << " UAVs, no violation\n";
+    return kExitOk;
+  }
+  std::cout << violations.size() << " violation" << (violations.size() == 1 ? "" : "s") << "\n";
+  return kExitNotSolved;
+}
+
+}  // namespace
+
+void add_verify_command(CLI::App& app, std::function<int()>& run) {
+  auto scenario = std::make_shared<std::string>();
+  auto plan = std::make_shared<std::string>();
+  CLI::App* cmd = app.add_subcommand("verify", "Check a plan against its scenario and print every violation");
+  cmd->add_option("scenario", *scenario, "Scenario file")->required();
+  cmd->add_option("plan", *plan, "Plan file (plan.json)")->required();
+  cmd->footer("Example: uavplan verify scenarios/demo.yaml out/plan.json");
+  cmd->callback([scenario, plan, &run] { run = [scenario, plan] { return run_verify(*scenario, *plan); }; });
+}
+
+}  // namespace uavplan::cli

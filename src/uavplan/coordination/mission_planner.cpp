@@ -1,0 +1,131 @@
+#include "uavplan/coordination/mission_planner.h"
+
+#include <chrono>
+#include <cstdio>
+#include <stdexcept>
+
+#include "uavplan/planning/registry.h"
+
+namespace uavplan {
+namespace {
+
+// Gaps are kept this much above the limit so that rounding in the written plan cannot break them.
+constexpr double kTimingMargin_m = 1e-3;
+
+std::string at(const Encounter& e) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "t=%.2f s at (%.1f, %.1f, %.1f)", e.t_s, e.where.x(), e.where.y(), e.where.z());
+  return buf;
+}
+
+struct Conflict {
+  bool any = false;
+  std::string what;
+};
+
+Conflict find_conflict(const Scenario& sc, const UavSpec& uav, const Trajectory& tr,
+                       const std::vector<std::pair<const UavSpec*, const UavPlan*>>& committed) {
+  int idx = -1;
+  const Encounter m = closest_moving_approach(sc.world, tr, &idx);
+  if (m.distance_m < uav.radius_m + kTimingMargin_m)
+    return {true, "moving obstacle '" + sc.world.moving()[idx].id + "' at " + at(m)};
+  for (const auto& [spec, other] : committed) {
+    const Encounter e = closest_approach(tr, other->trajectory);
+    if (e.distance_m < required_separation_m(sc, uav, *spec) + kTimingMargin_m)
+      return {true, "UAV '" + other->id + "' at " + at(e)};
+  }
+  return {};
+}
+
+void plan_routes(const Scenario& sc, const Planner& planner, const MissionOptions& opt, Plan& plan) {
+  for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
+    const UavSpec& u = sc.uavs[i];
+    UavPlan up;
+    up.id = u.id;
+    if (!u.goal) {
+      up.message = "no goal given";
+    } else {
+      Problem pb{u, *u.goal, {}};
+      if (sc.mission.type == MissionType::route) pb.via = sc.mission.waypoints;
+      const PlanResult r = planner.plan(pb, sc.world, opt.stop);
+      up.status = r.status;
+      up.message = r.message;
+      up.stats = r.stats;
+      up.waypoints = r.route.waypoints;
+      up.length_m = r.route.length_m();
+    }
+    plan.uavs.push_back(std::move(up));
+    if (opt.progress) opt.progress(i + 1, sc.uavs.size());
+  }
+}
+
+// Departure delays, in the scenario's UAV order.
+void time_routes(const Scenario& sc, const MissionOptions& opt, Plan& plan) {
+  double horizon_s = 60.0;
+  for (std::size_t i = 0; i < sc.uavs.size(); ++i)
+    if (plan.uavs[i].status == Status::solved) horizon_s += 2.0 * plan.uavs[i].length_m / sc.uavs[i].speed.cruise_mps;
+  std::vector<std::pair<const UavSpec*, const UavPlan*>> committed;
+  for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
+    UavPlan& up = plan.uavs[i];
+    const UavSpec& u = sc.uavs[i];
+    if (up.status != Status::solved) continue;
+    Conflict c;
+    bool placed = false;
+    for (double delay = 0.0; delay <= horizon_s && !placed; delay += opt.delay_step_s) {
+      Trajectory tr = time_route(up.waypoints, u.speed.cruise_mps, delay, opt.max_sample_dt_s);
+      const Conflict now = find_conflict(sc, u, tr, committed);
+      if (!c.any) c = now;  // remember the first conflict for the message
+      if (now.any) continue;
+      up.trajectory = std::move(tr);
+      up.arrival_s = up.trajectory.back().t_s;
+      placed = true;
+    }
+    if (!placed) {
+      up.status = Status::failed;
+      up.message = "conflicts with " + c.what + " for every departure delay up to " +
+                   std::to_string(static_cast<int>(horizon_s)) + " s";
+      continue;
+    }
+    committed.emplace_back(&u, &up);
+  }
+}
+
+}  // namespace
+
+double required_separation_m(const Scenario& sc, const UavSpec& a, const UavSpec& b) {
+  return std::max(sc.mission.separation_m, a.radius_m + b.radius_m);
+}
+
+Plan plan_mission(const Scenario& sc, const MissionOptions& opt) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Plan plan;
+  plan.scenario = sc.name;
+  plan.algorithm = opt.algorithm.value_or(sc.planner.algorithm);
+  plan.seed = opt.seed;
+  Params params = sc.planner.params;
+  for (const auto& [k, v] : opt.params) params[k] = v;
+  const auto planner = make_planner(plan.algorithm, params);
+
+  switch (sc.mission.type) {
+    case MissionType::independent:
+    case MissionType::route:
+      plan_routes(sc, *planner, opt, plan);
+      time_routes(sc, opt, plan);
+      break;
+    default:
+      for (const auto& u : sc.uavs) {
+        UavPlan up;
+        up.id = u.id;
+        up.message = "mission type '" + std::string(to_string(sc.mission.type)) + "' is not supported by planner '" +
+                     plan.algorithm + "'";
+        plan.uavs.push_back(std::move(up));
+      }
+  }
+  plan.status = combined_status(plan.uavs);
+  for (const auto& u : plan.uavs)
+    if (u.status != Status::solved && plan.message.empty()) plan.message = u.id + ": " + u.message;
+  plan.plan_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return plan;
+}
+
+}  // namespace uavplan

@@ -1,0 +1,47 @@
+// A plan for a whole scenario: per UAV a route and a time-stamped trajectory.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "uavplan/core/status.h"
+#include "uavplan/planning/problem.h"
+#include "uavplan/simulation/trajectory.h"
+
+namespace uavplan {
+
+struct UavPlan {
+  std::string id;
+  Status status = Status::failed;
+  std::string message;
+  std::vector<Vec3> waypoints;
+  Trajectory trajectory;
+  double length_m = 0.0;
+  double arrival_s = 0.0;
+  PlanStats stats;
+  std::map<std::string, double> metrics;  // filled by evaluation
+};
+
+struct Plan {
+  std::string scenario;
+  std::string algorithm;
+  std::uint64_t seed = 0;
+  Status status = Status::failed;
+  std::string message;
+  std::vector<UavPlan> uavs;
+  std::map<std::string, double> metrics;  // filled by evaluation
+  double plan_ms = 0.0;                   // wall time; kept out of the plan file by default
+
+  const UavPlan* find_uav(std::string_view id) const {
+    for (const auto& u : uavs)
+      if (u.id == id) return &u;
+    return nullptr;
+  }
+};
+
+// solved when every UAV is, failed when none is, partial otherwise.
+Status combined_status(const std::vector<UavPlan>& uavs);
+
+}  // namespace uavplan

@@ -1,0 +1,53 @@
+// A scenario as the public contract defines it (version 1), in value types.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "uavplan/planning/params.h"
+#include "uavplan/vehicle/uav.h"
+#include "uavplan/world/world.h"
+
+namespace uavplan {
+
+enum class MissionType { independent, route, group, rendezvous, formation };
+
+std::string_view to_string(MissionType t);
+std::optional<MissionType> mission_type_from_string(std::string_view s);
+
+struct MissionSpec {
+  MissionType type = MissionType::independent;
+  double separation_m = 0.0;                  // between any two UAVs at any time
+  std::vector<Vec3> waypoints;                // route: via points, in order
+  std::optional<double> arrival_tolerance_m;  // rendezvous: max spread of route lengths
+};
+
+struct PlannerSpec {
+  std::string algorithm = "astar";
+  Params params;
+};
+
+struct GeoOrigin {
+  double lat_deg = 0.0, lon_deg = 0.0, alt_m = 0.0;  // WGS84, metres above mean sea level
+};
+
+struct Scenario {
+  int version = 1;
+  std::string name;
+  std::optional<std::uint64_t> seed;
+  std::optional<GeoOrigin> origin;
+  World world;
+  std::vector<UavSpec> uavs;
+  MissionSpec mission;
+  PlannerSpec planner;
+
+  const UavSpec* find_uav(std::string_view id) const {
+    for (const auto& u : uavs)
+      if (u.id == id) return &u;
+    return nullptr;
+  }
+};
+
+}  // namespace uavplan

@@ -1,0 +1,105 @@
+#include "uavplan/evaluation/metrics.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "uavplan/core/units.h"
+
+namespace uavplan {
+
+double p1_route_cost(std::span<const Vec3> pts, const World& world, double k1) {
+  double j = 0.0;
+  for (std::size_t i = 1; i < pts.size(); ++i)
+    j += k1 * world.p1_threat_cost(pts[i - 1], pts[i]) + (1.0 - k1) * (pts[i] - pts[i - 1]).norm();
+  return j;
+}
+
+P3Score p3_score(std::span<const Vec3> pts, const World& world, const P3Weights& w) {
+  P3Score s;
+  const std::size_t m = pts.size();
+  if (m == 0) return s;
+  for (std::size_t i = 1; i < m; ++i) s.y1 += (pts[i] - pts[i - 1]).norm();
+  for (const Vec3& p : pts)
+    for (const Obstacle& o : world.obstacles()) s.y2 += 1.0 / std::max(point_distance(o, p), 1e-3);
+  for (std::size_t i = 1; i + 1 < m; ++i) {
+    const Vec3 ba = pts[i - 1] - pts[i], bc = pts[i + 1] - pts[i];
+    if (ba.norm() <= 0.0 || bc.norm() <= 0.0) continue;
+    const double theta = std::acos(std::clamp(ba.dot(bc) / (ba.norm() * bc.norm()), -1.0, 1.0));
+    s.y3 += 1.0 / std::max(theta, 1e-6) - 1.0 / kPi;
+  }
+  const double direct = (pts.back() - pts.front()).norm();
+  s.s1 = direct > 0.0 ? s.y1 / direct : 0.0;
+  s.s2 = s.y2 / static_cast<double>(m);
+  s.s3 = s.y3;
+  s.sc = w.k1 * s.s1 + w.k2 * s.s2 + w.k3 * s.s3;
+  return s;
+}
+
+UavMetrics uav_metrics(const Scenario& sc, const UavSpec& spec, const UavPlan& plan) {
+  UavMetrics m;
+  const auto& tr = plan.trajectory;
+  std::vector<Vec3> pts;
+  for (const auto& s : tr) pts.push_back(s.p);
+  for (std::size_t i = 1; i < pts.size(); ++i) m.length_m += (pts[i] - pts[i - 1]).norm();
+  // Flight time counts from the first movement to the last.
+  std::size_t first = 0, last = 0;
+  for (std::size_t i = 1; i < tr.size(); ++i)
+    if ((tr[i].p - tr[i - 1].p).norm() > 0.0) {
+      if (first == 0) first = i;
+      last = i;
+    }
+  if (last > 0) m.flight_time_s = tr[last].t_s - tr[first - 1].t_s;
+  std::optional<Vec3> prev;
+  if (spec.heading_rad) prev = heading_vector(*spec.heading_rad);
+  const double cap = sc.world.bounds().extent().norm() + 1.0;
+  m.min_clearance_m = pts.size() == 1 ? sc.world.clearance(pts[0], cap) : World::kInf;
+  for (std::size_t i = 1; i < pts.size(); ++i) {
+    const Vec3 seg = pts[i] - pts[i - 1];
+    if (seg.norm() <= 0.0) continue;
+    m.max_climb_deg = std::max(m.max_climb_deg, rad_to_deg(std::abs(pitch_rad(seg))));
+    if (prev) m.max_turn_deg = std::max(m.max_turn_deg, rad_to_deg(turn_rad(*prev, seg)));
+    prev = seg;
+    m.min_clearance_m = std::min(m.min_clearance_m, sc.world.segment_clearance(pts[i - 1], pts[i], cap));
+  }
+  m.p1_cost = p1_route_cost(plan.waypoints, sc.world);
+  m.p3 = p3_score(plan.waypoints, sc.world);
+  return m;
+}
+
+void compute_metrics(const Scenario& sc, Plan& plan) {
+  double min_sep = World::kInf, t_min = World::kInf, t_max = -World::kInf, l_min = World::kInf, l_max = -World::kInf;
+  double total = 0.0, p3_total = 0.0;
+  std::vector<const UavPlan*> flown;
+  for (UavPlan& up : plan.uavs) {
+    const UavSpec* spec = sc.find_uav(up.id);
+    if (!spec || up.trajectory.empty()) continue;
+    const UavMetrics m = uav_metrics(sc, *spec, up);
+    up.metrics = {{"length_m", m.length_m},
+                  {"flight_time_s", m.flight_time_s},
+                  {"max_turn_deg", m.max_turn_deg},
+                  {"max_climb_deg", m.max_climb_deg},
+                  {"p1_cost", m.p1_cost},
+                  {"p3_score", m.p3.sc},
+                  {"p3_y1", m.p3.y1},
+                  {"p3_y2", m.p3.y2},
+                  {"p3_y3", m.p3.y3}};
+    if (std::isfinite(m.min_clearance_m)) up.metrics["min_clearance_m"] = m.min_clearance_m;
+    total += m.length_m;
+    p3_total += m.p3.sc;
+    t_min = std::min(t_min, up.trajectory.back().t_s);
+    t_max = std::max(t_max, up.trajectory.back().t_s);
+    l_min = std::min(l_min, m.length_m);
+    l_max = std::max(l_max, m.length_m);
+    for (const UavPlan* other : flown) min_sep = std::min(min_sep, closest_approach(up.trajectory, other->trajectory).distance_m);
+    flown.push_back(&up);
+  }
+  plan.metrics.clear();
+  if (flown.empty()) return;
+  plan.metrics["total_length_m"] = total;
+  plan.metrics["p3_group_score"] = p3_total;
+  plan.metrics["arrival_spread_s"] = t_max - t_min;
+  plan.metrics["length_spread_m"] = l_max - l_min;
+  if (std::isfinite(min_sep)) plan.metrics["min_separation_m"] = min_sep;
+}
+
+}  // namespace uavplan

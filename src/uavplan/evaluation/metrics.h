@@ -1,0 +1,45 @@
+// Route and mission metrics used by the papers.
+#pragma once
+
+#include <span>
+
+#include "uavplan/coordination/plan.h"
+#include "uavplan/coordination/scenario.h"
+
+namespace uavplan {
+
+// P1's edge cost summed over the route's segments: J = k1 * J_threat + (1 - k1) * J_fuel with
+// J_threat the three-point rule of P1 eq. 1 over the world's radars and J_fuel = L.
+double p1_route_cost(std::span<const Vec3> waypoints, const World& world, double k1 = 0.5);
+
+// P3's path score (lower is better). Y1 = length; Y2 = sum over path points of sum over static
+// obstacles of 1/d (d to the obstacle's surface, at least 1 mm); Y3 = sum over interior points
+// of (1/theta - 1/pi), theta = angle ABC (pi when straight). P3 leaves the normalisation open;
+// ours: S1 = Y1 / |goal - start| (1 for a straight route), S2 = Y2 / m (mean danger per point,
+// 1/m), S3 = Y3 (already dimensionless); SC = K1 S1 + K2 S2 + K3 S3 with K1 = K2 = K3 = 1.
+struct P3Score {
+  double y1 = 0.0, y2 = 0.0, y3 = 0.0;
+  double s1 = 0.0, s2 = 0.0, s3 = 0.0;
+  double sc = 0.0;
+};
+struct P3Weights {
+  double k1 = 1.0, k2 = 1.0, k3 = 1.0;
+};
+P3Score p3_score(std::span<const Vec3> points, const World& world, const P3Weights& w = {});
+
+struct UavMetrics {
+  double length_m = 0.0;
+  double flight_time_s = 0.0;   // from departure to arrival
+  double max_turn_deg = 0.0;
+  double max_climb_deg = 0.0;
+  double min_clearance_m = 0.0; // to static obstacles and terrain (+inf when there are none)
+  double p1_cost = 0.0;
+  P3Score p3;
+};
+UavMetrics uav_metrics(const Scenario& sc, const UavSpec& spec, const UavPlan& plan);
+
+// Fills plan.metrics (min_separation_m, arrival_spread_s, length_spread_m, total_length_m,
+// p3_group_score) and each UAV's metrics.
+void compute_metrics(const Scenario& sc, Plan& plan);
+
+}  // namespace uavplan

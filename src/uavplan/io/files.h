@@ -1,0 +1,16 @@
+// File access for the io layer: whole-file reads and atomic writes.
+#pragma once
+
+#include <string>
+
+namespace uavplan {
+
+// Throws InputError (naming the file) when it cannot be read.
+std::string read_text_file(const std::string& path);
+
+// Writes through a temporary file in the same directory and renames it into place, so a
+// reader never sees a half-written file; creates missing parent directories. Throws
+// std::runtime_error on failure (the temporary file is removed).
+void write_file_atomic(const std::string& path, const std::string& content);
+
+}  // namespace uavplan

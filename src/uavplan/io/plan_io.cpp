@@ -1,0 +1,191 @@
+#include "uavplan/io/plan_io.h"
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "uavplan/io/files.h"
+#include "uavplan/io/input_error.h"
+
+namespace uavplan {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+double r6(double x) {
+  const double r = std::round(x * 1e6) / 1e6;
+  return r == 0.0 ? 0.0 : r;  // no "-0.0"
+}
+
+Json vec(const Vec3& p) { return Json::array({p.x(), p.y(), p.z()}); }
+
+Json metrics_json(const std::map<std::string, double>& m) {
+  Json j = Json::object();
+  for (const auto& [k, v] : m) j[k] = std::isfinite(v) ? Json(r6(v)) : Json(nullptr);
+  return j;
+}
+
+// Pretty JSON with every all-number array (a waypoint, a trajectory row) on one line.
+void write_json(const Json& j, int depth, std::string& out) {
+  const std::string pad(static_cast<std::size_t>(depth) + 1, ' ');
+  const std::string close_pad(static_cast<std::size_t>(depth), ' ');
+  if (j.is_array()) {
+    const bool flat = std::all_of(j.begin(), j.end(), [](const Json& e) { return e.is_primitive(); });
+    if (flat || j.empty()) {
+      out += j.dump();
+      return;
+    }
+    out += "[\n";
+    for (std::size_t i = 0; i < j.size(); ++i) {
+      out += pad;
+      write_json(j[i], depth + 1, out);
+      out += i + 1 < j.size() ? ",\n" : "\n";
+    }
+    out += close_pad + "]";
+  } else if (j.is_object() && !j.empty()) {
+    out += "{\n";
+    std::size_t i = 0;
+    for (const auto& [k, v] : j.items()) {
+      out += pad + Json(k).dump() + ": ";
+      write_json(v, depth + 1, out);
+      out += ++i < j.size() ? ",\n" : "\n";
+    }
+    out += close_pad + "}";
+  } else {
+    out += j.dump();
+  }
+}
+
+struct Reader {
+  const std::string& file;
+  [[noreturn]] void fail(const std::string& place, const std::string& what) const {
+    throw InputError(file, 0, place, what);
+  }
+  const Json& req(const Json& obj, const char* key, const std::string& place) const {
+    if (!obj.is_object()) fail(place, "expected an object");
+    const auto it = obj.find(key);
+    if (it == obj.end()) fail(place, std::string("missing required key '") + key + "'");
+    return *it;
+  }
+  double number(const Json& v, const std::string& place) const {
+    if (!v.is_number()) fail(place, "expected a number");
+    const double x = v.get<double>();
+    if (!std::isfinite(x)) fail(place, "must be finite");
+    return x;
+  }
+  std::string text(const Json& v, const std::string& place) const {
+    if (!v.is_string()) fail(place, "expected a string");
+    return v.get<std::string>();
+  }
+};
+
+}  // namespace
+
+std::string plan_to_json(const Plan& plan, const PlanWriteOptions& options) {
+  Json j;
+  j["format"] = "uavplan-plan";
+  j["version"] = 1;
+  j["scenario"] = plan.scenario;
+  j["algorithm"] = plan.algorithm;
+  j["seed"] = plan.seed;
+  j["status"] = std::string(to_string(plan.status));
+  j["message"] = plan.message;
+  Json uavs = Json::array();
+  for (const UavPlan& u : plan.uavs) {
+    Json ju;
+    ju["id"] = u.id;
+    ju["status"] = std::string(to_string(u.status));
+    ju["message"] = u.message;
+    ju["waypoints"] = Json::array();
+    for (const auto& p : u.waypoints) ju["waypoints"].push_back(vec(p));
+    ju["trajectory"] = Json::array();
+    for (const auto& s : u.trajectory)
+      ju["trajectory"].push_back(Json::array({s.t_s, s.p.x(), s.p.y(), s.p.z()}));
+    ju["length_m"] = u.length_m;
+    ju["arrival_s"] = u.arrival_s;
+    ju["metrics"] = metrics_json(u.metrics);
+    ju["stats"] = {{"nodes_expanded", u.stats.nodes_expanded},
+                   {"open_max", u.stats.open_max},
+                   {"grid_cells", u.stats.grid_cells},
+                   {"cell_m", r6(u.stats.cell_m)}};
+    uavs.push_back(std::move(ju));
+  }
+  j["uavs"] = std::move(uavs);
+  j["metrics"] = metrics_json(plan.metrics);
+  j["timing"] = Json::object();
+  if (options.include_timing) {
+    j["timing"]["plan_ms"] = std::round(plan.plan_ms * 1000.0) / 1000.0;
+    for (const UavPlan& u : plan.uavs) j["timing"][u.id + ".plan_ms"] = std::round(u.stats.plan_ms * 1000.0) / 1000.0;
+  }
+  std::string out;
+  write_json(j, 0, out);
+  return out + "\n";
+}
+
+Plan parse_plan(const std::string& text, const std::string& file) {
+  if (text.find_first_not_of(" \t\r\n") == std::string::npos) throw InputError(file, 0, "", "file is empty");
+  Json j;
+  try {
+    j = Json::parse(text);
+  } catch (const Json::parse_error& e) {
+    const auto upto = text.substr(0, std::min(text.size(), e.byte));
+    const int line = 1 + static_cast<int>(std::count(upto.begin(), upto.end(), '\n'));
+    std::string what = e.what();
+    if (const auto p = what.find("parse error"); p != std::string::npos) what = what.substr(p);
+    throw InputError(file, line, "", "not valid JSON: " + what);
+  }
+  const Reader r{file};
+  if (!j.is_object()) r.fail("", "the top level must be a JSON object");
+  if (r.text(r.req(j, "format", ""), "format") != "uavplan-plan") r.fail("format", "expected \"uavplan-plan\"");
+  const Json& ver = r.req(j, "version", "");
+  if (!ver.is_number_integer() || ver.get<long long>() != 1) r.fail("version", "unsupported version (this build reads version 1)");
+  Plan p;
+  if (j.contains("scenario")) p.scenario = r.text(j["scenario"], "scenario");
+  if (j.contains("algorithm")) p.algorithm = r.text(j["algorithm"], "algorithm");
+  if (j.contains("seed")) {
+    if (!j["seed"].is_number_unsigned()) r.fail("seed", "expected a non-negative integer");
+    p.seed = j["seed"].get<std::uint64_t>();
+  }
+  if (j.contains("message")) p.message = r.text(j["message"], "message");
+  const auto status = status_from_string(r.text(r.req(j, "status", ""), "status"));
+  if (!status) r.fail("status", "expected solved, partial or failed");
+  p.status = *status;
+  const Json& uavs = r.req(j, "uavs", "");
+  if (!uavs.is_array()) r.fail("uavs", "expected an array");
+  for (std::size_t i = 0; i < uavs.size(); ++i) {
+    const std::string at = "uavs[" + std::to_string(i) + "]";
+    const Json& ju = uavs[i];
+    UavPlan u;
+    u.id = r.text(r.req(ju, "id", at), at + ".id");
+    if (p.find_uav(u.id)) r.fail(at + ".id", "duplicate UAV id '" + u.id + "'");
+    const auto us = status_from_string(r.text(r.req(ju, "status", at), at + ".status"));
+    if (!us) r.fail(at + ".status", "expected solved, partial or failed");
+    u.status = *us;
+    if (ju.contains("message")) u.message = r.text(ju["message"], at + ".message");
+    if (ju.contains("waypoints")) {
+      const Json& w = ju["waypoints"];
+      if (!w.is_array()) r.fail(at + ".waypoints", "expected an array");
+      for (std::size_t k = 0; k < w.size(); ++k) {
+        const std::string wp = at + ".waypoints[" + std::to_string(k) + "]";
+        if (!w[k].is_array() || w[k].size() != 3) r.fail(wp, "expected [x, y, z]");
+        u.waypoints.emplace_back(r.number(w[k][0], wp), r.number(w[k][1], wp), r.number(w[k][2], wp));
+      }
+    }
+    const Json& tr = r.req(ju, "trajectory", at);
+    if (!tr.is_array()) r.fail(at + ".trajectory", "expected an array");
+    for (std::size_t k = 0; k < tr.size(); ++k) {
+      const std::string row = at + ".trajectory[" + std::to_string(k) + "]";
+      if (!tr[k].is_array() || tr[k].size() != 4) r.fail(row, "expected [t, x, y, z]");
+      u.trajectory.push_back({r.number(tr[k][0], row), Vec3(r.number(tr[k][1], row), r.number(tr[k][2], row),
+                                                            r.number(tr[k][3], row))});
+    }
+    if (ju.contains("length_m")) u.length_m = r.number(ju["length_m"], at + ".length_m");
+    if (ju.contains("arrival_s")) u.arrival_s = r.number(ju["arrival_s"], at + ".arrival_s");
+    p.uavs.push_back(std::move(u));
+  }
+  return p;
+}
+
+Plan load_plan(const std::string& path) { return parse_plan(read_text_file(path), path); }
+
+}  // namespace uavplan

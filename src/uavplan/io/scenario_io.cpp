@@ -1,0 +1,406 @@
+#include "uavplan/io/scenario_io.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "uavplan/core/geometry.h"
+#include "uavplan/core/units.h"
+#include "uavplan/io/files.h"
+#include "uavplan/io/input_error.h"
+
+namespace uavplan {
+namespace {
+
+// A YAML node with the key path that leads to it, for error messages.
+struct At {
+  YAML::Node node;
+  std::string path;
+  const std::string* file;
+
+  [[noreturn]] void fail(const std::string& what) const {
+    int line = 0;
+    if (node.IsDefined()) line = node.Mark().line >= 0 ? node.Mark().line + 1 : 0;
+    throw InputError(*file, line, path, what);
+  }
+  bool has(const char* key) const { return node.IsMap() && node[key].IsDefined() && !node[key].IsNull(); }
+  At operator[](const char* key) const {
+    return {node[key], path.empty() ? std::string(key) : path + "." + key, file};
+  }
+  At req(const char* key) const {
+    if (!node.IsMap()) fail("expected a mapping");
+    if (!has(key)) fail(std::string("missing required key '") + key + "'");
+    return (*this)[key];
+  }
+  At item(std::size_t i) const { return {node[i], path + "[" + std::to_string(i) + "]", file}; }
+  std::size_t size() const { return node.size(); }
+
+  void expect_map() const {
+    if (!node.IsMap()) fail("expected a mapping");
+  }
+  void expect_seq() const {
+    if (!node.IsSequence()) fail("expected a list");
+  }
+  void keys(std::initializer_list<const char*> allowed) const {
+    expect_map();
+    for (const auto& kv : node) {
+      const std::string k = kv.first.Scalar();
+      if (std::none_of(allowed.begin(), allowed.end(), [&](const char* a) { return k == a; })) {
+        std::string list;
+        for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+        At{kv.first, path.empty() ? k : path + "." + k, file}.fail("unknown key '" + k + "' (expected one of: " + list + ")");
+      }
+    }
+  }
+
+  double number() const {
+    if (!node.IsScalar()) fail("expected a number");
+    if (node.Tag() == "!") fail("expected a number, got the quoted string \"" + node.Scalar() + "\"");
+    const std::string& s = node.Scalar();
+    std::string lower = s;
+    std::transform(lower.begin(), lower.end(), lower.begin(), ::tolower);
+    if (lower.find("nan") != std::string::npos || lower.find("inf") != std::string::npos)
+      fail("must be a finite number, got '" + s + "'");
+    double v = 0.0;
+    const char* b = s.data();
+    if (!s.empty() && s[0] == '+') ++b;
+    const auto [ptr, ec] = std::from_chars(b, s.data() + s.size(), v);
+    if (ec != std::errc() || ptr != s.data() + s.size() || s.empty()) fail("expected a number, got '" + s + "'");
+    if (!std::isfinite(v)) fail("must be a finite number, got '" + s + "'");
+    return v;
+  }
+  double positive() const {
+    const double v = number();
+    if (!(v > 0.0)) fail("must be positive, got " + node.Scalar());
+    return v;
+  }
+  double non_negative() const {
+    const double v = number();
+    if (v < 0.0) fail("must not be negative, got " + node.Scalar());
+    return v;
+  }
+  double in_range(double lo, double hi) const {
+    const double v = number();
+    if (v < lo || v > hi) fail("must be in [" + fmt(lo) + ", " + fmt(hi) + "], got " + node.Scalar());
+    return v;
+  }
+  std::int64_t integer() const {
+    const double v = number();
+    if (v != std::floor(v) || std::abs(v) > 9.0e15) fail("expected an integer, got '" + node.Scalar() + "'");
+    return static_cast<std::int64_t>(v);
+  }
+  std::string text() const {
+    if (!node.IsScalar()) fail("expected a string");
+    return node.Scalar();
+  }
+  Vec3 vec3() const {
+    if (!node.IsSequence() || node.size() != 3) fail("expected a list of 3 numbers [x, y, z]");
+    return {item(0).number(), item(1).number(), item(2).number()};
+  }
+  Vec2 vec2() const {
+    if (!node.IsSequence() || node.size() != 2) fail("expected a list of 2 numbers [x, y]");
+    return {item(0).number(), item(1).number()};
+  }
+  static std::string fmt(double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", x);
+    return buf;
+  }
+};
+
+Obstacle read_obstacle(const At& o) {
+  o.expect_map();
+  const std::string type = o.req("type").text();
+  if (type == "sphere") {
+    o.keys({"type", "id", "center", "radius"});
+    return Sphere{o.req("center").vec3(), o.req("radius").positive()};
+  }
+  if (type == "cylinder") {
+    o.keys({"type", "id", "center", "radius", "z_min", "z_max"});
+    Cylinder c{o.req("center").vec2(), o.req("radius").positive(), o.req("z_min").number(), o.req("z_max").number()};
+    if (!(c.z_min_m < c.z_max_m)) o["z_max"].fail("must be above z_min");
+    return c;
+  }
+  if (type == "box") {
+    o.keys({"type", "id", "min", "max"});
+    Box b{o.req("min").vec3(), o.req("max").vec3()};
+    if ((b.min.array() >= b.max.array()).any()) o["max"].fail("must be above min on every axis");
+    return b;
+  }
+  if (type == "prism") {
+    o.keys({"type", "id", "polygon", "z_min", "z_max"});
+    const At poly = o.req("polygon");
+    poly.expect_seq();
+    Prism p;
+    for (std::size_t i = 0; i < poly.size(); ++i) p.polygon.push_back(poly.item(i).vec2());
+    if (p.polygon.size() >= 2 && p.polygon.front() == p.polygon.back()) p.polygon.pop_back();  // closed ring
+    if (p.polygon.size() < 3) poly.fail("a prism needs at least 3 distinct vertices");
+    if (polygon_signed_area(p.polygon) == 0.0) poly.fail("polygon has zero area");
+    p.z_min_m = o.req("z_min").number();
+    p.z_max_m = o.req("z_max").number();
+    if (!(p.z_min_m < p.z_max_m)) o["z_max"].fail("must be above z_min");
+    return p;
+  }
+  o["type"].fail("unknown obstacle type '" + type + "' (expected sphere, cylinder, box or prism)");
+}
+
+TerrainGrid read_terrain(const At& t) {
+  t.keys({"type", "origin", "cell", "heights"});
+  const std::string type = t.req("type").text();
+  if (type != "grid") t["type"].fail("unknown terrain type '" + type + "' (expected grid)");
+  const Vec2 origin = t.req("origin").vec2();
+  const double cell = t.req("cell").positive();
+  const At rows = t.req("heights");
+  rows.expect_seq();
+  if (rows.size() == 0) rows.fail("needs at least one row");
+  std::vector<double> h;
+  std::size_t nx = 0;
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    const At row = rows.item(j);
+    row.expect_seq();
+    if (row.size() == 0) row.fail("empty row");
+    if (j == 0) nx = row.size();
+    if (row.size() != nx)
+      row.fail("has " + std::to_string(row.size()) + " heights, row 0 has " + std::to_string(nx) + " (rows must be equal)");
+    for (std::size_t i = 0; i < nx; ++i) h.push_back(row.item(i).number());
+  }
+  return TerrainGrid(origin, cell, static_cast<int>(nx), static_cast<int>(rows.size()), std::move(h));
+}
+
+void check_placed(const At& at, const Vec3& p, const World& world, const std::string& what) {
+  if (!world.in_bounds(p)) at.fail(what + " is outside the world bounds");
+  if (world.clearance(p, 1e-9) <= 0.0) at.fail(what + " is inside an obstacle or below the terrain");
+}
+
+UavSpec read_uav(const At& u) {
+  u.keys({"id", "start", "heading_deg", "goal", "radius", "speed", "max_turn_deg", "max_climb_deg", "ceiling"});
+  UavSpec s;
+  s.id = u.req("id").text();
+  if (s.id.empty()) u["id"].fail("must not be empty");
+  s.start = u.req("start").vec3();
+  if (u.has("goal")) s.goal = u["goal"].vec3();
+  if (u.has("heading_deg")) s.heading_rad = deg_to_rad(u["heading_deg"].number());
+  if (u.has("radius")) s.radius_m = u["radius"].non_negative();
+  if (u.has("speed")) {
+    const At sp = u["speed"];
+    if (sp.node.IsMap()) {
+      sp.keys({"min", "cruise", "max"});
+      s.speed.cruise_mps = sp.req("cruise").positive();
+      s.speed.min_mps = sp.has("min") ? sp["min"].non_negative() : 0.0;
+      s.speed.max_mps = sp.has("max") ? sp["max"].positive() : s.speed.cruise_mps;
+      if (s.speed.min_mps > s.speed.cruise_mps) sp["min"].fail("must not exceed cruise");
+      if (s.speed.max_mps < s.speed.cruise_mps) sp["max"].fail("must not be below cruise");
+    } else {
+      s.speed.cruise_mps = s.speed.max_mps = sp.positive();
+      s.speed.min_mps = 0.0;
+    }
+  }
+  if (u.has("max_turn_deg")) s.max_turn_rad = deg_to_rad(u["max_turn_deg"].in_range(1e-6, 180.0));
+  if (u.has("max_climb_deg")) s.max_climb_rad = deg_to_rad(u["max_climb_deg"].in_range(1e-6, 90.0));
+  if (u.has("ceiling")) s.ceiling_m = u["ceiling"].number();
+  return s;
+}
+
+YAML::Node parse_yaml(const std::string& text, const std::string& file) {
+  if (text.find_first_not_of(" \t\r\n") == std::string::npos) throw InputError(file, 0, "", "file is empty");
+  if (text.find('\0') != std::string::npos) throw InputError(file, 0, "", "not a text file (contains NUL bytes)");
+  const bool json = file.size() >= 5 && file.compare(file.size() - 5, 5, ".json") == 0;
+  if (json) {
+    try {
+      const auto parsed = nlohmann::json::parse(text);
+      (void)parsed;
+    } catch (const nlohmann::json::parse_error& e) {
+      const auto upto = text.substr(0, std::min(text.size(), e.byte));
+      const int line = 1 + static_cast<int>(std::count(upto.begin(), upto.end(), '\n'));
+      std::string what = e.what();
+      if (const auto p = what.find("parse error"); p != std::string::npos) what = what.substr(p);
+      throw InputError(file, line, "", "JSON " + what);
+    }
+  }
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw InputError(file, e.mark.line >= 0 ? e.mark.line + 1 : 0, "", "YAML syntax error: " + e.msg);
+  }
+}
+
+void apply_override(YAML::Node& root, const std::string& key, const std::string& value, const std::string& file) {
+  const std::string place = "--set " + key;
+  if (key.empty()) throw InputError(file, 0, place, "empty key");
+  const std::string path = key.find_first_of(".[") == std::string::npos ? "planner.params." + key : key;
+  YAML::Node v;
+  try {
+    v = YAML::Load(value);
+  } catch (const YAML::Exception& e) {
+    throw InputError(file, 0, place, "value is not valid YAML: " + e.msg);
+  }
+  if (!root.IsMap()) throw InputError(file, 0, place, "the scenario is not a mapping");
+  YAML::Node cur;
+  cur.reset(root);
+  std::size_t i = 0;
+  while (i < path.size()) {
+    if (path[i] == '.') { ++i; continue; }
+    YAML::Node next;
+    if (path[i] == '[') {
+      const auto close = path.find(']', i);
+      if (close == std::string::npos) throw InputError(file, 0, place, "unclosed '['");
+      std::size_t idx = 0;
+      const auto [p, ec] = std::from_chars(path.data() + i + 1, path.data() + close, idx);
+      if (ec != std::errc() || p != path.data() + close) throw InputError(file, 0, place, "bad list index");
+      if (!cur.IsSequence() || idx >= cur.size()) throw InputError(file, 0, place, "no list element " + std::to_string(idx));
+      next.reset(cur[idx]);
+      i = close + 1;
+    } else {
+      const auto end = path.find_first_of(".[", i);
+      const std::string seg = path.substr(i, end == std::string::npos ? std::string::npos : end - i);
+      if (!cur.IsMap() && !cur.IsNull()) throw InputError(file, 0, place, "'" + seg + "' is not inside a mapping");
+      next.reset(cur[seg]);
+      i = end == std::string::npos ? path.size() : end;
+    }
+    if (i >= path.size()) {
+      next = v;  // assigns into the tree (yaml-cpp reference semantics)
+      return;
+    }
+    cur.reset(next);
+  }
+}
+
+}  // namespace
+
+Scenario parse_scenario(const std::string& text, const std::string& file, const Overrides& overrides) {
+  YAML::Node root = parse_yaml(text, file);
+  if (!root.IsMap()) throw InputError(file, 0, "", "the top level must be a mapping of scenario keys");
+  for (const auto& [k, v] : overrides) apply_override(root, k, v, file);
+  const At top{root, "", &file};
+  top.keys({"version", "name", "seed", "origin", "world", "uavs", "mission", "planner"});
+
+  Scenario sc;
+  const std::int64_t version = top.req("version").integer();
+  if (version != 1) top["version"].fail("unsupported version " + std::to_string(version) + " (this build reads version 1)");
+  sc.name = top.has("name") ? top["name"].text() : std::string();
+  if (top.has("seed")) {
+    const std::int64_t seed = top["seed"].integer();
+    if (seed < 0) top["seed"].fail("must not be negative");
+    sc.seed = static_cast<std::uint64_t>(seed);
+  }
+  if (top.has("origin")) {
+    const At o = top["origin"];
+    o.keys({"lat", "lon", "alt"});
+    sc.origin = GeoOrigin{o.req("lat").in_range(-90, 90), o.req("lon").in_range(-180, 180),
+                          o.has("alt") ? o["alt"].number() : 0.0};
+  }
+
+  // World.
+  const At w = top.req("world");
+  w.keys({"bounds", "obstacles", "threats", "terrain", "moving_obstacles"});
+  WorldSpec ws;
+  {
+    const At b = w.req("bounds");
+    b.keys({"min", "max"});
+    ws.bounds = Aabb{b.req("min").vec3(), b.req("max").vec3()};
+    if (!(ws.bounds.min.x() < ws.bounds.max.x()) || !(ws.bounds.min.y() < ws.bounds.max.y()) ||
+        !(ws.bounds.min.z() <= ws.bounds.max.z()))
+      b["max"].fail("must be above min in x and y, and not below it in z");
+  }
+  if (w.has("obstacles")) {
+    const At list = w["obstacles"];
+    list.expect_seq();
+    for (std::size_t i = 0; i < list.size(); ++i) ws.obstacles.push_back(read_obstacle(list.item(i)));
+  }
+  if (w.has("threats")) {
+    const At list = w["threats"];
+    list.expect_seq();
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const At t = list.item(i);
+      t.keys({"type", "id", "position", "weight"});
+      const std::string type = t.req("type").text();
+      if (type != "radar") t["type"].fail("unknown threat type '" + type + "' (expected radar)");
+      ws.radars.push_back(Radar{t.req("position").vec3(), t.has("weight") ? t["weight"].non_negative() : 1.0});
+    }
+  }
+  if (w.has("terrain")) ws.terrain = read_terrain(w["terrain"]);
+  if (w.has("moving_obstacles")) {
+    const At list = w["moving_obstacles"];
+    list.expect_seq();
+    std::set<std::string> ids;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const At m = list.item(i);
+      m.keys({"id", "radius", "position", "velocity"});
+      MovingObstacle mo;
+      mo.id = m.has("id") ? m["id"].text() : std::string("m").append(std::to_string(i + 1));
+      mo.radius_m = m.req("radius").positive();
+      mo.position = m.req("position").vec3();
+      mo.velocity_mps = m.has("velocity") ? m["velocity"].vec3() : Vec3::Zero();
+      ws.moving.push_back(std::move(mo));
+    }
+  }
+  try {
+    sc.world = World(std::move(ws));
+  } catch (const std::invalid_argument& e) {
+    w.fail(e.what());
+  }
+
+  // UAVs.
+  const At uavs = top.req("uavs");
+  uavs.expect_seq();
+  if (uavs.size() == 0) uavs.fail("needs at least one UAV");
+  for (std::size_t i = 0; i < uavs.size(); ++i) {
+    const At u = uavs.item(i);
+    UavSpec s = read_uav(u);
+    if (sc.find_uav(s.id)) u["id"].fail("duplicate UAV id '" + s.id + "'");
+    check_placed(u["start"], s.start, sc.world, "start");
+    if (s.goal) check_placed(u["goal"], *s.goal, sc.world, "goal");
+    sc.uavs.push_back(std::move(s));
+  }
+
+  // Mission.
+  if (top.has("mission")) {
+    const At m = top["mission"];
+    m.keys({"type", "separation", "waypoints", "arrival_tolerance"});
+    if (m.has("type")) {
+      const auto t = mission_type_from_string(m["type"].text());
+      if (!t) m["type"].fail("unknown mission type '" + m["type"].text() + "' (expected independent, route, group, rendezvous or formation)");
+      sc.mission.type = *t;
+    }
+    if (m.has("separation")) sc.mission.separation_m = m["separation"].non_negative();
+    if (m.has("waypoints")) {
+      const At list = m["waypoints"];
+      list.expect_seq();
+      for (std::size_t i = 0; i < list.size(); ++i) {
+        const Vec3 p = list.item(i).vec3();
+        check_placed(list.item(i), p, sc.world, "waypoint");
+        sc.mission.waypoints.push_back(p);
+      }
+    }
+    if (m.has("arrival_tolerance")) sc.mission.arrival_tolerance_m = m["arrival_tolerance"].positive();
+    if (sc.mission.type == MissionType::route && sc.mission.waypoints.empty())
+      m.req("waypoints").fail("a route mission needs at least one waypoint");
+  }
+
+  // Planner.
+  if (top.has("planner")) {
+    const At p = top["planner"];
+    p.keys({"algorithm", "params"});
+    if (p.has("algorithm")) sc.planner.algorithm = p["algorithm"].text();
+    if (p.has("params")) {
+      const At params = p["params"];
+      params.expect_map();
+      for (const auto& kv : params.node) {
+        const At v{kv.second, params.path + "." + kv.first.Scalar(), &file};
+        if (!kv.second.IsScalar()) v.fail("planner parameters must be single values");
+        sc.planner.params[kv.first.Scalar()] = kv.second.Scalar();
+      }
+    }
+  }
+  return sc;
+}
+
+Scenario load_scenario(const std::string& path, const Overrides& overrides) {
+  return parse_scenario(read_text_file(path), path, overrides);
+}
+
+}  // namespace uavplan

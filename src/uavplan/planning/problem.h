@@ -1,0 +1,40 @@
+// Problem, Route and PlanResult: what a single-UAV planner takes and returns.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "uavplan/core/status.h"
+#include "uavplan/core/vec.h"
+#include "uavplan/vehicle/uav.h"
+
+namespace uavplan {
+
+struct Problem {
+  UavSpec uav;              // start, start heading and limits
+  Vec3 goal = Vec3::Zero();
+  std::vector<Vec3> via;    // visited in order between start and goal
+};
+
+struct Route {
+  std::vector<Vec3> waypoints;
+  double length_m() const;
+};
+
+struct PlanStats {
+  std::uint64_t nodes_expanded = 0;
+  std::uint64_t open_max = 0;       // largest open list seen
+  std::uint64_t grid_cells = 0;     // size of the search grid, when there is one
+  double cell_m = 0.0;              // horizontal grid resolution used
+  double plan_ms = 0.0;
+};
+
+struct PlanResult {
+  Status status = Status::failed;
+  Route route;
+  PlanStats stats;
+  std::string message;  // why it failed, or a note
+};
+
+}  // namespace uavplan

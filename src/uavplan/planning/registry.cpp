@@ -1,0 +1,40 @@
+#include "uavplan/planning/registry.h"
+
+#include <functional>
+#include <stdexcept>
+
+#include "uavplan/planning/search/astar_planner.h"
+
+namespace uavplan {
+namespace {
+
+struct Entry {
+  PlannerInfo info;
+  std::function<std::unique_ptr<Planner>(const Params&)> make;
+};
+
+const std::vector<Entry>& entries() {
+  static const std::vector<Entry> list = {
+      {{"astar", "grid A* on a voxelised world, 26 neighbours, shortcut and turn shaping"},
+       [](const Params& p) { return std::make_unique<AStarPlanner>(AStarOptions::from_params(p)); }},
+  };
+  return list;
+}
+
+}  // namespace
+
+std::unique_ptr<Planner> make_planner(std::string_view name, const Params& params) {
+  for (const Entry& e : entries())
+    if (e.info.name == name) return e.make(params);
+  std::string known;
+  for (const Entry& e : entries()) known += (known.empty() ? "" : ", ") + e.info.name;
+  throw std::invalid_argument("unknown planner '" + std::string(name) + "' (known: " + known + ")");
+}
+
+std::vector<PlannerInfo> planner_catalog() {
+  std::vector<PlannerInfo> out;
+  for (const Entry& e : entries()) out.push_back(e.info);
+  return out;
+}
+
+}  // namespace uavplan

@@ -1,0 +1,24 @@
+// Planners by name.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "uavplan/planning/params.h"
+#include "uavplan/planning/planner.h"
+
+namespace uavplan {
+
+// Throws std::invalid_argument for an unknown name or malformed parameters.
+std::unique_ptr<Planner> make_planner(std::string_view name, const Params& params);
+
+// Registered names with a one-line description each.
+struct PlannerInfo {
+  std::string name;
+  std::string description;
+};
+std::vector<PlannerInfo> planner_catalog();
+
+}  // namespace uavplan

@@ -1,0 +1,170 @@
+#include "uavplan/planning/search/astar_planner.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "uavplan/planning/segment_rule.h"
+#include "uavplan/planning/smoothing/shortcut.h"
+#include "uavplan/planning/smoothing/turn_limits.h"
+
+namespace uavplan {
+
+AStarOptions AStarOptions::from_params(const Params& params) {
+  ParamReader r(params, "astar");
+  AStarOptions o;
+  o.cell_m = r.number("cell_m", o.cell_m, 0.0, 1e9);
+  o.shortcut = r.boolean("shortcut", o.shortcut);
+  o.refinements = r.integer("refinements", o.refinements, 0, 8);
+  o.max_cells = static_cast<std::int64_t>(r.number("max_cells", static_cast<double>(o.max_cells), 1, 1e9));
+  o.target_cells = static_cast<std::int64_t>(r.number("target_cells", static_cast<double>(o.target_cells), 1, 1e9));
+  r.finish();
+  return o;
+}
+
+double auto_cell_m(const World& world, std::int64_t target_cells) {
+  const Vec3 ext = world.bounds().extent();
+  double volume = 1.0;
+  int dims = 0;
+  for (int a = 0; a < 3; ++a)
+    if (ext[a] > 0.0) {
+      volume *= ext[a];
+      ++dims;
+    }
+  if (dims == 0) return 1.0;
+  double cell = std::pow(volume / static_cast<double>(target_cells), 1.0 / dims);
+  if (const TerrainGrid* t = world.terrain()) cell = std::min(cell, t->cell_m());
+  return cell;
+}
+
+double layer_height_m(double cell_m, double max_climb_rad) {
+  // 0.999: a diagonal climb then sits just inside the limit, not on it.
+  return max_climb_rad >= kPi / 4 ? cell_m : cell_m * std::tan(max_climb_rad) * 0.999;
+}
+
+namespace {
+
+// The nearest free cell whose centre the UAV can fly to straight from p (and back).
+std::int64_t attach(const VoxelGrid& g, const Vec3& p, const SegmentRule& rule) {
+  int ci, cj, ck;
+  g.cell_of(p, ci, cj, ck);
+  for (int reach = 1; reach <= 4; reach *= 2) {
+    const int rz = g.cell().z() > 0 ? std::max(reach, static_cast<int>(std::ceil(reach * g.cell().x() / g.cell().z()))) : 0;
+    std::int64_t best = -1;
+    double best_d = World::kInf;
+    for (int k = ck - rz; k <= ck + rz; ++k)
+      for (int j = cj - reach; j <= cj + reach; ++j)
+        for (int i = ci - reach; i <= ci + reach; ++i) {
+          if (!g.inside(i, j, k) || g.blocked(i, j, k)) continue;
+          const Vec3 c = g.center(i, j, k);
+          const double d = (c - p).norm();
+          if (d < best_d && rule(p, c) && rule(c, p)) {
+            best_d = d;
+            best = g.index(i, j, k);
+          }
+        }
+    if (best >= 0) return best;
+  }
+  return -1;
+}
+
+struct LegResult {
+  bool ok = false;
+  bool stopped = false;
+  std::vector<Vec3> points;  // excluding the leg's first point
+};
+
+}  // namespace
+
+PlanResult AStarPlanner::do_plan(const Problem& pb, const World& world, const StopCondition& stop) const {
+  PlanResult res;
+  const UavSpec& uav = pb.uav;
+  const SegmentRule rule(world, uav);
+  std::vector<Vec3> stops{uav.start};
+  stops.insert(stops.end(), pb.via.begin(), pb.via.end());
+  stops.push_back(pb.goal);
+  for (std::size_t s = 0; s < stops.size(); ++s)
+    if (!rule.point_ok(stops[s])) {
+      res.message = (s == 0 ? std::string("start") : s + 1 == stops.size() ? std::string("goal") : "via point " + std::to_string(s - 1)) +
+                    " is closer to an obstacle than the UAV radius, or above the ceiling";
+      return res;
+    }
+
+  const bool derived = options_.cell_m <= 0.0;
+  double cell = derived ? auto_cell_m(world, options_.target_cells) : options_.cell_m;
+  const int attempts = derived ? options_.refinements + 1 : 1;
+  std::vector<Vec3> path;
+  std::vector<char> pinned;
+  bool found = false;
+  for (int attempt = 0; attempt < attempts && !found; ++attempt, cell *= 0.5) {
+    const Vec3 cell3(cell, cell, layer_height_m(cell, uav.max_climb_rad));
+    VoxelGrid probe(world.bounds(), cell3);
+    if (attempt > 0 && probe.size() > options_.max_cells) break;
+    const VoxelGrid grid = voxelize(world, cell3, rule.inflation_m(), rule.ceiling_m());
+    res.stats.grid_cells = static_cast<std::uint64_t>(grid.size());
+    res.stats.cell_m = grid.cell().x();
+    path.assign(1, stops[0]);
+    pinned.assign(1, 1);
+    found = true;
+    for (std::size_t s = 0; s + 1 < stops.size() && found; ++s) {
+      const Vec3 &a = stops[s], &b = stops[s + 1];
+      if (rule(a, b)) {
+        path.push_back(b);
+        pinned.push_back(1);
+        continue;
+      }
+      const std::int64_t ga = attach(grid, a, rule), gb = attach(grid, b, rule);
+      if (ga < 0 || gb < 0) {
+        found = false;
+        res.message = "no free grid cell can be reached straight from the " +
+                      std::string(ga < 0 ? "start of leg " : "end of leg ") + std::to_string(s);
+        break;
+      }
+      VoxelSearchOptions so;
+      so.max_pitch_rad = uav.max_climb_rad;
+      const VoxelPath vp = voxel_astar(grid, ga, gb, so, stop);
+      res.stats.nodes_expanded += vp.expanded;
+      res.stats.open_max = std::max(res.stats.open_max, vp.open_max);
+      if (vp.stopped) {
+        res.message = "stopped before a route was found";
+        return res;
+      }
+      if (!vp.found) {
+        found = false;
+        res.message = "no route on a " + std::to_string(grid.nx()) + "x" + std::to_string(grid.ny()) + "x" +
+                      std::to_string(grid.nz()) + " grid for leg " + std::to_string(s);
+        break;
+      }
+      for (const std::int64_t c : vp.cells) {
+        path.push_back(grid.center(c));
+        pinned.push_back(0);
+      }
+      path.push_back(b);
+      pinned.push_back(1);
+    }
+  }
+  if (!found) return res;
+
+  if (options_.shortcut) {
+    path = shortcut(path, pinned, rule);
+    // Pins survive shortcutting by construction; recompute them for the shorter list.
+    std::vector<char> pins(path.size(), 0);
+    std::size_t s = 0;
+    for (std::size_t i = 0; i < path.size() && s < stops.size(); ++i)
+      if ((path[i] - stops[s]).norm() == 0.0) {
+        pins[i] = 1;
+        ++s;
+      }
+    pinned = std::move(pins);
+  }
+  const TurnShaping shaped = enforce_turn_limits(path, pinned, uav.heading_rad,
+                                                 {uav.max_turn_rad, uav.max_climb_rad}, rule);
+  if (!shaped.ok) {
+    res.message = shaped.message;
+    return res;
+  }
+  res.route.waypoints = shaped.waypoints;
+  res.status = Status::solved;
+  return res;
+}
+
+}  // namespace uavplan

@@ -1,0 +1,44 @@
+// Planner `astar`: grid A* on a voxelisation of the World (inflated by the UAV radius),
+// 26 neighbours, then shortcutting with exact segment checks and turn shaping. The default
+// resolution comes from the world's size (see auto_cell_m); when the search finds no route on
+// the derived grid it refines it, so narrow passages are found without tuning.
+#pragma once
+
+#include <cstdint>
+
+#include "uavplan/planning/params.h"
+#include "uavplan/planning/planner.h"
+#include "uavplan/planning/search/voxel_astar.h"
+
+namespace uavplan {
+
+struct AStarOptions {
+  double cell_m = 0.0;               // horizontal cell size; 0 = derived from the world
+  bool shortcut = true;              // remove redundant waypoints afterwards
+  int refinements = 2;               // with a derived cell: halve it this often when no route
+  std::int64_t max_cells = 8'000'000;  // refinement never exceeds this grid size
+  std::int64_t target_cells = 1'000'000;  // derived cells aim at about this many voxels
+
+  static AStarOptions from_params(const Params& params);
+};
+
+// The derived cell size: about `target_cells` voxels over the world's bounds, and no coarser
+// than the terrain's cells (so the cell map is resolved).
+double auto_cell_m(const World& world, std::int64_t target_cells);
+
+// Vertical cell size for a horizontal one: diagonal climbing moves must respect the climb
+// limit, so layers are thinner when the limit is below 45 degrees.
+double layer_height_m(double cell_m, double max_climb_rad);
+
+class AStarPlanner final : public Planner {
+ public:
+  explicit AStarPlanner(AStarOptions options = {}) : options_(options) {}
+  std::string_view name() const override { return "astar"; }
+  const AStarOptions& options() const { return options_; }
+
+ private:
+  PlanResult do_plan(const Problem& problem, const World& world, const StopCondition& stop) const override;
+  AStarOptions options_;
+};
+
+}  // namespace uavplan

@@ -1,0 +1,42 @@
+// What every route segment a planner emits must satisfy: inside the bounds, under the ceiling,
+// clear of static obstacles after inflation (plus a small planning margin, so rounding in the
+// written plan cannot touch an obstacle) and within the climb limit.
+#pragma once
+
+#include "uavplan/vehicle/uav.h"
+#include "uavplan/world/world.h"
+
+namespace uavplan {
+
+// Margin added to the UAV radius while planning, in metres.
+inline constexpr double kPlanningMargin_m = 1e-3;
+
+class SegmentRule {
+ public:
+  SegmentRule(const World& world, const UavSpec& uav)
+      : world_(&world),
+        inflation_m_(uav.radius_m + kPlanningMargin_m),
+        max_climb_rad_(uav.max_climb_rad),
+        ceiling_m_(uav.ceiling_m ? std::min(*uav.ceiling_m, world.bounds().max.z()) : world.bounds().max.z()) {}
+
+  bool point_ok(const Vec3& p) const {
+    return world_->in_bounds(p) && p.z() <= ceiling_m_ && !world_->point_collides(p, inflation_m_);
+  }
+  bool operator()(const Vec3& a, const Vec3& b) const {
+    if (!world_->in_bounds(a) || !world_->in_bounds(b)) return false;
+    if (a.z() > ceiling_m_ || b.z() > ceiling_m_) return false;
+    if (std::abs(pitch_rad(b - a)) > max_climb_rad_) return false;
+    return !world_->segment_collides(a, b, inflation_m_);
+  }
+  double inflation_m() const { return inflation_m_; }
+  double ceiling_m() const { return ceiling_m_; }
+  const World& world() const { return *world_; }
+
+ private:
+  const World* world_;
+  double inflation_m_;
+  double max_climb_rad_;
+  double ceiling_m_;
+};
+
+}  // namespace uavplan

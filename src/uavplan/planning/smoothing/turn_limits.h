@@ -1,0 +1,35 @@
+// Reshapes a route so that every turn between consecutive segments stays within the UAV's
+// limit, including the first segment against the start heading.
+//  - An unpinned corner is replaced by a fillet: the inscribed polygon of a circular arc
+//    tangent to both legs, with enough chords that each vertex turns at most the limit.
+//  - At the start (against the heading), at a pinned point (a via point the route must touch),
+//    or where no fillet fits, the route flies over the point and pursues the next one, turning
+//    at most the limit per chord, climbing at most the climb limit (a helix when it must).
+// Every new segment is checked with `ok`; nothing unchecked is ever emitted.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "uavplan/planning/smoothing/shortcut.h"
+
+namespace uavplan {
+
+struct TurnLimits {
+  double max_turn_rad;
+  double max_climb_rad;
+};
+
+struct TurnShaping {
+  bool ok = false;
+  std::vector<Vec3> waypoints;
+  std::string message;
+};
+
+TurnShaping enforce_turn_limits(std::span<const Vec3> points, std::span<const char> pinned,
+                                std::optional<double> start_heading_rad, const TurnLimits& limits,
+                                const SegmentPredicate& ok);
+
+}  // namespace uavplan

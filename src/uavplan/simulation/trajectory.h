@@ -1,0 +1,40 @@
+// Time-stamped trajectories: between consecutive samples a UAV moves in a straight line at
+// constant speed. Before its first sample a UAV is at its first position (waiting to depart);
+// after its last it stays at its last (hovering or landed at the goal).
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "uavplan/core/vec.h"
+#include "uavplan/world/world.h"
+
+namespace uavplan {
+
+struct TrajectorySample {
+  double t_s = 0.0;
+  Vec3 p = Vec3::Zero();
+};
+using Trajectory = std::vector<TrajectorySample>;
+
+// Flies the waypoints at `speed_mps`, starting at t = 0 and departing at `depart_s` (holding at
+// the start before), with a sample at every waypoint and at most `max_dt_s` between samples.
+Trajectory time_route(std::span<const Vec3> waypoints, double speed_mps, double depart_s, double max_dt_s);
+
+Vec3 position_at(const Trajectory& tr, double t_s);
+
+struct Encounter {
+  double distance_m = World::kInf;  // smallest distance (centre to centre for two UAVs)
+  double t_s = 0.0;                 // when
+  Vec3 where = Vec3::Zero();        // first trajectory's position then
+};
+
+// Exact smallest distance between two trajectories at equal times (piecewise linear on the
+// merged sample times, so each piece is a closed-form minimum).
+Encounter closest_approach(const Trajectory& a, const Trajectory& b);
+
+// Exact smallest gap between the trajectory and the surface of any moving obstacle;
+// `index_out` names the obstacle.
+Encounter closest_moving_approach(const World& world, const Trajectory& tr, int* index_out = nullptr);
+
+}  // namespace uavplan

@@ -1,0 +1,56 @@
+// A UAV's identity, mission endpoints and limits, and the route-geometry checks they imply.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "uavplan/core/units.h"
+#include "uavplan/core/vec.h"
+
+namespace uavplan {
+
+struct SpeedLimits {
+  double min_mps = 0.0;
+  double cruise_mps = 5.0;
+  double max_mps = 5.0;
+};
+
+struct UavSpec {
+  std::string id;
+  Vec3 start = Vec3::Zero();
+  std::optional<Vec3> goal;
+  std::optional<double> heading_rad;   // initial yaw, 0 = east, pi/2 = north
+  double radius_m = 0.5;               // obstacles are inflated by it
+  SpeedLimits speed;
+  double max_turn_rad = kPi;           // heading change between consecutive segments
+  double max_climb_rad = kPi / 2;      // |pitch| of any segment
+  std::optional<double> ceiling_m;     // highest altitude allowed, below the world's top
+};
+
+// Tolerance of every angle check: routes are built to the limit, floating error must not fail them.
+inline constexpr double kAngleTolerance_rad = 1e-7;
+
+// Pitch of a segment, atan2(dz, horizontal length); 0 for a zero-length segment.
+double pitch_rad(const Vec3& segment);
+
+// The turn between consecutive segment directions: the larger of the 3-D angle between them
+// (P4's constraint) and the change of horizontal heading (the contract's "heading change"),
+// the latter only when both segments have a horizontal part.
+double turn_rad(const Vec3& from, const Vec3& to);
+
+// Unit horizontal vector of a heading.
+inline Vec3 heading_vector(double heading_rad) { return {std::cos(heading_rad), std::sin(heading_rad), 0.0}; }
+
+struct LimitViolation {
+  enum class Kind { turn, climb } kind;
+  std::size_t index;  // turn: the waypoint where it turns (0 = against the start heading); climb: segment
+  double value_rad;
+};
+
+// Checks the turn limit at every interior waypoint (and at the start against the start heading,
+// when there is one) and the climb limit on every segment; zero-length segments are skipped.
+std::vector<LimitViolation> check_route_limits(std::span<const Vec3> waypoints, const UavSpec& uav);
+
+}  // namespace uavplan

@@ -1,0 +1,112 @@
+#include "uavplan/world/shapes.h"
+
+#include <cmath>
+
+#include "uavplan/core/geometry.h"
+
+namespace uavplan {
+namespace {
+
+struct BoundsVisitor {
+  Aabb operator()(const Sphere& s) const {
+    return {s.center.array() - s.radius_m, s.center.array() + s.radius_m};
+  }
+  Aabb operator()(const Cylinder& c) const {
+    return {Vec3(c.center.x() - c.radius_m, c.center.y() - c.radius_m, c.z_min_m),
+            Vec3(c.center.x() + c.radius_m, c.center.y() + c.radius_m, c.z_max_m)};
+  }
+  Aabb operator()(const Box& b) const { return {b.min, b.max}; }
+  Aabb operator()(const Prism& p) const {
+    Aabb box;
+    for (const Vec2& v : p.polygon) {
+      box.extend(Vec3(v.x(), v.y(), p.z_min_m));
+      box.extend(Vec3(v.x(), v.y(), p.z_max_m));
+    }
+    return box;
+  }
+};
+
+double vertical_gap(double z, double z_min, double z_max) {
+  return std::max({0.0, z_min - z, z - z_max});
+}
+
+struct PointVisitor {
+  const Vec3& p;
+  double operator()(const Sphere& s) const { return std::max(0.0, (p - s.center).norm() - s.radius_m); }
+  double operator()(const Cylinder& c) const {
+    const double dr = std::max(0.0, (p.head<2>() - c.center).norm() - c.radius_m);
+    return std::hypot(dr, vertical_gap(p.z(), c.z_min_m, c.z_max_m));
+  }
+  double operator()(const Box& b) const { return Aabb{b.min, b.max}.distance(p); }
+  double operator()(const Prism& pr) const {
+    const Vec2 q = p.head<2>();
+    const double dv = vertical_gap(p.z(), pr.z_min_m, pr.z_max_m);
+    if (point_in_polygon(q, pr.polygon)) return dv;
+    return std::hypot(point_polygon_boundary_distance(q, pr.polygon), dv);
+  }
+};
+
+// True when the segment meets the prism's solid.
+bool segment_meets_prism(const Prism& pr, const Vec3& a, const Vec3& b) {
+  double t0 = 0.0, t1 = 1.0;
+  const double dz = b.z() - a.z();
+  if (std::abs(dz) < 1e-300) {
+    if (a.z() < pr.z_min_m || a.z() > pr.z_max_m) return false;
+  } else {
+    double ta = (pr.z_min_m - a.z()) / dz, tb = (pr.z_max_m - a.z()) / dz;
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+    if (t0 > t1) return false;
+  }
+  const Vec2 p = (a + t0 * (b - a)).head<2>(), q = (a + t1 * (b - a)).head<2>();
+  if (point_in_polygon(p, pr.polygon) || point_in_polygon(q, pr.polygon)) return true;
+  const std::size_t n = pr.polygon.size();
+  for (std::size_t i = 0, j = n - 1; i < n; j = i++)
+    if (segments_intersect_2d(p, q, pr.polygon[j], pr.polygon[i])) return true;
+  return false;
+}
+
+struct SegmentVisitor {
+  const Vec3& a;
+  const Vec3& b;
+  double operator()(const Sphere& s) const {
+    return std::max(0.0, point_segment_distance(s.center, a, b) - s.radius_m);
+  }
+  // Distance to a convex solid is convex along a line: golden-section search is exact.
+  double operator()(const Cylinder& c) const {
+    return golden_section_min([&](double t) { return PointVisitor{a + t * (b - a)}(c); }, 0.0, 1.0);
+  }
+  double operator()(const Box& bx) const {
+    const Aabb box{bx.min, bx.max};
+    return golden_section_min([&](double t) { return box.distance(a + t * (b - a)); }, 0.0, 1.0);
+  }
+  // A possibly non-convex prism: 0 when they meet; otherwise the closest pair involves an
+  // endpoint of the segment or an edge of the prism.
+  double operator()(const Prism& pr) const {
+    if (segment_meets_prism(pr, a, b)) return 0.0;
+    double best = std::min(PointVisitor{a}(pr), PointVisitor{b}(pr));
+    const std::size_t n = pr.polygon.size();
+    for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+      const Vec3 lo_j(pr.polygon[j].x(), pr.polygon[j].y(), pr.z_min_m);
+      const Vec3 lo_i(pr.polygon[i].x(), pr.polygon[i].y(), pr.z_min_m);
+      const Vec3 hi_j(lo_j.x(), lo_j.y(), pr.z_max_m), hi_i(lo_i.x(), lo_i.y(), pr.z_max_m);
+      best = std::min({best, segment_segment_distance(a, b, lo_j, lo_i),
+                       segment_segment_distance(a, b, hi_j, hi_i),
+                       segment_segment_distance(a, b, lo_i, hi_i)});
+    }
+    return best;
+  }
+};
+
+}  // namespace
+
+Aabb bounding_box(const Obstacle& o) { return std::visit(BoundsVisitor{}, o); }
+
+double point_distance(const Obstacle& o, const Vec3& p) { return std::visit(PointVisitor{p}, o); }
+
+double segment_distance(const Obstacle& o, const Vec3& a, const Vec3& b) {
+  return std::visit(SegmentVisitor{a, b}, o);
+}
+
+}  // namespace uavplan

@@ -1,0 +1,43 @@
+// Hard obstacles: a route may never come closer to them than the UAV's radius.
+#pragma once
+
+#include <variant>
+#include <vector>
+
+#include "uavplan/core/vec.h"
+
+namespace uavplan {
+
+struct Sphere {
+  Vec3 center;
+  double radius_m = 0.0;
+};
+
+// Vertical cylinder (no-fly zone, electromagnetic zone).
+struct Cylinder {
+  Vec2 center;
+  double radius_m = 0.0;
+  double z_min_m = 0.0, z_max_m = 0.0;
+};
+
+struct Box {
+  Vec3 min, max;
+};
+
+// Extruded footprint (building); the polygon may be non-convex, given in either orientation.
+struct Prism {
+  std::vector<Vec2> polygon;
+  double z_min_m = 0.0, z_max_m = 0.0;
+};
+
+using Obstacle = std::variant<Sphere, Cylinder, Box, Prism>;
+
+Aabb bounding_box(const Obstacle& o);
+
+// Euclidean distance from p to the solid (0 inside or on it).
+double point_distance(const Obstacle& o, const Vec3& p);
+
+// Exact distance from segment [a, b] to the solid (0 when they meet).
+double segment_distance(const Obstacle& o, const Vec3& a, const Vec3& b);
+
+}  // namespace uavplan

@@ -1,0 +1,83 @@
+#include "uavplan/world/terrain.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "uavplan/core/geometry.h"
+
+namespace uavplan {
+namespace {
+constexpr double kFarBelow_m = -1e12;
+}
+
+TerrainGrid::TerrainGrid(Vec2 origin, double cell_m, int nx, int ny, std::vector<double> heights)
+    : origin_(origin), cell_m_(cell_m), nx_(nx), ny_(ny), heights_(std::move(heights)) {
+  if (!(cell_m_ > 0.0) || !std::isfinite(cell_m_)) throw std::invalid_argument("terrain cell size must be positive");
+  if (nx_ <= 0 || ny_ <= 0) throw std::invalid_argument("terrain grid must have at least one cell");
+  if (heights_.size() != static_cast<std::size_t>(nx_) * ny_)
+    throw std::invalid_argument("terrain heights do not match the grid size");
+  max_height_ = *std::max_element(heights_.begin(), heights_.end());
+}
+
+double TerrainGrid::height_at(double x, double y) const {
+  const double fi = std::floor((x - origin_.x()) / cell_m_), fj = std::floor((y - origin_.y()) / cell_m_);
+  if (fi < 0 || fj < 0 || fi >= nx_ || fj >= ny_) return -std::numeric_limits<double>::infinity();
+  return height(static_cast<int>(fi), static_cast<int>(fj));
+}
+
+Aabb TerrainGrid::column(int i, int j) const {
+  const double x0 = origin_.x() + i * cell_m_, y0 = origin_.y() + j * cell_m_;
+  return {Vec3(x0, y0, kFarBelow_m), Vec3(x0 + cell_m_, y0 + cell_m_, height(i, j))};
+}
+
+double TerrainGrid::point_distance(const Vec3& p, double cap) const {
+  if (p.z() - max_height_ >= cap) return cap;
+  const int i0 = std::max(0, static_cast<int>(std::floor((p.x() - cap - origin_.x()) / cell_m_)));
+  const int i1 = std::min(nx_ - 1, static_cast<int>(std::floor((p.x() + cap - origin_.x()) / cell_m_)));
+  const int j0 = std::max(0, static_cast<int>(std::floor((p.y() - cap - origin_.y()) / cell_m_)));
+  const int j1 = std::min(ny_ - 1, static_cast<int>(std::floor((p.y() + cap - origin_.y()) / cell_m_)));
+  double best = cap;
+  for (int j = j0; j <= j1; ++j)
+    for (int i = i0; i <= i1; ++i) best = std::min(best, column(i, j).distance(p));
+  return best;
+}
+
+double TerrainGrid::segment_distance(const Vec3& a, const Vec3& b, double cap) const {
+  if (std::min(a.z(), b.z()) - max_height_ >= cap) return cap;
+  const Vec3 d = b - a;
+  const double ylo = std::min(a.y(), b.y()) - cap, yhi = std::max(a.y(), b.y()) + cap;
+  const int j0 = std::max(0, static_cast<int>(std::floor((ylo - origin_.y()) / cell_m_)));
+  const int j1 = std::min(ny_ - 1, static_cast<int>(std::floor((yhi - origin_.y()) / cell_m_)));
+  double best = cap;
+  for (int j = j0; j <= j1; ++j) {
+    // The part of the segment within `cap` of this row, in y.
+    const double ry0 = origin_.y() + j * cell_m_ - cap, ry1 = ry0 + cell_m_ + 2 * cap;
+    double t0 = 0.0, t1 = 1.0;
+    if (std::abs(d.y()) < 1e-300) {
+      if (a.y() < ry0 || a.y() > ry1) continue;
+    } else {
+      double ta = (ry0 - a.y()) / d.y(), tb = (ry1 - a.y()) / d.y();
+      if (ta > tb) std::swap(ta, tb);
+      t0 = std::max(t0, ta);
+      t1 = std::min(t1, tb);
+      if (t0 > t1) continue;
+    }
+    const double xa = a.x() + t0 * d.x(), xb = a.x() + t1 * d.x();
+    const int i0 = std::max(0, static_cast<int>(std::floor((std::min(xa, xb) - cap - origin_.x()) / cell_m_)));
+    const int i1 = std::min(nx_ - 1, static_cast<int>(std::floor((std::max(xa, xb) + cap - origin_.x()) / cell_m_)));
+    for (int i = i0; i <= i1; ++i) {
+      const double h = height(i, j);
+      const Aabb col = column(i, j);
+      // Cheap reject: the part of the segment near this column stays `best` above it.
+      double ta, tb;
+      if (!clip_segment_to_box(a, b, Aabb{col.min.array() - best, col.max.array() + best}, ta, tb)) continue;
+      if (std::min(a.z() + ta * d.z(), a.z() + tb * d.z()) - h >= best) continue;
+      best = std::min(best, golden_section_min([&](double t) { return col.distance(a + t * d); }, 0.0, 1.0));
+      if (best <= 0.0) return 0.0;
+    }
+  }
+  return best;
+}
+
+}  // namespace uavplan

@@ -1,0 +1,40 @@
+// Elevation grid ("digital cell map"): each cell holds the height of what stands on it;
+// nothing may fly below it.
+#pragma once
+
+#include <vector>
+
+#include "uavplan/core/vec.h"
+
+namespace uavplan {
+
+class TerrainGrid {
+ public:
+  // heights[j * nx + i] covers x in [x0 + i c, x0 + (i+1) c), y in [y0 + j c, y0 + (j+1) c).
+  TerrainGrid(Vec2 origin, double cell_m, int nx, int ny, std::vector<double> heights);
+
+  const Vec2& origin() const { return origin_; }
+  double cell_m() const { return cell_m_; }
+  int nx() const { return nx_; }
+  int ny() const { return ny_; }
+  double height(int i, int j) const { return heights_[static_cast<std::size_t>(j) * nx_ + i]; }
+  double max_height() const { return max_height_; }
+  // Height under (x, y); minus infinity outside the grid.
+  double height_at(double x, double y) const;
+  // The column of cell (i, j) as a box from far below up to its height.
+  Aabb column(int i, int j) const;
+
+  // Distance from p to the nearest column, or `cap` when none is closer than cap.
+  double point_distance(const Vec3& p, double cap) const;
+  // Exact distance from segment [a, b] to the nearest column, or `cap` when none is closer.
+  double segment_distance(const Vec3& a, const Vec3& b, double cap) const;
+
+ private:
+  Vec2 origin_;
+  double cell_m_;
+  int nx_, ny_;
+  std::vector<double> heights_;
+  double max_height_;
+};
+
+}  // namespace uavplan

@@ -1,0 +1,72 @@
+// One immutable World that answers point, segment and time queries: collision after
+// inflation by a radius, clearance, threat cost. Thread-safe for concurrent queries.
+#pragma once
+
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include "uavplan/core/vec.h"
+#include "uavplan/world/bvh.h"
+#include "uavplan/world/moving.h"
+#include "uavplan/world/shapes.h"
+#include "uavplan/world/terrain.h"
+#include "uavplan/world/threat.h"
+
+namespace uavplan {
+
+struct WorldSpec {
+  Aabb bounds;
+  std::vector<Obstacle> obstacles;
+  std::vector<Radar> radars;
+  std::optional<TerrainGrid> terrain;
+  std::vector<MovingObstacle> moving;
+};
+
+class World {
+ public:
+  static constexpr double kInf = std::numeric_limits<double>::infinity();
+
+  World() : World(WorldSpec{Aabb{Vec3::Zero(), Vec3::Zero()}, {}, {}, {}, {}}) {}
+  // Throws std::invalid_argument on an inconsistent world (empty bounds, bad shapes).
+  explicit World(WorldSpec spec);
+
+  const Aabb& bounds() const { return spec_.bounds; }
+  const std::vector<Obstacle>& obstacles() const { return spec_.obstacles; }
+  const std::vector<Radar>& radars() const { return spec_.radars; }
+  const TerrainGrid* terrain() const { return spec_.terrain ? &*spec_.terrain : nullptr; }
+  const std::vector<MovingObstacle>& moving() const { return spec_.moving; }
+  const WorldSpec& spec() const { return spec_; }
+
+  bool in_bounds(const Vec3& p) const { return spec_.bounds.contains(p); }
+
+  // Distance from p to the nearest static obstacle or terrain column (0 inside), capped at `cap`.
+  double clearance(const Vec3& p, double cap = kInf) const;
+  // Exact distance from segment [a, b] to the nearest static obstacle or terrain, capped.
+  double segment_clearance(const Vec3& a, const Vec3& b, double cap = kInf) const;
+
+  // Collision after inflating every static obstacle by `inflation_m`.
+  bool point_collides(const Vec3& p, double inflation_m) const { return clearance(p, inflation_m) < inflation_m; }
+  bool segment_collides(const Vec3& a, const Vec3& b, double inflation_m) const {
+    return segment_clearance(a, b, inflation_m) < inflation_m;
+  }
+  // Inside the bounds and clear of every static obstacle after inflation.
+  bool segment_valid(const Vec3& a, const Vec3& b, double inflation_m) const {
+    return in_bounds(a) && in_bounds(b) && !segment_collides(a, b, inflation_m);
+  }
+
+  // Smallest gap between the surface of any moving obstacle and a UAV flying straight from a
+  // (at t_a) to b (at t_b); +inf without moving obstacles. `index_out` names the closest.
+  double moving_clearance(const Vec3& a, double t_a_s, const Vec3& b, double t_b_s,
+                          int* index_out = nullptr) const;
+
+  double threat_density(const Vec3& p) const { return uavplan::threat_density(p, spec_.radars); }
+  double p1_threat_cost(const Vec3& a, const Vec3& b) const { return uavplan::p1_threat_cost(a, b, spec_.radars); }
+  double threat_integral(const Vec3& a, const Vec3& b) const { return uavplan::threat_integral(a, b, spec_.radars); }
+
+ private:
+  WorldSpec spec_;
+  Bvh bvh_;
+};
+
+}  // namespace uavplan
