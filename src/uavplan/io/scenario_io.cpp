@@ -258,8 +258,9 @@ void apply_override(YAML::Node& root, const std::string& key, const std::string&
       const auto end = path.find_first_of(".[", i);
       const std::string seg = path.substr(i, end == std::string::npos ? std::string::npos : end - i);
       if (!cur.IsMap() && !cur.IsNull()) throw InputError(file, 0, place, "'" + seg + "' is not inside a mapping");
-      next.reset(cur[seg]);
       i = end == std::string::npos ? path.size() : end;
+      if (i < path.size() && !cur[seg].IsDefined()) cur[seg] = YAML::Node(YAML::NodeType::Map);  // create the way
+      next.reset(cur[seg]);
     }
     if (i >= path.size()) {
       next = v;  // assigns into the tree (yaml-cpp reference semantics)

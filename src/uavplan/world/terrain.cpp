@@ -9,7 +9,10 @@
 namespace uavplan {
 namespace {
 constexpr double kFarBelow_m = -1e12;
-}
+
+// floor(v) clamped to [0, n - 1], safe for infinite v.
+int clamp_cell(double v, int n) { return static_cast<int>(std::clamp(std::floor(v), 0.0, static_cast<double>(n - 1))); }
+}  // namespace
 
 TerrainGrid::TerrainGrid(Vec2 origin, double cell_m, int nx, int ny, std::vector<double> heights)
     : origin_(origin), cell_m_(cell_m), nx_(nx), ny_(ny), heights_(std::move(heights)) {
@@ -33,10 +36,10 @@ Aabb TerrainGrid::column(int i, int j) const {
 
 double TerrainGrid::point_distance(const Vec3& p, double cap) const {
   if (p.z() - max_height_ >= cap) return cap;
-  const int i0 = std::max(0, static_cast<int>(std::floor((p.x() - cap - origin_.x()) / cell_m_)));
-  const int i1 = std::min(nx_ - 1, static_cast<int>(std::floor((p.x() + cap - origin_.x()) / cell_m_)));
-  const int j0 = std::max(0, static_cast<int>(std::floor((p.y() - cap - origin_.y()) / cell_m_)));
-  const int j1 = std::min(ny_ - 1, static_cast<int>(std::floor((p.y() + cap - origin_.y()) / cell_m_)));
+  const int i0 = clamp_cell((p.x() - cap - origin_.x()) / cell_m_, nx_);
+  const int i1 = clamp_cell((p.x() + cap - origin_.x()) / cell_m_, nx_);
+  const int j0 = clamp_cell((p.y() - cap - origin_.y()) / cell_m_, ny_);
+  const int j1 = clamp_cell((p.y() + cap - origin_.y()) / cell_m_, ny_);
   double best = cap;
   for (int j = j0; j <= j1; ++j)
     for (int i = i0; i <= i1; ++i) best = std::min(best, column(i, j).distance(p));
@@ -46,13 +49,17 @@ double TerrainGrid::point_distance(const Vec3& p, double cap) const {
 double TerrainGrid::segment_distance(const Vec3& a, const Vec3& b, double cap) const {
   if (std::min(a.z(), b.z()) - max_height_ >= cap) return cap;
   const Vec3 d = b - a;
-  const double ylo = std::min(a.y(), b.y()) - cap, yhi = std::max(a.y(), b.y()) + cap;
-  const int j0 = std::max(0, static_cast<int>(std::floor((ylo - origin_.y()) / cell_m_)));
-  const int j1 = std::min(ny_ - 1, static_cast<int>(std::floor((yhi - origin_.y()) / cell_m_)));
+  // Horizontal reach for choosing cells: every column is within this of the segment, so a larger
+  // (or infinite) cap selects nothing more.
+  const double span = (nx_ + ny_) * cell_m_ + (a.head<2>() - origin_).norm() + (b.head<2>() - origin_).norm();
+  const double reach = std::min(cap, span);
+  const double ylo = std::min(a.y(), b.y()) - reach, yhi = std::max(a.y(), b.y()) + reach;
+  const int j0 = clamp_cell((ylo - origin_.y()) / cell_m_, ny_);
+  const int j1 = clamp_cell((yhi - origin_.y()) / cell_m_, ny_);
   double best = cap;
   for (int j = j0; j <= j1; ++j) {
     // The part of the segment within `cap` of this row, in y.
-    const double ry0 = origin_.y() + j * cell_m_ - cap, ry1 = ry0 + cell_m_ + 2 * cap;
+    const double ry0 = origin_.y() + j * cell_m_ - reach, ry1 = ry0 + cell_m_ + 2 * reach;
     double t0 = 0.0, t1 = 1.0;
     if (std::abs(d.y()) < 1e-300) {
       if (a.y() < ry0 || a.y() > ry1) continue;
@@ -64,8 +71,8 @@ double TerrainGrid::segment_distance(const Vec3& a, const Vec3& b, double cap) c
       if (t0 > t1) continue;
     }
     const double xa = a.x() + t0 * d.x(), xb = a.x() + t1 * d.x();
-    const int i0 = std::max(0, static_cast<int>(std::floor((std::min(xa, xb) - cap - origin_.x()) / cell_m_)));
-    const int i1 = std::min(nx_ - 1, static_cast<int>(std::floor((std::max(xa, xb) + cap - origin_.x()) / cell_m_)));
+    const int i0 = clamp_cell((std::min(xa, xb) - reach - origin_.x()) / cell_m_, nx_);
+    const int i1 = clamp_cell((std::max(xa, xb) + reach - origin_.x()) / cell_m_, nx_);
     for (int i = i0; i <= i1; ++i) {
       const double h = height(i, j);
       const Aabb col = column(i, j);

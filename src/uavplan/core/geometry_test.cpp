@@ -1,0 +1,71 @@
+#include "uavplan/core/geometry.h"
+
+#include <gtest/gtest.h>
+
+#include "uavplan/core/rng.h"
+
+namespace uavplan {
+namespace {
+
+// Brute force: the smallest distance over a dense grid of parameter pairs.
+double sampled_segment_distance(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1) {
+  double best = 1e300;
+  for (int i = 0; i <= 200; ++i)
+    for (int j = 0; j <= 200; ++j)
+      best = std::min(best, ((p0 + (p1 - p0) * i / 200.0) - (q0 + (q1 - q0) * j / 200.0)).norm());
+  return best;
+}
+
+TEST(Geometry, SegmentSegmentDistanceAgainstSampling) {
+  Rng r(3);
+  for (int k = 0; k < 50; ++k) {
+    const Vec3 p0(r.uniform(-5, 5), r.uniform(-5, 5), r.uniform(-5, 5));
+    const Vec3 p1(r.uniform(-5, 5), r.uniform(-5, 5), r.uniform(-5, 5));
+    const Vec3 q0(r.uniform(-5, 5), r.uniform(-5, 5), r.uniform(-5, 5));
+    const Vec3 q1 = k % 5 == 0 ? q0 + 2.0 * (p1 - p0) : Vec3(r.uniform(-5, 5), r.uniform(-5, 5), r.uniform(-5, 5));
+    const double exact = segment_segment_distance(p0, p1, q0, q1);
+    const double sampled = sampled_segment_distance(p0, p1, q0, q1);
+    EXPECT_LE(exact, sampled + 1e-9);
+    EXPECT_NEAR(exact, sampled, 0.1);
+  }
+}
+
+TEST(Geometry, PointSegmentDistance) {
+  double t = -1;
+  EXPECT_DOUBLE_EQ(point_segment_distance(Vec3(0, 1, 0), Vec3(-1, 0, 0), Vec3(1, 0, 0), &t), 1.0);
+  EXPECT_DOUBLE_EQ(t, 0.5);
+  EXPECT_DOUBLE_EQ(point_segment_distance(Vec3(3, 0, 0), Vec3(-1, 0, 0), Vec3(1, 0, 0)), 2.0);
+}
+
+TEST(Geometry, PointInNonConvexPolygon) {
+  const std::vector<Vec2> l{{0, 0}, {4, 0}, {4, 1}, {1, 1}, {1, 4}, {0, 4}};
+  EXPECT_TRUE(point_in_polygon(Vec2(0.5, 3), l));
+  EXPECT_TRUE(point_in_polygon(Vec2(3, 0.5), l));
+  EXPECT_FALSE(point_in_polygon(Vec2(3, 3), l));
+  EXPECT_FALSE(point_in_polygon(Vec2(-1, 0.5), l));
+  EXPECT_NEAR(point_polygon_boundary_distance(Vec2(3, 3), l), 2.0, 1e-12);  // to the inner edge y = 1
+  EXPECT_DOUBLE_EQ(polygon_signed_area(l), 7.0);
+}
+
+TEST(Geometry, SegmentIntersection2d) {
+  EXPECT_TRUE(segments_intersect_2d({0, 0}, {2, 2}, {0, 2}, {2, 0}));
+  EXPECT_FALSE(segments_intersect_2d({0, 0}, {1, 1}, {0, 2}, {2, 3}));
+  EXPECT_TRUE(segments_intersect_2d({0, 0}, {2, 0}, {1, 0}, {1, 5}));  // touching
+}
+
+TEST(Geometry, ClipSegmentToBox) {
+  double t0, t1;
+  const Aabb box{Vec3(0, 0, 0), Vec3(1, 1, 1)};
+  ASSERT_TRUE(clip_segment_to_box(Vec3(-1, 0.5, 0.5), Vec3(3, 0.5, 0.5), box, t0, t1));
+  EXPECT_DOUBLE_EQ(t0, 0.25);
+  EXPECT_DOUBLE_EQ(t1, 0.5);
+  EXPECT_FALSE(clip_segment_to_box(Vec3(-1, 2, 0.5), Vec3(3, 2, 0.5), box, t0, t1));
+}
+
+TEST(Geometry, GoldenSectionFindsConvexMinimum) {
+  EXPECT_NEAR(golden_section_min([](double t) { return (t - 0.3) * (t - 0.3) + 2.0; }, 0.0, 1.0), 2.0, 1e-12);
+  EXPECT_DOUBLE_EQ(golden_section_min([](double t) { return std::max(0.0, std::abs(t - 0.5) - 0.1); }, 0.0, 1.0), 0.0);
+}
+
+}  // namespace
+}  // namespace uavplan

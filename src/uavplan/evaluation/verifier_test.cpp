@@ -1,0 +1,196 @@
+// The verifier catches every violation class: each test crafts a plan with one defect.
+#include "uavplan/evaluation/verifier.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+namespace uavplan {
+namespace {
+
+Scenario base_scenario() {
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(100, 100, 50)};
+  ws.obstacles.push_back(Box{Vec3(40, 40, 0), Vec3(60, 60, 30)});
+  ws.terrain = TerrainGrid(Vec2(0, 0), 50.0, 2, 2, {0.0, 10.0, 0.0, 0.0});  // a 10 m plateau at x in [50,100), y < 50
+  ws.moving.push_back({"m1", 2.0, Vec3(20, 90, 40), Vec3(0, 0, 0)});        // parked at (20, 90, 40)
+  Scenario sc;
+  sc.name = "verifier";
+  sc.world = World(std::move(ws));
+  for (int i = 0; i < 2; ++i) {
+    UavSpec u;
+    u.id = i == 0 ? "a" : "b";
+    u.start = i == 0 ? Vec3(10, 10, 20) : Vec3(10, 20, 20);
+    u.goal = i == 0 ? Vec3(30, 10, 20) : Vec3(30, 20, 20);
+    u.radius_m = 0.5;
+    u.speed = {0, 5, 5};
+    u.max_turn_rad = deg_to_rad(60);
+    u.max_climb_rad = deg_to_rad(30);
+    u.ceiling_m = 45;
+    sc.uavs.push_back(u);
+  }
+  sc.mission.separation_m = 3.0;
+  return sc;
+}
+
+Plan base_plan(const Scenario& sc) {
+  Plan p;
+  p.scenario = sc.name;
+  p.status = Status::solved;
+  for (const auto& u : sc.uavs) {
+    UavPlan up;
+    up.id = u.id;
+    up.status = Status::solved;
+    up.waypoints = {u.start, *u.goal};
+    up.trajectory = time_route(up.waypoints, 5.0, 0.0, 1.0);
+    p.uavs.push_back(up);
+  }
+  return p;
+}
+
+std::vector<ViolationKind> kinds(const Scenario& sc, const Plan& p, const std::string& only_uav = "") {
+  std::vector<ViolationKind> k;
+  for (const auto& v : verify_plan(sc, p))
+    if (only_uav.empty() || v.uav == only_uav) k.push_back(v.kind);
+  return k;
+}
+
+void fly(Plan& p, int uav, std::vector<Vec3> pts, double speed = 5.0, double depart = 0.0) {
+  p.uavs[uav].waypoints = pts;
+  p.uavs[uav].trajectory = time_route(pts, speed, depart, 1.0);
+}
+
+using K = ViolationKind;
+using ::testing::ElementsAre;
+
+TEST(Verifier, CleanPlanHolds) {
+  const Scenario sc = base_scenario();
+  EXPECT_TRUE(verify_plan(sc, base_plan(sc)).empty());
+}
+
+TEST(Verifier, Bounds) {
+  const Scenario sc = base_scenario();
+  Plan p = base_plan(sc);
+  fly(p, 0, {{10, 10, 20}, {10, -5, 20}, {30, 10, 20}});
+  EXPECT_EQ(kinds(sc, p).front(), K::bounds);
+}
+
+TEST(Verifier, StaticObstacleWithTimeAndPlace) {
+  const Scenario sc = base_scenario();
+  Plan p = base_plan(sc);
+  fly(p, 0, {{10, 10, 20}, {50, 50, 20}, {30, 10, 20}});
+  const auto v = verify_plan(sc, p);
+  ASSERT_FALSE(v.empty());
+  EXPECT_EQ(v[0].kind, K::obstacle);
+  EXPECT_EQ(v[0].uav, "a");
+  ASSERT_TRUE(v[0].t_s && v[0].where);
+  EXPECT_NEAR(v[0].where->x(), v[0].where->y(), 1e-6);  // on the diagonal into the box
+}
+
+TEST(Verifier, Terrain) {
+  const Scenario sc = base_scenario();
+  Plan p = base_plan(sc);
+  fly(p, 0, {{10, 10, 20}, {40, 20, 5.2}, {70, 20, 5.2}, {30, 10, 20}});  // 5.2 m over a 10 m plateau
+  bool terrain_hit = false;
+  for (const auto& v : verify_plan(sc, p))
+    terrain_hit |= v.kind == K::obstacle && v.where && v.where->x() >= 49.0;
+  EXPECT_TRUE(terrain_hit);
+}
+
+TEST(Verifier, MovingObstacle) {
+  const Scenario sc = base_scenario();
+  Plan p = base_plan(sc);
+  fly(p, 0, {{10, 10, 20}, {20, 80, 40}, {20, 95, 40}, {30, 10, 20}}, 5.0);
+  bool hit = false;
+  for (const auto k : kinds(sc, p)) hit |= k == K::moving_obstacle;
+  EXPECT_TRUE(hit);
+}
+
+TEST(Verifier, SeparationAtEqualTimes) {
+  const Scenario sc = base_scenario();
+  Plan p = base_plan(sc);
+  fly(p, 1, {{10, 20, 20}, {10, 12, 20}, {30, 12, 20}, {30, 20, 20}});  // flies 2 m beside a
+  EXPECT_THAT(kinds(sc, p), ::testing::Contains(K::separation));
+  // The same path flown after a has arrived is fine: equal times, not equal places, count.
+  fly(p, 1, {{10, 20, 20}, {10, 14, 20}, {34, 14, 20}, {30, 20, 20}}, 5.0, 0.0);
+  const auto k = kinds(sc, p);
+  EXPECT_EQ(std::count(k.begin(), k.end(), K::separation), 0);
+}
+
+TEST(Verifier, TurnAndClimbAndStartHeading) {
+  Scenario sc = base_scenario();
+  Plan p = base_plan(sc);
+  fly(p, 0, {{10, 10, 20}, {20, 10, 20}, {20, 5, 20}, {30, 10, 20}});  // 90 deg turn
+  EXPECT_THAT(kinds(sc, p), ::testing::Contains(K::turn));
+  fly(p, 0, {{10, 10, 20}, {20, 10, 30}, {30, 10, 20}});  // 45 deg climb
+  EXPECT_THAT(kinds(sc, p), ::testing::Contains(K::climb));
+  sc.uavs[0].heading_rad = kPi;  // facing west, first segment east
+  EXPECT_THAT(kinds(sc, base_plan(sc)), ::testing::Contains(K::turn));
+}
+
+TEST(Verifier, SpeedAndCeiling) {
+  const Scenario sc = base_scenario();
+  Plan p = base_plan(sc);
+  fly(p, 0, {{10, 10, 20}, {30, 10, 20}}, 6.0);
+  EXPECT_THAT(kinds(sc, p), ::testing::Contains(K::speed));
+  fly(p, 0, {{10, 10, 20}, {12, 10, 21}, {80, 10, 47}, {10, 10, 47}, {30, 10, 20}});
+  EXPECT_THAT(kinds(sc, p), ::testing::Contains(K::ceiling));
+}
+
+TEST(Verifier, StartAndGoal) {
+  const Scenario sc = base_scenario();
+  Plan p = base_plan(sc);
+  fly(p, 0, {{11, 10, 20}, {29, 10, 20}});
+  EXPECT_THAT(kinds(sc, p), ::testing::ElementsAre(K::start, K::goal));
+}
+
+TEST(Verifier, ViaPointsInOrder) {
+  Scenario sc = base_scenario();
+  sc.mission.type = MissionType::route;
+  sc.mission.waypoints = {{20, 30, 20}, {20, 10, 20}};
+  Plan p = base_plan(sc);
+  fly(p, 0, {{10, 10, 20}, {20, 10, 20}, {20, 30, 20}, {30, 10, 20}});  // visits them reversed
+  EXPECT_THAT(kinds(sc, p, "a"), ::testing::Contains(K::via_point));
+  fly(p, 0, {{10, 10, 20}, {20, 30, 20}, {20, 10, 20}, {30, 10, 20}});
+  EXPECT_THAT(kinds(sc, p, "a"), ::testing::Not(::testing::Contains(K::via_point)));
+  EXPECT_THAT(kinds(sc, p, "b"), ::testing::Contains(K::via_point));  // b flies straight past them
+}
+
+TEST(Verifier, RendezvousLengthSpread) {
+  Scenario sc = base_scenario();
+  sc.mission.type = MissionType::rendezvous;
+  sc.mission.arrival_tolerance_m = 1.0;
+  Plan p = base_plan(sc);
+  fly(p, 1, {{10, 20, 20}, {20, 30, 20}, {30, 20, 20}});  // 28.3 m against 20 m
+  EXPECT_THAT(kinds(sc, p), ::testing::Contains(K::length_spread));
+}
+
+TEST(Verifier, MissingAndUnknownUavs) {
+  const Scenario sc = base_scenario();
+  Plan p = base_plan(sc);
+  p.uavs[1].id = "zzz";
+  EXPECT_THAT(kinds(sc, p), ::testing::ElementsAre(K::unknown_uav, K::not_planned));
+  p = base_plan(sc);
+  p.uavs[0].trajectory.clear();
+  EXPECT_THAT(kinds(sc, p), ::testing::ElementsAre(K::not_planned));
+}
+
+TEST(Verifier, TimeGoingBackwards) {
+  const Scenario sc = base_scenario();
+  Plan p = base_plan(sc);
+  std::swap(p.uavs[0].trajectory[1].t_s, p.uavs[0].trajectory[2].t_s);
+  EXPECT_THAT(kinds(sc, p), ::testing::Contains(K::trajectory));
+}
+
+TEST(Verifier, FinalizeFailsViolatingUavs) {
+  const Scenario sc = base_scenario();
+  Plan p = base_plan(sc);
+  fly(p, 0, {{10, 10, 20}, {50, 50, 20}, {30, 10, 20}});
+  finalize_plan(sc, p);
+  EXPECT_EQ(p.uavs[0].status, Status::failed);
+  EXPECT_EQ(p.uavs[1].status, Status::solved);
+  EXPECT_EQ(p.status, Status::partial);
+  EXPECT_NE(p.uavs[0].message.find("obstacle"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace uavplan

@@ -1,0 +1,75 @@
+#include "uavplan/io/plan_io.h"
+
+#include <gtest/gtest.h>
+
+#include "uavplan/io/input_error.h"
+
+namespace uavplan {
+namespace {
+
+Plan sample_plan() {
+  Plan p;
+  p.scenario = "s";
+  p.algorithm = "astar";
+  p.seed = 7;
+  p.status = Status::partial;
+  p.message = "b: failed";
+  UavPlan a;
+  a.id = "a";
+  a.status = Status::solved;
+  a.waypoints = {{0, 0, 10}, {1.0 / 3.0, 2, 10}};
+  a.trajectory = {{0.0, Vec3(0, 0, 10)}, {0.1234567890123, Vec3(1.0 / 3.0, 2, 10)}};
+  a.length_m = 2.0276;
+  a.metrics["length_m"] = 2.0276;
+  UavPlan b;
+  b.id = "b";
+  b.message = "no route";
+  p.uavs = {a, b};
+  return p;
+}
+
+TEST(PlanIo, RoundTripIsExact) {
+  const Plan p = sample_plan();
+  const std::string text = plan_to_json(p);
+  const Plan q = parse_plan(text, "p.json");
+  ASSERT_EQ(q.uavs.size(), 2u);
+  EXPECT_EQ(q.status, Status::partial);
+  EXPECT_EQ(q.uavs[0].trajectory[1].t_s, p.uavs[0].trajectory[1].t_s);
+  EXPECT_EQ(q.uavs[0].trajectory[1].p, p.uavs[0].trajectory[1].p);
+  EXPECT_EQ(q.uavs[1].status, Status::failed);
+  EXPECT_EQ(plan_to_json(q).size() > 0, true);
+  EXPECT_EQ(text, plan_to_json(p));  // deterministic
+  EXPECT_NE(text.find("\"timing\": {}"), std::string::npos);
+  EXPECT_NE(plan_to_json(p, {true}).find("plan_ms"), std::string::npos);
+}
+
+void expect_error(const std::string& text, const std::string& part) {
+  try {
+    parse_plan(text, "p.json");
+    FAIL() << "no error, expected " << part;
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).rfind("p.json", 0), 0u);
+  }
+}
+
+TEST(PlanIo, MalformedPlansNameThePlace) {
+  expect_error("", "empty");
+  expect_error("{\"format\": ", "not valid JSON");
+  expect_error("[1, 2]", "top level");
+  expect_error(R"({"format": "x", "version": 1})", "format");
+  expect_error(R"({"format": "uavplan-plan", "version": 2, "status": "solved", "uavs": []})", "version");
+  expect_error(R"({"format": "uavplan-plan", "version": 1, "status": "great", "uavs": []})", "status");
+  expect_error(R"({"format": "uavplan-plan", "version": 1, "status": "solved",
+                  "uavs": [{"id": "a", "status": "solved", "trajectory": [[0, 1, 2]]}]})",
+               "uavs[0].trajectory[0]");
+  expect_error(R"({"format": "uavplan-plan", "version": 1, "status": "solved",
+                  "uavs": [{"id": "a", "status": "solved", "trajectory": [[0, 1, 2, "x"]]}]})",
+               "expected a number");
+  expect_error(R"({"format": "uavplan-plan", "version": 1, "status": "solved",
+                  "uavs": [{"id": "a", "status": "solved", "trajectory": []}, {"id": "a", "status": "solved", "trajectory": []}]})",
+               "duplicate");
+}
+
+}  // namespace
+}  // namespace uavplan

@@ -1,0 +1,134 @@
+#include "uavplan/io/scenario_io.h"
+
+#include <gtest/gtest.h>
+
+#include "uavplan/io/input_error.h"
+
+namespace uavplan {
+namespace {
+
+const std::string kGood = R"(version: 1
+name: t
+seed: 3
+origin: {lat: 47.0, lon: 8.0, alt: 400}
+world:
+  bounds: {min: [0, 0, 0], max: [100, 100, 50]}
+  obstacles:
+    - {type: sphere, center: [50, 50, 20], radius: 5}
+    - {type: cylinder, center: [20, 70], radius: 4, z_min: 0, z_max: 50}
+    - {type: box, min: [70, 10, 0], max: [80, 20, 30]}
+    - {type: prism, polygon: [[10, 40], [20, 40], [15, 50]], z_min: 0, z_max: 25}
+  threats:
+    - {type: radar, position: [60, 80, 0], weight: 2}
+  terrain: {type: grid, origin: [0, 0], cell: 50, heights: [[0, 1], [2, 3]]}
+  moving_obstacles:
+    - {id: m1, radius: 1, position: [0, 50, 10], velocity: [1, 0, 0]}
+uavs:
+  - id: u1
+    start: [5, 5, 10]
+    heading_deg: 90
+    goal: [95, 95, 10]
+    radius: 0.5
+    speed: {min: 1, cruise: 4, max: 6}
+    max_turn_deg: 60
+    max_climb_deg: 30
+mission:
+  type: route
+  separation: 2
+  waypoints: [[50, 10, 10]]
+planner:
+  algorithm: astar
+  params: {cell_m: 2}
+)";
+
+std::string replace(std::string s, const std::string& from, const std::string& to) {
+  const auto p = s.find(from);
+  EXPECT_NE(p, std::string::npos) << from;
+  if (p != std::string::npos) s.replace(p, from.size(), to);
+  return s;
+}
+
+// The error is one line naming the file, and contains each of `parts`.
+void expect_error(const std::string& text, std::initializer_list<std::string> parts, const std::string& file = "s.yaml",
+                  const Overrides& overrides = {}) {
+  try {
+    parse_scenario(text, file, overrides);
+    FAIL() << "no error for: " << *parts.begin();
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.rfind(file, 0), 0u) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+    for (const auto& p : parts) EXPECT_NE(msg.find(p), std::string::npos) << "'" << p << "' not in: " << msg;
+  }
+}
+
+TEST(ScenarioIo, ReadsEveryContractField) {
+  const Scenario sc = parse_scenario(kGood, "s.yaml");
+  EXPECT_EQ(sc.name, "t");
+  EXPECT_EQ(*sc.seed, 3u);
+  EXPECT_DOUBLE_EQ(sc.origin->alt_m, 400);
+  EXPECT_EQ(sc.world.obstacles().size(), 4u);
+  EXPECT_EQ(sc.world.radars().size(), 1u);
+  ASSERT_NE(sc.world.terrain(), nullptr);
+  EXPECT_DOUBLE_EQ(sc.world.terrain()->height(1, 1), 3.0);
+  EXPECT_EQ(sc.world.moving().size(), 1u);
+  const UavSpec& u = sc.uavs[0];
+  EXPECT_NEAR(*u.heading_rad, kPi / 2, 1e-12);
+  EXPECT_DOUBLE_EQ(u.speed.max_mps, 6);
+  EXPECT_NEAR(u.max_turn_rad, kPi / 3, 1e-12);
+  EXPECT_EQ(sc.mission.type, MissionType::route);
+  EXPECT_EQ(sc.mission.waypoints.size(), 1u);
+  EXPECT_EQ(sc.planner.params.at("cell_m"), "2");
+}
+
+TEST(ScenarioIo, JsonIsTheSameStructure) {
+  const std::string json = R"({"version": 1, "name": "j",
+    "world": {"bounds": {"min": [0, 0, 0], "max": [10, 10, 5]}},
+    "uavs": [{"id": "a", "start": [1, 1, 1], "goal": [9, 9, 1], "speed": 2}]})";
+  const Scenario sc = parse_scenario(json, "s.json");
+  EXPECT_EQ(sc.uavs[0].id, "a");
+  EXPECT_DOUBLE_EQ(sc.uavs[0].speed.cruise_mps, 2);
+  expect_error(R"({"version": 1, "world": {,}})", {"s.json:1", "JSON"}, "s.json");
+}
+
+TEST(ScenarioIo, Overrides) {
+  const Scenario sc = parse_scenario(kGood, "s.yaml", {{"cell_m", "7"}, {"uavs[0].speed", "3"}, {"mission.separation", "9"}});
+  EXPECT_EQ(sc.planner.params.at("cell_m"), "7");
+  EXPECT_DOUBLE_EQ(sc.uavs[0].speed.cruise_mps, 3);
+  EXPECT_DOUBLE_EQ(sc.mission.separation_m, 9);
+  expect_error(kGood, {"--set uavs[4].speed", "no list element"}, "s.yaml", {{"uavs[4].speed", "3"}});
+  expect_error(kGood, {"uavs[0].speed", "positive"}, "s.yaml", {{"uavs[0].speed", "-3"}});
+  expect_error(kGood, {"planner.params.cell_m", "single values"}, "s.yaml", {{"cell_m", "[1, 2]"}});
+}
+
+TEST(ScenarioIo, BadInputIsOneClearLine) {
+  expect_error("", {"empty"});
+  expect_error(std::string("\x7f" "ELF\0\0\x01\x02", 8), {"not a text file"});
+  expect_error("\x89PNG garbage here ::: [[[", {"s.yaml"});
+  expect_error("version: 1\nworld: [1, 2\n", {"YAML syntax error"});
+  expect_error(replace(kGood, "version: 1", "version: 2"), {"s.yaml:1", "version", "unsupported version 2"});
+  expect_error(replace(kGood, "    start: [5, 5, 10]\n", ""), {"uavs[0]", "missing required key 'start'"});
+  expect_error(replace(kGood, "    radius: 0.5\n", "    radius: 0.5\n    raduis: 3\n"), {"s.yaml:23", "uavs[0].raduis", "unknown key"});
+  expect_error(replace(kGood, "max_turn_deg: 60", "max_turn_deg: sixty"), {"s.yaml:24", "uavs[0].max_turn_deg", "expected a number"});
+  expect_error(replace(kGood, "max_turn_deg: 60", "max_turn_deg: \"60\""), {"uavs[0].max_turn_deg", "quoted string"});
+  expect_error(replace(kGood, "start: [5, 5, 10]", "start: [5, 5]"), {"uavs[0].start", "3 numbers"});
+  expect_error(replace(kGood, "radius: 5}", "radius: .nan}"), {"world.obstacles[0].radius", "finite"});
+  expect_error(replace(kGood, "weight: 2", "weight: .inf"), {"world.threats[0].weight", "finite"});
+  expect_error(replace(kGood, "radius: 5}", "radius: -5}"), {"world.obstacles[0].radius", "positive"});
+  expect_error(replace(kGood, "    radius: 0.5\n", "    radius: -0.5\n"), {"uavs[0].radius", "negative"});
+  expect_error(replace(kGood, "cell: 50", "cell: -50"), {"world.terrain.cell", "positive"});
+  expect_error(replace(kGood, "heights: [[0, 1], [2, 3]]", "heights: [[0, 1], [2]]"), {"world.terrain.heights[1]", "rows must be equal"});
+  expect_error(replace(kGood, "start: [5, 5, 10]", "start: [50, 50, 20]"), {"s.yaml:19", "uavs[0].start", "inside an obstacle"});
+  expect_error(replace(kGood, "goal: [95, 95, 10]", "goal: [95, 195, 10]"), {"uavs[0].goal", "outside the world bounds"});
+  expect_error(replace(kGood, "start: [5, 5, 10]", "start: [60, 60, 2]"), {"uavs[0].start", "below the terrain"});
+  expect_error(replace(kGood, "type: sphere", "type: cone"), {"world.obstacles[0].type", "unknown obstacle type"});
+  expect_error(replace(kGood, "type: route", "type: swarm"), {"mission.type", "unknown mission type"});
+  expect_error(replace(kGood, "bounds: {min: [0, 0, 0], max: [100, 100, 50]}", "bounds: {min: [0, 0, 0], max: [-100, 100, 50]}"),
+               {"world.bounds.max"});
+  expect_error("- a\n- b\n", {"top level must be a mapping"});
+  expect_error(replace(kGood, "uavs:\n  - id: u1", "uavs:\n  - id: u1\n    start: [1, 1, 10]\n    goal: [2, 2, 10]\n  - id: u1"),
+               {"duplicate UAV id"});
+}
+
+}  // namespace
+}  // namespace uavplan

@@ -1,0 +1,56 @@
+#include "uavplan/planning/voxel_grid.h"
+
+#include <gtest/gtest.h>
+
+#include "uavplan/core/rng.h"
+
+namespace uavplan {
+namespace {
+
+World test_world(Rng& r) {
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(100, 80, 30)};
+  for (int i = 0; i < 40; ++i) {
+    const Vec3 c(r.uniform(0, 100), r.uniform(0, 80), r.uniform(0, 30));
+    if (i % 2) ws.obstacles.push_back(Sphere{c, r.uniform(1, 6)});
+    else ws.obstacles.push_back(Prism{{{c.x(), c.y()}, {c.x() + 5, c.y() + 1}, {c.x() + 1, c.y() + 6}}, 0, c.z()});
+  }
+  std::vector<double> h(10 * 8);
+  for (auto& x : h) x = r.uniform(0, 6);
+  ws.terrain = TerrainGrid(Vec2(0, 0), 10.0, 10, 8, std::move(h));
+  return World(std::move(ws));
+}
+
+TEST(VoxelGrid, TilesTheBoundsExactly) {
+  const VoxelGrid g(Aabb{Vec3(0, 0, 0), Vec3(10, 7, 0)}, Vec3(3, 3, 3));
+  EXPECT_EQ(g.nx(), 3);
+  EXPECT_EQ(g.ny(), 2);
+  EXPECT_EQ(g.nz(), 1);  // a 2-D world has one layer
+  EXPECT_NEAR(g.cell().x(), 10.0 / 3, 1e-12);
+  EXPECT_NEAR(g.center(2, 1, 0).y(), 7.0 * 3 / 4, 1e-12);
+}
+
+// Conservative: every point of a free cell is at least the inflation away from the world.
+TEST(VoxelGrid, FreeCellsAreSafeEverywhere) {
+  Rng r(4);
+  const World w = test_world(r);
+  const double inflation = 0.7;
+  const VoxelGrid g = voxelize(w, Vec3(2.5, 2.5, 1.5), inflation, 25.0);
+  int free_cells = 0;
+  for (int k = 0; k < g.nz(); ++k)
+    for (int j = 0; j < g.ny(); ++j)
+      for (int i = 0; i < g.nx(); ++i) {
+        if (g.blocked(i, j, k)) continue;
+        ++free_cells;
+        const Vec3 c = g.center(i, j, k);
+        ASSERT_LE(c.z(), 25.0);
+        for (int s = 0; s < 4; ++s) {
+          const Vec3 p = c + 0.5 * g.cell().cwiseProduct(Vec3(r.uniform(-1, 1), r.uniform(-1, 1), r.uniform(-1, 1)));
+          ASSERT_GE(w.clearance(p, 10.0), inflation) << "cell " << i << "," << j << "," << k;
+        }
+      }
+  EXPECT_GT(free_cells, g.size() / 3);
+}
+
+}  // namespace
+}  // namespace uavplan

@@ -1,0 +1,56 @@
+#include "uavplan/simulation/trajectory.h"
+
+#include <gtest/gtest.h>
+
+#include "uavplan/core/rng.h"
+
+namespace uavplan {
+namespace {
+
+TEST(Trajectory, TimesARouteAtConstantSpeed) {
+  const std::vector<Vec3> pts{{0, 0, 0}, {10, 0, 0}, {10, 5, 0}};
+  const Trajectory tr = time_route(pts, 2.0, 3.0, 1.0);
+  EXPECT_DOUBLE_EQ(tr.front().t_s, 0.0);
+  EXPECT_EQ(tr[1].p, pts[0]);
+  EXPECT_DOUBLE_EQ(tr[1].t_s, 3.0);  // waits at the start until departure
+  EXPECT_DOUBLE_EQ(tr.back().t_s, 3.0 + 7.5);
+  for (std::size_t i = 1; i < tr.size(); ++i)
+    if (tr[i].p != tr[i - 1].p) EXPECT_LE(tr[i].t_s - tr[i - 1].t_s, 1.0 + 1e-12);
+  EXPECT_TRUE(
+              (position_at(tr, 9.0) - Vec3(10, 2, 0)).norm() < 1e-12);
+  EXPECT_EQ(position_at(tr, -5), pts[0]);
+  EXPECT_EQ(position_at(tr, 1e9), pts[2]);
+}
+
+TEST(Trajectory, ClosestApproachAgainstSampling) {
+  Rng r(6);
+  for (int k = 0; k < 50; ++k) {
+    std::vector<Vec3> a{{r.uniform(0, 50), r.uniform(0, 50), 5}}, b{{r.uniform(0, 50), r.uniform(0, 50), 5}};
+    for (int i = 0; i < 4; ++i) {
+      a.emplace_back(r.uniform(0, 50), r.uniform(0, 50), r.uniform(0, 10));
+      b.emplace_back(r.uniform(0, 50), r.uniform(0, 50), r.uniform(0, 10));
+    }
+    const Trajectory ta = time_route(a, r.uniform(1, 5), r.uniform(0, 5), 2.0);
+    const Trajectory tb = time_route(b, r.uniform(1, 5), r.uniform(0, 5), 0.7);
+    const Encounter e = closest_approach(ta, tb);
+    double sampled = 1e300;
+    const double t_end = std::max(ta.back().t_s, tb.back().t_s) + 1;
+    for (double t = 0; t <= t_end; t += 0.001) sampled = std::min(sampled, (position_at(ta, t) - position_at(tb, t)).norm());
+    ASSERT_LE(e.distance_m, sampled + 1e-9);
+    ASSERT_NEAR(e.distance_m, sampled, 0.02);
+    ASSERT_NEAR((position_at(ta, e.t_s) - position_at(tb, e.t_s)).norm(), e.distance_m, 1e-9);
+  }
+}
+
+TEST(Trajectory, MovingObstacleAfterArrivalCounts) {
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(-100, -100, 0), Vec3(100, 100, 20)};
+  ws.moving.push_back({"late", 1.0, Vec3(50, -100, 5), Vec3(0, 1, 0)});  // passes (50, 0) at t = 100
+  const World w(std::move(ws));
+  const std::vector<Vec3> pts{{0, 0, 5}, {50, 0, 5}};
+  const Trajectory tr = time_route(pts, 5.0, 0.0, 1.0);  // arrives at t = 10 and stays
+  EXPECT_LT(closest_moving_approach(w, tr).distance_m, 0.0);
+}
+
+}  // namespace
+}  // namespace uavplan

@@ -1,0 +1,87 @@
+#!/usr/bin/env bash
+# Golden and bad-input tests of the command line: exit codes, one-line errors naming the file,
+# no partial output, byte-identical plans for the same seed.
+# Usage: cli_test.sh UAVPLAN_BINARY SOURCE_DIR
+set -u
+BIN=$1
+SRC=$2
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+fails=0
+pass=0
+
+check() {  # check NAME EXPECTED_EXIT ACTUAL_EXIT
+  if [ "$2" = "$3" ]; then pass=$((pass + 1)); else echo "FAIL $1: exit $3, expected $2"; fails=$((fails + 1)); fi
+}
+expect_bad() {  # expect_bad NAME FILE [PART]: exit 2, one stderr line naming the file (and PART)
+  local name=$1 file=$2 part=${3:-}
+  rm -rf "$TMP/out"
+  "$BIN" plan "$file" -o "$TMP/out" >"$TMP/stdout" 2>"$TMP/stderr"
+  check "$name" 2 $?
+  if [ "$(wc -l <"$TMP/stderr")" != 1 ] || ! grep -qF "$file" "$TMP/stderr" || ! grep -qF -- "$part" "$TMP/stderr"; then
+    echo "FAIL $name: stderr is not one line naming $file${part:+ and '$part'}:"; cat "$TMP/stderr"; fails=$((fails + 1))
+  fi
+  if [ -e "$TMP/out" ]; then echo "FAIL $name: wrote output for bad input"; fails=$((fails + 1)); fi
+}
+
+# The demo plans, verifies, and is byte-identical across runs.
+"$BIN" plan "$SRC/scenarios/demo.yaml" -o "$TMP/a" >/dev/null 2>&1; check demo.plan 0 $?
+"$BIN" verify "$SRC/scenarios/demo.yaml" "$TMP/a/plan.json" >/dev/null 2>&1; check demo.verify 0 $?
+"$BIN" plan "$SRC/scenarios/demo.yaml" -o "$TMP/b" >/dev/null 2>&1
+cmp -s "$TMP/a/plan.json" "$TMP/b/plan.json"; check demo.deterministic 0 $?
+"$BIN" info "$SRC/scenarios/demo.yaml" >/dev/null 2>&1; check demo.info 0 $?
+"$BIN" --help >/dev/null 2>&1; check help 0 $?
+"$BIN" plan "$SRC/scenarios/demo.yaml" -o "$TMP/c" --set nonsense=1 >/dev/null 2>"$TMP/stderr"; check unknown.param 2 $?
+grep -q "planner.params.nonsense" "$TMP/stderr" || { echo "FAIL unknown.param message"; fails=$((fails + 1)); }
+"$BIN" plan "$SRC/scenarios/demo.yaml" -o "$TMP/c" --algorithm nope >/dev/null 2>&1; check unknown.algorithm 2 $?
+"$BIN" frobnicate >/dev/null 2>&1; check unknown.subcommand 2 $?
+
+# A tampered plan: verify lists violations and exits 1.
+awk 'BEGIN{n=0} /"trajectory": \[/ && n==0 {print; getline; sub(/\[0.0,20.0,20.0,30.0\]/, "[0.0,230.0,230.0,30.0]"); n=1} {print}' \
+  "$TMP/a/plan.json" >"$TMP/tampered.json"
+"$BIN" verify "$SRC/scenarios/demo.yaml" "$TMP/tampered.json" >"$TMP/stdout" 2>&1; check tampered.verify 1 $?
+grep -q "u1 start" "$TMP/stdout" && grep -q "u1 obstacle" "$TMP/stdout" || { echo "FAIL tampered: violations not listed"; cat "$TMP/stdout"; fails=$((fails + 1)); }
+
+# An unreachable goal is a clear failure, exit 1, and the plan file says failed.
+cat >"$TMP/walled.yaml" <<'YAML'
+version: 1
+name: walled
+world:
+  bounds: {min: [0, 0, 0], max: [100, 100, 20]}
+  obstacles:
+    - {type: box, min: [50, 0, 0], max: [52, 100, 20]}
+uavs:
+  - {id: u1, start: [10, 50, 10], goal: [90, 50, 10]}
+YAML
+"$BIN" plan "$TMP/walled.yaml" -o "$TMP/w" >/dev/null 2>&1; check unreachable.exit 1 $?
+grep -q '"status": "failed"' "$TMP/w/plan.json" || { echo "FAIL unreachable: plan not marked failed"; fails=$((fails + 1)); }
+
+# Bad input: exit 2, one line naming the file and the place, no output.
+good="$SRC/scenarios/demo.yaml"
+mk() { sed "$1" "$good" >"$TMP/$2"; echo "$TMP/$2"; }
+: >"$TMP/empty.yaml"; expect_bad empty "$TMP/empty.yaml" "empty"
+head -c 300 "$BIN" >"$TMP/garbage.yaml"; expect_bad garbage "$TMP/garbage.yaml"
+printf 'version: 1\nworld: [1, 2\n' >"$TMP/syntax.yaml"; expect_bad yaml.syntax "$TMP/syntax.yaml" "syntax"
+expect_bad version "$(mk 's/^version: 1/version: 3/' version.yaml)" "version"
+expect_bad missing.key "$(mk '/^  bounds:/d' missing.yaml)" "missing required key 'bounds'"
+expect_bad unknown.key "$(mk 's/^  algorithm: astar/  algoritm: astar/' unknown.yaml)" "planner.algoritm"
+expect_bad wrong.type "$(mk 's/separation: 5/separation: five/' type.yaml)" "mission.separation"
+expect_bad nan "$(mk 's/radius: 15}/radius: .nan}/' nan.yaml)" "finite"
+expect_bad inf "$(mk 's/weight: 1000000/weight: .inf/' inf.yaml)" "finite"
+expect_bad negative.radius "$(mk 's/radius: 40,/radius: -40,/' negr.yaml)" "positive"
+expect_bad negative.cell "$(mk 's/cell: 100/cell: -100/' negc.yaml)" "positive"
+expect_bad start.in.obstacle "$(mk 's/start: \[20, 20, 30\]/start: [230, 230, 30]/' sin.yaml)" "uavs[0].start"
+expect_bad goal.outside "$(mk 's/goal: \[580, 580, 40\]/goal: [580, 680, 40]/' gout.yaml)" "outside the world bounds"
+expect_bad terrain.rows "$(mk 's/- \[0, 2, 4, 4, 2, 0\]/- [0, 2, 4, 4, 2]/' rows.yaml)" "rows must be equal"
+expect_bad missing.file "$TMP/does-not-exist.yaml" "cannot open"
+printf '{"version": 1, "world": {"bounds": {"min": [0,0,0], "max": [1,1,1]}},}' >"$TMP/bad.json"; expect_bad json "$TMP/bad.json" "JSON"
+
+# verify: a plan naming a UAV the scenario lacks, and a malformed plan, are bad input.
+sed 's/"id": "u3"/"id": "u9"/' "$TMP/a/plan.json" >"$TMP/u9.json"
+"$BIN" verify "$good" "$TMP/u9.json" >/dev/null 2>"$TMP/stderr"; check verify.unknown.uav 2 $?
+grep -q "u9" "$TMP/stderr" && grep -qF "$TMP/u9.json" "$TMP/stderr" || { echo "FAIL verify.unknown.uav message"; fails=$((fails + 1)); }
+echo '{"format": "uavplan-plan"' >"$TMP/trunc.json"
+"$BIN" verify "$good" "$TMP/trunc.json" >/dev/null 2>&1; check verify.malformed 2 $?
+
+echo "$pass passed, $fails failed"
+[ "$fails" = 0 ]
