@@ -15,7 +15,9 @@ TEST(Trajectory, TimesARouteAtConstantSpeed) {
   EXPECT_DOUBLE_EQ(tr[1].t_s, 3.0);  // waits at the start until departure
   EXPECT_DOUBLE_EQ(tr.back().t_s, 3.0 + 7.5);
   for (std::size_t i = 1; i < tr.size(); ++i)
-    if (tr[i].p != tr[i - 1].p) EXPECT_LE(tr[i].t_s - tr[i - 1].t_s, 1.0 + 1e-12);
+    if (tr[i].p != tr[i - 1].p) {
+      EXPECT_LE(tr[i].t_s - tr[i - 1].t_s, 1.0 + 1e-12);
+    }
   EXPECT_TRUE(
               (position_at(tr, 9.0) - Vec3(10, 2, 0)).norm() < 1e-12);
   EXPECT_EQ(position_at(tr, -5), pts[0]);

@@ -21,7 +21,7 @@ AStarOptions AStarOptions::from_params(const Params& params) {
   return o;
 }
 
-double auto_cell_m(const World& world, std::int64_t target_cells) {
+double auto_cell_m(const World& world, double radius_m, std::int64_t target_cells) {
   const Vec3 ext = world.bounds().extent();
   double volume = 1.0;
   int dims = 0;
@@ -33,7 +33,8 @@ double auto_cell_m(const World& world, std::int64_t target_cells) {
   if (dims == 0) return 1.0;
   double cell = std::pow(volume / static_cast<double>(target_cells), 1.0 / dims);
   if (const TerrainGrid* t = world.terrain()) cell = std::min(cell, t->cell_m());
-  return cell;
+  // Resolving much finer than the UAV's body buys nothing and costs memory.
+  return std::max(cell, 0.5 * radius_m);
 }
 
 double layer_height_m(double cell_m, double max_climb_rad) {
@@ -90,7 +91,7 @@ PlanResult AStarPlanner::do_plan(const Problem& pb, const World& world, const St
     }
 
   const bool derived = options_.cell_m <= 0.0;
-  double cell = derived ? auto_cell_m(world, options_.target_cells) : options_.cell_m;
+  double cell = derived ? auto_cell_m(world, uav.radius_m, options_.target_cells) : options_.cell_m;
   const int attempts = derived ? options_.refinements + 1 : 1;
   std::vector<Vec3> path;
   std::vector<char> pinned;

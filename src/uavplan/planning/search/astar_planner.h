@@ -22,9 +22,9 @@ struct AStarOptions {
   static AStarOptions from_params(const Params& params);
 };
 
-// The derived cell size: about `target_cells` voxels over the world's bounds, and no coarser
-// than the terrain's cells (so the cell map is resolved).
-double auto_cell_m(const World& world, std::int64_t target_cells);
+// The derived cell size: about `target_cells` voxels over the world's bounds, no coarser than
+// the terrain's cells (so the cell map is resolved) and no finer than half the UAV radius.
+double auto_cell_m(const World& world, double radius_m, std::int64_t target_cells);
 
 // Vertical cell size for a horizontal one: diagonal climbing moves must respect the climb
 // limit, so layers are thinner when the limit is below 45 degrees.
