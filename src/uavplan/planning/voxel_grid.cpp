@@ -7,19 +7,21 @@ namespace uavplan {
 
 VoxelGrid::VoxelGrid(const Aabb& region, const Vec3& cell) : origin_(region.min) {
   const Vec3 ext = region.extent();
+  int n[3];
   for (int a = 0; a < 3; ++a) {
     const double want = cell[a] > 0.0 ? cell[a] : 1.0;
-    n_[a] = std::max(1, static_cast<int>(std::floor(ext[a] / want + 1e-9)));
-    cell_[a] = ext[a] > 0.0 ? ext[a] / n_[a] : 0.0;
+    n[a] = std::max(1, static_cast<int>(std::min(std::floor(ext[a] / want + 1e-9), 1e9)));
+    cell_[a] = ext[a] > 0.0 ? ext[a] / n[a] : 0.0;
   }
-  bits_.assign(static_cast<std::size_t>((size() + 63) / 64), 0);
+  cells_ = BitGrid(n[0], n[1], n[2]);
 }
 
 void VoxelGrid::cell_of(const Vec3& p, int& i, int& j, int& k) const {
   int* out[3] = {&i, &j, &k};
+  const int n[3] = {nx(), ny(), nz()};
   for (int a = 0; a < 3; ++a) {
     const double f = cell_[a] > 0.0 ? std::floor((p[a] - origin_[a]) / cell_[a]) : 0.0;
-    *out[a] = static_cast<int>(std::clamp(f, 0.0, static_cast<double>(n_[a] - 1)));
+    *out[a] = static_cast<int>(std::clamp(f, 0.0, static_cast<double>(n[a] - 1)));
   }
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "uavplan/planning/search/grid_astar.h"
 #include "uavplan/planning/segment_rule.h"
 #include "uavplan/planning/smoothing/shortcut.h"
 #include "uavplan/planning/smoothing/turn_limits.h"
@@ -101,6 +102,9 @@ PlanResult AStarPlanner::do_plan(const Problem& pb, const World& world, const St
     VoxelGrid probe(world.bounds(), cell3);
     if (attempt > 0 && probe.size() > options_.max_cells) break;
     const VoxelGrid grid = voxelize(world, cell3, rule.inflation_m(), rule.ceiling_m());
+    const Vec3 cs = grid.cell();
+    GridAStar search(grid.cells(), bounding_box_moves(grid.cells(), cs.x(), cs.y(), cs.z(), uav.max_climb_rad),
+                     GridHeuristic::euclidean, cs.x(), cs.y(), cs.z());
     res.stats.grid_cells = static_cast<std::uint64_t>(grid.size());
     res.stats.cell_m = grid.cell().x();
     path.assign(1, stops[0]);
@@ -120,9 +124,7 @@ PlanResult AStarPlanner::do_plan(const Problem& pb, const World& world, const St
                       std::string(ga < 0 ? "start of leg " : "end of leg ") + std::to_string(s);
         break;
       }
-      VoxelSearchOptions so;
-      so.max_pitch_rad = uav.max_climb_rad;
-      const VoxelPath vp = voxel_astar(grid, ga, gb, so, stop);
+      const GridSearchResult vp = search.search(ga, gb, stop);
       res.stats.nodes_expanded += vp.expanded;
       res.stats.open_max = std::max(res.stats.open_max, vp.open_max);
       if (vp.stopped) {

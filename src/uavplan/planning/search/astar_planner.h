@@ -8,7 +8,7 @@
 
 #include "uavplan/planning/params.h"
 #include "uavplan/planning/planner.h"
-#include "uavplan/planning/search/voxel_astar.h"
+#include "uavplan/planning/voxel_grid.h"
 
 namespace uavplan {
 

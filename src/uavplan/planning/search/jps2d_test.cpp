@@ -1,0 +1,47 @@
+#include "uavplan/planning/search/jps2d.h"
+
+#include <gtest/gtest.h>
+
+#include "uavplan/core/rng.h"
+
+namespace uavplan {
+namespace {
+
+TEST(Jps2d, SameCostAsAStarOnRandomGrids) {
+  Rng r(31);
+  for (int trial = 0; trial < 300; ++trial) {
+    BitGrid g(40 + trial % 7, 30 + trial % 5, 1);
+    const double density = 0.05 + 0.4 * r.uniform01();
+    for (std::int64_t c = 0; c < g.size(); ++c) g.set_blocked(c, r.uniform01() < density);
+    GridAStar astar(g, bounding_box_moves(g), GridHeuristic::octile);
+    Jps2d jps(g);
+    for (int q = 0; q < 5; ++q) {
+      const std::int64_t s = r.uniform_int(0, g.size() - 1), t = r.uniform_int(0, g.size() - 1);
+      const GridSearchResult a = astar.search(s, t), j = jps.search(s, t);
+      ASSERT_EQ(a.found, j.found) << "trial " << trial;
+      if (!a.found) continue;
+      ASSERT_NEAR(a.cost, j.cost, 1e-9) << "trial " << trial;
+      // The expanded path is a chain of legal grid moves of the same length.
+      const auto cells = jps.expand_path(j.cells);
+      ASSERT_EQ(cells.front(), s);
+      ASSERT_EQ(cells.back(), t);
+      double len = 0.0;
+      for (std::size_t i = 1; i < cells.size(); ++i) {
+        int x0, y0, x1, y1, k;
+        g.coords(cells[i - 1], x0, y0, k);
+        g.coords(cells[i], x1, y1, k);
+        ASSERT_FALSE(g.blocked(cells[i]));
+        if (x0 != x1 && y0 != y1) {
+          ASSERT_TRUE(g.free(x1, y0, 0) && g.free(x0, y1, 0)) << "corner cut";
+        }
+        len += octile_distance(x1 - x0, y1 - y0, 0);
+      }
+      ASSERT_NEAR(len, j.cost, 1e-9);
+    }
+  }
+}
+
+TEST(Jps2d, RejectsThreeDimensionalGrids) { EXPECT_THROW(Jps2d(BitGrid(4, 4, 2)), std::invalid_argument); }
+
+}  // namespace
+}  // namespace uavplan

@@ -1,0 +1,33 @@
+// Lazy Theta* (Nash, Koenig and Tovey 2010) on a BitGrid of unit cells, 2-D or 3-D: any-angle
+// routes whose straight segments are checked exactly against the occupied cells. Grid moves
+// follow bounding_box_moves(); the heuristic is Euclidean.
+#pragma once
+
+#include <cstdint>
+
+#include "uavplan/core/stop.h"
+#include "uavplan/planning/search/bit_grid.h"
+#include "uavplan/planning/search/grid_astar.h"
+#include "uavplan/planning/search/search_buffers.h"
+
+namespace uavplan {
+
+// Exact line of sight between the centres of cells a and b: false when the segment touches any
+// blocked cell, its boundary included (so passing through a corner needs every cell at that
+// corner free: the same rule as a diagonal grid move). Integer arithmetic, no tolerance.
+bool line_of_sight(const BitGrid& grid, const int a[3], const int b[3]);
+
+class LazyThetaStar {
+ public:
+  explicit LazyThetaStar(const BitGrid& grid);
+  // result.cells are the route's vertices; cost is its Euclidean length in cells.
+  GridSearchResult search(std::int64_t start, std::int64_t goal, const StopCondition& stop = {});
+
+ private:
+  const BitGrid* grid_;
+  std::vector<GridMove> moves_;
+  std::vector<std::int64_t> offsets_;
+  SearchBuffers buf_;
+};
+
+}  // namespace uavplan
