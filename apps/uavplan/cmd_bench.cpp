@@ -2,13 +2,14 @@
 #include <iostream>
 
 #include "commands.h"
+#include "movingai_runner.h"
 #include "uavplan/evaluation/world_bench.h"
+#include "uavplan/io/input_error.h"
 
 namespace uavplan::cli {
+namespace {
 
-void add_bench_command(CLI::App& app, std::function<int()>& run) {
-  CLI::App* cmd = app.add_subcommand("bench", "Run a benchmark set and print its table");
-  cmd->require_subcommand(1);
+void add_world(CLI::App* cmd, std::function<int()>& run) {
   auto queries = std::make_shared<int>(2000);
   auto seed = std::make_shared<unsigned long long>(7);
   CLI::App* world = cmd->add_subcommand("world", "World queries: broad phase against brute force, 100-10,000 obstacles");
@@ -23,6 +24,63 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
       return kExitOk;
     };
   });
+}
+
+struct MovingAiArgs {
+  std::string map, scen;
+  bench::MovingAiOptions options;
+  bool json = false;
+};
+
+void add_movingai(CLI::App* cmd, std::function<int()>& run) {
+  auto a = std::make_shared<MovingAiArgs>();
+  CLI::App* m = cmd->add_subcommand("movingai", "MovingAI grid benchmark: ours against the optimum and a textbook A*");
+  m->add_option("map", a->map, "MovingAI .map (2-D) or .3dmap (3-D)")->required();
+  m->add_option("scen", a->scen, "Its .scen or .3dscen")->required();
+  m->add_option("--algorithm", a->options.algorithm, "astar (default), jps (2-D) or theta (Lazy Theta*, any-angle)");
+  m->add_option("--limit", a->options.limit, "Run this many problems, spread evenly over the file (default all)");
+  m->add_flag("--json", a->json, "Print JSON instead of the table");
+  m->add_flag("!--no-reference", a->options.reference, "Skip the textbook A*");
+  m->footer("Example: uavplan bench movingai ../shared/data/movingai-2d/Boston_0_256.map "
+            "../shared/data/movingai-2d/Boston_0_256.map.scen --algorithm jps");
+  m->callback([a, &run] {
+    run = [a] {
+      try {
+        const auto rep = bench::run_movingai(a->map, a->scen, a->options);
+        std::cout << (a->json ? bench::movingai_json(rep) : bench::format_movingai(rep));
+        return rep.passed() ? kExitOk : kExitNotSolved;
+      } catch (const InputError& e) {
+        std::cerr << e.what() << "\n";
+        return kExitBadInput;
+      }
+    };
+  });
+
+  auto blocked = std::make_shared<long long>(2'000'000);
+  auto scratch = std::make_shared<std::string>("/tmp/uavplan-a1-probe.3dmap");
+  CLI::App* mem = cmd->add_subcommand("movingai-memory",
+                                      "Resident memory of loading a Warframe A1-size map (896 x 390 x 255), synthesised");
+  mem->add_option("--blocked", *blocked, "Blocked voxels in the synthetic map (default 2,000,000)");
+  mem->add_option("--scratch", *scratch, "Where to write the synthetic map (removed afterwards)");
+  mem->callback([blocked, scratch, &run] {
+    run = [blocked, scratch] {
+      const auto probe = bench::probe_a1_memory(*scratch, *blocked);
+      std::printf("synthetic A1 map 896 x 390 x 255, %lld blocked voxels, file %.1f MB\n",
+                  static_cast<long long>(probe.blocked), probe.file_mb);
+      std::printf("load %.0f ms, grid %.2f MB, peak resident %.1f MB (target < 50 MB): %s\n", probe.load_ms, probe.grid_mb,
+                  probe.peak_rss_mb, probe.peak_rss_mb < 50.0 ? "met" : "MISSED");
+      return probe.peak_rss_mb < 50.0 ? kExitOk : kExitNotSolved;
+    };
+  });
+}
+
+}  // namespace
+
+void add_bench_command(CLI::App& app, std::function<int()>& run) {
+  CLI::App* cmd = app.add_subcommand("bench", "Run a benchmark set and print its table");
+  cmd->require_subcommand(1);
+  add_world(cmd, run);
+  add_movingai(cmd, run);
 }
 
 }  // namespace uavplan::cli

@@ -1,0 +1,153 @@
+#include "uavplan/io/movingai.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <sstream>
+
+#include "uavplan/io/input_error.h"
+
+namespace uavplan {
+namespace {
+
+std::ifstream open_or_throw(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, 0, "", std::string("cannot open: ") + std::strerror(errno));
+  return in;
+}
+
+void strip_cr(std::string& s) {
+  if (!s.empty() && s.back() == '\r') s.pop_back();
+}
+
+// Whitespace-separated fields of a line.
+std::vector<std::string> fields(const std::string& line, char sep = 0) {
+  std::vector<std::string> out;
+  if (sep) {
+    std::stringstream ss(line);
+    std::string f;
+    while (std::getline(ss, f, sep)) out.push_back(f);
+    return out;
+  }
+  std::istringstream ss(line);
+  std::string f;
+  while (ss >> f) out.push_back(f);
+  return out;
+}
+
+template <class T>
+T parse_num(const std::string& s, const std::string& path, int line, const char* what) {
+  T v{};
+  const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec != std::errc() || p != s.data() + s.size()) throw InputError(path, line, what, "expected a number, got '" + s + "'");
+  return v;
+}
+
+}  // namespace
+
+bool is_movingai_3d(const std::string& p) { return p.size() >= 6 && p.compare(p.size() - 6, 6, ".3dmap") == 0; }
+
+BitGrid read_movingai_map(const std::string& path) {
+  std::ifstream in = open_or_throw(path);
+  std::string line;
+  int width = -1, height = -1, lineno = 0;
+  while (std::getline(in, line)) {
+    ++lineno;
+    strip_cr(line);
+    const auto f = fields(line);
+    if (f.empty()) continue;
+    if (f[0] == "map") break;
+    if (f[0] == "height" && f.size() == 2) height = parse_num<int>(f[1], path, lineno, "height");
+    if (f[0] == "width" && f.size() == 2) width = parse_num<int>(f[1], path, lineno, "width");
+  }
+  if (width <= 0 || height <= 0) throw InputError(path, lineno, "header", "missing or bad 'height'/'width' before 'map'");
+  BitGrid g(width, height, 1);
+  for (int y = 0; y < height; ++y) {
+    if (!std::getline(in, line)) throw InputError(path, lineno + 1, "map", "expected " + std::to_string(height) + " rows");
+    ++lineno;
+    strip_cr(line);
+    if (static_cast<int>(line.size()) < width)
+      throw InputError(path, lineno, "map", "row has " + std::to_string(line.size()) + " cells, expected " + std::to_string(width));
+    for (int x = 0; x < width; ++x) {
+      const char c = line[x];
+      if (c != '.' && c != 'G' && c != 'S') g.set_blocked(g.index(x, y, 0));
+    }
+  }
+  return g;
+}
+
+std::vector<MovingAiProblem> read_movingai_scen(const std::string& path) {
+  std::ifstream in = open_or_throw(path);
+  std::string line;
+  std::vector<MovingAiProblem> out;
+  int lineno = 0;
+  while (std::getline(in, line)) {
+    ++lineno;
+    strip_cr(line);
+    if (line.empty() || line.rfind("version", 0) == 0) continue;
+    auto f = fields(line, '\t');
+    if (f.size() != 9) f = fields(line);
+    if (f.size() != 9) throw InputError(path, lineno, "", "expected 9 fields: bucket map width height sx sy gx gy optimal");
+    MovingAiProblem p;
+    p.bucket = parse_num<int>(f[0], path, lineno, "bucket");
+    p.start[0] = parse_num<int>(f[4], path, lineno, "start x");
+    p.start[1] = parse_num<int>(f[5], path, lineno, "start y");
+    p.goal[0] = parse_num<int>(f[6], path, lineno, "goal x");
+    p.goal[1] = parse_num<int>(f[7], path, lineno, "goal y");
+    p.optimal = parse_num<double>(f[8], path, lineno, "optimal");
+    out.push_back(p);
+  }
+  return out;
+}
+
+BitGrid read_movingai_3dmap(const std::string& path) {
+  std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "r"), &std::fclose);
+  if (!f) throw InputError(path, 0, "", std::string("cannot open: ") + std::strerror(errno));
+  char buf[256];
+  int lineno = 0, dims[3] = {0, 0, 0};
+  while (std::fgets(buf, sizeof buf, f.get())) {
+    ++lineno;
+    if (std::sscanf(buf, "voxel %d %d %d", &dims[0], &dims[1], &dims[2]) == 3) break;
+    if (buf[strspn(buf, " \t\r\n")] != '\0') throw InputError(path, lineno, "header", "expected 'voxel X Y Z'");
+  }
+  if (dims[0] <= 0 || dims[1] <= 0 || dims[2] <= 0) throw InputError(path, lineno, "header", "bad or missing 'voxel X Y Z'");
+  BitGrid g(dims[0], dims[1], dims[2]);
+  while (std::fgets(buf, sizeof buf, f.get())) {
+    ++lineno;
+    int x, y, z;
+    const int n = std::sscanf(buf, "%d %d %d", &x, &y, &z);
+    if (n == EOF || (n <= 0 && buf[strspn(buf, " \t\r\n")] == '\0')) continue;
+    if (n != 3) throw InputError(path, lineno, "", "expected 'x y z'");
+    if (!g.inside(x, y, z)) throw InputError(path, lineno, "", "voxel outside the map");
+    g.set_blocked(g.index(x, y, z));
+  }
+  return g;
+}
+
+std::vector<MovingAiProblem> read_movingai_3dscen(const std::string& path) {
+  std::ifstream in = open_or_throw(path);
+  std::string line;
+  std::vector<MovingAiProblem> out;
+  int lineno = 0;
+  while (std::getline(in, line)) {
+    ++lineno;
+    strip_cr(line);
+    const auto f = fields(line);
+    if (f.empty() || f[0] == "version" || f.size() == 1) continue;  // header and map name
+    if (f.size() < 7) throw InputError(path, lineno, "", "expected 'sx sy sz gx gy gz optimal [ratio]'");
+    MovingAiProblem p;
+    for (int k = 0; k < 3; ++k) {
+      p.start[k] = parse_num<int>(f[k], path, lineno, "start");
+      p.goal[k] = parse_num<int>(f[3 + k], path, lineno, "goal");
+    }
+    p.optimal = parse_num<double>(f[6], path, lineno, "optimal");
+    p.bucket = static_cast<int>(std::floor(p.optimal / 10.0));
+    out.push_back(p);
+  }
+  return out;
+}
+
+}  // namespace uavplan

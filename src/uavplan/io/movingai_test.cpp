@@ -1,0 +1,67 @@
+#include "uavplan/io/movingai.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+
+#include "uavplan/io/input_error.h"
+
+namespace uavplan {
+namespace {
+
+std::string write_temp(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST(MovingAi, Reads2dMapsWithCarriageReturns) {
+  const auto path = write_temp("t.map", "type octile\r\nheight 2\r\nwidth 3\r\nmap\r\n.@G\r\nT.S\r\n");
+  const BitGrid g = read_movingai_map(path);
+  EXPECT_EQ(g.nx(), 3);
+  EXPECT_EQ(g.ny(), 2);
+  EXPECT_FALSE(g.blocked(0, 0, 0));
+  EXPECT_TRUE(g.blocked(1, 0, 0));
+  EXPECT_FALSE(g.blocked(2, 0, 0));
+  EXPECT_TRUE(g.blocked(0, 1, 0));
+  EXPECT_FALSE(g.blocked(2, 1, 0));
+}
+
+TEST(MovingAi, Reads2dScenarios) {
+  const auto path = write_temp("t.scen", "version 1\n3\tt.map\t3\t2\t0\t0\t2\t1\t2.41421356\n");
+  const auto p = read_movingai_scen(path);
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_EQ(p[0].bucket, 3);
+  EXPECT_EQ(p[0].goal[0], 2);
+  EXPECT_EQ(p[0].goal[1], 1);
+  EXPECT_DOUBLE_EQ(p[0].optimal, 2.41421356);
+}
+
+TEST(MovingAi, Reads3dMapsAndScenarios) {
+  const auto map = write_temp("t.3dmap", "voxel 4 3 2\n1 2 1\n3 0 0\n");
+  const BitGrid g = read_movingai_3dmap(map);
+  EXPECT_EQ(g.nz(), 2);
+  EXPECT_TRUE(g.blocked(1, 2, 1));
+  EXPECT_TRUE(g.blocked(3, 0, 0));
+  EXPECT_FALSE(g.blocked(0, 0, 0));
+  const auto scen = write_temp("t.3dscen", "version 1\nt.3dmap\n0 0 0 2 2 1 120.5 1.1\n");
+  const auto p = read_movingai_3dscen(scen);
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_EQ(p[0].goal[2], 1);
+  EXPECT_EQ(p[0].bucket, 12);
+}
+
+TEST(MovingAi, BadFilesNameTheLine) {
+  try {
+    read_movingai_3dmap(write_temp("bad.3dmap", "voxel 2 2 2\n0 0 0\n5 0 0\n"));
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(":3"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(read_movingai_map(write_temp("bad.map", "type octile\nheight 2\nwidth 3\nmap\n...\n")), InputError);
+  EXPECT_THROW(read_movingai_scen(write_temp("bad.scen", "version 1\n1\tx\t3\n")), InputError);
+}
+
+}  // namespace
+}  // namespace uavplan
