@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "uavplan/planning/search/astar_planner.h"
+#include "uavplan/planning/search/directional_astar.h"
 
 namespace uavplan {
 namespace {
@@ -17,6 +18,8 @@ const std::vector<Entry>& entries() {
   static const std::vector<Entry> list = {
       {{"astar", "grid A* on a voxelised world, 26 neighbours, shortcut and turn shaping"},
        [](const Params& p) { return std::make_unique<AStarPlanner>(AStarOptions::from_params(p)); }},
+      {{"directional_astar", "P4 directional A*: a cone of M yaw x M pitch directions at step L, turn and climb limits held"},
+       [](const Params& p) { return std::make_unique<DirectionalAStarPlanner>(DirectionalAStarOptions::from_params(p)); }},
   };
   return list;
 }

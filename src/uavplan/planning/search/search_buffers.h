@@ -48,10 +48,10 @@ class SearchBuffers {
   };
   void push(double f, double g, std::uint32_t cell) {
     open_.push_back({f, g, cell});
-    std::push_heap(open_.begin(), open_.end(), worse);
+    std::push_heap(open_.begin(), open_.end(), Worse{});
   }
   Entry pop() {
-    std::pop_heap(open_.begin(), open_.end(), worse);
+    std::pop_heap(open_.begin(), open_.end(), Worse{});
     const Entry e = open_.back();
     open_.pop_back();
     return e;
@@ -69,8 +69,11 @@ class SearchBuffers {
  private:
   static constexpr int kPageBits = 12;
   static constexpr std::int64_t kPageSize = std::int64_t{1} << kPageBits;
-  // Heap order: smaller f first; among equal f, larger g (deeper) first.
-  static bool worse(const Entry& a, const Entry& b) { return a.f != b.f ? a.f > b.f : a.g < b.g; }
+  // Heap order: smaller f first; among equal f, larger g (deeper) first. A function object, so
+  // the heap operations inline it.
+  struct Worse {
+    bool operator()(const Entry& a, const Entry& b) const { return a.f != b.f ? a.f > b.f : a.g < b.g; }
+  };
 
   std::vector<std::unique_ptr<Node[]>> pages_;
   std::vector<Entry> open_;

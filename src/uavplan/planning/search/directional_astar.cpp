@@ -1,0 +1,256 @@
+#include "uavplan/planning/search/directional_astar.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "uavplan/core/geometry.h"
+#include "uavplan/planning/segment_rule.h"
+
+namespace uavplan {
+
+DirectionalAStarOptions DirectionalAStarOptions::from_params(const Params& params) {
+  ParamReader r(params, "directional_astar");
+  DirectionalAStarOptions o;
+  o.cell_m = r.number("cell_m", o.cell_m, 0.0, 1e9);
+  o.step_cells = r.number("step_cells", o.step_cells, 0.5, 100.0);
+  o.directions = r.integer("directions", o.directions, 1, 64);
+  o.max_yaw_rad = deg_to_rad(r.number("max_yaw_deg", rad_to_deg(o.max_yaw_rad), 0.0, 180.0));
+  o.max_pitch_rad = deg_to_rad(r.number("max_pitch_deg", rad_to_deg(o.max_pitch_rad), 0.0, 90.0));
+  o.max_expansions = static_cast<std::int64_t>(r.number("max_expansions", static_cast<double>(o.max_expansions), 1, 1e9));
+  o.target_points = static_cast<std::int64_t>(r.number("target_points", static_cast<double>(o.target_points), 1, 1e9));
+  r.finish();
+  return o;
+}
+
+namespace {
+
+constexpr double kDefaultYaw_rad = kPi / 3;   // P4's psi_max when the UAV states none
+constexpr double kDefaultPitch_rad = kPi / 6;  // P4's phi_max
+
+struct Lattice {
+  Vec3 origin;
+  double cell;
+  int n[3];
+  std::int64_t size() const { return static_cast<std::int64_t>(n[0]) * n[1] * n[2]; }
+  std::uint32_t index(int i, int j, int k) const {
+    return static_cast<std::uint32_t>((static_cast<std::int64_t>(k) * n[1] + j) * n[0] + i);
+  }
+  Vec3 point(std::uint32_t id) const {
+    const std::int64_t i = id % n[0], r = id / n[0];
+    return origin + cell * Vec3(static_cast<double>(i), static_cast<double>(r % n[1]), static_cast<double>(r / n[1]));
+  }
+  // The lattice points at the corners of the lattice cell around p (clamped into the bounds),
+  // nearest first: the candidates for P4's "nearest equivalent".
+  int corners(const Vec3& p, std::uint32_t out[8]) const {
+    int lo[3];
+    for (int a = 0; a < 3; ++a)
+      lo[a] = static_cast<int>(std::clamp(std::floor((p[a] - origin[a]) / cell), 0.0, static_cast<double>(std::max(n[a] - 2, 0))));
+    std::pair<double, std::uint32_t> c[8];
+    int k = 0;
+    for (int dz = 0; dz <= (n[2] > 1); ++dz)
+      for (int dy = 0; dy <= (n[1] > 1); ++dy)
+        for (int dx = 0; dx <= (n[0] > 1); ++dx) {
+          const std::uint32_t id = index(lo[0] + dx, lo[1] + dy, lo[2] + dz);
+          c[k++] = {(point(id) - p).squaredNorm(), id};
+        }
+    for (int i = 1; i < k; ++i)  // insertion sort of at most 8
+      for (int j = i; j > 0 && c[j] < c[j - 1]; --j) std::swap(c[j], c[j - 1]);
+    for (int i = 0; i < k; ++i) out[i] = c[i].second;
+    return k;
+  }
+};
+
+Lattice make_lattice(const World& world, double cell) {
+  Lattice l{world.bounds().min, cell, {1, 1, 1}};
+  const Vec3 ext = world.bounds().extent();
+  for (int a = 0; a < 3; ++a) l.n[a] = 1 + static_cast<int>(std::min(std::floor(ext[a] / cell + 1e-9), 2e6));
+  return l;
+}
+
+double derived_cell(const World& world, std::int64_t target_points) {
+  const Vec3 ext = world.bounds().extent();
+  double volume = 1.0;
+  int dims = 0;
+  for (int a = 0; a < 3; ++a)
+    if (ext[a] > 0.0) {
+      volume *= ext[a];
+      ++dims;
+    }
+  return dims == 0 ? 1.0 : std::pow(volume / static_cast<double>(target_points), 1.0 / dims);
+}
+
+}  // namespace
+
+DirectionalQuery DirectionalAStarPlanner::query_for(const Problem& pb, const World& world) const {
+  const UavSpec& u = pb.uav;
+  DirectionalQuery q;
+  q.start = u.start;
+  q.goal = pb.goal;
+  q.heading_rad = u.heading_rad;
+  q.cell_m = options_.cell_m > 0.0 ? options_.cell_m : derived_cell(world, options_.target_points);
+  q.step_cells = options_.step_cells;
+  q.directions = options_.directions;
+  const double uav_yaw = u.max_turn_rad < kPi - 1e-9 ? u.max_turn_rad : kDefaultYaw_rad;
+  const double uav_pitch = u.max_climb_rad < kPi / 2 - 1e-9 ? u.max_climb_rad : kDefaultPitch_rad;
+  q.max_yaw_rad = options_.max_yaw_rad > 0.0 ? std::min(options_.max_yaw_rad, u.max_turn_rad) : uav_yaw;
+  q.max_pitch_rad = options_.max_pitch_rad > 0.0 ? std::min(options_.max_pitch_rad, u.max_climb_rad) : uav_pitch;
+  const SegmentRule rule(world, u);
+  q.inflation_m = rule.inflation_m();
+  q.ceiling_m = rule.ceiling_m();
+  q.max_expansions = options_.max_expansions;
+  return q;
+}
+
+DirectionalRoute DirectionalSearch::run(const World& world, const DirectionalQuery& q, const StopCondition& stop) {
+  DirectionalRoute out;
+  const Lattice lat = make_lattice(world, q.cell_m);
+  // A state is a lattice point and the heading it was reached with, binned in 8 yaw sectors: a
+  // point reached with another heading is another state, so a point closed while facing a wall
+  // can still be passed facing along it.
+  const bool flat = lat.n[2] == 1;
+  constexpr std::uint32_t kBins = 8;
+  const std::int64_t states = lat.size() * kBins;
+  if (states + 2 >= static_cast<std::int64_t>(SearchBuffers::kNoParent)) {
+    out.message = "lattice too large; give a larger cell_m";
+    return out;
+  }
+  const auto kStart = static_cast<std::uint32_t>(states), kGoal = kStart + 1;
+  auto position = [&](std::uint32_t id) { return id == kStart ? q.start : id == kGoal ? q.goal : lat.point(id / kBins); };
+  // Heading sector by octant (signs of x and y, and which is larger): no trigonometry.
+  auto state_of = [&](std::uint32_t point, const Vec3& seg) {
+    const std::uint32_t bin = (seg.x() < 0 ? 4u : 0u) | (seg.y() < 0 ? 2u : 0u) |
+                              (std::abs(seg.x()) < std::abs(seg.y()) ? 1u : 0u);
+    return point * kBins + bin;
+  };
+  // The limits as cosines and a tangent, checked with dot products: the same tests as
+  // turn_rad() and pitch_rad() (3-D angle and yaw change within psi_max, |pitch| within phi_max).
+  const double cos_turn = std::cos(std::min(q.max_yaw_rad + kAngleTolerance_rad, kPi));
+  const double tan_pitch = q.max_pitch_rad + kAngleTolerance_rad >= kPi / 2 ? 1e300 : std::tan(q.max_pitch_rad + kAngleTolerance_rad);
+  auto pitch_ok = [&](const Vec3& seg) { return std::abs(seg.z()) <= tan_pitch * seg.head<2>().norm(); };
+  auto turn_ok = [&](const std::optional<Vec3>& from, const Vec3& seg) {
+    if (!from) return true;
+    const double n1 = from->norm(), n2 = seg.norm();
+    if (n1 <= 0.0 || n2 <= 0.0) return true;
+    if (from->dot(seg) < cos_turn * n1 * n2) return false;
+    const double h1 = from->head<2>().norm(), h2 = seg.head<2>().norm();
+    if (h1 > 1e-9 * n1 && h2 > 1e-9 * n2 && from->head<2>().dot(seg.head<2>()) < cos_turn * h1 * h2) return false;
+    return true;
+  };
+  auto segment_ok = [&](const Vec3& a, const Vec3& b) {
+    if (!world.in_bounds(a) || !world.in_bounds(b) || a.z() > q.ceiling_m || b.z() > q.ceiling_m) return false;
+    if (!pitch_ok(b - a)) return false;
+    for (const Sphere& s : q.virtual_threats)
+      if (point_segment_distance(s.center, a, b) < s.radius_m + q.inflation_m) return false;
+    return !world.segment_collides(a, b, q.inflation_m);
+  };
+  const double step_m = q.step_cells * q.cell_m;
+  const int m = std::max(1, q.directions);
+  const int mp = flat ? 1 : m;
+
+  buf_.begin(states + 2);
+  buf_.at(kStart).g = 0.0;
+  buf_.push((q.goal - q.start).norm(), 0.0, kStart);
+  while (!buf_.open_empty()) {
+    const SearchBuffers::Entry e = buf_.pop();
+    SearchBuffers::Node& n = buf_.at(e.cell);
+    if (SearchBuffers::closed(n) || e.g > n.g) continue;
+    SearchBuffers::close(n);
+    if (e.cell == kGoal) break;
+    if (static_cast<std::int64_t>(++out.expanded) > q.max_expansions || ((out.expanded & 255) == 0 && stop.should_stop(out.expanded))) {
+      out.stopped = static_cast<std::int64_t>(out.expanded) <= q.max_expansions;
+      out.message = out.stopped ? "stopped before a route was found" : "expansion limit reached";
+      return out;
+    }
+    const Vec3 p = position(e.cell);
+    const double gn = n.g;
+    std::optional<Vec3> heading;
+    if (e.cell == kStart) {
+      if (q.heading_rad) heading = heading_vector(*q.heading_rad);
+    } else {
+      heading = p - position(n.parent);
+    }
+    // The cone: around the heading, or the whole circle at a start without one.
+    const double yaw0 = heading ? std::atan2(heading->y(), heading->x()) : std::atan2(q.goal.y() - p.y(), q.goal.x() - p.x());
+    const double yaw_span = heading ? q.max_yaw_rad : kPi;
+    const int my = heading ? m : std::max(m, static_cast<int>(std::ceil(2 * kPi / std::max(2 * q.max_yaw_rad / std::max(m - 1, 1), 1e-3))));
+    int children = 0;
+    auto relax = [&](std::uint32_t id, const Vec3& to) {
+      const double ng = gn + (to - p).norm();
+      SearchBuffers::Node& c = buf_.at(id);
+      if (SearchBuffers::closed(c) || ng >= c.g) return;
+      c.g = ng;
+      c.parent = e.cell;
+      buf_.push(ng + (q.goal - to).norm(), ng, id);
+      ++out.generated;
+    };
+    for (int a = 0; a < my; ++a) {
+      const double yaw = yaw0 + (my == 1 ? 0.0 : -yaw_span + 2.0 * yaw_span * a / (heading ? my - 1 : my));
+      for (int b = 0; b < mp; ++b) {
+        const double pitch = mp == 1 ? 0.0 : -q.max_pitch_rad + 2.0 * q.max_pitch_rad * b / (mp - 1);
+        const Vec3 target = p + step_m * Vec3(std::cos(pitch) * std::cos(yaw), std::cos(pitch) * std::sin(yaw), std::sin(pitch));
+        // "Nearest equivalent" (P4 sec. 3.1, fig. 3): the nearest lattice point that stays inside
+        // the cone, i.e. whose segment still meets the turn and climb limits.
+        std::uint32_t cand[8];
+        const int nc = lat.corners(target, cand);
+        for (int c = 0; c < nc; ++c) {
+          const Vec3 to = lat.point(cand[c]);
+          const Vec3 seg = to - p;
+          if (seg.norm() < 1e-9 || !turn_ok(heading, seg) || !pitch_ok(seg)) continue;
+          if (segment_ok(p, to)) {
+            ++children;
+            relax(state_of(cand[c], seg), to);
+          }
+          break;
+        }
+      }
+    }
+    // Within reach of the goal: try the last segment to the exact goal.
+    const Vec3 to_goal = q.goal - p;
+    if (to_goal.norm() <= 1.5 * step_m + q.cell_m && turn_ok(heading, to_goal) && segment_ok(p, q.goal)) {
+      ++children;
+      relax(kGoal, q.goal);
+    }
+    if (children == 0) ++out.dead_zones;  // closed; the next best node is taken (P4 eq. 7)
+  }
+  SearchBuffers::Node& goal = buf_.at(kGoal);
+  if (!SearchBuffers::closed(goal)) {
+    out.message = "no route within the turn and climb limits (" + std::to_string(out.dead_zones) + " dead zones)";
+    return out;
+  }
+  out.found = true;
+  out.length_m = goal.g;
+  for (std::uint32_t id = kGoal;; id = buf_.at(id).parent) {
+    out.waypoints.push_back(position(id));
+    if (id == kStart) break;
+  }
+  std::reverse(out.waypoints.begin(), out.waypoints.end());
+  return out;
+}
+
+PlanResult DirectionalAStarPlanner::do_plan(const Problem& pb, const World& world, const StopCondition& stop) const {
+  PlanResult res;
+  if (!pb.via.empty()) {
+    res.message = "directional_astar plans start to goal; via points are not supported";
+    return res;
+  }
+  const SegmentRule rule(world, pb.uav);
+  if (!rule.point_ok(pb.uav.start) || !rule.point_ok(pb.goal)) {
+    res.message = "start or goal is closer to an obstacle than the UAV radius, or above the ceiling";
+    return res;
+  }
+  DirectionalSearch search;
+  const DirectionalQuery q = query_for(pb, world);
+  const DirectionalRoute r = search.run(world, q, stop);
+  res.stats.nodes_expanded = r.expanded;
+  res.stats.open_max = r.generated;
+  res.stats.cell_m = q.cell_m;
+  if (!r.found) {
+    res.message = r.message;
+    return res;
+  }
+  res.route.waypoints = r.waypoints;
+  res.status = Status::solved;
+  return res;
+}
+
+}  // namespace uavplan

@@ -1,0 +1,81 @@
+// Directional A* (P4, Chen et al. 2019): the search state carries a heading, and a node
+// expands only the cone the UAV can fly: yaw offsets spread over [-psi_max, psi_max] around its
+// heading and pitch over [-phi_max, phi_max], M directions each, at step L cells, each end
+// snapped to the nearest lattice point ("nearest equivalent", P4 sec. 2.2). f = g + Euclidean h
+// (P4 eq. 5-6). A node with no feasible child is a dead zone: it is closed and the next best
+// open node is taken, in a loop, until a route is found (P4 sec. 2.3, eq. 7).
+// Every segment is checked exactly: inside the bounds, clear of obstacles after inflation,
+// pitch within phi_max, turn (3-D angle and yaw change) within psi_max, the first one against
+// the start heading. Eq. 8 of the paper swaps psi and phi; we use
+// x += L cos(phi) cos(psi), y += L cos(phi) sin(psi), z += L sin(phi).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "uavplan/planning/params.h"
+#include "uavplan/planning/planner.h"
+#include "uavplan/planning/search/search_buffers.h"
+#include "uavplan/world/shapes.h"
+
+namespace uavplan {
+
+struct DirectionalAStarOptions {
+  double cell_m = 0.0;          // lattice spacing; 0 = derived from the world (see below)
+  double step_cells = 2.5;      // L
+  int directions = 3;           // M, for yaw and (in 3-D) for pitch
+  double max_yaw_rad = 0.0;     // psi_max; 0 = the UAV's max_turn (60 deg if it has none)
+  double max_pitch_rad = 0.0;   // phi_max; 0 = the UAV's max_climb (30 deg if it has none)
+  std::int64_t max_expansions = 2'000'000;
+  std::int64_t target_points = 100'000;  // a derived lattice has about this many points
+
+  static DirectionalAStarOptions from_params(const Params& params);
+};
+
+struct DirectionalRoute {
+  bool found = false;
+  bool stopped = false;
+  std::vector<Vec3> waypoints;
+  double length_m = 0.0;
+  std::uint64_t expanded = 0, generated = 0, dead_zones = 0;
+  std::string message;
+};
+
+// One directional search from `start` (with optional heading) to `goal`; `virtual_threats`
+// are extra spheres to avoid (P4's virtual threats). Resolved limits and cell must be given.
+struct DirectionalQuery {
+  Vec3 start, goal;
+  std::optional<double> heading_rad;
+  double cell_m;
+  double step_cells;
+  int directions;
+  double max_yaw_rad, max_pitch_rad;
+  double inflation_m;
+  double ceiling_m;
+  std::int64_t max_expansions = 2'000'000;
+  std::vector<Sphere> virtual_threats;
+};
+
+class DirectionalSearch {
+ public:
+  DirectionalRoute run(const World& world, const DirectionalQuery& q, const StopCondition& stop);
+
+ private:
+  SearchBuffers buf_;
+};
+
+class DirectionalAStarPlanner final : public Planner {
+ public:
+  explicit DirectionalAStarPlanner(DirectionalAStarOptions options = {}) : options_(options) {}
+  std::string_view name() const override { return "directional_astar"; }
+  const DirectionalAStarOptions& options() const { return options_; }
+  // The query this planner would run for a problem (limits and cell resolved).
+  DirectionalQuery query_for(const Problem& problem, const World& world) const;
+
+ private:
+  PlanResult do_plan(const Problem& problem, const World& world, const StopCondition& stop) const override;
+  DirectionalAStarOptions options_;
+};
+
+}  // namespace uavplan
