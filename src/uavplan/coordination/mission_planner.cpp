@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "uavplan/coordination/rendezvous.h"
 #include "uavplan/planning/registry.h"
 
 namespace uavplan {
@@ -30,7 +31,7 @@ Conflict find_conflict(const Scenario& sc, const UavSpec& uav, const Trajectory&
   if (m.distance_m < uav.radius_m + kTimingMargin_m)
     return {true, "moving obstacle '" + sc.world.moving()[idx].id + "' at " + at(m)};
   for (const auto& [spec, other] : committed) {
-    const Encounter e = closest_approach(tr, other->trajectory);
+    const Encounter e = closest_approach(tr, other->trajectory, separation_horizon_s(sc, uav, tr, *spec, other->trajectory));
     if (e.distance_m < required_separation_m(sc, uav, *spec) + kTimingMargin_m)
       return {true, "UAV '" + other->id + "' at " + at(e)};
   }
@@ -90,10 +91,46 @@ void time_routes(const Scenario& sc, const MissionOptions& opt, Plan& plan) {
   }
 }
 
+// All UAVs depart at once and fly at their cruise speed: equal lengths, equal arrival times.
+void plan_rendezvous_mission(const Scenario& sc, const DirectionalAStarOptions& dopt, const MissionOptions& opt, Plan& plan) {
+  const DirectionalAStarPlanner planner(dopt);
+  const RendezvousResult rr = plan_rendezvous(sc, planner, opt.stop);
+  for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
+    const RendezvousUav& r = rr.uavs[i];
+    UavPlan up;
+    up.id = r.id;
+    up.status = r.ok ? Status::solved : Status::failed;
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "rendezvous: %s, pre-planned %.1f m, final %.1f m (target %.1f m, epsilon %.1f m)",
+                  std::string(to_string(r.step)).c_str(), r.preplanned_m, r.final_m, rr.target_m, rr.epsilon_m);
+    up.message = std::string(buf) + (r.detail.empty() ? "" : "; " + r.detail);
+    if (r.ok) {
+      up.waypoints = r.waypoints;
+      up.length_m = r.final_m;
+      up.trajectory = time_route(up.waypoints, sc.uavs[i].speed.cruise_mps, 0.0, opt.max_sample_dt_s);
+      up.arrival_s = up.trajectory.back().t_s;
+    }
+    plan.uavs.push_back(std::move(up));
+    if (opt.progress) opt.progress(i + 1, sc.uavs.size());
+  }
+}
+
 }  // namespace
 
 double required_separation_m(const Scenario& sc, const UavSpec& a, const UavSpec& b) {
   return std::max(sc.mission.separation_m, a.radius_m + b.radius_m);
+}
+
+double separation_horizon_s(const Scenario& sc, const UavSpec& a, const Trajectory& ta, const UavSpec& b,
+                            const Trajectory& tb) {
+  const double need = required_separation_m(sc, a, b);
+  if (!a.goal || !b.goal || (*a.goal - *b.goal).norm() >= need || ta.empty() || tb.empty()) return World::kInf;
+  auto entering = [&](const Trajectory& tr) {
+    for (const auto& s : tr)
+      if ((s.p - *a.goal).norm() <= need) return s.t_s;
+    return tr.back().t_s;
+  };
+  return std::min(entering(ta), entering(tb));
 }
 
 Plan plan_mission(const Scenario& sc, const MissionOptions& opt) {
@@ -104,6 +141,12 @@ Plan plan_mission(const Scenario& sc, const MissionOptions& opt) {
   plan.seed = opt.seed;
   Params params = sc.planner.params;
   for (const auto& [k, v] : opt.params) params[k] = v;
+  if (sc.mission.type == MissionType::rendezvous) {
+    // Length control is P4's strategy on directional A*: other planners' parameters do not apply.
+    plan.algorithm = "directional_astar";
+    if (opt.algorithm.value_or(sc.planner.algorithm) != "directional_astar") params.clear();
+    plan_rendezvous_mission(sc, DirectionalAStarOptions::from_params(params), opt, plan);
+  }
   const auto planner = make_planner(plan.algorithm, params);
 
   switch (sc.mission.type) {
@@ -111,6 +154,8 @@ Plan plan_mission(const Scenario& sc, const MissionOptions& opt) {
     case MissionType::route:
       plan_routes(sc, *planner, opt, plan);
       time_routes(sc, opt, plan);
+      break;
+    case MissionType::rendezvous:
       break;
     default:
       for (const auto& u : sc.uavs) {

@@ -193,11 +193,9 @@ std::vector<Violation> verify_plan(const Scenario& sc, const Plan& plan) {
       const auto& [ua, pa] = flown[i];
       const auto& [ub, pb] = flown[j];
       const double need = required_separation_m(sc, *ua, *ub);
-      const Encounter e = closest_approach(pa->trajectory, pb->trajectory);
-      // At a common rendezvous goal the UAVs meet by design: only the approach counts.
-      if (rendezvous && ua->goal && ub->goal && (*ua->goal - *ub->goal).norm() < need &&
-          (e.where - *ua->goal).norm() <= need)
-        continue;
+      // UAVs sent to one goal meet there by design (separation_horizon_s).
+      const double t_max = separation_horizon_s(sc, *ua, pa->trajectory, *ub, pb->trajectory);
+      const Encounter e = closest_approach(pa->trajectory, pb->trajectory, t_max);
       if (e.distance_m < need - kDistanceTolerance_m)
         add(out, ViolationKind::separation, ua->id, e.t_s, e.where,
             "distance " + num(e.distance_m) + " m to '" + ub->id + "', below the separation " + num(need) + " m");

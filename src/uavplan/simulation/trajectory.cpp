@@ -40,7 +40,7 @@ Vec3 position_at(const Trajectory& tr, double t) {
   return a.p + (t - a.t_s) / span * (b.p - a.p);
 }
 
-Encounter closest_approach(const Trajectory& a, const Trajectory& b) {
+Encounter closest_approach(const Trajectory& a, const Trajectory& b, double t_max_s) {
   Encounter e;
   if (a.empty() || b.empty()) return e;
   std::vector<double> times;
@@ -49,6 +49,10 @@ Encounter closest_approach(const Trajectory& a, const Trajectory& b) {
   for (const auto& s : b) times.push_back(s.t_s);
   std::sort(times.begin(), times.end());
   times.erase(std::unique(times.begin(), times.end()), times.end());
+  if (t_max_s < times.back()) {
+    times.erase(std::upper_bound(times.begin(), times.end(), t_max_s), times.end());
+    times.push_back(t_max_s);
+  }
   auto consider = [&](double t0, double t1) {
     const Vec3 pa0 = position_at(a, t0), pa1 = position_at(a, t1);
     const Vec3 d0 = pa0 - position_at(b, t0), d1 = pa1 - position_at(b, t1);

@@ -3,6 +3,7 @@
 // after its last it stays at its last (hovering or landed at the goal).
 #pragma once
 
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -30,8 +31,9 @@ struct Encounter {
 };
 
 // Exact smallest distance between two trajectories at equal times (piecewise linear on the
-// merged sample times, so each piece is a closed-form minimum).
-Encounter closest_approach(const Trajectory& a, const Trajectory& b);
+// merged sample times, so each piece is a closed-form minimum), up to time t_max_s.
+Encounter closest_approach(const Trajectory& a, const Trajectory& b,
+                           double t_max_s = std::numeric_limits<double>::infinity());
 
 // Exact smallest gap between the trajectory and the surface of any moving obstacle;
 // `index_out` names the obstacle.

@@ -18,6 +18,9 @@ DirectionalAStarOptions DirectionalAStarOptions::from_params(const Params& param
   o.max_pitch_rad = deg_to_rad(r.number("max_pitch_deg", rad_to_deg(o.max_pitch_rad), 0.0, 90.0));
   o.max_expansions = static_cast<std::int64_t>(r.number("max_expansions", static_cast<double>(o.max_expansions), 1, 1e9));
   o.target_points = static_cast<std::int64_t>(r.number("target_points", static_cast<double>(o.target_points), 1, 1e9));
+  o.step_cells_max = r.number("step_cells_max", o.step_cells_max, 0.5, 100.0);
+  o.min_turn_radius_m = r.number("min_turn_radius_m", o.min_turn_radius_m, 0.0, 1e9);
+  o.heuristic_weight = r.number("heuristic_weight", o.heuristic_weight, 1.0, 10.0);
   r.finish();
   return o;
 }
@@ -40,22 +43,31 @@ struct Lattice {
     return origin + cell * Vec3(static_cast<double>(i), static_cast<double>(r % n[1]), static_cast<double>(r / n[1]));
   }
   // The lattice points at the corners of the lattice cell around p (clamped into the bounds),
-  // nearest first: the candidates for P4's "nearest equivalent".
-  int corners(const Vec3& p, std::uint32_t out[8]) const {
+  // nearest first: the candidates for P4's "nearest equivalent". No integer division: corner
+  // positions come from the cell's own coordinates.
+  int corners(const Vec3& p, std::uint32_t ids[8], Vec3 pts[8]) const {
     int lo[3];
     for (int a = 0; a < 3; ++a)
       lo[a] = static_cast<int>(std::clamp(std::floor((p[a] - origin[a]) / cell), 0.0, static_cast<double>(std::max(n[a] - 2, 0))));
-    std::pair<double, std::uint32_t> c[8];
+    double d2[8];
     int k = 0;
     for (int dz = 0; dz <= (n[2] > 1); ++dz)
       for (int dy = 0; dy <= (n[1] > 1); ++dy)
         for (int dx = 0; dx <= (n[0] > 1); ++dx) {
-          const std::uint32_t id = index(lo[0] + dx, lo[1] + dy, lo[2] + dz);
-          c[k++] = {(point(id) - p).squaredNorm(), id};
+          const Vec3 c = origin + cell * Vec3(lo[0] + dx, lo[1] + dy, lo[2] + dz);
+          double dist = (c - p).squaredNorm();
+          std::uint32_t id = index(lo[0] + dx, lo[1] + dy, lo[2] + dz);
+          Vec3 pt = c;
+          int j = k++;
+          for (; j > 0 && d2[j - 1] > dist; --j) {  // insertion, nearest first
+            d2[j] = d2[j - 1];
+            ids[j] = ids[j - 1];
+            pts[j] = pts[j - 1];
+          }
+          d2[j] = dist;
+          ids[j] = id;
+          pts[j] = pt;
         }
-    for (int i = 1; i < k; ++i)  // insertion sort of at most 8
-      for (int j = i; j > 0 && c[j] < c[j - 1]; --j) std::swap(c[j], c[j - 1]);
-    for (int i = 0; i < k; ++i) out[i] = c[i].second;
     return k;
   }
 };
@@ -98,17 +110,30 @@ DirectionalQuery DirectionalAStarPlanner::query_for(const Problem& pb, const Wor
   q.inflation_m = rule.inflation_m();
   q.ceiling_m = rule.ceiling_m();
   q.max_expansions = options_.max_expansions;
+  q.heuristic_weight = options_.heuristic_weight;
   return q;
 }
 
 DirectionalRoute DirectionalSearch::run(const World& world, const DirectionalQuery& q, const StopCondition& stop) {
+  // P4's search: one state per lattice point (its heading from the best parent), closed once.
+  // Where that gets stuck behind dead zones, search again with the heading in the state.
+  DirectionalRoute r = run_with_bins(world, q, stop, 1);
+  if (r.found || r.stopped || !q.heading_states_fallback) return r;
+  DirectionalRoute binned = run_with_bins(world, q, stop, 8);
+  binned.expanded += r.expanded;
+  binned.generated += r.generated;
+  binned.dead_zones += r.dead_zones;
+  return binned;
+}
+
+DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const DirectionalQuery& q,
+                                                  const StopCondition& stop, std::uint32_t kBins) {
   DirectionalRoute out;
   const Lattice lat = make_lattice(world, q.cell_m);
-  // A state is a lattice point and the heading it was reached with, binned in 8 yaw sectors: a
-  // point reached with another heading is another state, so a point closed while facing a wall
-  // can still be passed facing along it.
+  // A state is a lattice point and, with kBins = 8, the heading sector it was reached in: a point
+  // reached with another heading is another state, so a point closed while facing a wall can
+  // still be passed facing along it.
   const bool flat = lat.n[2] == 1;
-  constexpr std::uint32_t kBins = 8;
   const std::int64_t states = lat.size() * kBins;
   if (states + 2 >= static_cast<std::int64_t>(SearchBuffers::kNoParent)) {
     out.message = "lattice too large; give a larger cell_m";
@@ -118,6 +143,7 @@ DirectionalRoute DirectionalSearch::run(const World& world, const DirectionalQue
   auto position = [&](std::uint32_t id) { return id == kStart ? q.start : id == kGoal ? q.goal : lat.point(id / kBins); };
   // Heading sector by octant (signs of x and y, and which is larger): no trigonometry.
   auto state_of = [&](std::uint32_t point, const Vec3& seg) {
+    if (kBins == 1) return point;
     const std::uint32_t bin = (seg.x() < 0 ? 4u : 0u) | (seg.y() < 0 ? 2u : 0u) |
                               (std::abs(seg.x()) < std::abs(seg.y()) ? 1u : 0u);
     return point * kBins + bin;
@@ -180,7 +206,7 @@ DirectionalRoute DirectionalSearch::run(const World& world, const DirectionalQue
       if (SearchBuffers::closed(c) || ng >= c.g) return;
       c.g = ng;
       c.parent = e.cell;
-      buf_.push(ng + (q.goal - to).norm(), ng, id);
+      buf_.push(ng + q.heuristic_weight * (q.goal - to).norm(), ng, id);
       ++out.generated;
     };
     for (int a = 0; a < my; ++a) {
@@ -191,9 +217,10 @@ DirectionalRoute DirectionalSearch::run(const World& world, const DirectionalQue
         // "Nearest equivalent" (P4 sec. 3.1, fig. 3): the nearest lattice point that stays inside
         // the cone, i.e. whose segment still meets the turn and climb limits.
         std::uint32_t cand[8];
-        const int nc = lat.corners(target, cand);
+        Vec3 cand_pt[8];
+        const int nc = lat.corners(target, cand, cand_pt);
         for (int c = 0; c < nc; ++c) {
-          const Vec3 to = lat.point(cand[c]);
+          const Vec3& to = cand_pt[c];
           const Vec3 seg = to - p;
           if (seg.norm() < 1e-9 || !turn_ok(heading, seg) || !pitch_ok(seg)) continue;
           if (segment_ok(p, to)) {

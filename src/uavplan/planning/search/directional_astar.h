@@ -3,7 +3,9 @@
 // heading and pitch over [-phi_max, phi_max], M directions each, at step L cells, each end
 // snapped to the nearest lattice point ("nearest equivalent", P4 sec. 2.2). f = g + Euclidean h
 // (P4 eq. 5-6). A node with no feasible child is a dead zone: it is closed and the next best
-// open node is taken, in a loop, until a route is found (P4 sec. 2.3, eq. 7).
+// open node is taken, in a loop, until a route is found (P4 sec. 2.3, eq. 7). As in P4 a lattice
+// point is closed once; when that leaves no route, the search runs again with the heading sector
+// (8 of them) in the state, so a point closed facing a wall can be passed facing along it.
 // Every segment is checked exactly: inside the bounds, clear of obstacles after inflation,
 // pitch within phi_max, turn (3-D angle and yaw change) within psi_max, the first one against
 // the start heading. Eq. 8 of the paper swaps psi and phi; we use
@@ -29,6 +31,11 @@ struct DirectionalAStarOptions {
   double max_pitch_rad = 0.0;   // phi_max; 0 = the UAV's max_climb (30 deg if it has none)
   std::int64_t max_expansions = 2'000'000;
   std::int64_t target_points = 100'000;  // a derived lattice has about this many points
+  // Used by the rendezvous (P4 sec. 3): the largest L of the multi-step search, and the minimum
+  // turn radius R_min of the loiter circle (0 = one lattice cell).
+  double step_cells_max = 3.0;
+  double min_turn_radius_m = 0.0;
+  double heuristic_weight = 1.0;  // f = g + w h; w > 1 trades length for speed
 
   static DirectionalAStarOptions from_params(const Params& params);
 };
@@ -55,6 +62,8 @@ struct DirectionalQuery {
   double ceiling_m;
   std::int64_t max_expansions = 2'000'000;
   std::vector<Sphere> virtual_threats;
+  bool heading_states_fallback = true;  // search again with heading sectors when stuck
+  double heuristic_weight = 1.0;
 };
 
 class DirectionalSearch {
@@ -62,6 +71,8 @@ class DirectionalSearch {
   DirectionalRoute run(const World& world, const DirectionalQuery& q, const StopCondition& stop);
 
  private:
+  DirectionalRoute run_with_bins(const World& world, const DirectionalQuery& q, const StopCondition& stop,
+                                 std::uint32_t heading_bins);
   SearchBuffers buf_;
 };
 

@@ -1,0 +1,238 @@
+#include "uavplan/coordination/rendezvous.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "uavplan/core/geometry.h"
+#include "uavplan/planning/segment_rule.h"
+
+namespace uavplan {
+
+std::string_view to_string(RendezvousStep s) {
+  switch (s) {
+    case RendezvousStep::none: return "none";
+    case RendezvousStep::preplanned: return "pre-planned";
+    case RendezvousStep::multi_point: return "multi-point search";
+    case RendezvousStep::loiter: return "loiter circle";
+    case RendezvousStep::virtual_adjust_r: return "virtual threat (adjust R)";
+    case RendezvousStep::virtual_move_h: return "virtual threat (move H)";
+  }
+  return "none";
+}
+
+namespace {
+
+// A re-planning search that has not found its route after this many expansions is dropped as a
+// candidate (a pre-planning search on these worlds needs a few thousand).
+constexpr std::int64_t kReplanExpansions = 20'000;
+
+double length(const std::vector<Vec3>& pts) {
+  double l = 0.0;
+  for (std::size_t i = 1; i < pts.size(); ++i) l += (pts[i] - pts[i - 1]).norm();
+  return l;
+}
+
+std::string fmt(const char* f, double a, double b = 0.0, double c = 0.0) {
+  char buf[160];
+  std::snprintf(buf, sizeof buf, f, a, b, c);
+  return buf;
+}
+
+// The loiter of P4 eq. 9-11 as a regular polygon flown counter-clockwise, the start at the
+// middle of its first side and that side along the heading, so the UAV leaves and rejoins its
+// route with its own heading; the centre is to the left, O = X0 - a v'/|v'| with
+// v' = [[0,1,0],[-1,0,0],[0,0,0]] v. Each vertex turns 2 pi / n. Perimeter = extra length.
+std::vector<Vec3> loiter_polygon(const Vec3& x0, const Vec3& heading, double extra_m, int n) {
+  const Vec3 h = Vec3(heading.x(), heading.y(), 0.0).normalized();
+  const Vec3 left(-h.y(), h.x(), 0.0);
+  const double apothem = extra_m / (2.0 * n * std::tan(kPi / n));
+  const double circum = apothem / std::cos(kPi / n);
+  const Vec3 o = x0 + apothem * left;
+  const double a0 = std::atan2(-left.y(), -left.x());  // direction from the centre to the start
+  std::vector<Vec3> pts{x0};
+  for (int k = 0; k < n; ++k) {
+    const double a = a0 + (2 * k + 1) * kPi / n;
+    pts.push_back(o + circum * Vec3(std::cos(a), std::sin(a), 0.0));
+  }
+  pts.push_back(x0);
+  return pts;
+}
+
+}  // namespace
+
+RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlanner& planner, const StopCondition& stop) {
+  RendezvousResult res;
+  DirectionalSearch engine;
+  struct Counting {
+    DirectionalSearch& engine;
+    RendezvousResult& res;
+    DirectionalRoute run(const World& w, const DirectionalQuery& q, const StopCondition& st) {
+      DirectionalRoute r = engine.run(w, q, st);
+      ++res.searches;
+      res.expanded += r.expanded;
+      return r;
+    }
+  } search{engine, res};
+  const DirectionalAStarOptions& opt = planner.options();
+  std::vector<DirectionalQuery> queries;
+  for (const UavSpec& u : sc.uavs) {
+    RendezvousUav r;
+    r.id = u.id;
+    queries.push_back(planner.query_for(Problem{u, u.goal.value_or(u.start), {}}, sc.world));
+    if (!u.goal) {
+      r.detail = "no goal given";
+    } else {
+      const DirectionalRoute route = search.run(sc.world, queries.back(), stop);
+      r.ok = route.found;
+      r.waypoints = route.waypoints;
+      r.preplanned_m = r.final_m = route.length_m;
+      r.step = route.found ? RendezvousStep::preplanned : RendezvousStep::none;
+      if (!route.found) r.detail = route.message;
+    }
+    res.uavs.push_back(std::move(r));
+  }
+  for (const auto& r : res.uavs)
+    if (r.ok) res.target_m = std::max(res.target_m, r.final_m);
+  const double cell = queries.empty() ? 1.0 : queries.front().cell_m;
+  res.epsilon_m = sc.mission.arrival_tolerance_m.value_or(cell);
+  const double lo = res.target_m - res.epsilon_m, hi = res.target_m;
+  const double aim = res.target_m - 0.5 * res.epsilon_m;
+  auto within = [&](double l) { return l >= lo && l <= hi; };
+
+  for (std::size_t s = 0; s < res.uavs.size(); ++s) {
+    RendezvousUav& r = res.uavs[s];
+    if (!r.ok || within(r.final_m)) continue;
+    const UavSpec& u = sc.uavs[s];
+    DirectionalQuery q = queries[s];
+    // The re-planning steps run many searches; each keeps P4's one state per lattice point and
+    // a route that gets stuck is simply not a candidate.
+    q.heading_states_fallback = false;
+    q.max_expansions = std::min<std::int64_t>(q.max_expansions, kReplanExpansions);
+    r.ok = false;
+    // Every route found on the way; the loiter may extend any of them.
+    std::vector<std::vector<Vec3>> candidates{r.waypoints};
+    auto accept = [&](const std::vector<Vec3>& route, RendezvousStep step, std::string detail) {
+      r.waypoints = route;
+      r.final_m = length(route);
+      r.step = step;
+      r.detail = std::move(detail);
+      r.ok = true;
+    };
+    // (1) Variable-step multi-point search (P4 table 1): L from 1 to L_max step 0.2, M from 3 to
+    // 6; the first route within the window ends the step, else the closest is kept.
+    std::vector<Vec3> best = r.waypoints;
+    for (int li = 0; 1.0 + 0.2 * li <= opt.step_cells_max + 1e-9 && !r.ok; ++li)
+      for (int m = 3; m <= 6 && !r.ok; ++m) {
+        q.step_cells = 1.0 + 0.2 * li;
+        q.directions = m;
+        const DirectionalRoute route = search.run(sc.world, q, stop);
+        if (!route.found) continue;
+        candidates.push_back(route.waypoints);
+        if (within(route.length_m)) accept(route.waypoints, RendezvousStep::multi_point, fmt("L = %.1f, M = %.0f", q.step_cells, m));
+        else if (std::abs(route.length_m - aim) < std::abs(length(best) - aim)) best = route.waypoints;
+      }
+    if (r.ok) continue;
+    r.waypoints = best;
+    r.final_m = length(best);
+    // (2) Loiter circle at the start (P4 eq. 9-11): R = (P_max - P_i) / (2 pi) >= R_min and the
+    // circle clear of every obstacle.
+    const double r_min = opt.min_turn_radius_m > 0.0 ? opt.min_turn_radius_m : cell;
+    const SegmentRule rule(sc.world, u);
+    const int n = std::max(12, static_cast<int>(std::ceil(2 * kPi / (0.95 * std::min(u.max_turn_rad, q.max_yaw_rad)))));
+    auto try_loiter = [&]() {
+      std::sort(candidates.begin(), candidates.end(),
+                [](const auto& x, const auto& y) { return length(x) > length(y); });
+      for (const auto& base : candidates) {
+        const double extra = aim - length(base);
+        if (extra / (2 * kPi) < r_min || base.size() < 2) continue;
+        const Vec3 heading = u.heading_rad ? heading_vector(*u.heading_rad) : Vec3(base[1] - base[0]);
+        if (heading.head<2>().norm() <= 0.0) continue;
+        const auto loop = loiter_polygon(base.front(), heading, extra, n);
+        bool clear = true;
+        for (std::size_t i = 1; i < loop.size() && clear; ++i) clear = rule(loop[i - 1], loop[i]);
+        if (!clear) continue;
+        std::vector<Vec3> route = loop;
+        route.insert(route.end(), base.begin() + 1, base.end());
+        if (!within(length(route))) continue;
+        accept(route, RendezvousStep::loiter, fmt("radius %.1f m (R_min %.1f m), %.0f sides", extra / (2 * kPi), r_min, n));
+        return true;
+      }
+      return false;
+    };
+    if (try_loiter()) continue;
+    // (3) Virtual threat (P4 eq. 12-13): a sphere centred on the route point nearest the
+    // start-goal midpoint; its radius stays below the distance to the other UAVs' routes and
+    // leaves the start and the goal outside. adjust-R grows it; move-H keeps R_x and re-centres
+    // it on each new route.
+    const Vec3 mid = 0.5 * (u.start + *u.goal);
+    auto centre_on = [&](const std::vector<Vec3>& pts) {
+      return *std::min_element(pts.begin(), pts.end(), [&](const Vec3& x, const Vec3& y) {
+        return (x - mid).squaredNorm() < (y - mid).squaredNorm();
+      });
+    };
+    auto radius_limit = [&](const Vec3& h) {
+      double lim = std::min((h - u.start).norm(), (h - *u.goal).norm()) - 2 * q.inflation_m - cell;
+      for (std::size_t o = 0; o < res.uavs.size(); ++o) {
+        if (o == s) continue;
+        const auto& w = res.uavs[o].waypoints;
+        for (std::size_t i = 1; i < w.size(); ++i) lim = std::min(lim, point_segment_distance(h, w[i - 1], w[i]) - q.inflation_m);
+      }
+      return lim;
+    };
+    q = queries[s];
+    q.heading_states_fallback = false;
+    q.max_expansions = std::min<std::int64_t>(q.max_expansions, kReplanExpansions);
+    const Vec3 h0 = centre_on(best);
+    const double rx_max = radius_limit(h0);
+    // adjust-R: the length grows with R_x (by steps, the lattice being discrete), so R_x doubles
+    // from half a cell until the route is long enough, then bisection narrows it to a quarter cell.
+    double rx_used = 0.0;
+    auto try_radius = [&](double rx) -> double {  // the route's length, or -1 without a route
+      q.virtual_threats = {Sphere{h0, rx}};
+      const DirectionalRoute route = search.run(sc.world, q, stop);
+      if (!route.found) return -1.0;
+      candidates.push_back(route.waypoints);
+      if (route.length_m < lo) rx_used = std::max(rx_used, rx);
+      if (within(route.length_m))
+        accept(route.waypoints, RendezvousStep::virtual_adjust_r,
+               fmt("R_x = %.1f m at (%.0f, %.0f", rx, h0.x(), h0.y()) + fmt(", %.0f)", h0.z()));
+      return route.length_m;
+    };
+    double short_rx = 0.0, long_rx = -1.0;
+    for (double rx = 0.5 * cell; rx < rx_max && !r.ok && !stop.should_stop(); rx *= 2.0) {
+      const double len = try_radius(rx);
+      if (len >= 0.0 && len < lo) short_rx = rx;
+      if (len > hi) {
+        long_rx = rx;
+        break;
+      }
+    }
+    if (long_rx < 0.0 && !r.ok && rx_max > short_rx) long_rx = rx_max;
+    while (!r.ok && long_rx > 0.0 && long_rx - short_rx > 0.25 * cell && !stop.should_stop()) {
+      const double rx = 0.5 * (short_rx + long_rx);
+      const double len = try_radius(rx);
+      if (len >= 0.0 && len < lo) short_rx = rx;
+      else long_rx = rx;
+    }
+    std::vector<Vec3> current = best;
+    for (int it = 0; it < 15 && !r.ok && rx_used > 0.0 && !stop.should_stop(); ++it) {
+      const Vec3 h = centre_on(current);
+      const double rx = std::min(rx_used, radius_limit(h));
+      if (rx <= 0.0) break;
+      q.virtual_threats = {Sphere{h, rx}};
+      const DirectionalRoute route = search.run(sc.world, q, stop);
+      if (!route.found || route.waypoints == current) break;
+      current = route.waypoints;
+      candidates.push_back(route.waypoints);
+      if (within(route.length_m)) accept(route.waypoints, RendezvousStep::virtual_move_h, fmt("R_x = %.1f m, %.0f moves", rx, it + 1));
+    }
+    if (r.ok) continue;
+    // Last: a loiter on any route found on the way.
+    if (try_loiter()) continue;
+    r.detail = fmt("no step brought the length (%.1f m) within [%.1f, %.1f] m", r.final_m, lo, hi);
+  }
+  return res;
+}
+
+}  // namespace uavplan
