@@ -36,6 +36,13 @@ grep -q "planner.params.nonsense" "$TMP/stderr" || { echo "FAIL unknown.param me
 "$BIN" plan "$SRC/scenarios/demo.yaml" -o "$TMP/c" --algorithm nope >/dev/null 2>&1; check unknown.algorithm 2 $?
 "$BIN" frobnicate >/dev/null 2>&1; check unknown.subcommand 2 $?
 
+# P4 scenarios: every route verified (turn <= 60, pitch <= 30, no threat), rendezvous lengths
+# within epsilon (the verifier checks the spread).
+for sc in p4_table3 p4_rendezvous; do
+  "$BIN" plan "$SRC/scenarios/$sc.yaml" -o "$TMP/$sc" >/dev/null 2>&1; check "$sc.plan" 0 $?
+  "$BIN" verify "$SRC/scenarios/$sc.yaml" "$TMP/$sc/plan.json" >/dev/null 2>&1; check "$sc.verify" 0 $?
+done
+
 # A tampered plan: verify lists violations and exits 1.
 awk 'BEGIN{n=0} /"trajectory": \[/ && n==0 {print; getline; sub(/\[0.0,20.0,20.0,30.0\]/, "[0.0,230.0,230.0,30.0]"); n=1} {print}' \
   "$TMP/a/plan.json" >"$TMP/tampered.json"

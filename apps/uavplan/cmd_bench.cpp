@@ -3,6 +3,7 @@
 
 #include "commands.h"
 #include "movingai_runner.h"
+#include "p4_runner.h"
 #include "uavplan/evaluation/world_bench.h"
 #include "uavplan/io/input_error.h"
 
@@ -74,6 +75,24 @@ void add_movingai(CLI::App* cmd, std::function<int()>& run) {
   });
 }
 
+void add_p4(CLI::App* cmd, std::function<int()>& run) {
+  auto dir = std::make_shared<std::string>("scenarios");
+  CLI::App* p4 = cmd->add_subcommand("p4", "P4 tables: directional A* against grid A*, rendezvous, L x M lengths");
+  p4->add_option("--scenarios", *dir, "Folder holding p4_table3.yaml and p4_rendezvous.yaml (default: scenarios)");
+  p4->callback([dir, &run] {
+    run = [dir] {
+      try {
+        bool ok = false;
+        std::cout << bench::run_p4(*dir, &ok);
+        return ok ? kExitOk : kExitNotSolved;
+      } catch (const InputError& e) {
+        std::cerr << e.what() << "\n";
+        return kExitBadInput;
+      }
+    };
+  });
+}
+
 }  // namespace
 
 void add_bench_command(CLI::App& app, std::function<int()>& run) {
@@ -81,6 +100,7 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
   cmd->require_subcommand(1);
   add_world(cmd, run);
   add_movingai(cmd, run);
+  add_p4(cmd, run);
 }
 
 }  // namespace uavplan::cli

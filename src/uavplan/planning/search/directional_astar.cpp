@@ -12,7 +12,8 @@ DirectionalAStarOptions DirectionalAStarOptions::from_params(const Params& param
   ParamReader r(params, "directional_astar");
   DirectionalAStarOptions o;
   o.cell_m = r.number("cell_m", o.cell_m, 0.0, 1e9);
-  o.step_cells = r.number("step_cells", o.step_cells, 0.5, 100.0);
+  o.step_cells = r.number("step_cells", o.step_cells, 0.0, 100.0);
+  if (o.step_cells > 0.0 && o.step_cells < 0.5) throw std::invalid_argument("planner.params.step_cells: must be 0 (derived) or at least 0.5");
   o.directions = r.integer("directions", o.directions, 1, 64);
   o.max_yaw_rad = deg_to_rad(r.number("max_yaw_deg", rad_to_deg(o.max_yaw_rad), 0.0, 180.0));
   o.max_pitch_rad = deg_to_rad(r.number("max_pitch_deg", rad_to_deg(o.max_pitch_rad), 0.0, 90.0));
@@ -100,12 +101,12 @@ DirectionalQuery DirectionalAStarPlanner::query_for(const Problem& pb, const Wor
   q.goal = pb.goal;
   q.heading_rad = u.heading_rad;
   q.cell_m = options_.cell_m > 0.0 ? options_.cell_m : derived_cell(world, options_.target_points);
-  q.step_cells = options_.step_cells;
   q.directions = options_.directions;
   const double uav_yaw = u.max_turn_rad < kPi - 1e-9 ? u.max_turn_rad : kDefaultYaw_rad;
   const double uav_pitch = u.max_climb_rad < kPi / 2 - 1e-9 ? u.max_climb_rad : kDefaultPitch_rad;
   q.max_yaw_rad = options_.max_yaw_rad > 0.0 ? std::min(options_.max_yaw_rad, u.max_turn_rad) : uav_yaw;
   q.max_pitch_rad = options_.max_pitch_rad > 0.0 ? std::min(options_.max_pitch_rad, u.max_climb_rad) : uav_pitch;
+  q.step_cells = options_.step_cells > 0.0 ? options_.step_cells : std::max(2.5, 2.0 / q.max_yaw_rad);
   const SegmentRule rule(world, u);
   q.inflation_m = rule.inflation_m();
   q.ceiling_m = rule.ceiling_m();
@@ -117,7 +118,8 @@ DirectionalQuery DirectionalAStarPlanner::query_for(const Problem& pb, const Wor
 DirectionalRoute DirectionalSearch::run(const World& world, const DirectionalQuery& q, const StopCondition& stop) {
   // P4's search: one state per lattice point (its heading from the best parent), closed once.
   // Where that gets stuck behind dead zones, search again with the heading in the state.
-  DirectionalRoute r = run_with_bins(world, q, stop, 1);
+  DirectionalRoute r = run_with_bins(world, q, stop, q.heading_states_fallback ? 8 : 1);
+  if (q.heading_states_fallback) return r;
   if (r.found || r.stopped || !q.heading_states_fallback) return r;
   DirectionalRoute binned = run_with_bins(world, q, stop, 8);
   binned.expanded += r.expanded;

@@ -1,0 +1,164 @@
+#include "p4_runner.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "uavplan/coordination/rendezvous.h"
+#include "uavplan/core/units.h"
+#include "uavplan/io/scenario_io.h"
+#include "uavplan/planning/search/directional_astar.h"
+#include "uavplan/planning/search/grid_astar.h"
+#include "uavplan/planning/segment_rule.h"
+#include "uavplan/planning/voxel_grid.h"
+
+namespace uavplan::bench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+struct RouteStats {
+  bool found = false;
+  double km = 0.0, ms = 0.0, worst_turn_deg = 0.0, worst_pitch_deg = 0.0;
+  std::uint64_t open = 0;
+};
+
+RouteStats stats_of(const std::vector<Vec3>& pts, std::optional<double> heading) {
+  RouteStats s;
+  s.found = !pts.empty();
+  std::optional<Vec3> prev;
+  if (heading) prev = heading_vector(*heading);
+  for (std::size_t i = 1; i < pts.size(); ++i) {
+    const Vec3 seg = pts[i] - pts[i - 1];
+    if (seg.norm() <= 0.0) continue;
+    s.km += seg.norm() / 1000.0;
+    s.worst_pitch_deg = std::max(s.worst_pitch_deg, rad_to_deg(std::abs(pitch_rad(seg))));
+    if (prev) s.worst_turn_deg = std::max(s.worst_turn_deg, rad_to_deg(turn_rad(*prev, seg)));
+    prev = seg;
+  }
+  return s;
+}
+
+// The paper's reference: plain 26-neighbour A* on the same world (cells of the lattice size),
+// no shortcut, no angle limits.
+RouteStats grid_baseline(const Scenario& sc, const UavSpec& u, double cell) {
+  const auto t0 = Clock::now();
+  const SegmentRule rule(sc.world, u);
+  const VoxelGrid g = voxelize(sc.world, Vec3(cell, cell, cell), rule.inflation_m(), rule.ceiling_m());
+  GridAStar search(g.cells(), bounding_box_moves(g.cells(), cell, cell, cell), GridHeuristic::octile, cell, cell, cell);
+  int i, j, k;
+  g.cell_of(u.start, i, j, k);
+  const auto s = g.index(i, j, k);
+  g.cell_of(*u.goal, i, j, k);
+  const auto t = g.index(i, j, k);
+  const GridSearchResult r = search.search(s, t);
+  std::vector<Vec3> pts{u.start};
+  for (const auto c : r.cells) pts.push_back(g.center(c));
+  pts.push_back(*u.goal);
+  RouteStats st = stats_of(r.found ? pts : std::vector<Vec3>{}, std::nullopt);
+  st.ms = ms_since(t0);
+  st.open = r.generated + 1;
+  return st;
+}
+
+}  // namespace
+
+std::string run_p4(const std::string& dir, bool* all_ok) {
+  std::string out;
+  char buf[400];
+  bool ok = true;
+  // Table 3.
+  {
+    const Scenario sc = load_scenario(dir + "/p4_table3.yaml");
+    const DirectionalAStarPlanner planner(DirectionalAStarOptions::from_params(sc.planner.params));
+    const double paper_len[2][2] = {{50.640, 45.669}, {51.244, 46.050}};
+    const int paper_open[2][2] = {{408, 421}, {601, 628}};
+    const double paper_s[2][2] = {{0.340, 0.329}, {0.412, 0.401}};
+    out += "P4 Table 3: directional A* (L = 2.5, M = 3) against the plain 26-neighbour grid A*, 1 km cells\n";
+    std::snprintf(buf, sizeof buf, "%-6s %-22s %9s %9s %7s %7s %9s %9s %9s %9s\n", "uav", "algorithm", "length_km",
+                  "paper_km", "open", "paper", "time_ms", "paper_ms", "turn_deg", "pitch_deg");
+    out += buf;
+    for (std::size_t i = 0; i < sc.uavs.size() && i < 2; ++i) {
+      const UavSpec& u = sc.uavs[i];
+      DirectionalSearch search;
+      const DirectionalQuery q = planner.query_for(Problem{u, *u.goal, {}}, sc.world);
+      const auto t0 = Clock::now();
+      const DirectionalRoute r = search.run(sc.world, q, {});
+      RouteStats d = stats_of(r.waypoints, u.heading_rad);
+      d.ms = ms_since(t0);
+      d.open = r.generated + 1;
+      ok &= r.found && d.worst_turn_deg <= 60.0 + 1e-6 && d.worst_pitch_deg <= 30.0 + 1e-6;
+      const RouteStats b = grid_baseline(sc, u, q.cell_m);
+      const RouteStats* rows[2] = {&d, &b};
+      const char* names[2] = {"directional A*", "26-neighbour A*"};
+      for (int a = 0; a < 2; ++a) {
+        std::snprintf(buf, sizeof buf, "%-6s %-22s %9.3f %9.3f %7llu %7d %9.2f %9.0f %9.1f %9.1f\n", u.id.c_str(), names[a],
+                      rows[a]->km, paper_len[a][i], static_cast<unsigned long long>(rows[a]->open), paper_open[a][i],
+                      rows[a]->ms, 1000 * paper_s[a][i], rows[a]->worst_turn_deg, rows[a]->worst_pitch_deg);
+        out += buf;
+      }
+    }
+    out += "(open: nodes put on the open list; the paper's times are Matlab.)\n\n";
+  }
+  // Rendezvous.
+  {
+    const Scenario sc = load_scenario(dir + "/p4_rendezvous.yaml");
+    const DirectionalAStarPlanner planner(DirectionalAStarOptions::from_params(sc.planner.params));
+    const auto t0 = Clock::now();
+    const RendezvousResult rr = plan_rendezvous(sc, planner, {});
+    const double ms = ms_since(t0);
+    const double paper_pre[4] = {52.279, 44.983, 52.961, 56.131};
+    const double paper_final[4] = {55.247, 56.131, 55.8, 56.131};
+    const char* paper_step[4] = {"virtual threat R_x=2", "loiter R=1.748 km", "multi-point L=3,M=3", "longest"};
+    out += "P4 rendezvous (Table 4 starts, goal (37, 28, 25) km, L = 2.5, M = 6, epsilon 1 km)\n";
+    std::snprintf(buf, sizeof buf, "%-6s %8s %8s %-26s %9s %9s  %s\n", "uav", "pre_km", "paper", "step (ours)", "final_km",
+                  "paper", "paper's step");
+    out += buf;
+    double lo = 1e300, hi = 0.0;
+    for (std::size_t i = 0; i < rr.uavs.size(); ++i) {
+      const auto& r = rr.uavs[i];
+      std::snprintf(buf, sizeof buf, "%-6s %8.3f %8.3f %-26s %9.3f %9.3f  %s\n", r.id.c_str(), r.preplanned_m / 1000,
+                    i < 4 ? paper_pre[i] : 0.0, std::string(to_string(r.step)).c_str(), r.final_m / 1000,
+                    i < 4 ? paper_final[i] : 0.0, i < 4 ? paper_step[i] : "");
+      out += buf;
+      ok &= r.ok;
+      lo = std::min(lo, r.final_m);
+      hi = std::max(hi, r.final_m);
+    }
+    std::snprintf(buf, sizeof buf,
+                  "target %.3f km, spread %.3f km (epsilon %.3f km): %s; %d directional searches, %llu expansions, %.1f ms\n\n",
+                  rr.target_m / 1000, (hi - lo) / 1000, rr.epsilon_m / 1000, hi - lo <= rr.epsilon_m + 1e-6 ? "held" : "MISSED",
+                  rr.searches, static_cast<unsigned long long>(rr.expanded), ms);
+    out += buf;
+    ok &= hi - lo <= rr.epsilon_m + 1e-6;
+    // Table 5: L x M lengths for UAV3.
+    const UavSpec& u = sc.uavs[2];
+    DirectionalQuery q = planner.query_for(Problem{u, *u.goal, {}}, sc.world);
+    DirectionalSearch search;
+    const double paper5[11][4] = {{55.5, 51.2, 51.2, 51.2}, {54.9, 51.2, 51.2, 51.2}, {51.2, 51.2, 51.2, 51.2},
+                                  {51.2, 50.4, 51.2, 49.5}, {55.0, 49.2, 50.3, 49.2}, {55.4, 54.9, 55.2, 55.5},
+                                  {52.8, 53.0, 51.1, 51.2}, {54.7, 53.0, 52.8, 53.0}, {54.7, 53.0, 53.0, 52.9},
+                                  {51.9, 53.1, 52.8, 52.7}, {55.8, 52.9, 54.0, 50.1}};
+    out += "P4 Table 5 for uav3: route length (km) by step L and directions M, ours | paper\n";
+    std::snprintf(buf, sizeof buf, "%5s %13s %13s %13s %13s\n", "L", "M=3", "M=4", "M=5", "M=6");
+    out += buf;
+    for (int li = 0; li <= 10; ++li) {
+      q.step_cells = 1.0 + 0.2 * li;
+      std::snprintf(buf, sizeof buf, "%5.1f", q.step_cells);
+      out += buf;
+      for (int m = 3; m <= 6; ++m) {
+        q.directions = m;
+        const DirectionalRoute r = search.run(sc.world, q, {});
+        if (r.found) std::snprintf(buf, sizeof buf, " %6.1f|%5.1f", r.length_m / 1000, paper5[li][m - 3]);
+        else std::snprintf(buf, sizeof buf, " %6s|%5.1f", "-", paper5[li][m - 3]);
+        out += buf;
+      }
+      out += "\n";
+    }
+  }
+  if (all_ok) *all_ok = ok;
+  return out;
+}
+
+}  // namespace uavplan::bench
