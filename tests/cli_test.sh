@@ -38,7 +38,7 @@ grep -q "planner.params.nonsense" "$TMP/stderr" || { echo "FAIL unknown.param me
 
 # P4 scenarios: every route verified (turn <= 60, pitch <= 30, no threat), rendezvous lengths
 # within epsilon (the verifier checks the spread).
-for sc in p4_table3 p4_rendezvous; do
+for sc in p4_table3 p4_rendezvous p3_group9 p3_group9_3d; do
   "$BIN" plan "$SRC/scenarios/$sc.yaml" -o "$TMP/$sc" >/dev/null 2>&1; check "$sc.plan" 0 $?
   "$BIN" verify "$SRC/scenarios/$sc.yaml" "$TMP/$sc/plan.json" >/dev/null 2>&1; check "$sc.verify" 0 $?
 done

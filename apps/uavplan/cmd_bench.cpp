@@ -3,6 +3,7 @@
 
 #include "commands.h"
 #include "movingai_runner.h"
+#include "p3_runner.h"
 #include "p4_runner.h"
 #include "uavplan/evaluation/world_bench.h"
 #include "uavplan/io/input_error.h"
@@ -93,6 +94,24 @@ void add_p4(CLI::App* cmd, std::function<int()>& run) {
   });
 }
 
+void add_p3(CLI::App* cmd, std::function<int()>& run) {
+  auto dir = std::make_shared<std::string>("scenarios");
+  CLI::App* p3 = cmd->add_subcommand("p3", "P3 tables: group scores before/after smoothing, traditional baseline, scaling");
+  p3->add_option("--scenarios", *dir, "Folder holding p3_group9.yaml (default: scenarios)");
+  p3->callback([dir, &run] {
+    run = [dir] {
+      try {
+        bool ok = false;
+        std::cout << bench::run_p3(*dir, &ok);
+        return ok ? kExitOk : kExitNotSolved;
+      } catch (const InputError& e) {
+        std::cerr << e.what() << "\n";
+        return kExitBadInput;
+      }
+    };
+  });
+}
+
 }  // namespace
 
 void add_bench_command(CLI::App& app, std::function<int()>& run) {
@@ -101,6 +120,7 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
   add_world(cmd, run);
   add_movingai(cmd, run);
   add_p4(cmd, run);
+  add_p3(cmd, run);
 }
 
 }  // namespace uavplan::cli

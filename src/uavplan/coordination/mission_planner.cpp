@@ -1,9 +1,11 @@
 #include "uavplan/coordination/mission_planner.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <stdexcept>
 
+#include "uavplan/coordination/group_planner.h"
 #include "uavplan/coordination/rendezvous.h"
 #include "uavplan/planning/registry.h"
 
@@ -91,6 +93,30 @@ void time_routes(const Scenario& sc, const MissionOptions& opt, Plan& plan) {
   }
 }
 
+// P3's group: frame by frame with time-stamped peers, then smoothing.
+void plan_group_mission(const Scenario& sc, const ApfOptions& aopt, const MissionOptions& opt, Plan& plan) {
+  const GroupResult g = plan_group(sc, aopt, opt.stop);
+  for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
+    const GroupUav& r = g.uavs[i];
+    UavPlan up;
+    up.id = r.id;
+    up.status = r.reached ? Status::solved : Status::failed;
+    up.message = r.reached ? "group: " + std::to_string(r.raw.size() - 1) + " frames of " + std::to_string(g.frame_s) +
+                                 " s, " + std::to_string(r.smoothed_points) + " smoothing moves (" +
+                                 std::to_string(r.kept_points) + " refused for a conflict)"
+                           : r.message;
+    if (r.reached) {
+      up.trajectory = frames_to_trajectory(r.smoothed, g.frame_s);
+      up.waypoints = r.smoothed;
+      up.waypoints.erase(std::unique(up.waypoints.begin(), up.waypoints.end()), up.waypoints.end());
+      up.length_m = Route{up.waypoints}.length_m();
+      up.arrival_s = up.trajectory.back().t_s;
+    }
+    plan.uavs.push_back(std::move(up));
+  }
+  if (opt.progress) opt.progress(sc.uavs.size(), sc.uavs.size());
+}
+
 // All UAVs depart at once and fly at their cruise speed: equal lengths, equal arrival times.
 void plan_rendezvous_mission(const Scenario& sc, const DirectionalAStarOptions& dopt, const MissionOptions& opt, Plan& plan) {
   const DirectionalAStarPlanner planner(dopt);
@@ -147,6 +173,14 @@ Plan plan_mission(const Scenario& sc, const MissionOptions& opt) {
     if (opt.algorithm.value_or(sc.planner.algorithm) != "directional_astar") params.clear();
     plan_rendezvous_mission(sc, DirectionalAStarOptions::from_params(params), opt, plan);
   }
+  if (sc.mission.type == MissionType::group) {
+    // P3's group planning is a potential-field method: apf (default) or apf_traditional.
+    if (plan.algorithm != "apf" && plan.algorithm != "apf_traditional") {
+      plan.algorithm = "apf";
+      params.clear();
+    }
+    plan_group_mission(sc, ApfOptions::from_params(params, plan.algorithm == "apf"), opt, plan);
+  }
   const auto planner = make_planner(plan.algorithm, params);
 
   switch (sc.mission.type) {
@@ -156,6 +190,7 @@ Plan plan_mission(const Scenario& sc, const MissionOptions& opt) {
       time_routes(sc, opt, plan);
       break;
     case MissionType::rendezvous:
+    case MissionType::group:
       break;
     default:
       for (const auto& u : sc.uavs) {

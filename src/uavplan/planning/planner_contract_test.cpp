@@ -58,13 +58,26 @@ TEST_P(PlannerContract, StartEqualsGoal) {
   expect_valid_route(planner->plan(p, world, {}), p, world);
 }
 
+bool complete(const std::string& name) {
+  for (const auto& info : planner_catalog())
+    if (info.name == name) return info.complete;
+  return true;
+}
+
 TEST_P(PlannerContract, FindsTheGapAndKeepsTheLimits) {
   const Problem p = problem(Vec3(10, 10, 10), Vec3(90, 10, 10));
   const PlanResult r = planner->plan(p, world, {});
+  if (!complete(GetParam()) && r.status != Status::solved) {
+    EXPECT_FALSE(r.message.empty());  // a local method may fail, but says why
+    return;
+  }
   expect_valid_route(r, p, world);
-  // Around the wall's end at y = 70: at least via its two corners, and not much more.
+  // Around the wall's end at y = 70: at least via its two corners, and (for a complete search)
+  // not much more.
   EXPECT_GT(r.route.length_m(), 2 * std::hypot(35.0, 60.0) + 10.0);
-  EXPECT_LT(r.route.length_m(), 1.1 * (2 * std::hypot(35.0, 61.0) + 10.0));
+  if (complete(GetParam())) {
+    EXPECT_LT(r.route.length_m(), 1.1 * (2 * std::hypot(35.0, 61.0) + 10.0));
+  }
 }
 
 TEST_P(PlannerContract, GoalInsideAnObstacleIsMisuse) {
@@ -86,9 +99,10 @@ TEST_P(PlannerContract, HonoursACancelledStop) {
 }
 
 TEST_P(PlannerContract, SameInputSameRoute) {
-  const Problem p = problem(Vec3(10, 10, 10), Vec3(90, 20, 30));
+  const Problem p = problem(Vec3(10, 80, 10), Vec3(90, 85, 30));  // over the wall's end
   const PlanResult a = planner->plan(p, world, {}), b = planner->plan(p, world, {});
-  ASSERT_EQ(a.status, Status::solved);
+  ASSERT_EQ(a.status, Status::solved) << a.message;
+  expect_valid_route(a, p, world);
   EXPECT_EQ(a.route.waypoints, b.route.waypoints);
 }
 

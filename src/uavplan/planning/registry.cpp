@@ -3,6 +3,7 @@
 #include <functional>
 #include <stdexcept>
 
+#include "uavplan/planning/field/apf.h"
 #include "uavplan/planning/search/astar_planner.h"
 #include "uavplan/planning/search/directional_astar.h"
 
@@ -20,6 +21,10 @@ const std::vector<Entry>& entries() {
        [](const Params& p) { return std::make_unique<AStarPlanner>(AStarOptions::from_params(p)); }},
       {{"directional_astar", "P4 directional A*: a cone of M yaw x M pitch directions at step L, turn and climb limits held"},
        [](const Params& p) { return std::make_unique<DirectionalAStarPlanner>(DirectionalAStarOptions::from_params(p)); }},
+      {{"apf", "P3 improved potential field: capped attraction, sqrt(R)-faded repulsion, 15-degree sector rule", false},
+       [](const Params& p) { return std::make_unique<ApfPlanner>(ApfOptions::from_params(p, true)); }},
+      {{"apf_traditional", "the traditional potential field (P3's baseline): no cap, no sqrt(R), no sector rule", false},
+       [](const Params& p) { return std::make_unique<ApfPlanner>(ApfOptions::from_params(p, false)); }},
   };
   return list;
 }

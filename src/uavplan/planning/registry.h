@@ -18,6 +18,7 @@ std::unique_ptr<Planner> make_planner(std::string_view name, const Params& param
 struct PlannerInfo {
   std::string name;
   std::string description;
+  bool complete = true;  // finds a route whenever the grid it searches has one; local methods do not
 };
 std::vector<PlannerInfo> planner_catalog();
 

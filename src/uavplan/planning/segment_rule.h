@@ -25,7 +25,7 @@ class SegmentRule {
   bool operator()(const Vec3& a, const Vec3& b) const {
     if (!world_->in_bounds(a) || !world_->in_bounds(b)) return false;
     if (a.z() > ceiling_m_ || b.z() > ceiling_m_) return false;
-    if (std::abs(pitch_rad(b - a)) > max_climb_rad_) return false;
+    if (std::abs(pitch_rad(b - a)) > max_climb_rad_ + kAngleTolerance_rad) return false;
     return !world_->segment_collides(a, b, inflation_m_);
   }
   double inflation_m() const { return inflation_m_; }

@@ -1,5 +1,6 @@
 #include "uavplan/world/shapes.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "uavplan/core/geometry.h"
@@ -99,7 +100,44 @@ struct SegmentVisitor {
   }
 };
 
+struct ClosestVisitor {
+  const Vec3& p;
+  Vec3 operator()(const Sphere& s) const {
+    const Vec3 d = p - s.center;
+    const double n = d.norm();
+    return n <= s.radius_m ? p : Vec3(s.center + s.radius_m / n * d);
+  }
+  Vec3 operator()(const Cylinder& c) const {
+    Vec2 q = p.head<2>();
+    const Vec2 d = q - c.center;
+    if (d.norm() > c.radius_m) q = c.center + c.radius_m / d.norm() * d;
+    return {q.x(), q.y(), std::clamp(p.z(), c.z_min_m, c.z_max_m)};
+  }
+  Vec3 operator()(const Box& b) const { return p.cwiseMax(b.min).cwiseMin(b.max); }
+  Vec3 operator()(const Prism& pr) const {
+    const double z = std::clamp(p.z(), pr.z_min_m, pr.z_max_m);
+    const Vec2 q = p.head<2>();
+    if (point_in_polygon(q, pr.polygon)) return {q.x(), q.y(), z};
+    Vec2 best = pr.polygon[0];
+    double best_d = 1e300;
+    const std::size_t n = pr.polygon.size();
+    for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+      const Vec2 ab = pr.polygon[i] - pr.polygon[j];
+      const double len2 = ab.squaredNorm();
+      const double t = len2 > 0.0 ? std::clamp((q - pr.polygon[j]).dot(ab) / len2, 0.0, 1.0) : 0.0;
+      const Vec2 c = pr.polygon[j] + t * ab;
+      if ((c - q).norm() < best_d) {
+        best_d = (c - q).norm();
+        best = c;
+      }
+    }
+    return {best.x(), best.y(), z};
+  }
+};
+
 }  // namespace
+
+Vec3 closest_point(const Obstacle& o, const Vec3& p) { return std::visit(ClosestVisitor{p}, o); }
 
 Aabb bounding_box(const Obstacle& o) { return std::visit(BoundsVisitor{}, o); }
 

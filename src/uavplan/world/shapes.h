@@ -37,6 +37,9 @@ Aabb bounding_box(const Obstacle& o);
 // Euclidean distance from p to the solid (0 inside or on it).
 double point_distance(const Obstacle& o, const Vec3& p);
 
+// The point of the solid nearest to p (p itself when inside).
+Vec3 closest_point(const Obstacle& o, const Vec3& p);
+
 // Exact distance from segment [a, b] to the solid (0 when they meet).
 double segment_distance(const Obstacle& o, const Vec3& a, const Vec3& b);
 

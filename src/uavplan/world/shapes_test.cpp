@@ -59,6 +59,17 @@ TEST(Shapes, SegmentDistanceAgainstSampling) {
   }
 }
 
+TEST(Shapes, ClosestPointIsOnTheSolidAtThePointDistance) {
+  Rng r(3);
+  for (const auto& o : sample_shapes())
+    for (int k = 0; k < 500; ++k) {
+      const Vec3 p(r.uniform(-7, 7), r.uniform(-7, 7), r.uniform(-5, 5));
+      const Vec3 c = closest_point(o, p);
+      ASSERT_NEAR(point_distance(o, c), 0.0, 1e-9);
+      ASSERT_NEAR((c - p).norm(), point_distance(o, p), 1e-9) << "shape " << o.index();
+    }
+}
+
 TEST(Shapes, SegmentThroughNonConvexNotchDoesNotCollide) {
   const Prism l{{{0, 0}, {4, 0}, {4, 1}, {1, 1}, {1, 4}, {0, 4}}, 0.0, 1.0};
   // Inside the empty notch of the L: 1 m from both inner edges at its first end.

@@ -1,0 +1,264 @@
+#include "uavplan/planning/field/apf.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "uavplan/core/geometry.h"
+#include "uavplan/core/units.h"
+#include "uavplan/planning/segment_rule.h"
+#include "uavplan/planning/smoothing/turn_limits.h"
+
+namespace uavplan {
+
+ApfOptions ApfOptions::from_params(const Params& params, bool improved) {
+  ParamReader r(params, improved ? "apf" : "apf_traditional");
+  ApfOptions o;
+  o.improved = improved;
+  o.step_m = r.number("step_m", o.step_m, 0.0, 1e9);
+  o.k_att = r.number("k_att", o.k_att, 1e-9, 1e9);
+  o.r_att_m = r.number("r_att_m", o.r_att_m, 0.0, 1e9);
+  o.k_rep = r.number("k_rep", o.k_rep, 0.0, 1e12);
+  o.r_rep_m = r.number("r_rep_m", o.r_rep_m, 0.0, 1e9);
+  o.sector_deg = r.number("sector_deg", o.sector_deg, 1.0, 180.0);
+  o.max_frames = r.integer("max_frames", o.max_frames, 0, 10'000'000);
+  o.smooth = r.boolean("smooth", improved) && improved;
+  o.smoothing_threshold_deg = r.number("smoothing_threshold_deg", o.smoothing_threshold_deg, 0.0, 180.0);
+  r.finish();
+  return o;
+}
+
+ApfOptions apf_resolved(const ApfOptions& in, const UavSpec& uav, const World& world) {
+  ApfOptions o = in;
+  const double extent = world.bounds().extent().norm();
+  if (o.step_m <= 0.0)
+    o.step_m = std::clamp(0.5 * std::max(o.separation_m, 2.0 * uav.radius_m), extent / 2000.0, extent / 50.0);
+  if (o.r_att_m <= 0.0) o.r_att_m = 10.0 * o.step_m;
+  if (o.r_rep_m <= 0.0) o.r_rep_m = std::max({5.0 * o.step_m, 2.0 * o.separation_m, 3.0 * uav.radius_m});
+  if (o.k_rep <= 0.0) {
+    // Repulsion equal to the largest attraction at half the influence distance.
+    const double r = 0.5 * o.r_rep_m, inv = 1.0 / r - 1.0 / o.r_rep_m;
+    const double shape = o.improved ? std::sqrt(o.r_att_m) * ((1.0 / (r * r)) * inv + inv * inv) : inv / (r * r);
+    o.k_rep = o.k_att * o.r_att_m / shape;
+  }
+  return o;
+}
+
+PotentialField::PotentialField(const World& world, const UavSpec& uav, const ApfOptions& resolved)
+    : world_(&world), uav_(uav), o_(resolved), inflation_m_(uav.radius_m + kPlanningMargin_m) {}
+
+Vec3 PotentialField::direction(const Vec3& p, const Vec3& goal, std::span<const PeerMotion> peers) const {
+  const Vec3 to_goal = goal - p;
+  const double big_r = to_goal.norm();
+  if (big_r <= 0.0) return Vec3::Zero();
+  const Vec3 pa = to_goal / big_r;
+  Vec3 force = o_.k_att * (o_.improved ? std::min(big_r, o_.r_att_m) : big_r) * pa;
+
+  // Candidates: (clearance, unit vector from the obstacle to the UAV).
+  struct Source {
+    double r;
+    Vec3 dir;
+  };
+  std::vector<Source> sources;
+  auto add = [&](const Vec3& nearest, double clearance) {
+    if (clearance >= o_.r_rep_m) return;
+    const Vec3 d = p - nearest;
+    const double n = d.norm();
+    sources.push_back({std::max(clearance, 1e-3 * o_.step_m), n > 0.0 ? Vec3(d / n) : Vec3(-pa)});
+  };
+  const double reach = o_.r_rep_m + inflation_m_;
+  for (const Obstacle& ob : world_->obstacles()) {
+    if (bounding_box(ob).distance(p) > reach) continue;
+    const Vec3 c = closest_point(ob, p);
+    add(c, (c - p).norm() - uav_.radius_m);
+  }
+  if (const TerrainGrid* t = world_->terrain()) {
+    const double h = t->height_at(p.x(), p.y());
+    if (std::isfinite(h)) add(Vec3(p.x(), p.y(), h), p.z() - h - uav_.radius_m);
+  }
+  // Peers repel only within two steps of their separation: they are obstacles of one frame, and
+  // a wider field around UAVs already at their goals walls off the goals between them.
+  const double peer_reach = 2.0 * o_.step_m;
+  for (const PeerMotion& q : peers) {
+    const double clearance = (q.to - p).norm() - std::max(o_.separation_m, uav_.radius_m + q.radius_m);
+    if (clearance < peer_reach) add(q.to, clearance * o_.r_rep_m / peer_reach);
+  }
+
+  // Sector rule (improved field only): the nearest source per sector.
+  if (o_.improved) {
+    const double w = deg_to_rad(o_.sector_deg);
+    std::map<std::pair<int, int>, Source> nearest;
+    for (const Source& s : sources) {
+      const Vec3 v = -s.dir;  // direction from the UAV to the source
+      const std::pair<int, int> key{static_cast<int>(std::floor((std::atan2(v.y(), v.x()) + kPi) / w)),
+                                    static_cast<int>(std::floor((std::asin(std::clamp(v.z(), -1.0, 1.0)) + kPi / 2) / w))};
+      auto it = nearest.find(key);
+      if (it == nearest.end() || s.r < it->second.r) nearest[key] = s;
+    }
+    sources.clear();
+    for (const auto& [k, s] : nearest) sources.push_back(s);
+  }
+  for (const Source& s : sources) {
+    const double inv = 1.0 / s.r - 1.0 / o_.r_rep_m;
+    const double mag = o_.improved ? o_.k_rep * std::sqrt(big_r) * ((1.0 / (s.r * s.r)) * inv + inv * inv)
+                                   : o_.k_rep * inv / (s.r * s.r);
+    force += mag * s.dir;
+  }
+  if (world_->bounds().extent().z() <= 0.0) force.z() = 0.0;  // a 2-D world stays flat
+  const double n = force.norm();
+  return n > 0.0 ? Vec3(force / n) : pa;
+}
+
+bool PotentialField::step_safe(const Vec3& a, const Vec3& b, std::span<const PeerMotion> peers) const {
+  if (!world_->in_bounds(b)) return false;
+  if ((b - a).norm() > 0.0 && std::abs(pitch_rad(b - a)) > uav_.max_climb_rad + kAngleTolerance_rad) return false;
+  if (uav_.ceiling_m && b.z() > *uav_.ceiling_m) return false;
+  if (world_->segment_collides(a, b, inflation_m_)) return false;
+  for (const PeerMotion& q : peers) {
+    const double need = std::max(o_.separation_m, uav_.radius_m + q.radius_m) + kPlanningMargin_m;
+    // Both move linearly over the frame: the relative motion's smallest norm.
+    if (point_segment_distance(Vec3::Zero(), a - q.from, b - q.to) < need) return false;
+  }
+  return true;
+}
+
+Vec3 PotentialField::step(const Vec3& p, const Vec3& goal, std::span<const PeerMotion> peers, int escape) const {
+  const double l = o_.step_m;
+  const Vec3 to_goal = goal - p;
+  if (to_goal.norm() <= l && step_safe(p, goal, peers)) return goal;
+  Vec3 d = direction(p, goal, peers);
+  if (d.norm() <= 0.0) return p;
+  const bool flat = world_->bounds().extent().z() <= 0.0;
+  if (escape != 0) {
+    const Vec3 pa = to_goal.normalized();
+    d = escape * Vec3(-pa.y(), pa.x(), 0.0);
+    if (d.norm() <= 0.0) d = Vec3(1, 0, 0);
+    d.normalize();
+  }
+  // Keep the climb limit: a steeper direction is levelled to it.
+  const double h = d.head<2>().norm();
+  if (!flat && std::atan2(std::abs(d.z()), h) > uav_.max_climb_rad) {
+    const double t = std::tan(uav_.max_climb_rad);
+    d = h > 0.0 ? Vec3(d.x(), d.y(), std::copysign(t * h, d.z())) : Vec3(1.0, 0.0, std::copysign(t, d.z()));
+    d.normalize();
+  }
+  // The field's step, else the nearest safe direction: rotations about the vertical in
+  // 15-degree steps (alternating sides), then tilted up and down in 3-D.
+  for (int k = 0; k <= 12; ++k)
+    for (int side = (k == 0 ? 1 : -1); side <= 1; side += 2) {
+      const double a = side * deg_to_rad(15.0 * k);
+      const Vec3 r(std::cos(a) * d.x() - std::sin(a) * d.y(), std::sin(a) * d.x() + std::cos(a) * d.y(), d.z());
+      static constexpr double kTilts[] = {0.0, 0.5, -0.5};
+      for (int t = 0; t < (flat ? 1 : 3); ++t) {
+        Vec3 dir = r + Vec3(0, 0, kTilts[t]);
+        dir.normalize();
+        if (std::abs(pitch_rad(dir)) > uav_.max_climb_rad + kAngleTolerance_rad) continue;
+        const Vec3 q = p + l * dir;
+        if (step_safe(p, q, peers)) return q;
+      }
+    }
+  return p;  // hold
+}
+
+bool StallWatch::update(double dist, double step, int escape_frames) {
+  constexpr std::size_t kWindow = 20;
+  constexpr int kMaxEscapes = 8;
+  if (escape_left_ > 0) {
+    if (dist < caught_at_ - step) {
+      escape_left_ = 0;  // left the minimum: back to the field
+      history_.clear();
+    } else {
+      --escape_left_;
+      return true;
+    }
+  }
+  history_.push_back(dist);
+  if (history_.size() > kWindow && history_[history_.size() - 1 - kWindow] - dist < step) {
+    if (escapes_ >= kMaxEscapes) {
+      stalled_ = true;
+      return false;
+    }
+    ++escapes_;
+    caught_at_ = dist;
+    escape_left_ = escape_frames;
+    history_.clear();
+    return true;
+  }
+  return false;
+}
+
+ApfRun run_apf(const PotentialField& field, const Vec3& start, const Vec3& goal, const StopCondition& stop) {
+  ApfRun run;
+  run.points.push_back(start);
+  const ApfOptions& o = field.options();
+  const int max_frames = o.max_frames > 0 ? o.max_frames : static_cast<int>(4.0 * (goal - start).norm() / o.step_m) + 500;
+  StallWatch watch;
+  Vec3 p = start;
+  const int escape_frames = static_cast<int>(2.0 * (goal - start).norm() / o.step_m) + 50;
+  for (int f = 0; f < max_frames; ++f) {
+    if ((p - goal).norm() <= 0.0) {
+      run.reached = true;
+      return run;
+    }
+    if ((f & 63) == 0 && stop.should_stop(static_cast<std::uint64_t>(f))) {
+      run.message = "stopped before the goal was reached";
+      return run;
+    }
+    const bool escape = watch.update((p - goal).norm(), o.step_m, escape_frames);
+    if (watch.stalled()) {
+      run.message = "stalled in a local minimum near (" + std::to_string(p.x()) + ", " + std::to_string(p.y()) + ", " +
+                    std::to_string(p.z()) + ")";
+      return run;
+    }
+    p = field.step(p, goal, {}, escape ? watch.side() : 0);
+    run.points.push_back(p);
+  }
+  run.reached = (p - goal).norm() <= 0.0;
+  if (!run.reached) run.message = "goal not reached within " + std::to_string(max_frames) + " frames";
+  return run;
+}
+
+PlanResult ApfPlanner::do_plan(const Problem& pb, const World& world, const StopCondition& stop) const {
+  PlanResult res;
+  const ApfOptions o = apf_resolved(options_, pb.uav, world);
+  const PotentialField field(world, pb.uav, o);
+  std::vector<Vec3> stops = pb.via;
+  stops.push_back(pb.goal);
+  Vec3 from = pb.uav.start;
+  res.route.waypoints.push_back(from);
+  for (const Vec3& target : stops) {
+    const ApfRun run = run_apf(field, from, target, stop);
+    res.route.waypoints.insert(res.route.waypoints.end(), run.points.begin() + 1, run.points.end());
+    if (!run.reached) {
+      res.message = run.message;
+      res.route.waypoints.clear();
+      return res;
+    }
+    from = target;
+  }
+  // Repeated points (holds) carry no direction; then P3's smoothing (a move that would touch an
+  // obstacle is refused), then the turn limits, as for every planner.
+  auto& pts = res.route.waypoints;
+  pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
+  if (o.smooth) {
+    smooth_triples(pts, deg_to_rad(o.smoothing_threshold_deg), [&](std::size_t i, const Vec3& c) {
+      return field.step_safe(pts[i - 1], c, {}) && field.step_safe(c, pts[i + 1], {});
+    });
+  }
+  std::vector<char> pinned(pts.size(), 0);
+  pinned.front() = pinned.back() = 1;
+  for (std::size_t i = 0, v = 0; i < pts.size() && v < pb.via.size(); ++i)
+    if (pts[i] == pb.via[v]) pinned[i] = 1, ++v;
+  const SegmentRule rule(world, pb.uav);
+  const TurnShaping shaped = enforce_turn_limits(pts, pinned, pb.uav.heading_rad, {pb.uav.max_turn_rad, pb.uav.max_climb_rad}, rule);
+  if (!shaped.ok) {
+    res.message = shaped.message;
+    pts.clear();
+    return res;
+  }
+  pts = shaped.waypoints;
+  res.status = Status::solved;
+  return res;
+}
+
+}  // namespace uavplan

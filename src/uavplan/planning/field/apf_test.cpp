@@ -1,0 +1,108 @@
+#include "uavplan/planning/field/apf.h"
+
+#include <gtest/gtest.h>
+
+#include "uavplan/core/geometry.h"
+
+namespace uavplan {
+namespace {
+
+World flat_world(std::vector<Obstacle> obstacles) {
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(-20, -20, 0), Vec3(40, 40, 0)};
+  ws.obstacles = std::move(obstacles);
+  return World(std::move(ws));
+}
+
+UavSpec uav() {
+  UavSpec u;
+  u.radius_m = 0.1;
+  return u;
+}
+
+ApfOptions opts(bool improved) {
+  ApfOptions o = ApfOptions::from_params({}, improved);
+  o.separation_m = 0.5;
+  return o;
+}
+
+TEST(Apf, FreeSpacePointsAtTheGoal) {
+  const World w = flat_world({});
+  const PotentialField f(w, uav(), apf_resolved(opts(true), uav(), w));
+  EXPECT_TRUE(f.direction(Vec3(0, 0, 0), Vec3(10, 5, 0), {}).isApprox(Vec3(10, 5, 0).normalized(), 1e-12));
+}
+
+TEST(Apf, RepulsionDeflectsAndTheSectorRuleKeepsOnlyTheNearest) {
+  const Vec3 p(0, 0, 0), goal(10, 0, 0);
+  const World one = flat_world({Sphere{Vec3(0.8, 0.3, 0), 0.1}});
+  const World two = flat_world({Sphere{Vec3(0.8, 0.3, 0), 0.1}, Sphere{Vec3(1.2, 0.46, 0), 0.1}});  // same sector, farther
+  for (const bool improved : {true, false}) {
+    const ApfOptions o = apf_resolved(opts(improved), uav(), one);
+    const Vec3 d1 = PotentialField(one, uav(), o).direction(p, goal, {});
+    const Vec3 d2 = PotentialField(two, uav(), o).direction(p, goal, {});
+    EXPECT_LT(d1.y(), 0.0) << "pushed away from the obstacle above the path";
+    if (improved) EXPECT_TRUE(d1.isApprox(d2, 1e-12)) << "the farther obstacle in the same sector is ignored";
+    else EXPECT_LT(d2.y(), d1.y()) << "the traditional field adds every obstacle";
+  }
+}
+
+TEST(Apf, RepulsionFadesNearTheGoal) {
+  // The same obstacle beside the UAV: far from the goal it pushes harder than next to it.
+  const World w = flat_world({Sphere{Vec3(0, 0.6, 0), 0.1}});
+  const PotentialField f(w, uav(), apf_resolved(opts(true), uav(), w));
+  const Vec3 far = f.direction(Vec3(0, 0, 0), Vec3(10, 0, 0), {});
+  const Vec3 near = f.direction(Vec3(0, 0, 0), Vec3(1.0, 0, 0), {});
+  EXPECT_LT(std::abs(near.y()), std::abs(far.y()));
+}
+
+TEST(Apf, StepsAreSafeFromObstaclesAndPeers) {
+  const World w = flat_world({Sphere{Vec3(1, 0, 0), 0.3}});
+  const PotentialField f(w, uav(), apf_resolved(opts(true), uav(), w));
+  const std::vector<PeerMotion> peers{{Vec3(0.5, 0.6, 0), Vec3(0.5, 0.5, 0), 0.1}};
+  Vec3 p(0, 0, 0);
+  for (int k = 0; k < 40; ++k) {
+    const Vec3 q = f.step(p, Vec3(5, 0, 0), peers, 0);
+    EXPECT_GE(w.segment_clearance(p, q, 10.0), 0.1);
+    EXPECT_GE(point_segment_distance(Vec3::Zero(), p - peers[0].from, q - peers[0].to), 0.5);
+    p = q;
+  }
+}
+
+TEST(Apf, ReachesTheGoalPastAWallOrFailsWithAReason) {
+  const World w = flat_world({Box{Vec3(5, -3, -1), Vec3(5.5, 3, 1)}});
+  const PotentialField f(w, uav(), apf_resolved(opts(true), uav(), w));
+  const ApfRun run = run_apf(f, Vec3(0, 0, 0), Vec3(10, 0, 0));
+  ASSERT_TRUE(run.reached) << run.message;  // the wall is short: the escape goes round it
+  for (std::size_t i = 1; i < run.points.size(); ++i) ASSERT_GE(w.segment_clearance(run.points[i - 1], run.points[i], 1.0), 0.1);
+  // Enclosed goal: bounded, with a reason.
+  const World cage = flat_world({Box{Vec3(8, -2, -1), Vec3(12, -1.5, 1)}, Box{Vec3(8, 1.5, -1), Vec3(12, 2, 1)},
+                                 Box{Vec3(8, -2, -1), Vec3(8.5, 2, 1)}, Box{Vec3(11.5, -2, -1), Vec3(12, 2, 1)}});
+  const PotentialField fc(cage, uav(), apf_resolved(opts(true), uav(), cage));
+  const ApfRun trapped = run_apf(fc, Vec3(0, 0, 0), Vec3(10, 0, 0));
+  EXPECT_FALSE(trapped.reached);
+  EXPECT_FALSE(trapped.message.empty());
+}
+
+TEST(Apf, TripleSmoothingStraightensAndRespectsRefusals) {
+  std::vector<Vec3> zig;
+  for (int i = 0; i <= 20; ++i) zig.emplace_back(i, (i % 2) * 0.5, 0);
+  auto turn_sum = [](const std::vector<Vec3>& p) {
+    double s = 0;
+    for (std::size_t i = 1; i + 1 < p.size(); ++i) {
+      const Vec3 a = p[i] - p[i - 1], b = p[i + 1] - p[i];
+      s += std::acos(std::clamp(a.dot(b) / (a.norm() * b.norm()), -1.0, 1.0));
+    }
+    return s;
+  };
+  std::vector<Vec3> s = zig;
+  EXPECT_GT(smooth_triples(s, deg_to_rad(5), [](std::size_t, const Vec3&) { return true; }), 0);
+  EXPECT_LT(turn_sum(s), 0.5 * turn_sum(zig));
+  EXPECT_EQ(s.front(), zig.front());
+  EXPECT_EQ(s.back(), zig.back());
+  std::vector<Vec3> kept = zig;
+  EXPECT_EQ(smooth_triples(kept, deg_to_rad(5), [](std::size_t, const Vec3&) { return false; }), 0);
+  EXPECT_EQ(kept, zig);
+}
+
+}  // namespace
+}  // namespace uavplan
