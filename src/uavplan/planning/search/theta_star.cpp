@@ -41,7 +41,8 @@ bool line_of_sight(const BitGrid& g, const int a[3], const int b[3]) {
   }
 }
 
-LazyThetaStar::LazyThetaStar(const BitGrid& grid) : grid_(&grid), moves_(bounding_box_moves(grid)) {
+LazyThetaStar::LazyThetaStar(const BitGrid& grid)
+    : grid_(&grid), moves_(bounding_box_moves(grid)), grid_search_(grid, bounding_box_moves(grid), GridHeuristic::octile) {
   for (const GridMove& m : moves_) offsets_.push_back(grid.index(m.di, m.dj, m.dk) - grid.index(0, 0, 0));
 }
 
@@ -129,6 +130,26 @@ GridSearchResult LazyThetaStar::search(std::int64_t start, std::int64_t goal, co
     if (c == s0) break;
   }
   std::reverse(out.cells.begin(), out.cells.end());
+
+  // The string-pulled optimal grid path, kept when shorter.
+  const GridSearchResult a = grid_search_.search(start, goal, stop);
+  if (a.found) {
+    std::vector<std::int64_t> pulled{a.cells.front()};
+    double len = 0.0;
+    for (std::size_t i = 0; i + 1 < a.cells.size();) {
+      std::size_t j = i + 1;
+      while (j + 1 < a.cells.size() && los(static_cast<std::uint32_t>(a.cells[i]), static_cast<std::uint32_t>(a.cells[j + 1]))) ++j;
+      len += dist(static_cast<std::uint32_t>(a.cells[i]), static_cast<std::uint32_t>(a.cells[j]));
+      pulled.push_back(a.cells[j]);
+      i = j;
+    }
+    if (len < out.cost) {
+      out.cost = len;
+      out.cells = std::move(pulled);
+    }
+    out.expanded += a.expanded;
+    out.generated += a.generated;
+  }
   return out;
 }
 
