@@ -93,26 +93,34 @@ void time_routes(const Scenario& sc, const MissionOptions& opt, Plan& plan) {
   }
 }
 
+// A UAV's entry in the plan: solved with its route and trajectory, or failed with the message.
+UavPlan flown_plan(const std::string& id, bool ok, std::string message, std::vector<Vec3> waypoints, Trajectory trajectory) {
+  UavPlan up;
+  up.id = id;
+  up.status = ok ? Status::solved : Status::failed;
+  up.message = std::move(message);
+  if (ok) {
+    up.waypoints = std::move(waypoints);
+    up.waypoints.erase(std::unique(up.waypoints.begin(), up.waypoints.end()), up.waypoints.end());
+    up.length_m = Route{up.waypoints}.length_m();
+    up.trajectory = std::move(trajectory);
+    up.arrival_s = up.trajectory.back().t_s;
+  }
+  return up;
+}
+
 // P3's group: frame by frame with time-stamped peers, then smoothing.
 void plan_group_mission(const Scenario& sc, const ApfOptions& aopt, const MissionOptions& opt, Plan& plan) {
   const GroupResult g = plan_group(sc, aopt, opt.stop);
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
     const GroupUav& r = g.uavs[i];
-    UavPlan up;
-    up.id = r.id;
-    up.status = r.reached ? Status::solved : Status::failed;
-    up.message = r.reached ? "group: " + std::to_string(r.raw.size() - 1) + " frames of " + std::to_string(g.frame_s) +
-                                 " s, " + std::to_string(r.smoothed_points) + " smoothing moves (" +
-                                 std::to_string(r.kept_points) + " refused for a conflict)"
-                           : r.message;
-    if (r.reached) {
-      up.trajectory = frames_to_trajectory(r.smoothed, g.frame_s);
-      up.waypoints = r.smoothed;
-      up.waypoints.erase(std::unique(up.waypoints.begin(), up.waypoints.end()), up.waypoints.end());
-      up.length_m = Route{up.waypoints}.length_m();
-      up.arrival_s = up.trajectory.back().t_s;
-    }
-    plan.uavs.push_back(std::move(up));
+    const std::string message = r.reached ? "group: " + std::to_string(r.raw.size() - 1) + " frames of " +
+                                                std::to_string(g.frame_s) + " s, " + std::to_string(r.smoothed_points) +
+                                                " smoothing moves (" + std::to_string(r.kept_points) +
+                                                " refused for a conflict)"
+                                          : r.message;
+    plan.uavs.push_back(flown_plan(r.id, r.reached, message, r.smoothed,
+                                   r.reached ? frames_to_trajectory(r.smoothed, g.frame_s) : Trajectory{}));
   }
   if (opt.progress) opt.progress(sc.uavs.size(), sc.uavs.size());
 }
@@ -123,20 +131,11 @@ void plan_rendezvous_mission(const Scenario& sc, const DirectionalAStarOptions& 
   const RendezvousResult rr = plan_rendezvous(sc, planner, opt.stop);
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
     const RendezvousUav& r = rr.uavs[i];
-    UavPlan up;
-    up.id = r.id;
-    up.status = r.ok ? Status::solved : Status::failed;
     char buf[200];
     std::snprintf(buf, sizeof buf, "rendezvous: %s, pre-planned %.1f m, final %.1f m (target %.1f m, epsilon %.1f m)",
                   std::string(to_string(r.step)).c_str(), r.preplanned_m, r.final_m, rr.target_m, rr.epsilon_m);
-    up.message = std::string(buf) + (r.detail.empty() ? "" : "; " + r.detail);
-    if (r.ok) {
-      up.waypoints = r.waypoints;
-      up.length_m = r.final_m;
-      up.trajectory = time_route(up.waypoints, sc.uavs[i].speed.cruise_mps, 0.0, opt.max_sample_dt_s);
-      up.arrival_s = up.trajectory.back().t_s;
-    }
-    plan.uavs.push_back(std::move(up));
+    const Trajectory tr = r.ok ? time_route(r.waypoints, sc.uavs[i].speed.cruise_mps, 0.0, opt.max_sample_dt_s) : Trajectory{};
+    plan.uavs.push_back(flown_plan(r.id, r.ok, std::string(buf) + (r.detail.empty() ? "" : "; " + r.detail), r.waypoints, tr));
     if (opt.progress) opt.progress(i + 1, sc.uavs.size());
   }
 }
