@@ -15,8 +15,9 @@ build: deps
 	@cmake --build $(BUILD) -j $(JOBS)
 
 demo: build
-	./$(BUILD)/uavplan plan scenarios/demo.yaml -o out
+	./$(BUILD)/uavplan plan scenarios/demo.yaml -o out --export qgc,wpl,geojson,kml,csv
 	./$(BUILD)/uavplan verify scenarios/demo.yaml out/plan.json
+	./$(BUILD)/uavplan report scenarios/demo.yaml out/plan.json -o out/report.html
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)

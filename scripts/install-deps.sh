@@ -12,7 +12,16 @@ PACKAGES=(
   libboost-dev           # graph / polygon algorithms used by planners
   libgtest-dev libgmock-dev googletest
   libbenchmark-dev
+  libgeographiclib-dev   # io: local frame <-> WGS84 (exports, OSM buildings)
+  gdal-bin               # tests: ogr2ogr reads the GeoJSON and KML exports back
+  chromium               # tests: the HTML report in a headless browser
+  fonts-dejavu-core      #   and a font for it
 )
+# The report's viewer is bundled from the npm registry at build time; Node.js and npm come
+# with the machine where present (a newer Node.js than Debian's), else from Debian.
+if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
+  PACKAGES+=(nodejs npm)
+fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do

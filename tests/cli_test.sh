@@ -90,5 +90,21 @@ grep -q "u9" "$TMP/stderr" && grep -qF "$TMP/u9.json" "$TMP/stderr" || { echo "F
 echo '{"format": "uavplan-plan"' >"$TMP/trunc.json"
 "$BIN" verify "$good" "$TMP/trunc.json" >/dev/null 2>&1; check verify.malformed 2 $?
 
+
+# export and report: a scenario without an origin cannot be exported (one line, nothing
+# written); an unknown format is a usage error; a plan of another scenario is bad input.
+sed '/^origin:/d' "$good" >"$TMP/noorigin.yaml"
+"$BIN" export "$TMP/noorigin.yaml" "$TMP/a/plan.json" --format qgc -o "$TMP/exp" >/dev/null 2>"$TMP/stderr"
+check export.no.origin 2 $?
+if [ "$(wc -l <"$TMP/stderr")" != 1 ] || ! grep -q "noorigin.yaml.*origin" "$TMP/stderr"; then
+  echo "FAIL export.no.origin message:"; cat "$TMP/stderr"; fails=$((fails + 1)); fi
+[ -e "$TMP/exp" ] && { echo "FAIL export.no.origin wrote files"; fails=$((fails + 1)); }
+"$BIN" export "$good" "$TMP/a/plan.json" --format shapefile -o "$TMP/exp" >/dev/null 2>&1; check export.bad.format 2 $?
+"$BIN" export "$good" "$TMP/u9.json" --format qgc -o "$TMP/exp" >/dev/null 2>&1; check export.unknown.uav 2 $?
+"$BIN" report "$good" "$TMP/trunc.json" -o "$TMP/r.html" >/dev/null 2>&1; check report.malformed 2 $?
+[ -e "$TMP/r.html" ] && { echo "FAIL report.malformed wrote a file"; fails=$((fails + 1)); }
+"$BIN" report "$good" "$TMP/a/plan.json" -o "$TMP/r.html" >/dev/null 2>&1; check report.demo 0 $?
+grep -q '<script type="application/json" id="uavplan-data">' "$TMP/r.html" || { echo "FAIL report.demo content"; fails=$((fails + 1)); }
+
 echo "$pass passed, $fails failed"
 [ "$fails" = 0 ]

@@ -22,6 +22,7 @@ struct PlanArgs {
   std::vector<std::string> sets;
   double time_limit_s = 0.0;
   bool timing = false;
+  ExportArgs exp;
 };
 
 std::optional<Overrides> parse_sets(const std::vector<std::string>& sets) {
@@ -87,6 +88,10 @@ int run_plan(const PlanArgs& a) {
   const std::string path = a.out_dir + "/plan.json";
   write_file_atomic(path, plan_to_json(plan, {a.timing}));
   print_summary(plan, path);
+  if (!a.exp.formats.empty()) {
+    const int rc = write_exports(a.scenario, sc, plan, a.exp, a.out_dir);
+    if (rc != kExitOk) return rc;
+  }
   return plan.status == Status::solved ? kExitOk : kExitNotSolved;
 }
 
@@ -103,7 +108,8 @@ void add_plan_command(CLI::App& app, std::function<int()>& run) {
                   "key=value override: a bare key sets planner.params.KEY, a dotted path (uavs[0].speed) any field");
   cmd->add_option("--time-limit", args->time_limit_s, "Stop planning after this many seconds");
   cmd->add_flag("--timing", args->timing, "Also write wall-clock timing into plan.json (not byte-reproducible)");
-  cmd->footer("Example: uavplan plan scenarios/demo.yaml -o out --set cell_m=4");
+  add_export_options(*cmd, args->exp, false);
+  cmd->footer("Example: uavplan plan scenarios/demo.yaml -o out --set cell_m=4 --export qgc,geojson");
   cmd->callback([args, &run] { run = [args] { return run_plan(*args); }; });
 }
 

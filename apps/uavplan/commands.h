@@ -5,6 +5,10 @@
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <string>
+#include <vector>
+
+#include "uavplan/coordination/plan.h"
+#include "uavplan/coordination/scenario.h"
 
 namespace uavplan::cli {
 
@@ -17,6 +21,23 @@ void add_plan_command(CLI::App& app, std::function<int()>& run);
 void add_verify_command(CLI::App& app, std::function<int()>& run);
 void add_info_command(CLI::App& app, std::function<int()>& run);
 void add_bench_command(CLI::App& app, std::function<int()>& run);
+void add_export_command(CLI::App& app, std::function<int()>& run);
+void add_report_command(CLI::App& app, std::function<int()>& run);
+
+// Loads both and checks that every plan UAV is in the scenario; throws InputError.
+void load_scenario_and_plan(const std::string& scenario_path, const std::string& plan_path, Scenario& sc, Plan& plan);
+
+// Export options as the command line gives them (shared by `export` and `plan --export`).
+struct ExportArgs {
+  std::vector<std::string> formats;
+  std::string firmware = "px4";
+  std::string vehicle = "multirotor";
+  std::string end = "land";
+};
+void add_export_options(CLI::App& cmd, ExportArgs& a, bool formats_required);
+// Writes every file of every format into dir; prints what it wrote. Returns an exit code.
+int write_exports(const std::string& scenario_path, const Scenario& sc, const Plan& plan, const ExportArgs& a,
+                  const std::string& dir);
 
 // Progress on stderr, only on a terminal and only once a run has taken over a second.
 class Progress {

@@ -12,6 +12,8 @@ int main(int argc, char** argv) {
       "  uavplan plan scenarios/demo.yaml -o out          plan, verify, write out/plan.json\n"
       "  uavplan plan scenarios/demo.yaml --set cell_m=5  override a planner parameter\n"
       "  uavplan verify scenarios/demo.yaml out/plan.json check a plan, list every violation\n"
+      "  uavplan export scenarios/demo.yaml out/plan.json --format qgc -o out   QGroundControl .plan per UAV\n"
+      "  uavplan report scenarios/demo.yaml out/plan.json -o out/report.html  HTML report, 3-D view\n"
       "  uavplan info scenarios/demo.yaml                 summarise a scenario's world\n"
       "  uavplan bench world                              world-query benchmark table\n"
       "Exit codes: 0 solved (or plan holds), 1 not solved (or violations), 2 bad input.");
@@ -20,6 +22,8 @@ int main(int argc, char** argv) {
   add_verify_command(app, run);
   add_info_command(app, run);
   add_bench_command(app, run);
+  add_export_command(app, run);
+  add_report_command(app, run);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -1,0 +1,82 @@
+// uavplan export SCENARIO PLAN --format F -o DIR: mission and GIS files of a plan.
+#include <iostream>
+
+#include "commands.h"
+#include "uavplan/io/export.h"
+#include "uavplan/io/files.h"
+#include "uavplan/io/input_error.h"
+
+namespace uavplan::cli {
+
+void add_export_options(CLI::App& cmd, ExportArgs& a, bool formats_required) {
+  auto* f = cmd.add_option("--format,--export", a.formats,
+                           "Export format(s): qgc (QGroundControl .plan), wpl (QGC WPL 110), geojson, kml, csv; "
+                           "repeat or separate with commas")
+                ->delimiter(',')
+                ->check(CLI::IsMember({"qgc", "wpl", "geojson", "kml", "csv"}));
+  if (formats_required) f->required();
+  cmd.add_option("--firmware", a.firmware, "Autopilot of the .plan: px4 (firmwareType 12) or ardupilot (3)")
+      ->check(CLI::IsMember({"px4", "ardupilot"}));
+  cmd.add_option("--vehicle", a.vehicle, "Vehicle type of the .plan: multirotor or fixedwing")
+      ->check(CLI::IsMember({"multirotor", "fixedwing"}));
+  cmd.add_option("--end", a.end, "How missions end: land (21), rtl (return, 20) or none")
+      ->check(CLI::IsMember({"land", "rtl", "none"}));
+}
+
+int write_exports(const std::string& scenario_path, const Scenario& sc, const Plan& plan, const ExportArgs& a,
+                  const std::string& dir) {
+  ExportOptions opt;
+  opt.firmware = a.firmware == "ardupilot" ? Firmware::ardupilot : Firmware::px4;
+  opt.vehicle = a.vehicle == "fixedwing" ? VehicleKind::fixed_wing : VehicleKind::multirotor;
+  opt.end = a.end == "rtl" ? MissionEnd::rtl : a.end == "none" ? MissionEnd::none : MissionEnd::land;
+  // Everything is built before anything is written, so an error leaves no partial export.
+  std::vector<ExportFile> files;
+  try {
+    for (const std::string& name : a.formats) {
+      auto more = export_plan(sc, plan, *export_format_from_string(name), opt);
+      files.insert(files.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
+    }
+  } catch (const ExportError& e) {
+    std::cerr << scenario_path << ": export: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  for (const ExportFile& f : files) {
+    write_file_atomic(dir + "/" + f.name, f.content);
+    std::cout << "wrote " << dir << "/" << f.name << "\n";
+  }
+  return kExitOk;
+}
+
+namespace {
+
+struct Args {
+  std::string scenario, plan, out_dir = "out";
+  ExportArgs exp;
+};
+
+int run_export(const Args& a) {
+  Scenario sc;
+  Plan plan;
+  try {
+    load_scenario_and_plan(a.scenario, a.plan, sc, plan);
+  } catch (const InputError& e) {
+    std::cerr << e.what() << "\n";
+    return kExitBadInput;
+  }
+  return write_exports(a.scenario, sc, plan, a.exp, a.out_dir);
+}
+
+}  // namespace
+
+void add_export_command(CLI::App& app, std::function<int()>& run) {
+  auto args = std::make_shared<Args>();
+  CLI::App* cmd = app.add_subcommand("export", "Export a plan for QGroundControl / PX4 / ArduPilot, GIS tools or spreadsheets");
+  cmd->add_option("scenario", args->scenario, "Scenario file (needs an origin)")->required();
+  cmd->add_option("plan", args->plan, "Plan file (plan.json)")->required();
+  cmd->add_option("-o,--out", args->out_dir, "Output directory (default: out)");
+  add_export_options(*cmd, args->exp, true);
+  cmd->footer("Example: uavplan export scenarios/demo.yaml out/plan.json --format qgc,geojson -o out");
+  cmd->callback([args, &run] { run = [args] { return run_export(*args); }; });
+}
+
+}  // namespace uavplan::cli

@@ -1,0 +1,46 @@
+// uavplan report SCENARIO PLAN -o FILE: the self-contained HTML report of a plan.
+#include <iostream>
+
+#include "commands.h"
+#include "uavplan/evaluation/verifier.h"
+#include "uavplan/io/files.h"
+#include "uavplan/io/input_error.h"
+#include "uavplan/io/report.h"
+
+namespace uavplan::cli {
+namespace {
+
+struct Args {
+  std::string scenario, plan, out = "out/report.html";
+};
+
+int run_report(const Args& a) {
+  Scenario sc;
+  Plan plan;
+  try {
+    load_scenario_and_plan(a.scenario, a.plan, sc, plan);
+  } catch (const InputError& e) {
+    std::cerr << e.what() << "\n";
+    return kExitBadInput;
+  }
+  const auto violations = verify_plan(sc, plan);
+  write_file_atomic(a.out, report_html(sc, plan, violations));
+  std::cout << "wrote " << a.out << " (" << plan.uavs.size() << " UAVs, "
+            << (violations.empty() ? std::string("plan holds") : std::to_string(violations.size()) + " violations")
+            << ")\n";
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_report_command(CLI::App& app, std::function<int()>& run) {
+  auto args = std::make_shared<Args>();
+  CLI::App* cmd = app.add_subcommand("report", "Write a self-contained HTML report: 3-D view, charts, metrics, verification");
+  cmd->add_option("scenario", args->scenario, "Scenario file")->required();
+  cmd->add_option("plan", args->plan, "Plan file (plan.json)")->required();
+  cmd->add_option("-o,--out", args->out, "Report file (default: out/report.html)");
+  cmd->footer("Example: uavplan report scenarios/demo.yaml out/plan.json -o out/report.html");
+  cmd->callback([args, &run] { run = [args] { return run_report(*args); }; });
+}
+
+}  // namespace uavplan::cli

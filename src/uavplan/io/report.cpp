@@ -1,0 +1,194 @@
+#include "uavplan/io/report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "uavplan/io/palette.h"
+#include "uavplan/io/report_assets.h"
+#include "uavplan/simulation/trajectory.h"
+
+namespace uavplan {
+namespace {
+
+using ojson = nlohmann::ordered_json;
+
+ojson vec(const Vec3& v) { return ojson::array({v.x(), v.y(), v.z()}); }
+
+ojson obstacle_json(const Obstacle& o) {
+  return std::visit(
+      [](const auto& s) -> ojson {
+        using T = std::decay_t<decltype(s)>;
+        if constexpr (std::is_same_v<T, Sphere>) {
+          return {{"shape", "sphere"}, {"center", vec(s.center)}, {"radius", s.radius_m}};
+        } else if constexpr (std::is_same_v<T, Cylinder>) {
+          return {{"shape", "cylinder"}, {"center", {s.center.x(), s.center.y()}}, {"radius", s.radius_m},
+                  {"z_min", s.z_min_m}, {"z_max", s.z_max_m}};
+        } else if constexpr (std::is_same_v<T, Box>) {
+          return {{"shape", "box"}, {"min", vec(s.min)}, {"max", vec(s.max)}};
+        } else {
+          ojson poly = ojson::array();
+          for (const Vec2& v : s.polygon) poly.push_back({v.x(), v.y()});
+          return {{"shape", "prism"}, {"polygon", std::move(poly)}, {"z_min", s.z_min_m}, {"z_max", s.z_max_m}};
+        }
+      },
+      o);
+}
+
+ojson terrain_json(const TerrainGrid& t, int max_cells) {
+  // Blocks of s x s cells keep the page small; each block shows its highest cell (never hides a peak).
+  int s = 1;
+  while (static_cast<long long>(t.nx() / s + 1) * (t.ny() / s + 1) > max_cells) ++s;
+  const int nx = (t.nx() + s - 1) / s, ny = (t.ny() + s - 1) / s;
+  ojson h = ojson::array();
+  for (int bj = 0; bj < ny; ++bj)
+    for (int bi = 0; bi < nx; ++bi) {
+      double m = -World::kInf;
+      for (int j = bj * s; j < std::min(t.ny(), (bj + 1) * s); ++j)
+        for (int i = bi * s; i < std::min(t.nx(), (bi + 1) * s); ++i) m = std::max(m, t.height(i, j));
+      h.push_back(m);
+    }
+  return {{"origin", {t.origin().x(), t.origin().y()}}, {"cell", t.cell_m() * s}, {"nx", nx}, {"ny", ny}, {"heights", std::move(h)}};
+}
+
+// Speed on the trajectory piece that holds t (0 while holding, before departure and after arrival).
+double speed_at(const Trajectory& tr, double t) {
+  if (tr.size() < 2 || t < tr.front().t_s || t >= tr.back().t_s) return 0.0;
+  const auto it = std::upper_bound(tr.begin(), tr.end(), t, [](double v, const TrajectorySample& s) { return v < s.t_s; });
+  const auto& b = *it;
+  const auto& a = *(it - 1);
+  const double dt = b.t_s - a.t_s;
+  return dt > 0.0 ? (b.p - a.p).norm() / dt : 0.0;
+}
+
+double round6(double v) { return std::round(v * 1e6) / 1e6; }
+
+}  // namespace
+
+std::string report_data_json(const Scenario& sc, const Plan& plan, const std::vector<Violation>& violations,
+                             const ReportOptions& opt) {
+  ojson j;
+  j["name"] = sc.name;
+  j["algorithm"] = plan.algorithm;
+  j["seed"] = plan.seed;
+  j["status"] = to_string(plan.status);
+  j["message"] = plan.message;
+  j["mission"] = to_string(sc.mission.type);
+  j["separation_m"] = sc.mission.separation_m;
+  const World& w = sc.world;
+  j["bounds"] = {{"min", vec(w.bounds().min)}, {"max", vec(w.bounds().max)}};
+  j["obstacles"] = ojson::array();
+  for (const Obstacle& o : w.obstacles()) j["obstacles"].push_back(obstacle_json(o));
+  j["threats"] = ojson::array();
+  for (const Radar& r : w.radars()) j["threats"].push_back({{"position", vec(r.position)}, {"weight", r.weight}});
+  j["moving"] = ojson::array();
+  for (const MovingObstacle& m : w.moving())
+    j["moving"].push_back({{"id", m.id}, {"radius", m.radius_m}, {"position", vec(m.position)}, {"velocity", vec(m.velocity_mps)}});
+  j["terrain"] = w.terrain() ? terrain_json(*w.terrain(), opt.max_terrain_cells) : ojson(nullptr);
+
+  // UAVs with their trajectories, colours by their place in the plan (as in the KML export).
+  std::vector<const UavPlan*> flown;
+  double t_end = 0.0;
+  j["uavs"] = ojson::array();
+  for (std::size_t k = 0; k < plan.uavs.size(); ++k) {
+    const UavPlan& u = plan.uavs[k];
+    const UavSpec* spec = sc.find_uav(u.id);
+    ojson traj = ojson::array();
+    for (const auto& s : u.trajectory) traj.push_back({s.t_s, s.p.x(), s.p.y(), s.p.z()});
+    ojson metrics = ojson::object();
+    for (const auto& [key, v] : u.metrics) metrics[key] = round6(v);
+    j["uavs"].push_back({{"id", u.id}, {"status", to_string(u.status)}, {"message", u.message}, {"colour", uav_colour(k)},
+                         {"radius", spec ? spec->radius_m : 0.0}, {"length_m", u.length_m}, {"arrival_s", u.arrival_s},
+                         {"trajectory", std::move(traj)}, {"metrics", std::move(metrics)}});
+    if (u.trajectory.size() >= 2) {
+      flown.push_back(&u);
+      t_end = std::max(t_end, u.trajectory.back().t_s);
+    }
+  }
+  j["t_end_s"] = t_end;
+
+  // Charts: altitude, speed and distance to the nearest other UAV on a common time grid.
+  const int n = t_end > 0.0 ? std::max(2, opt.series_samples) : 0;
+  ojson times = ojson::array();
+  std::vector<std::vector<Vec3>> pos(flown.size());
+  for (int i = 0; i < n; ++i) {
+    const double t = t_end * i / (n - 1);
+    times.push_back(round6(t));
+    for (std::size_t k = 0; k < flown.size(); ++k) pos[k].push_back(position_at(flown[k]->trajectory, t));
+  }
+  ojson series = ojson::array();
+  for (std::size_t k = 0; k < flown.size(); ++k) {
+    ojson alt = ojson::array(), speed = ojson::array(), nearest = ojson::array();
+    for (int i = 0; i < n; ++i) {
+      const double t = t_end * i / (n - 1);
+      alt.push_back(round6(pos[k][i].z()));
+      speed.push_back(round6(speed_at(flown[k]->trajectory, t)));
+      double d = World::kInf;
+      for (std::size_t o = 0; o < flown.size(); ++o)
+        if (o != k) d = std::min(d, (pos[k][i] - pos[o][i]).norm());
+      nearest.push_back(std::isfinite(d) ? ojson(round6(d)) : ojson(nullptr));
+    }
+    series.push_back({{"id", flown[k]->id}, {"altitude_m", std::move(alt)}, {"speed_mps", std::move(speed)},
+                      {"nearest_m", std::move(nearest)}});
+  }
+  j["series"] = {{"t_s", std::move(times)}, {"uavs", std::move(series)}};
+
+  ojson pm = ojson::object();
+  for (const auto& [key, v] : plan.metrics) pm[key] = round6(v);
+  j["metrics"] = std::move(pm);
+  ojson vs = ojson::array();
+  for (const Violation& v : violations) vs.push_back(describe(v));
+  j["violations"] = std::move(vs);
+  return j.dump();
+}
+
+namespace {
+
+// Inline text must not close its <script> / <style> element early.
+std::string escape_for_element(std::string s, std::string_view closing) {
+  std::string out;
+  out.reserve(s.size());
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (s[i] == '<' && i + 1 < s.size() && s[i + 1] == '/' &&
+        s.compare(i + 2, closing.size(), closing) == 0) {
+      out += "<\\/";
+      ++i;
+      continue;
+    }
+    out += s[i];
+  }
+  return out;
+}
+
+std::string html_escape(std::string_view s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '<') out += "&lt;";
+    else if (c == '>') out += "&gt;";
+    else if (c == '&') out += "&amp;";
+    else if (c == '"') out += "&quot;";
+    else out += c;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string report_html(const Scenario& sc, const Plan& plan, const std::vector<Violation>& violations,
+                        const ReportOptions& opt) {
+  // JSON may carry "</script" inside a string; "<\/" is the same JSON string.
+  const std::string data = escape_for_element(report_data_json(sc, plan, violations, opt), "script");
+  std::string html;
+  html += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
+  html += "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
+  html += "<link rel=\"icon\" href=\"data:,\">\n";
+  html += "<title>uavplan report: " + html_escape(sc.name) + "</title>\n";
+  html += "<style>\n" + escape_for_element(std::string(report_css()), "style") + "\n</style>\n</head>\n<body>\n";
+  html += "<noscript>This report needs JavaScript for its 3-D view and charts.</noscript>\n";
+  html += "<div id=\"app\"></div>\n";
+  html += "<script type=\"application/json\" id=\"uavplan-data\">" + data + "</script>\n";
+  html += "<script>\n" + escape_for_element(std::string(report_js()), "script") + "\n</script>\n</body>\n</html>\n";
+  return html;
+}
+
+}  // namespace uavplan

@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Exports of a planned scenario, each read back by an independent reader: the .plan and WPL by
+# a checker of QGroundControl's and MAVSDK's import rules, GeoJSON and KML by GDAL's ogr2ogr.
+# Usage: exports_test.sh UAVPLAN_BINARY SOURCE_DIR SCENARIO [firmware]
+set -euo pipefail
+BIN=$1
+SRC=$2
+SCEN=$3
+FIRMWARE=${4:-px4}
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+
+"$BIN" plan "$SCEN" -o "$TMP" --export qgc,wpl,geojson,kml,csv --firmware "$FIRMWARE" >"$TMP/log" || {
+  cat "$TMP/log"; echo "FAIL: plan did not solve $SCEN"; exit 1; }
+ids=$(node -e 'const p=require(process.argv[1]); console.log(p.uavs.filter(u=>u.trajectory.length>=2).map(u=>u.id).join(" "))' "$TMP/plan.json")
+obstacles=$("$BIN" info "$SCEN" | awk '$1 == "obstacles" {print $2}')
+# shellcheck disable=SC2086
+node "$SRC/tests/qgc_plan_check.mjs" "$TMP" $ids
+# shellcheck disable=SC2086
+node "$SRC/tests/gis_readback_check.mjs" "$TMP" "$obstacles" $ids
+# The standalone command writes the same files as plan --export.
+"$BIN" export "$SCEN" "$TMP/plan.json" --format qgc --firmware "$FIRMWARE" -o "$TMP/again" >/dev/null
+for id in $ids; do cmp "$TMP/$id.plan" "$TMP/again/$id.plan"; done
+echo "exports_test: ok ($SCEN)"

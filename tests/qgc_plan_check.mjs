@@ -1,0 +1,130 @@
+// Independent reader of the mission exports, written from QGroundControl's and MAVSDK's import
+// rules (not from uavplan's code): a .plan must load in both, a WPL 110 file must parse as QGC
+// reads it, and both must say the same mission and follow the CSV trajectory's positions.
+//   node qgc_plan_check.mjs DIR UAV_ID...
+import fs from 'node:fs';
+import path from 'node:path';
+
+const [dir, ...ids] = process.argv.slice(2);
+let failures = 0;
+const fail = (file, msg) => { console.error(`qgc_plan_check: ${file}: ${msg}`); failures++; };
+const isNum = (v) => typeof v === 'number' && Number.isFinite(v);
+const isInt = (v) => Number.isInteger(v);
+const latOk = (v) => isNum(v) && v >= -90 && v <= 90;
+const lonOk = (v) => isNum(v) && v >= -180 && v <= 180;
+const NAV_WITH_POSITION = new Set([16, 17, 18, 19, 21, 22]);
+
+function checkPlan(file) {
+  let j;
+  try { j = JSON.parse(fs.readFileSync(file, 'utf8')); } catch (e) { fail(file, `not JSON: ${e.message}`); return null; }
+  if (j.fileType !== 'Plan') fail(file, 'fileType is not "Plan"');
+  if (j.version !== 1) fail(file, 'version is not 1');
+  if (typeof j.groundStation !== 'string') fail(file, 'groundStation missing');
+  const m = j.mission;
+  if (!m || m.version !== 2) { fail(file, 'mission.version is not 2'); return null; }
+  if (![12, 3].includes(m.firmwareType)) fail(file, `firmwareType ${m.firmwareType} is neither PX4 (12) nor ArduPilot (3)`);
+  if (!isInt(m.vehicleType)) fail(file, 'vehicleType is not an integer');
+  if (!isNum(m.cruiseSpeed) || m.cruiseSpeed <= 0) fail(file, 'cruiseSpeed is not a positive number');
+  if (!isNum(m.hoverSpeed) || m.hoverSpeed <= 0) fail(file, 'hoverSpeed is not a positive number');
+  const home = m.plannedHomePosition;
+  if (!Array.isArray(home) || home.length !== 3 || !latOk(home[0]) || !lonOk(home[1]) || !isNum(home[2]))
+    fail(file, 'plannedHomePosition is not [lat, lon, alt]');
+  if (!Array.isArray(m.items) || m.items.length === 0) { fail(file, 'mission has no items'); return null; }
+  m.items.forEach((it, k) => {
+    const at = `mission.items[${k}]`;
+    if (it.type !== 'SimpleItem') fail(file, `${at}.type is not SimpleItem`);
+    for (const key of ['command', 'frame', 'doJumpId']) if (!isInt(it[key])) fail(file, `${at}.${key} is not an integer`);
+    if (typeof it.autoContinue !== 'boolean') fail(file, `${at}.autoContinue is not a boolean`);
+    if (it.doJumpId !== k + 1) fail(file, `${at}.doJumpId is ${it.doJumpId}, expected ${k + 1}`);
+    if (!Array.isArray(it.params) || it.params.length !== 7 || !it.params.every(isNum))
+      fail(file, `${at}.params is not exactly 7 numbers`);
+    for (const key of ['AMSLAltAboveTerrain', 'Altitude', 'AltitudeMode'])
+      if (!isNum(it[key])) fail(file, `${at}.${key} is not a number (QGroundControl rejects null)`);
+    if (it.frame !== 3) fail(file, `${at}.frame is ${it.frame}, expected 3 (relative to home)`);
+    if (NAV_WITH_POSITION.has(it.command) && it.command !== 21 && (!latOk(it.params[4]) || !lonOk(it.params[5])))
+      fail(file, `${at} has no valid latitude/longitude`);
+    if (NAV_WITH_POSITION.has(it.command) && isNum(it.params[6]) && Math.abs(it.params[6] - it.Altitude) > 1e-6)
+      fail(file, `${at}.Altitude differs from params[6]`);
+  });
+  if (m.items[0].command !== 22) fail(file, 'the first item is not a takeoff (22)');
+  if (![20, 21, 16].includes(m.items[m.items.length - 1].command)) fail(file, 'the mission does not end in land, return or a waypoint');
+  const fence = j.geoFence;
+  if (!fence || fence.version !== 2 || !Array.isArray(fence.polygons) || !Array.isArray(fence.circles))
+    fail(file, 'geoFence is not {version 2, polygons, circles} (MAVSDK requires it)');
+  else {
+    fence.polygons.forEach((p, k) => {
+      if (p.version !== 1 || typeof p.inclusion !== 'boolean') fail(file, `geoFence.polygons[${k}] lacks version 1 / inclusion`);
+      if (!Array.isArray(p.polygon) || p.polygon.length < 3 || !p.polygon.every((v) => v.length === 2 && latOk(v[0]) && lonOk(v[1])))
+        fail(file, `geoFence.polygons[${k}].polygon is not >= 3 [lat, lon] vertices`);
+    });
+    fence.circles.forEach((c, k) => {
+      if (c.version !== 1 || typeof c.inclusion !== 'boolean' || !c.circle || !isNum(c.circle.radius) || c.circle.radius <= 0 ||
+          !Array.isArray(c.circle.center) || !latOk(c.circle.center[0]) || !lonOk(c.circle.center[1]))
+        fail(file, `geoFence.circles[${k}] is not {circle: {center: [lat, lon], radius}, inclusion, version 1}`);
+    });
+  }
+  const rally = j.rallyPoints;
+  if (!rally || rally.version !== 2 || !Array.isArray(rally.points) ||
+      !rally.points.every((p) => p.length === 3 && latOk(p[0]) && lonOk(p[1]) && isNum(p[2])))
+    fail(file, 'rallyPoints is not {version 2, points: [[lat, lon, alt]]} (MAVSDK requires it)');
+  return j;
+}
+
+function checkWpl(file, plan) {
+  const text = fs.readFileSync(file, 'utf8');
+  if (text.includes('\r')) fail(file, 'has CR line ends');
+  const lines = text.split('\n');
+  if (lines[lines.length - 1] !== '') fail(file, 'does not end with a line end');
+  lines.pop();
+  if (lines[0] !== 'QGC WPL 110') { fail(file, 'first line is not "QGC WPL 110"'); return; }
+  const rows = lines.slice(1).map((l) => l.split('\t'));
+  rows.forEach((r, k) => {
+    if (r.length !== 12) fail(file, `row ${k}: ${r.length} fields, expected 12 tab-separated`);
+    if (Number(r[0]) !== k) fail(file, `row ${k}: index ${r[0]}`);
+    if (!r.every((f) => f !== '' && Number.isFinite(Number(f)))) fail(file, `row ${k}: a field is not a number`);
+  });
+  if (rows.length === 0 || rows[0][1] !== '1') fail(file, 'row 0 (home) is not marked current');
+  if (!plan) return;
+  const home = plan.mission.plannedHomePosition;
+  if (rows[0] && (Math.abs(Number(rows[0][8]) - home[0]) > 1e-9 || Math.abs(Number(rows[0][9]) - home[1]) > 1e-9))
+    fail(file, 'home row differs from the .plan home');
+  const items = plan.mission.items;
+  if (rows.length - 1 !== items.length) { fail(file, `${rows.length - 1} items, the .plan has ${items.length}`); return; }
+  items.forEach((it, k) => {
+    const r = rows[k + 1];
+    if (Number(r[3]) !== it.command || Number(r[2]) !== it.frame) fail(file, `row ${k + 1} differs from the .plan item`);
+    for (let p = 0; p < 7; p++)
+      if (Math.abs(Number(r[4 + p]) - it.params[p]) > 1e-9) fail(file, `row ${k + 1} param ${p + 1} differs from the .plan`);
+  });
+}
+
+// The mission's positioned items must lie on the flown trajectory (CSV lat/lon), in order.
+function checkAgainstCsv(file, plan, csvFile) {
+  const rows = fs.readFileSync(csvFile, 'utf8').trim().split('\n');
+  if (rows[0] !== 't,x,y,z,lat,lon,alt') { fail(csvFile, 'header is not t,x,y,z,lat,lon,alt'); return; }
+  const pts = rows.slice(1).map((r) => r.split(',').map(Number));
+  if (!pts.every((p) => p.length === 7 && p.every(Number.isFinite))) { fail(csvFile, 'a row is not 7 numbers'); return; }
+  for (let k = 1; k < pts.length; k++) if (!(pts[k][0] >= pts[k - 1][0])) fail(csvFile, `time goes back at row ${k + 1}`);
+  let from = 0;
+  for (const it of plan.mission.items.filter((i) => i.command === 16)) {
+    let found = -1;
+    for (let k = from; k < pts.length; k++)
+      if (Math.abs(pts[k][4] - it.params[4]) < 1e-7 && Math.abs(pts[k][5] - it.params[5]) < 1e-7) { found = k; break; }
+    if (found < 0) { fail(file, `waypoint (${it.params[4]}, ${it.params[5]}) is not on the trajectory after row ${from + 1}`); return; }
+    from = found;
+  }
+  const last = pts[pts.length - 1];
+  const end = plan.mission.items[plan.mission.items.length - 1];
+  if (end.command === 21 && (Math.abs(end.params[4] - last[4]) > 1e-7 || Math.abs(end.params[5] - last[5]) > 1e-7))
+    fail(file, 'the landing is not at the trajectory\'s end');
+}
+
+if (!dir || ids.length === 0) { console.error('usage: node qgc_plan_check.mjs DIR UAV_ID...'); process.exit(2); }
+for (const id of ids) {
+  const planFile = path.join(dir, `${id}.plan`);
+  const plan = checkPlan(planFile);
+  checkWpl(path.join(dir, `${id}.waypoints`), plan);
+  if (plan) checkAgainstCsv(planFile, plan, path.join(dir, `${id}.csv`));
+}
+if (failures) process.exit(1);
+console.log(`qgc_plan_check: ok (${ids.length} UAVs: .plan, .waypoints, .csv)`);
