@@ -91,6 +91,12 @@ echo '{"format": "uavplan-plan"' >"$TMP/trunc.json"
 "$BIN" verify "$good" "$TMP/trunc.json" >/dev/null 2>&1; check verify.malformed 2 $?
 
 
+# P2: the cellular ant colony and its A* baseline plan the city through both task points; verified.
+for alg in cellular_aco cell_astar; do
+  "$BIN" plan "$SRC/scenarios/p2_city.yaml" -o "$TMP/p2_$alg" --algorithm $alg >/dev/null 2>&1; check p2.$alg.plan 0 $?
+  "$BIN" verify "$SRC/scenarios/p2_city.yaml" "$TMP/p2_$alg/plan.json" >/dev/null 2>&1; check p2.$alg.verify 0 $?
+done
+
 # export and report: a scenario without an origin cannot be exported (one line, nothing
 # written); an unknown format is a usage error; a plan of another scenario is bad input.
 sed '/^origin:/d' "$good" >"$TMP/noorigin.yaml"

@@ -3,6 +3,7 @@
 
 #include "commands.h"
 #include "movingai_runner.h"
+#include "p2_runner.h"
 #include "p3_runner.h"
 #include "p4_runner.h"
 #include "uavplan/evaluation/world_bench.h"
@@ -112,6 +113,24 @@ void add_p3(CLI::App* cmd, std::function<int()>& run) {
   });
 }
 
+void add_p2(CLI::App* cmd, std::function<int()>& run) {
+  auto dir = std::make_shared<std::string>("scenarios");
+  CLI::App* p2 = cmd->add_subcommand("p2", "P2 tables: times to the task points for 25-100 ants, ant colony vs the A* optimum");
+  p2->add_option("--scenarios", *dir, "Folder holding p2_city.yaml (default: scenarios)");
+  p2->callback([dir, &run] {
+    run = [dir] {
+      try {
+        bool ok = false;
+        std::cout << bench::run_p2(*dir, &ok);
+        return ok ? kExitOk : kExitNotSolved;
+      } catch (const InputError& e) {
+        std::cerr << e.what() << "\n";
+        return kExitBadInput;
+      }
+    };
+  });
+}
+
 }  // namespace
 
 void add_bench_command(CLI::App& app, std::function<int()>& run) {
@@ -121,6 +140,7 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
   add_movingai(cmd, run);
   add_p4(cmd, run);
   add_p3(cmd, run);
+  add_p2(cmd, run);
 }
 
 }  // namespace uavplan::cli

@@ -50,6 +50,7 @@ void plan_routes(const Scenario& sc, const Planner& planner, const MissionOption
     } else {
       Problem pb{u, *u.goal, {}};
       if (sc.mission.type == MissionType::route) pb.via = sc.mission.waypoints;
+      pb.seed = opt.seed + i;  // one stream per UAV
       const PlanResult r = planner.plan(pb, sc.world, opt.stop);
       up.status = r.status;
       up.message = r.message;

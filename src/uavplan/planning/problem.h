@@ -15,6 +15,7 @@ struct Problem {
   UavSpec uav;              // start, start heading and limits
   Vec3 goal = Vec3::Zero();
   std::vector<Vec3> via;    // visited in order between start and goal
+  std::uint64_t seed = 1;   // for randomised planners: the same seed gives the same route
 };
 
 struct Route {

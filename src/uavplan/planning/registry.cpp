@@ -3,6 +3,8 @@
 #include <functional>
 #include <stdexcept>
 
+#include "uavplan/planning/cells/cell_astar.h"
+#include "uavplan/planning/cells/cellular_aco.h"
 #include "uavplan/planning/field/apf.h"
 #include "uavplan/planning/search/astar_planner.h"
 #include "uavplan/planning/search/directional_astar.h"
@@ -21,6 +23,10 @@ const std::vector<Entry>& entries() {
        [](const Params& p) { return std::make_unique<AStarPlanner>(AStarOptions::from_params(p)); }},
       {{"directional_astar", "P4 directional A*: a cone of M yaw x M pitch directions at step L, turn and climb limits held"},
        [](const Params& p) { return std::make_unique<DirectionalAStarPlanner>(DirectionalAStarOptions::from_params(p)); }},
+      {{"cellular_aco", "P2 cellular ant colony on the digital cell map: around or over buildings by the penalty J", false},
+       [](const Params& p) { return std::make_unique<CellularAcoPlanner>(CellularAcoOptions::from_params(p)); }},
+      {{"cell_astar", "A* on P2's cell graph with the same penalty J (optimal for it; the ant colony's baseline)"},
+       [](const Params& p) { return std::make_unique<CellAStarPlanner>(CellAStarOptions::from_params(p)); }},
       {{"apf", "P3 improved potential field: capped attraction, sqrt(R)-faded repulsion, 15-degree sector rule", false},
        [](const Params& p) { return std::make_unique<ApfPlanner>(ApfOptions::from_params(p, true)); }},
       {{"apf_traditional", "the traditional potential field (P3's baseline): no cap, no sqrt(R), no sector rule", false},

@@ -1,0 +1,151 @@
+#include "uavplan/planning/cells/cell_route.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "uavplan/planning/segment_rule.h"
+#include "uavplan/planning/smoothing/turn_limits.h"
+
+namespace uavplan {
+
+void CellPlanOptions::read(ParamReader& r) {
+  cell_m = r.number("cell_m", cell_m, 0.0, 1e6);
+  level_m = r.number("level_m", level_m, 0.0, 1e6);
+  weights.w1 = r.number("w1", weights.w1, 0.0, 1e12);
+  weights.w2 = r.number("w2", weights.w2, -1.0, 1e12);
+  weights.w3 = r.number("w3", weights.w3, 0.0, 1e12);
+}
+
+namespace {
+
+double ceiling_of(const Problem& p, const World& w) {
+  return p.uav.ceiling_m ? std::min(*p.uav.ceiling_m, w.bounds().max.z()) : w.bounds().max.z();
+}
+
+CellMap make_map(const Problem& p, const World& w, const CellPlanOptions& o) {
+  CellMapOptions mo;
+  mo.cell_m = o.cell_m;
+  mo.level_m = o.level_m;
+  mo.inflation_m = p.uav.radius_m + kPlanningMargin_m;
+  mo.ceiling_m = ceiling_of(p, w);
+  return CellMap(w, mo);
+}
+
+// A free node near p (its column and the eight around, levels near p's height) that p reaches
+// in a straight, checked segment (the climb limit included), nearest first; -1 when none.
+std::int64_t attach(const CellMap& map, const Vec3& p, const SegmentRule& rule) {
+  int ci = 0, cj = 0;
+  map.cell_of(p, ci, cj);
+  std::vector<std::pair<double, std::int64_t>> cand;
+  for (int j = std::max(0, cj - 1); j <= std::min(map.ny() - 1, cj + 1); ++j)
+    for (int i = std::max(0, ci - 1); i <= std::min(map.nx() - 1, ci + 1); ++i)
+      for (int k = 0; k < map.levels(); ++k)
+        if (map.free(i, j, k) && map.level_z(k) <= rule.ceiling_m())
+          cand.emplace_back((map.centre(i, j, k) - p).norm(), map.index(i, j, k));
+  std::sort(cand.begin(), cand.end());
+  for (const auto& [d, n] : cand) {
+    int i = 0, j = 0, k = 0;
+    map.unpack(n, i, j, k);
+    const Vec3 c = map.centre(i, j, k);
+    if (d < 1e-9 || rule(p, c)) return n;
+  }
+  return -1;
+}
+
+}  // namespace
+
+CellWorld::CellWorld(const Problem& p, const World& w, const CellPlanOptions& o)
+    : map(make_map(p, w, o)),
+      graph(map, w, p.uav.speed.cruise_mps, o.weights, p.uav.max_climb_rad, ceiling_of(p, w)) {}
+
+double cell_route_cost(const CellGraph& g, const std::vector<Vec3>& wp) {
+  double j = 0.0;
+  for (std::size_t i = 1; i < wp.size(); ++i) j += g.cost(wp[i - 1], wp[i]);
+  return j;
+}
+
+PlanResult plan_on_cells(const Problem& problem, const World& world, const CellPlanOptions& options,
+                         const StopCondition& stop, const CellLegSearch& search) {
+  PlanResult res;
+  const CellWorld cw(problem, world, options);
+  const CellMap& map = cw.map;
+  const SegmentRule rule(world, problem.uav);
+  res.stats.grid_cells = static_cast<std::uint64_t>(map.nodes());
+  res.stats.cell_m = map.cell_m();
+
+  std::vector<Vec3> stops{problem.uav.start};
+  stops.insert(stops.end(), problem.via.begin(), problem.via.end());
+  stops.push_back(problem.goal);
+  std::vector<std::int64_t> nodes;
+  for (std::size_t s = 0; s < stops.size(); ++s) {
+    nodes.push_back(attach(map, stops[s], rule));
+    if (nodes.back() < 0) {
+      res.message = (s == 0 ? std::string("start") : s + 1 == stops.size() ? std::string("goal") : "via point " + std::to_string(s)) +
+                    " cannot reach a free cell of the cell map (cell " + std::to_string(map.cell_m()) + " m)";
+      return res;
+    }
+  }
+
+  std::vector<Vec3> route{stops[0]};
+  std::vector<char> pinned{1};
+  for (std::size_t leg = 0; leg + 1 < stops.size(); ++leg) {
+    if (stop.should_stop()) {
+      res.status = Status::failed;
+      res.message = "stopped before the route was complete";
+      return res;
+    }
+    const auto path = search(cw.graph, nodes[leg], nodes[leg + 1], static_cast<int>(leg), res.stats);
+    if (!path) {
+      res.message = "no route on the cell map for leg " + std::to_string(leg + 1);
+      return res;
+    }
+    for (std::int64_t n : *path) {
+      int i = 0, j = 0, k = 0;
+      map.unpack(n, i, j, k);
+      const Vec3 c = map.centre(i, j, k);
+      if ((c - route.back()).norm() > 1e-9) {
+        route.push_back(c);
+        pinned.push_back(0);
+      }
+    }
+    if ((stops[leg + 1] - route.back()).norm() > 1e-9) {
+      route.push_back(stops[leg + 1]);
+      pinned.push_back(1);
+    } else {
+      pinned.back() = 1;
+    }
+  }
+  // Collinear runs become one segment (the same cost: every term is additive along a line).
+  std::vector<Vec3> wp{route[0]};
+  std::vector<char> pins{pinned[0]};
+  for (std::size_t i = 1; i < route.size(); ++i) {
+    if (i + 1 < route.size() && !pinned[i]) {
+      const Vec3 a = (route[i] - wp.back()).normalized(), b = (route[i + 1] - route[i]).normalized();
+      if (a.dot(b) > 1.0 - 1e-12) continue;
+    }
+    wp.push_back(route[i]);
+    pins.push_back(pinned[i]);
+  }
+  // The cell map is conservative; every segment is still checked exactly.
+  for (std::size_t i = 1; i < wp.size(); ++i)
+    if (!rule(wp[i - 1], wp[i])) {
+      res.message = "internal: a cell move failed the exact segment check";
+      return res;
+    }
+  // P2 treats the UAV as a point mass; a UAV with a turn limit or start heading gets its
+  // corners shaped (fillets, every new segment checked).
+  if (problem.uav.max_turn_rad < kPi - 1e-9 || problem.uav.heading_rad) {
+    const TurnShaping shaped = enforce_turn_limits(wp, pins, problem.uav.heading_rad,
+                                                   {problem.uav.max_turn_rad, problem.uav.max_climb_rad}, rule);
+    if (!shaped.ok) {
+      res.message = "turn limits: " + shaped.message;
+      return res;
+    }
+    wp = shaped.waypoints;
+  }
+  res.route.waypoints = std::move(wp);
+  res.status = Status::solved;
+  return res;
+}
+
+}  // namespace uavplan
