@@ -4,7 +4,6 @@
 #include "commands.h"
 #include "uavplan/io/export.h"
 #include "uavplan/io/files.h"
-#include "uavplan/io/input_error.h"
 
 namespace uavplan::cli {
 
@@ -57,12 +56,7 @@ struct Args {
 int run_export(const Args& a) {
   Scenario sc;
   Plan plan;
-  try {
-    load_scenario_and_plan(a.scenario, a.plan, sc, plan);
-  } catch (const InputError& e) {
-    std::cerr << e.what() << "\n";
-    return kExitBadInput;
-  }
+  if (!load_scenario_and_plan(a.scenario, a.plan, sc, plan)) return kExitBadInput;
   return write_exports(a.scenario, sc, plan, a.exp, a.out_dir);
 }
 

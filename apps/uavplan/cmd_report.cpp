@@ -4,7 +4,6 @@
 #include "commands.h"
 #include "uavplan/evaluation/verifier.h"
 #include "uavplan/io/files.h"
-#include "uavplan/io/input_error.h"
 #include "uavplan/io/report.h"
 
 namespace uavplan::cli {
@@ -17,12 +16,7 @@ struct Args {
 int run_report(const Args& a) {
   Scenario sc;
   Plan plan;
-  try {
-    load_scenario_and_plan(a.scenario, a.plan, sc, plan);
-  } catch (const InputError& e) {
-    std::cerr << e.what() << "\n";
-    return kExitBadInput;
-  }
+  if (!load_scenario_and_plan(a.scenario, a.plan, sc, plan)) return kExitBadInput;
   const auto violations = verify_plan(sc, plan);
   write_file_atomic(a.out, report_html(sc, plan, violations));
   std::cout << "wrote " << a.out << " (" << plan.uavs.size() << " UAVs, "

@@ -3,7 +3,6 @@
 
 #include "commands.h"
 #include "uavplan/evaluation/verifier.h"
-#include "uavplan/io/input_error.h"
 
 namespace uavplan::cli {
 namespace {
@@ -11,12 +10,7 @@ namespace {
 int run_verify(const std::string& scenario_path, const std::string& plan_path) {
   Scenario sc;
   Plan plan;
-  try {
-    load_scenario_and_plan(scenario_path, plan_path, sc, plan);
-  } catch (const InputError& e) {
-    std::cerr << e.what() << "\n";
-    return kExitBadInput;
-  }
+  if (!load_scenario_and_plan(scenario_path, plan_path, sc, plan)) return kExitBadInput;
   const auto violations = verify_plan(sc, plan);
   for (const auto& v : violations) std::cout << describe(v) << "\n";
   if (violations.empty()) {

@@ -24,8 +24,9 @@ void add_bench_command(CLI::App& app, std::function<int()>& run);
 void add_export_command(CLI::App& app, std::function<int()>& run);
 void add_report_command(CLI::App& app, std::function<int()>& run);
 
-// Loads both and checks that every plan UAV is in the scenario; throws InputError.
-void load_scenario_and_plan(const std::string& scenario_path, const std::string& plan_path, Scenario& sc, Plan& plan);
+// Loads both and checks that every plan UAV is in the scenario; on bad input prints the one-line
+// error on stderr and returns false (the caller exits with kExitBadInput).
+bool load_scenario_and_plan(const std::string& scenario_path, const std::string& plan_path, Scenario& sc, Plan& plan);
 
 // Export options as the command line gives them (shared by `export` and `plan --export`).
 struct ExportArgs {

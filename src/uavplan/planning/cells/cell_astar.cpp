@@ -19,18 +19,11 @@ std::optional<std::vector<std::int64_t>> cell_astar_search(const CellGraph& g, s
   std::vector<double> cost(n, World::kInf);
   std::vector<std::int64_t> parent(n, -1);
   std::vector<char> closed(n, 0);
-  int ti = 0, tj = 0, tk = 0;
-  m.unpack(to, ti, tj, tk);
-  const Vec3 goal = m.centre(ti, tj, tk);
+  const Vec3 goal = m.centre(to);
   using Item = std::pair<double, std::int64_t>;
   std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
-  auto pos = [&](std::int64_t v) {
-    int i = 0, j = 0, k = 0;
-    m.unpack(v, i, j, k);
-    return m.centre(i, j, k);
-  };
   cost[from] = 0.0;
-  open.emplace(g.heuristic(pos(from), goal), from);
+  open.emplace(g.heuristic(m.centre(from), goal), from);
   while (!open.empty()) {
     stats.open_max = std::max<std::uint64_t>(stats.open_max, open.size());
     const auto [f, v] = open.top();
@@ -50,7 +43,7 @@ std::optional<std::vector<std::int64_t>> cell_astar_search(const CellGraph& g, s
     for (int mv = 0; mv < CellGraph::kMoves; ++mv) {
       const std::int64_t w = g.neighbour(i, j, k, mv);
       if (w < 0 || closed[w]) continue;
-      const Vec3 pw = pos(w);
+      const Vec3 pw = m.centre(w);
       const double c = cost[v] + g.cost(pv, pw);
       if (c < cost[w]) {
         cost[w] = c;

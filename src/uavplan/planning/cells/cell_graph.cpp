@@ -1,6 +1,7 @@
 #include "uavplan/planning/cells/cell_graph.h"
 
 #include <algorithm>
+#include <cstdlib>
 
 namespace uavplan {
 
@@ -29,6 +30,12 @@ const std::array<std::array<int, 3>, CellGraph::kMoves>& CellGraph::moves() {
     return t;
   }();
   return table;
+}
+
+int CellGraph::move_index(int di, int dj, int dk) {
+  if (std::abs(di) > 1 || std::abs(dj) > 1 || std::abs(dk) > 1 || (di == 0 && dj == 0 && dk == 0)) return -1;
+  const int mv = (dk + 1) * 9 + (dj + 1) * 3 + (di + 1);
+  return mv > 13 ? mv - 1 : mv;  // the table skips (0, 0, 0), entry 13 of the full cube
 }
 
 std::int64_t CellGraph::neighbour(int i, int j, int k, int m) const {

@@ -39,6 +39,8 @@ class CellGraph {
   // the ceiling, too steep, or the move's straight segment passes over a cell higher than it.
   std::int64_t neighbour(int i, int j, int k, int m) const;
   static const std::array<std::array<int, 3>, kMoves>& moves();
+  // The move (di, dj, dk) in the table, or -1 when it is none (a step beyond one cell, or none).
+  static int move_index(int di, int dj, int dk);
 
   double cost(const Vec3& a, const Vec3& b) const;
   // Lower bound of the cost from p to q (the range term of the straight line).

@@ -37,6 +37,11 @@ class CellMap {
   Vec3 centre(int i, int j, int k) const {
     return {origin_.x() + (i + 0.5) * cell_m_, origin_.y() + (j + 0.5) * cell_m_, level_z(k)};
   }
+  Vec3 centre(std::int64_t n) const {
+    int i = 0, j = 0, k = 0;
+    unpack(n, i, j, k);
+    return centre(i, j, k);
+  }
   bool free(int i, int j, int k) const { return level_z(k) >= required_m(i, j); }
 
   std::int64_t index(int i, int j, int k) const { return (static_cast<std::int64_t>(k) * ny_ + j) * nx_ + i; }

@@ -43,12 +43,8 @@ std::int64_t attach(const CellMap& map, const Vec3& p, const SegmentRule& rule) 
         if (map.free(i, j, k) && map.level_z(k) <= rule.ceiling_m())
           cand.emplace_back((map.centre(i, j, k) - p).norm(), map.index(i, j, k));
   std::sort(cand.begin(), cand.end());
-  for (const auto& [d, n] : cand) {
-    int i = 0, j = 0, k = 0;
-    map.unpack(n, i, j, k);
-    const Vec3 c = map.centre(i, j, k);
-    if (d < 1e-9 || rule(p, c)) return n;
-  }
+  for (const auto& [d, n] : cand)
+    if (d < 1e-9 || rule(p, map.centre(n))) return n;
   return -1;
 }
 
@@ -100,9 +96,7 @@ PlanResult plan_on_cells(const Problem& problem, const World& world, const CellP
       return res;
     }
     for (std::int64_t n : *path) {
-      int i = 0, j = 0, k = 0;
-      map.unpack(n, i, j, k);
-      const Vec3 c = map.centre(i, j, k);
+      const Vec3 c = map.centre(n);
       if ((c - route.back()).norm() > 1e-9) {
         route.push_back(c);
         pinned.push_back(0);

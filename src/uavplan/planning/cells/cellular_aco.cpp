@@ -52,11 +52,7 @@ class Colony {
 
   bool reachable() const { return std::isfinite(to_go_[static_cast<std::size_t>(from_)]); }
 
-  Vec3 pos(std::int64_t v) const {
-    int i = 0, j = 0, k = 0;
-    m_.unpack(v, i, j, k);
-    return m_.centre(i, j, k);
-  }
+  Vec3 pos(std::int64_t v) const { return m_.centre(v); }
 
   // One ant: at each cell, P ~ tau^alpha eta^beta over the unvisited free neighbours (eq. 3),
   // eta = exp(improvement of the objective), the improvement being the cost of the move plus
@@ -121,11 +117,8 @@ class Colony {
     int ai = 0, aj = 0, ak = 0, bi = 0, bj = 0, bk = 0;
     m_.unpack(a, ai, aj, ak);
     m_.unpack(b, bi, bj, bk);
-    const int di = bi - ai, dj = bj - aj, dk = bk - ak;
-    if (std::abs(di) > 1 || std::abs(dj) > 1 || std::abs(dk) > 1 || (di == 0 && dj == 0 && dk == 0)) return false;
-    int mv = (dk + 1) * 9 + (dj + 1) * 3 + (di + 1);
-    if (mv > 13) --mv;  // the table skips (0, 0, 0)
-    return g_.neighbour(ai, aj, ak, mv) == b;
+    const int mv = CellGraph::move_index(bi - ai, bj - aj, bk - ak);
+    return mv >= 0 && g_.neighbour(ai, aj, ak, mv) == b;
   }
 
   // The cellular-automaton update of a route: a cell dies where its neighbours on the route
