@@ -97,6 +97,26 @@ for alg in cellular_aco cell_astar; do
   "$BIN" verify "$SRC/scenarios/p2_city.yaml" "$TMP/p2_$alg/plan.json" >/dev/null 2>&1; check p2.$alg.verify 0 $?
 done
 
+# P2 on OpenStreetMap buildings (GeoJSON through world.buildings): both planners, verified.
+for alg in cellular_aco cell_astar; do
+  "$BIN" plan "$SRC/scenarios/nyc_block.yaml" -o "$TMP/nyc_$alg" --algorithm $alg >/dev/null 2>&1; check nyc.$alg.plan 0 $?
+  "$BIN" verify "$SRC/scenarios/nyc_block.yaml" "$TMP/nyc_$alg/plan.json" >/dev/null 2>&1; check nyc.$alg.verify 0 $?
+done
+# The footprints are obstacles to the verifier too: a straight flight at 6 m through the block
+# hits the 11.7 m house at x = -43; the same flight at 14 m clears every roof.
+mkdir -p "$TMP/nyc_bad/data" && cp "$SRC/scenarios/data/ny.geojson" "$TMP/nyc_bad/data/"
+sed 's/goal: \[65, 25, 6\]/goal: [65, 10, 6]/; /waypoints:/d; s/type: route/type: independent/' "$SRC/scenarios/nyc_block.yaml" >"$TMP/nyc_bad/s.yaml"
+printf '{"format": "uavplan-plan", "version": 1, "scenario": "nyc_block", "algorithm": "hand", "status": "solved", "uavs": [{"id": "rotor", "status": "solved", "waypoints": [[-65, 10, 6], [65, 10, 6]], "trajectory": [[0, -65, 10, 6], [43.3333, 65, 10, 6]]}]}' >"$TMP/nyc_bad/plan.json"
+"$BIN" verify "$TMP/nyc_bad/s.yaml" "$TMP/nyc_bad/plan.json" >"$TMP/stdout" 2>&1; check nyc.straight.rejected 1 $?
+grep -q "obstacle t=8.1" "$TMP/stdout" || { echo "FAIL nyc.straight.where: $(cat "$TMP/stdout")"; fails=$((fails + 1)); }
+sed -i 's/, 6\]/, 14]/g' "$TMP/nyc_bad/s.yaml" "$TMP/nyc_bad/plan.json"  # over the 11.7 m roofs
+"$BIN" verify "$TMP/nyc_bad/s.yaml" "$TMP/nyc_bad/plan.json" >/dev/null 2>&1; check nyc.straight.over 0 $?
+sed -i 's#buildings: {file: data/ny.geojson}#buildings: {file: data/missing.geojson}#' "$TMP/nyc_bad/s.yaml"
+"$BIN" plan "$TMP/nyc_bad/s.yaml" -o "$TMP/nyc_bad/out" >/dev/null 2>"$TMP/stderr"; check nyc.missing.file 2 $?
+if [ "$(wc -l <"$TMP/stderr")" != 1 ] || ! grep -q "s.yaml:[0-9]*: world.buildings.file: cannot read" "$TMP/stderr" || [ -e "$TMP/nyc_bad/out" ]; then
+  echo "FAIL nyc.missing.file message: $(cat "$TMP/stderr")"; fails=$((fails + 1))
+fi
+
 # export and report: a scenario without an origin cannot be exported (one line, nothing
 # written); an unknown format is a usage error; a plan of another scenario is bad input.
 sed '/^origin:/d' "$good" >"$TMP/noorigin.yaml"

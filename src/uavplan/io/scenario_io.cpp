@@ -5,13 +5,16 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <set>
 
 #include "uavplan/core/geometry.h"
 #include "uavplan/core/units.h"
 #include "uavplan/io/files.h"
+#include "uavplan/io/geo.h"
 #include "uavplan/io/input_error.h"
+#include "uavplan/io/osm_buildings.h"
 
 namespace uavplan {
 namespace {
@@ -171,6 +174,46 @@ TerrainGrid read_terrain(const At& t) {
   return TerrainGrid(origin, cell, static_cast<int>(nx), static_cast<int>(rows.size()), std::move(h));
 }
 
+// world.buildings: one GeoJSON file (a path, or {file, level_height, default_height}) or a
+// list of them; paths are relative to the scenario file. Footprints outside the bounds in x, y
+// are dropped.
+void read_buildings(const At& b, const std::optional<GeoOrigin>& origin, const Aabb& bounds, std::vector<Obstacle>& out) {
+  if (!origin) b.fail("placing lon/lat footprints needs the scenario's 'origin'");
+  const GeoFrame frame(*origin);
+  const auto one = [&](const At& e) {
+    BuildingOptions opt;
+    std::string rel;
+    if (e.node.IsScalar()) {
+      rel = e.text();
+    } else {
+      e.keys({"file", "level_height", "default_height"});
+      rel = e.req("file").text();
+      if (e.has("level_height")) opt.level_height_m = e["level_height"].positive();
+      if (e.has("default_height")) opt.default_height_m = e["default_height"].positive();
+    }
+    const std::filesystem::path path = std::filesystem::path(*e.file).parent_path() / rel;
+    std::string text;
+    try {
+      text = read_text_file(path.string());
+    } catch (const InputError&) {
+      (e.node.IsScalar() ? e : e["file"]).fail("cannot read the buildings file '" + path.string() + "'");
+    }
+    for (Prism& p : buildings_from_geojson(text, path.string(), frame, opt)) {
+      const Obstacle o = p;
+      const Aabb box = bounding_box(o);
+      if (box.max.x() < bounds.min.x() || box.min.x() > bounds.max.x() || box.max.y() < bounds.min.y() ||
+          box.min.y() > bounds.max.y())
+        continue;
+      out.push_back(std::move(p));
+    }
+  };
+  if (b.node.IsSequence()) {
+    for (std::size_t i = 0; i < b.size(); ++i) one(b.item(i));
+  } else {
+    one(b);
+  }
+}
+
 void check_placed(const At& at, const Vec3& p, const World& world, const std::string& what) {
   if (!world.in_bounds(p)) at.fail(what + " is outside the world bounds");
   if (world.clearance(p, 1e-9) <= 0.0) at.fail(what + " is inside an obstacle or below the terrain");
@@ -297,7 +340,7 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
 
   // World.
   const At w = top.req("world");
-  w.keys({"bounds", "obstacles", "threats", "terrain", "moving_obstacles"});
+  w.keys({"bounds", "obstacles", "buildings", "threats", "terrain", "moving_obstacles"});
   WorldSpec ws;
   {
     const At b = w.req("bounds");
@@ -312,6 +355,7 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
     list.expect_seq();
     for (std::size_t i = 0; i < list.size(); ++i) ws.obstacles.push_back(read_obstacle(list.item(i)));
   }
+  if (w.has("buildings")) read_buildings(w["buildings"], sc.origin, ws.bounds, ws.obstacles);
   if (w.has("threats")) {
     const At list = w["threats"];
     list.expect_seq();

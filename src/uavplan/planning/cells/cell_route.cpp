@@ -109,6 +109,18 @@ PlanResult plan_on_cells(const Problem& problem, const World& world, const CellP
       pinned.back() = 1;
     }
   }
+  // A via point is reached from its attach cell and left through the same cell: an out-and-back
+  // spike (a 180 degree turn). Cut one side of it where the straight segment is safe.
+  for (std::size_t i = 1; i + 1 < route.size(); ++i) {
+    if (!pinned[i] || (route[i - 1] - route[i + 1]).norm() > 1e-9) continue;
+    if (i + 2 < route.size() && rule(route[i], route[i + 2])) {
+      route.erase(route.begin() + static_cast<std::ptrdiff_t>(i) + 1);
+      pinned.erase(pinned.begin() + static_cast<std::ptrdiff_t>(i) + 1);
+    } else if (i >= 2 && rule(route[i - 2], route[i])) {
+      route.erase(route.begin() + static_cast<std::ptrdiff_t>(i) - 1);
+      pinned.erase(pinned.begin() + static_cast<std::ptrdiff_t>(i) - 1);
+    }
+  }
   // Collinear runs become one segment (the same cost: every term is additive along a line).
   std::vector<Vec3> wp{route[0]};
   std::vector<char> pins{pinned[0]};
