@@ -76,6 +76,9 @@ CellMap::CellMap(const World& world, const CellMapOptions& opt) {
                                 std::to_string(nz_) + " cells is too large: raise cell_m");
 
   const double r = opt.inflation_m;
+  // A level exactly at top + r would sit on the boundary of the exact segment check and fail it
+  // by rounding (10.501 - 10 < 0.501): free cells keep a micrometre above it.
+  constexpr double kAbove_m = 1e-6;
   required_.assign(static_cast<std::size_t>(nx_) * ny_, b.min.z() + r);
   for (const Obstacle& o : world.obstacles()) {
     const Aabb ob = bounding_box(o);
@@ -90,7 +93,7 @@ CellMap::CellMap(const World& world, const CellMapOptions& opt) {
         const auto [d, top] = footprint_distance_and_top(o, lo, hi);
         if (d < r || d <= 0.0) {
           double& req = required_[static_cast<std::size_t>(j) * nx_ + i];
-          req = std::max(req, top + r);
+          req = std::max(req, top + r + kAbove_m);
         }
       }
   }
@@ -108,7 +111,7 @@ CellMap::CellMap(const World& world, const CellMapOptions& opt) {
         const int tj1 = std::min(terrain->ny() - 1, static_cast<int>(std::floor((y1 - to.y()) / tc)));
         double& req = required_[static_cast<std::size_t>(j) * nx_ + i];
         for (int tj = tj0; tj <= tj1; ++tj)
-          for (int ti = ti0; ti <= ti1; ++ti) req = std::max(req, terrain->height(ti, tj) + r);
+          for (int ti = ti0; ti <= ti1; ++ti) req = std::max(req, terrain->height(ti, tj) + r + kAbove_m);
       }
   }
 }

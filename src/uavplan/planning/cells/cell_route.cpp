@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "uavplan/planning/segment_rule.h"
 #include "uavplan/planning/smoothing/turn_limits.h"
@@ -60,8 +61,13 @@ double cell_route_cost(const CellGraph& g, const std::vector<Vec3>& wp) {
   return j;
 }
 
-PlanResult plan_on_cells(const Problem& problem, const World& world, const CellPlanOptions& options,
-                         const StopCondition& stop, const CellLegSearch& search) {
+namespace {
+
+// One attempt at the options' cell size. `finer_may_help` is set when it failed because the
+// cells are too coarse for the streets: a stop cannot attach, or a leg has no route.
+PlanResult plan_once(const Problem& problem, const World& world, const CellPlanOptions& options,
+                     const StopCondition& stop, const CellLegSearch& search, bool& finer_may_help) {
+  finer_may_help = false;
   PlanResult res;
   const CellWorld cw(problem, world, options);
   const CellMap& map = cw.map;
@@ -78,6 +84,7 @@ PlanResult plan_on_cells(const Problem& problem, const World& world, const CellP
     if (nodes.back() < 0) {
       res.message = (s == 0 ? std::string("start") : s + 1 == stops.size() ? std::string("goal") : "via point " + std::to_string(s)) +
                     " cannot reach a free cell of the cell map (cell " + std::to_string(map.cell_m()) + " m)";
+      finer_may_help = true;
       return res;
     }
   }
@@ -92,7 +99,9 @@ PlanResult plan_on_cells(const Problem& problem, const World& world, const CellP
     }
     const auto path = search(cw.graph, nodes[leg], nodes[leg + 1], static_cast<int>(leg), res.stats);
     if (!path) {
-      res.message = "no route on the cell map for leg " + std::to_string(leg + 1);
+      res.message = "no route on the cell map for leg " + std::to_string(leg + 1) + " (cell " +
+                    std::to_string(map.cell_m()) + " m)";
+      finer_may_help = true;
       return res;
     }
     for (std::int64_t n : *path) {
@@ -135,7 +144,12 @@ PlanResult plan_on_cells(const Problem& problem, const World& world, const CellP
   // The cell map is conservative; every segment is still checked exactly.
   for (std::size_t i = 1; i < wp.size(); ++i)
     if (!rule(wp[i - 1], wp[i])) {
-      res.message = "internal: a cell move failed the exact segment check";
+      const auto f = [](const Vec3& v) {
+        char b[96];
+        std::snprintf(b, sizeof b, "(%.2f, %.2f, %.2f)", v.x(), v.y(), v.z());
+        return std::string(b);
+      };
+      res.message = "internal: the cell move " + f(wp[i - 1]) + " -> " + f(wp[i]) + " failed the exact segment check";
       return res;
     }
   // P2 treats the UAV as a point mass; a UAV with a turn limit or start heading gets its
@@ -151,6 +165,26 @@ PlanResult plan_on_cells(const Problem& problem, const World& world, const CellP
   }
   res.route.waypoints = std::move(wp);
   res.status = Status::solved;
+  return res;
+}
+
+}  // namespace
+
+PlanResult plan_on_cells(const Problem& problem, const World& world, const CellPlanOptions& options,
+                         const StopCondition& stop, const CellLegSearch& search) {
+  // The default cell (bounds / 64, or the terrain's) can be wider than a city's streets. When it
+  // is too coarse and the size was not chosen, halve it (levels follow unless chosen too) while
+  // the map stays within kMaxRefinedNodes; an explicit cell_m is taken as it is.
+  constexpr std::uint64_t kMaxRefinedNodes = 4'000'000;
+  CellPlanOptions o = options;
+  bool finer_may_help = false;
+  PlanResult res = plan_once(problem, world, o, stop, search, finer_may_help);
+  while (res.status != Status::solved && finer_may_help && options.cell_m <= 0.0 && !stop.should_stop() &&
+         res.stats.grid_cells * 8 <= kMaxRefinedNodes) {
+    o.cell_m = res.stats.cell_m / 2.0;
+    if (options.level_m <= 0.0) o.level_m = o.cell_m / 2.0;
+    res = plan_once(problem, world, o, stop, search, finer_may_help);
+  }
   return res;
 }
 

@@ -37,10 +37,10 @@ TEST(CellMap, HeightsToClear) {
   const CellMap m(w, o);
   EXPECT_EQ(m.nx(), 40);
   EXPECT_EQ(m.ny(), 20);
-  EXPECT_DOUBLE_EQ(m.required_m(20, 10), 21.0);  // on the block: its top plus the radius
-  EXPECT_DOUBLE_EQ(m.required_m(17, 10), 21.0);  // [85, 90] touches the block's inflated side
+  EXPECT_NEAR(m.required_m(20, 10), 21.0, 1e-5);  // on the block: its top plus the radius
+  EXPECT_NEAR(m.required_m(17, 10), 21.0, 1e-5);  // [85, 90] touches the block's inflated side
   EXPECT_DOUBLE_EQ(m.required_m(16, 10), 1.0);   // [80, 85] is 5 m away: free
-  EXPECT_DOUBLE_EQ(m.required_m(8, 16), 19.0);   // the zone's equivalent height
+  EXPECT_NEAR(m.required_m(8, 16), 19.0, 1e-5);   // the zone's equivalent height
   EXPECT_DOUBLE_EQ(m.required_m(0, 0), 1.0);
 }
 
@@ -54,6 +54,62 @@ void expect_clear(const PlanResult& r, const Problem& p, const World& w) {
   ASSERT_EQ(r.status, Status::solved) << r.message;
   const SegmentRule rule(w, p.uav);
   for (std::size_t i = 1; i < r.route.waypoints.size(); ++i) EXPECT_TRUE(rule(r.route.waypoints[i - 1], r.route.waypoints[i]));
+}
+
+// A level landing exactly on top + inflation (here 0.501 + 2 x 5 = 10 + 0.501) is on the
+// boundary of the exact segment check; rounding made the check fail it. It must not count free,
+// and routes over such roofs must pass the exact check.
+TEST(CellMap, LevelOnTheInflatedRoofIsNotFree) {
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(-320, -320, 0), Vec3(320, 320, 60)};
+  ws.obstacles.push_back(Box{Vec3(53, 1, 0), Vec3(71, 19, 10)});
+  ws.obstacles.push_back(Box{Vec3(-71, -19, 0), Vec3(-53, 19, 10)});
+  const World w(std::move(ws));
+  Problem p;
+  p.uav.id = "u";
+  p.uav.start = Vec3(0, -100, 10.501);
+  p.uav.radius_m = 0.5;
+  p.uav.ceiling_m = 30.0;
+  p.goal = Vec3(62, 100, 10.501);
+  CellMapOptions o;
+  o.inflation_m = p.uav.radius_m + kPlanningMargin_m;
+  o.ceiling_m = 30;
+  const CellMap m(w, o);  // default cell 640 / 64 = 10 m, levels every 5 m from 0.501
+  int i = 0, j = 0;
+  m.cell_of(Vec3(62, 10, 0), i, j);
+  EXPECT_DOUBLE_EQ(m.level_z(2), 10.501);
+  EXPECT_FALSE(m.free(i, j, 2));
+  EXPECT_TRUE(m.free(i, j, 3));
+  for (const char* name : {"cell_astar", "cellular_aco"}) {
+    const auto planner = make_planner(name, {});
+    expect_clear(planner->plan(p, w, StopCondition{}), p, w);
+  }
+}
+
+// Streets narrower than the default cell (bounds / 64 = 9.4 m): blocks too tall to overfly with
+// 8 m streets between them. The default cell is refined until the street opens; a cell size
+// the user chose is kept, and fails clearly.
+TEST(CellPlanners, DefaultCellRefinesForNarrowStreets) {
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(-300, -300, 0), Vec3(300, 300, 60)};
+  for (int bi = -6; bi < 6; ++bi)
+    for (int bj = -6; bj < 6; ++bj)
+      ws.obstacles.push_back(Box{Vec3(bi * 48.0, bj * 48.0, 0), Vec3(bi * 48.0 + 40, bj * 48.0 + 40, 50)});
+  const World w(std::move(ws));
+  Problem p;
+  p.uav.id = "u";
+  p.uav.start = Vec3(-244, -244, 5);
+  p.uav.radius_m = 0.5;
+  p.uav.ceiling_m = 30.0;
+  p.goal = Vec3(44, 44, 5);
+  for (const char* name : {"cell_astar", "cellular_aco"}) {
+    const PlanResult r = make_planner(name, {})->plan(p, w, StopCondition{});
+    expect_clear(r, p, w);
+    EXPECT_LT(r.stats.cell_m, 600.0 / 64.0) << name;
+  }
+  const PlanResult fixed = make_planner("cell_astar", {{"cell_m", "9.375"}})->plan(p, w, StopCondition{});
+  EXPECT_EQ(fixed.status, Status::failed);
+  EXPECT_NE(fixed.message.find("cell 9.375"), std::string::npos) << fixed.message;
 }
 
 // P2's claim: the altitude weight decides between going around and going over.
