@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <thread>
 
 #include "uavplan/core/geometry.h"
 #include "uavplan/planning/segment_rule.h"
@@ -63,7 +64,10 @@ std::vector<Vec3> loiter_polygon(const Vec3& x0, const Vec3& heading, double ext
 
 RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlanner& planner, const StopCondition& stop) {
   RendezvousResult res;
-  DirectionalSearch engine;
+  // One search engine per thread (buffers, cone tables, clearance cache); the first serves the
+  // sequential steps.
+  std::vector<DirectionalSearch> engines(std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 8));
+  DirectionalSearch& engine = engines.front();
   struct Counting {
     DirectionalSearch& engine;
     RendezvousResult& res;
@@ -74,6 +78,23 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
       return r;
     }
   } search{engine, res};
+  // Independent searches in batches, one per engine and thread; results in query order.
+  auto run_batch = [&](const std::vector<DirectionalQuery>& qs) {
+    std::vector<DirectionalRoute> routes(qs.size());
+    auto job = [&](std::size_t i) { routes[i] = engines[i % engines.size()].run(sc.world, qs[i], stop); };
+    for (std::size_t b0 = 0; b0 < qs.size(); b0 += engines.size()) {
+      const std::size_t nb = std::min(engines.size(), qs.size() - b0);
+      std::vector<std::thread> pool;
+      for (std::size_t t = 1; t < nb; ++t) pool.emplace_back(job, b0 + t);
+      job(b0);
+      for (auto& th : pool) th.join();
+    }
+    for (const DirectionalRoute& r : routes) {
+      ++res.searches;
+      res.expanded += r.expanded;
+    }
+    return routes;
+  };
   const DirectionalAStarOptions& opt = planner.options();
   std::vector<DirectionalQuery> queries;
   for (const UavSpec& u : sc.uavs) {
@@ -121,17 +142,32 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
     };
     // (1) Variable-step multi-point search (P4 table 1): L from 1 to L_max step 0.2, M from 3 to
     // 6; the first route within the window ends the step, else the closest is kept.
+    // The searches are independent: they run in batches, one per thread, and are taken in
+    // their (L, M) order, so the result does not depend on the thread count.
     std::vector<Vec3> best = r.waypoints;
-    for (int li = 0; 1.0 + 0.2 * li <= opt.step_cells_max + 1e-9 && !r.ok; ++li)
-      for (int m = 3; m <= 6 && !r.ok; ++m) {
-        q.step_cells = 1.0 + 0.2 * li;
-        q.directions = m;
-        const DirectionalRoute route = search.run(sc.world, q, stop);
+    std::vector<std::pair<double, int>> combos;
+    for (int li = 0; 1.0 + 0.2 * li <= opt.step_cells_max + 1e-9; ++li)
+      for (int m = 3; m <= 6; ++m) combos.emplace_back(1.0 + 0.2 * li, m);
+    for (std::size_t c0 = 0; c0 < combos.size() && !r.ok; c0 += engines.size()) {
+      const std::size_t nb = std::min(engines.size(), combos.size() - c0);
+      std::vector<DirectionalQuery> qs(nb, q);
+      // A route longer than this can neither fall in the window nor come closer than the best.
+      const double bound = aim + std::max(std::abs(length(best) - aim), 0.5 * res.epsilon_m);
+      for (std::size_t t = 0; t < nb; ++t) {
+        qs[t].step_cells = combos[c0 + t].first;
+        qs[t].directions = combos[c0 + t].second;
+        qs[t].max_length_m = bound;
+      }
+      const std::vector<DirectionalRoute> routes = run_batch(qs);
+      for (std::size_t t = 0; t < nb && !r.ok; ++t) {
+        const DirectionalRoute& route = routes[t];
         if (!route.found) continue;
         candidates.push_back(route.waypoints);
-        if (within(route.length_m)) accept(route.waypoints, RendezvousStep::multi_point, fmt("L = %.1f, M = %.0f", q.step_cells, m));
+        if (within(route.length_m))
+          accept(route.waypoints, RendezvousStep::multi_point, fmt("L = %.1f, M = %.0f", combos[c0 + t].first, combos[c0 + t].second));
         else if (std::abs(route.length_m - aim) < std::abs(length(best) - aim)) best = route.waypoints;
       }
+    }
     if (r.ok) continue;
     r.waypoints = best;
     r.final_m = length(best);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "uavplan/core/geometry.h"
 #include "uavplan/planning/segment_rule.h"
@@ -92,7 +93,163 @@ double derived_cell(const World& world, std::int64_t target_points) {
   return dims == 0 ? 1.0 : std::pow(volume / static_cast<double>(target_points), 1.0 / dims);
 }
 
+// The turn and climb limits as a cosine and a tangent, checked with dot products: the same
+// tests as turn_rad() and pitch_rad() (3-D angle and yaw change within psi_max, |pitch| within
+// phi_max). Scale-free, so they hold for offsets in metres or in cells.
+struct ConeLimits {
+  double cos_turn, tan_pitch;
+  explicit ConeLimits(const DirectionalQuery& q)
+      : cos_turn(std::cos(std::min(q.max_yaw_rad + kAngleTolerance_rad, kPi))),
+        tan_pitch(q.max_pitch_rad + kAngleTolerance_rad >= kPi / 2 ? 1e300 : std::tan(q.max_pitch_rad + kAngleTolerance_rad)) {}
+  bool pitch_ok(const Vec3& seg) const { return std::abs(seg.z()) <= tan_pitch * seg.head<2>().norm(); }
+  bool turn_ok(const std::optional<Vec3>& from, const Vec3& seg) const {
+    if (!from) return true;
+    const double n1 = from->norm(), n2 = seg.norm();
+    if (n1 <= 0.0 || n2 <= 0.0) return true;
+    if (from->dot(seg) < cos_turn * n1 * n2) return false;
+    const double h1 = from->head<2>().norm(), h2 = seg.head<2>().norm();
+    if (h1 > 1e-9 * n1 && h2 > 1e-9 * n2 && from->head<2>().dot(seg.head<2>()) < cos_turn * h1 * h2) return false;
+    return true;
+  }
+};
+
+// Direction (a, b) of the cone: yaw spread over [yaw0 - span, yaw0 + span] (the whole circle
+// without a heading), pitch over [-phi_max, phi_max] (P4 eq. 8, psi and phi in their roles).
+Vec3 cone_direction(double yaw0, double yaw_span, int my, bool has_heading, int a, int mp, int b, double max_pitch) {
+  const double yaw = yaw0 + (my == 1 ? 0.0 : -yaw_span + 2.0 * yaw_span * a / (has_heading ? my - 1 : my));
+  const double pitch = mp == 1 ? 0.0 : -max_pitch + 2.0 * max_pitch * b / (mp - 1);
+  return {std::cos(pitch) * std::cos(yaw), std::cos(pitch) * std::sin(yaw), std::sin(pitch)};
+}
+
+std::uint32_t pack_offset(int dx, int dy, int dz) {
+  return (static_cast<std::uint32_t>(dx + 512) << 20) | (static_cast<std::uint32_t>(dy + 512) << 10) |
+         static_cast<std::uint32_t>(dz + 512);
+}
+
+// The general expansion of P4 (any point, the start's heading or none): for each direction of
+// the cone, the target L cells away and the nearest lattice point around it that keeps the turn
+// and climb limits ("nearest equivalent", P4 sec. 3.1, fig. 3). f(id, point) gets each.
+template <class F>
+void general_children(const Lattice& lat, const DirectionalQuery& q, const ConeLimits& lim, bool flat, const Vec3& p,
+                      const std::optional<Vec3>& heading, F&& f) {
+  const int m = std::max(1, q.directions), mp = flat ? 1 : m;
+  const double yaw0 = heading ? std::atan2(heading->y(), heading->x()) : std::atan2(q.goal.y() - p.y(), q.goal.x() - p.x());
+  const double yaw_span = heading ? q.max_yaw_rad : kPi;
+  const int my = heading ? m : std::max(m, static_cast<int>(std::ceil(2 * kPi / std::max(2 * q.max_yaw_rad / std::max(m - 1, 1), 1e-3))));
+  for (int a = 0; a < my; ++a)
+    for (int b = 0; b < mp; ++b) {
+      const Vec3 target = p + q.step_cells * q.cell_m * cone_direction(yaw0, yaw_span, my, heading.has_value(), a, mp, b, q.max_pitch_rad);
+      std::uint32_t cand[8];
+      Vec3 cand_pt[8];
+      const int nc = lat.corners(target, cand, cand_pt);
+      for (int c = 0; c < nc; ++c) {
+        const Vec3 seg = cand_pt[c] - p;
+        if (seg.norm() < 1e-9 || !lim.turn_ok(heading, seg) || !lim.pitch_ok(seg)) continue;
+        f(cand[c], cand_pt[c]);
+        break;
+      }
+    }
+}
+
 }  // namespace
+
+bool DirectionalSearch::levels_reachable(const World& world, const DirectionalQuery& q) {
+  const Lattice lat = make_lattice(world, q.cell_m);
+  const bool flat = lat.n[2] == 1;
+  if (flat) return true;
+  const ConeLimits lim(q);
+  // Headings of the start's grandchildren (collisions ignored: a superset), then every heading
+  // the cone tables lead to from them.
+  std::vector<std::uint32_t> todo;
+  std::unordered_map<std::uint32_t, bool> seen;
+  bool change = false;
+  const std::optional<Vec3> h0 = q.heading_rad ? std::optional<Vec3>(heading_vector(*q.heading_rad)) : std::nullopt;
+  general_children(lat, q, lim, flat, q.start, h0, [&](std::uint32_t, const Vec3& c) {
+    if (change) return;
+    general_children(lat, q, lim, flat, c, c - q.start, [&](std::uint32_t, const Vec3& g) {
+      const Vec3 d = (g - c) / q.cell_m;
+      change = change || std::lround(d.z()) != 0;
+      const std::uint32_t k = pack_offset(static_cast<int>(std::lround(d.x())), static_cast<int>(std::lround(d.y())),
+                                          static_cast<int>(std::lround(d.z())));
+      if (seen.emplace(k, true).second) todo.push_back(k);
+    });
+  });
+  while (!todo.empty() && !change) {
+    const std::uint32_t k = todo.back();
+    todo.pop_back();
+    const int dx = static_cast<int>(k >> 20) - 512, dy = static_cast<int>((k >> 10) & 1023) - 512, dz = static_cast<int>(k & 1023) - 512;
+    change = change || dz != 0;
+    for (const ConeChild& c : cone(q, flat, dx, dy, dz).children) {
+      const std::uint32_t ck = pack_offset(c.d[0], c.d[1], c.d[2]);
+      if (seen.emplace(ck, true).second) todo.push_back(ck);
+    }
+  }
+  return change;
+}
+
+const DirectionalSearch::Cone& DirectionalSearch::cone(const DirectionalQuery& q, bool flat, int dx, int dy, int dz) {
+  const ConeKey key{q.step_cells, q.max_yaw_rad, q.max_pitch_rad, std::max(1, q.directions), flat};
+  if (!(key == cone_key_)) {
+    cones_.clear();
+    cone_key_ = key;
+  }
+  const std::uint32_t k = pack_offset(dx, dy, dz);
+  if (const auto it = cones_.find(k); it != cones_.end()) return it->second;
+  // The expansion of the search below for a lattice point away from the bounds, in cells:
+  // the target L cells along each direction, the corners of its lattice cell nearest first, the
+  // first corner that keeps the limits.
+  const ConeLimits lim(q);
+  const std::optional<Vec3> heading = Vec3(dx, dy, dz);
+  const double yaw0 = std::atan2(heading->y(), heading->x());
+  const int m = std::max(1, q.directions), mp = flat ? 1 : m;
+  Cone c;
+  for (int a = 0; a < m; ++a)
+    for (int b = 0; b < mp; ++b) {
+      const Vec3 t = q.step_cells * cone_direction(yaw0, q.max_yaw_rad, m, true, a, mp, b, q.max_pitch_rad);
+      const Vec3 lo(std::floor(t.x()), std::floor(t.y()), flat ? 0.0 : std::floor(t.z()));
+      Vec3 pts[8];
+      double d2[8];
+      int n = 0;
+      for (int cz = 0; cz <= (flat ? 0 : 1); ++cz)
+        for (int cy = 0; cy <= 1; ++cy)
+          for (int cx = 0; cx <= 1; ++cx) {
+            const Vec3 corner = lo + Vec3(cx, cy, cz);
+            const double dist = (corner - t).squaredNorm();
+            int j = n++;
+            for (; j > 0 && d2[j - 1] > dist; --j) {  // insertion, nearest first (as Lattice::corners)
+              d2[j] = d2[j - 1];
+              pts[j] = pts[j - 1];
+            }
+            d2[j] = dist;
+            pts[j] = corner;
+          }
+      for (int i = 0; i < n; ++i) {
+        const Vec3& seg = pts[i];
+        if (seg.norm() < 1e-9 || !lim.turn_ok(heading, seg) || !lim.pitch_ok(seg)) continue;
+        const ConeChild child{{static_cast<std::int16_t>(seg.x()), static_cast<std::int16_t>(seg.y()), static_cast<std::int16_t>(seg.z())},
+                              static_cast<float>(seg.norm())};
+        const bool seen = std::any_of(c.children.begin(), c.children.end(), [&](const ConeChild& o) {
+          return o.d[0] == child.d[0] && o.d[1] == child.d[1] && o.d[2] == child.d[2];
+        });
+        if (!seen) {
+          c.children.push_back(child);
+          c.max_length_cells = std::max(c.max_length_cells, child.length_cells);
+        }
+        break;
+      }
+    }
+  return cones_.emplace(k, std::move(c)).first->second;
+}
+
+float DirectionalSearch::clearance_at(const World& world, std::uint32_t point, const Vec3& p, double cap_m) {
+  float& v = clearance_[point];
+  if (std::isnan(v)) {
+    const double c = world.clearance(p, cap_m);
+    v = static_cast<float>(c);
+    if (static_cast<double>(v) > c) v = std::nextafter(v, 0.0f);  // a lower bound, never above
+  }
+  return v;
+}
 
 DirectionalQuery DirectionalAStarPlanner::query_for(const Problem& pb, const World& world) const {
   const UavSpec& u = pb.uav;
@@ -150,30 +307,42 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
                               (std::abs(seg.x()) < std::abs(seg.y()) ? 1u : 0u);
     return point * kBins + bin;
   };
-  // The limits as cosines and a tangent, checked with dot products: the same tests as
-  // turn_rad() and pitch_rad() (3-D angle and yaw change within psi_max, |pitch| within phi_max).
-  const double cos_turn = std::cos(std::min(q.max_yaw_rad + kAngleTolerance_rad, kPi));
-  const double tan_pitch = q.max_pitch_rad + kAngleTolerance_rad >= kPi / 2 ? 1e300 : std::tan(q.max_pitch_rad + kAngleTolerance_rad);
-  auto pitch_ok = [&](const Vec3& seg) { return std::abs(seg.z()) <= tan_pitch * seg.head<2>().norm(); };
-  auto turn_ok = [&](const std::optional<Vec3>& from, const Vec3& seg) {
-    if (!from) return true;
-    const double n1 = from->norm(), n2 = seg.norm();
-    if (n1 <= 0.0 || n2 <= 0.0) return true;
-    if (from->dot(seg) < cos_turn * n1 * n2) return false;
-    const double h1 = from->head<2>().norm(), h2 = seg.head<2>().norm();
-    if (h1 > 1e-9 * n1 && h2 > 1e-9 * n2 && from->head<2>().dot(seg.head<2>()) < cos_turn * h1 * h2) return false;
-    return true;
-  };
+  const ConeLimits lim(q);
   auto segment_ok = [&](const Vec3& a, const Vec3& b) {
     if (!world.in_bounds(a) || !world.in_bounds(b) || a.z() > q.ceiling_m || b.z() > q.ceiling_m) return false;
-    if (!pitch_ok(b - a)) return false;
+    if (!lim.pitch_ok(b - a)) return false;
     for (const Sphere& s : q.virtual_threats)
       if (point_segment_distance(s.center, a, b) < s.radius_m + q.inflation_m) return false;
     return !world.segment_collides(a, b, q.inflation_m);
   };
   const double step_m = q.step_cells * q.cell_m;
-  const int m = std::max(1, q.directions);
-  const int mp = flat ? 1 : m;
+  // Lattice points reached from a lattice point expand through the cone table (children outside
+  // the lattice dropped); only the start and its children take the general path. Points at
+  // least `reach` cells from every face need no bounds check.
+  const int reach = static_cast<int>(std::ceil(q.step_cells)) + 1;
+  // With a short step no lattice move may keep the climb limit and change level (at 30 deg a
+  // level takes sqrt(3) cells across): then a node on a level from which the goal hop cannot
+  // reach the goal is a dead end, and a search that must climb ends at once.
+  const double goal_hop_m = 1.5 * step_m + q.cell_m;
+  const bool level_locked = !flat && std::abs(q.goal.z() - q.start.z()) > goal_hop_m && !levels_reachable(world, q);
+  auto interior = [&](int i, int j, int k) {
+    return i >= reach && i < lat.n[0] - reach && j >= reach && j < lat.n[1] - reach &&
+           (flat || (k >= reach && k < lat.n[2] - reach));
+  };
+  // One clearance per lattice point replaces the segment checks of all its children when it
+  // exceeds the longest child plus the inflation (every child segment stays inside that ball).
+  // The cones of this search by heading offset (element references in cones_ stay valid).
+  const int side = 2 * reach + 1;
+  std::vector<const Cone*> cone_index(static_cast<std::size_t>(side) * side * side, nullptr);
+  const double clearance_cap_m = (reach + 1) * q.cell_m + q.inflation_m;
+  if (clearance_world_ != &world || clearance_cell_m_ != q.cell_m || clearance_cap_m_ < clearance_cap_m ||
+      clearance_.size() != static_cast<std::size_t>(lat.size())) {
+    clearance_world_ = &world;
+    clearance_cell_m_ = q.cell_m;
+    clearance_cap_m_ = clearance_cap_m;
+    clearance_.assign(static_cast<std::size_t>(lat.size()), std::numeric_limits<float>::quiet_NaN());
+  }
+  const std::int64_t stride_y = lat.n[0], stride_z = static_cast<std::int64_t>(lat.n[0]) * lat.n[1];
 
   buf_.begin(states + 2);
   buf_.at(kStart).g = 0.0;
@@ -182,6 +351,10 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
     const SearchBuffers::Entry e = buf_.pop();
     SearchBuffers::Node& n = buf_.at(e.cell);
     if (SearchBuffers::closed(n) || e.g > n.g) continue;
+    if (e.f > q.max_length_m && q.heuristic_weight == 1.0) {
+      out.message = "no route within the length bound";
+      return out;
+    }
     SearchBuffers::close(n);
     if (e.cell == kGoal) break;
     if (static_cast<std::int64_t>(++out.expanded) > q.max_expansions || ((out.expanded & 255) == 0 && stop.should_stop(out.expanded))) {
@@ -191,16 +364,6 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
     }
     const Vec3 p = position(e.cell);
     const double gn = n.g;
-    std::optional<Vec3> heading;
-    if (e.cell == kStart) {
-      if (q.heading_rad) heading = heading_vector(*q.heading_rad);
-    } else {
-      heading = p - position(n.parent);
-    }
-    // The cone: around the heading, or the whole circle at a start without one.
-    const double yaw0 = heading ? std::atan2(heading->y(), heading->x()) : std::atan2(q.goal.y() - p.y(), q.goal.x() - p.x());
-    const double yaw_span = heading ? q.max_yaw_rad : kPi;
-    const int my = heading ? m : std::max(m, static_cast<int>(std::ceil(2 * kPi / std::max(2 * q.max_yaw_rad / std::max(m - 1, 1), 1e-3))));
     int children = 0;
     auto relax = [&](std::uint32_t id, const Vec3& to) {
       const double ng = gn + (to - p).norm();
@@ -211,34 +374,81 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
       buf_.push(ng + q.heuristic_weight * (q.goal - to).norm(), ng, id);
       ++out.generated;
     };
-    for (int a = 0; a < my; ++a) {
-      const double yaw = yaw0 + (my == 1 ? 0.0 : -yaw_span + 2.0 * yaw_span * a / (heading ? my - 1 : my));
-      for (int b = 0; b < mp; ++b) {
-        const double pitch = mp == 1 ? 0.0 : -q.max_pitch_rad + 2.0 * q.max_pitch_rad * b / (mp - 1);
-        const Vec3 target = p + step_m * Vec3(std::cos(pitch) * std::cos(yaw), std::cos(pitch) * std::sin(yaw), std::sin(pitch));
-        // "Nearest equivalent" (P4 sec. 3.1, fig. 3): the nearest lattice point that stays inside
-        // the cone, i.e. whose segment still meets the turn and climb limits.
-        std::uint32_t cand[8];
-        Vec3 cand_pt[8];
-        const int nc = lat.corners(target, cand, cand_pt);
-        for (int c = 0; c < nc; ++c) {
-          const Vec3& to = cand_pt[c];
-          const Vec3 seg = to - p;
-          if (seg.norm() < 1e-9 || !turn_ok(heading, seg) || !pitch_ok(seg)) continue;
-          if (segment_ok(p, to)) {
-            ++children;
-            relax(state_of(cand[c], seg), to);
-          }
-          break;
+    // Within reach of the goal: try the last segment to the exact goal.
+    auto try_goal = [&](const std::optional<Vec3>& heading) {
+      const Vec3 to_goal = q.goal - p;
+      if (to_goal.norm() <= 1.5 * step_m + q.cell_m && lim.turn_ok(heading, to_goal) && segment_ok(p, q.goal)) {
+        ++children;
+        relax(kGoal, q.goal);
+      }
+    };
+    if (e.cell != kStart && n.parent != kStart) {
+      const std::uint32_t pt = e.cell / kBins, parent_pt = n.parent / kBins;
+      const int i = static_cast<int>(pt % stride_y), j = static_cast<int>((pt / stride_y) % lat.n[1]),
+                k = static_cast<int>(pt / stride_z);
+      if (level_locked && std::abs(q.goal.z() - p.z()) > goal_hop_m) {
+        ++out.dead_zones;
+        continue;
+      }
+      {
+        const bool inside = interior(i, j, k);
+        const int pi = static_cast<int>(parent_pt % stride_y), pj = static_cast<int>((parent_pt / stride_y) % lat.n[1]),
+                  pk = static_cast<int>(parent_pt / stride_z);
+        const int dx = i - pi, dy = j - pj, dz = k - pk;
+        const Cone* cone_ptr = nullptr;
+        if (std::abs(dx) <= reach && std::abs(dy) <= reach && std::abs(dz) <= reach) {
+          const Cone*& slot = cone_index[static_cast<std::size_t>(((dz + reach) * side + dy + reach) * side + dx + reach)];
+          if (!slot) slot = &cone(q, flat, dx, dy, dz);
+          cone_ptr = slot;
+        } else {
+          cone_ptr = &cone(q, flat, dx, dy, dz);
         }
+        const Cone& cn = *cone_ptr;
+        const double max_len_m = cn.max_length_cells * q.cell_m;
+        const float clearance_p = clearance_at(world, pt, p, clearance_cap_m_);
+        const bool all_clear = clearance_p >= max_len_m + q.inflation_m;
+        bool near_virtual = false;
+        for (const Sphere& sp : q.virtual_threats)
+          near_virtual = near_virtual || (sp.center - p).norm() - max_len_m < sp.radius_m + q.inflation_m;
+        for (const ConeChild& c : cn.children) {
+          if (!inside && (i + c.d[0] < 0 || i + c.d[0] >= lat.n[0] || j + c.d[1] < 0 || j + c.d[1] >= lat.n[1] ||
+                          k + c.d[2] < 0 || k + c.d[2] >= lat.n[2]))
+            continue;
+          const Vec3 to = p + q.cell_m * Vec3(c.d[0], c.d[1], c.d[2]);
+          if (to.z() > q.ceiling_m) continue;
+          if (near_virtual && std::any_of(q.virtual_threats.begin(), q.virtual_threats.end(), [&](const Sphere& sp) {
+                return point_segment_distance(sp.center, p, to) < sp.radius_m + q.inflation_m;
+              }))
+            continue;
+          const auto child_pt = static_cast<std::uint32_t>(pt + c.d[0] + c.d[1] * stride_y + c.d[2] * stride_z);
+          // Clear if the two end clearances cover the segment: every point of it is within
+          // (clearance - inflation) of one end. Else the exact check.
+          if (!all_clear &&
+              static_cast<double>(clearance_p) + clearance_at(world, child_pt, to, clearance_cap_m_) - 2 * q.inflation_m <
+                  c.length_cells * q.cell_m &&
+              world.segment_collides(p, to, q.inflation_m))
+            continue;
+          ++children;
+          relax(state_of(child_pt, to - p), to);
+        }
+        try_goal(p - position(n.parent));
+        if (children == 0) ++out.dead_zones;
+        continue;
       }
     }
-    // Within reach of the goal: try the last segment to the exact goal.
-    const Vec3 to_goal = q.goal - p;
-    if (to_goal.norm() <= 1.5 * step_m + q.cell_m && turn_ok(heading, to_goal) && segment_ok(p, q.goal)) {
-      ++children;
-      relax(kGoal, q.goal);
+    std::optional<Vec3> heading;
+    if (e.cell == kStart) {
+      if (q.heading_rad) heading = heading_vector(*q.heading_rad);
+    } else {
+      heading = p - position(n.parent);
     }
+    general_children(lat, q, lim, flat, p, heading, [&](std::uint32_t id, const Vec3& to) {
+      if (segment_ok(p, to)) {
+        ++children;
+        relax(state_of(id, to - p), to);
+      }
+    });
+    try_goal(heading);
     if (children == 0) ++out.dead_zones;  // closed; the next best node is taken (P4 eq. 7)
   }
   SearchBuffers::Node& goal = buf_.at(kGoal);

@@ -13,7 +13,9 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <optional>
+#include <unordered_map>
 #include <vector>
 
 #include "uavplan/planning/params.h"
@@ -65,16 +67,53 @@ struct DirectionalQuery {
   std::vector<Sphere> virtual_threats;
   bool heading_states_fallback = true;  // search again with heading sectors when stuck
   double heuristic_weight = 1.0;
+  // Give up once every open route is longer than this (f = g + h is a lower bound on the
+  // length through a node when heuristic_weight is 1): the rendezvous' multi-step search
+  // need not finish a route that cannot beat its best.
+  double max_length_m = std::numeric_limits<double>::infinity();
 };
 
+// Reusable search state (buffers, cone tables, clearance cache): one per thread; repeated
+// queries on the same world (P4's rendezvous runs many) reuse what they can.
 class DirectionalSearch {
  public:
   DirectionalRoute run(const World& world, const DirectionalQuery& q, const StopCondition& stop);
 
+  // The children of a lattice point reached along the lattice offset `heading` (in cells),
+  // independent of where the point is: one per cone direction, snapped to the nearest
+  // lattice point that keeps the turn and climb limits, duplicates merged.
+  struct ConeChild {
+    std::int16_t d[3];
+    float length_cells;
+  };
+  struct Cone {
+    std::vector<ConeChild> children;
+    float max_length_cells = 0.0f;
+  };
+
  private:
   DirectionalRoute run_with_bins(const World& world, const DirectionalQuery& q, const StopCondition& stop,
                                  std::uint32_t heading_bins);
+  const Cone& cone(const DirectionalQuery& q, bool flat, int dx, int dy, int dz);
+  // Whether the search can ever change level: some move from the start, its children, or a cone
+  // they lead to climbs or descends.
+  bool levels_reachable(const World& world, const DirectionalQuery& q);
+  float clearance_at(const World& world, std::uint32_t point, const Vec3& p, double cap_m);
+
   SearchBuffers buf_;
+  // Cones by heading offset, for one (step, directions, limits, flatness).
+  struct ConeKey {
+    double step_cells = -1.0, max_yaw_rad = -1.0, max_pitch_rad = -1.0;
+    int directions = -1;
+    bool flat = false;
+    bool operator==(const ConeKey&) const = default;
+  } cone_key_;
+  std::unordered_map<std::uint32_t, Cone> cones_;
+  // Clearance of lattice points (capped at clearance_cap_m_), for one world and lattice; NaN
+  // where not yet computed.
+  const World* clearance_world_ = nullptr;
+  double clearance_cell_m_ = 0.0, clearance_cap_m_ = 0.0;
+  std::vector<float> clearance_;
 };
 
 class DirectionalAStarPlanner final : public Planner {

@@ -82,6 +82,38 @@ TEST(DirectionalAStar, NearestEquivalentStaysInsideTheCone) {
   expect_feasible(planner.plan(p, w, {}), p, w);
 }
 
+// P4's world shape with 1 km cells: a short step cannot climb at 30 deg (a level takes sqrt(3)
+// cells across), so a search that must climb 20 levels ends after the start's neighbourhood
+// instead of exhausting its level; a long enough step climbs. The length bound stops a search
+// whose routes cannot be short enough, and leaves one alone that can.
+TEST(DirectionalAStar, ShortStepsThatCannotClimbAndTheLengthBoundEndEarly) {
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(65000, 65000, 30000)};
+  ws.obstacles.push_back(Cylinder{Vec2(20000, 15000), 4000, 0, 30000});
+  const World w(std::move(ws));
+  const Problem p = problem(Vec3(3000, 4000, 5000), Vec3(37000, 28000, 25000), deg_to_rad(90));
+  const DirectionalAStarPlanner planner(DirectionalAStarOptions::from_params({{"cell_m", "1000"}}));
+  DirectionalQuery q = planner.query_for(p, w);
+  q.heading_states_fallback = false;
+  DirectionalSearch search;
+  q.step_cells = 1.2;
+  const DirectionalRoute flat = search.run(w, q, {});
+  EXPECT_FALSE(flat.found);
+  EXPECT_LT(flat.expanded, 200u);  // the level holds 66 x 66 points
+  q.step_cells = 2.5;
+  const DirectionalRoute climbs = search.run(w, q, {});
+  ASSERT_TRUE(climbs.found);
+  EXPECT_GT(climbs.length_m, (p.goal - p.uav.start).norm());
+  q.max_length_m = climbs.length_m + 1.0;
+  const DirectionalRoute bounded = search.run(w, q, {});
+  ASSERT_TRUE(bounded.found);
+  EXPECT_DOUBLE_EQ(bounded.length_m, climbs.length_m);
+  q.max_length_m = climbs.length_m - 1.0;
+  const DirectionalRoute cut = search.run(w, q, {});
+  EXPECT_FALSE(cut.found);
+  EXPECT_LT(cut.expanded, climbs.expanded);
+}
+
 TEST(DirectionalAStar, ParametersAreChecked) {
   EXPECT_THROW(DirectionalAStarOptions::from_params({{"directions", "0"}}), std::invalid_argument);
   EXPECT_THROW(DirectionalAStarOptions::from_params({{"step", "2"}}), std::invalid_argument);
