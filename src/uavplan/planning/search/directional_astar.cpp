@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <unordered_set>
 
 #include "uavplan/core/geometry.h"
 #include "uavplan/planning/segment_rule.h"
@@ -160,29 +161,27 @@ bool DirectionalSearch::levels_reachable(const World& world, const DirectionalQu
   const ConeLimits lim(q);
   // Headings of the start's grandchildren (collisions ignored: a superset), then every heading
   // the cone tables lead to from them.
-  std::vector<std::uint32_t> todo;
-  std::unordered_map<std::uint32_t, bool> seen;
+  std::vector<std::uint32_t> frontier;  // headings (packed offsets) whose cones are not yet read
+  std::unordered_set<std::uint32_t> seen;
   bool change = false;
+  auto visit = [&](int dx, int dy, int dz) {
+    change = change || dz != 0;
+    const std::uint32_t k = pack_offset(dx, dy, dz);
+    if (seen.insert(k).second) frontier.push_back(k);
+  };
   const std::optional<Vec3> h0 = q.heading_rad ? std::optional<Vec3>(heading_vector(*q.heading_rad)) : std::nullopt;
   general_children(lat, q, lim, flat, q.start, h0, [&](std::uint32_t, const Vec3& c) {
     if (change) return;
     general_children(lat, q, lim, flat, c, c - q.start, [&](std::uint32_t, const Vec3& g) {
       const Vec3 d = (g - c) / q.cell_m;
-      change = change || std::lround(d.z()) != 0;
-      const std::uint32_t k = pack_offset(static_cast<int>(std::lround(d.x())), static_cast<int>(std::lround(d.y())),
-                                          static_cast<int>(std::lround(d.z())));
-      if (seen.emplace(k, true).second) todo.push_back(k);
+      visit(static_cast<int>(std::lround(d.x())), static_cast<int>(std::lround(d.y())), static_cast<int>(std::lround(d.z())));
     });
   });
-  while (!todo.empty() && !change) {
-    const std::uint32_t k = todo.back();
-    todo.pop_back();
+  while (!frontier.empty() && !change) {
+    const std::uint32_t k = frontier.back();
+    frontier.pop_back();
     const int dx = static_cast<int>(k >> 20) - 512, dy = static_cast<int>((k >> 10) & 1023) - 512, dz = static_cast<int>(k & 1023) - 512;
-    change = change || dz != 0;
-    for (const ConeChild& c : cone(q, flat, dx, dy, dz).children) {
-      const std::uint32_t ck = pack_offset(c.d[0], c.d[1], c.d[2]);
-      if (seen.emplace(ck, true).second) todo.push_back(ck);
-    }
+    for (const ConeChild& c : cone(q, flat, dx, dy, dz).children) visit(c.d[0], c.d[1], c.d[2]);
   }
   return change;
 }
