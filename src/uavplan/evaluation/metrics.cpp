@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "uavplan/core/units.h"
 
@@ -90,11 +91,31 @@ void compute_metrics(const Scenario& sc, Plan& plan) {
     t_max = std::max(t_max, up.trajectory.back().t_s);
     l_min = std::min(l_min, m.length_m);
     l_max = std::max(l_max, m.length_m);
-    for (const UavPlan* other : flown) min_sep = std::min(min_sep, closest_approach(up.trajectory, other->trajectory).distance_m);
     flown.push_back(&up);
   }
   plan.metrics.clear();
   if (flown.empty()) return;
+  {
+    // Smallest separation: pairs in the order of their lower bounds, until a bound clears the
+    // smallest distance found.
+    std::vector<const Trajectory*> trs;
+    for (const UavPlan* up : flown) trs.push_back(&up->trajectory);
+    const SweptBoxes boxes(trs);
+    struct Pair {
+      double bound_m;
+      std::uint32_t i, j;
+    };
+    std::vector<Pair> pairs;
+    for (std::uint32_t i = 0; i < trs.size(); ++i)
+      for (std::uint32_t j = i + 1; j < trs.size(); ++j) pairs.push_back({boxes.lower_bound_m(i, j), i, j});
+    std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
+      return a.bound_m < b.bound_m || (a.bound_m == b.bound_m && (a.i < b.i || (a.i == b.i && a.j < b.j)));
+    });
+    for (const Pair& pr : pairs) {
+      if (pr.bound_m >= min_sep) break;
+      min_sep = std::min(min_sep, closest_approach(*trs[pr.i], *trs[pr.j]).distance_m);
+    }
+  }
   plan.metrics["total_length_m"] = total;
   plan.metrics["p3_group_score"] = p3_total;
   plan.metrics["arrival_spread_s"] = t_max - t_min;

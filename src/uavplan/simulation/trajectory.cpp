@@ -40,33 +40,108 @@ Vec3 position_at(const Trajectory& tr, double t) {
   return a.p + (t - a.t_s) / span * (b.p - a.p);
 }
 
+namespace {
+
+// position_at for non-decreasing times, walking forward instead of searching.
+class Cursor {
+ public:
+  explicit Cursor(const Trajectory& tr) : tr_(&tr) {}
+  Vec3 at(double t) {
+    const Trajectory& tr = *tr_;
+    if (t <= tr.front().t_s) return tr.front().p;
+    if (t >= tr.back().t_s) return tr.back().p;
+    while (tr[next_].t_s <= t) ++next_;  // the first sample after t, as position_at's upper_bound
+    const TrajectorySample& b = tr[next_];
+    const TrajectorySample& a = tr[next_ - 1];
+    const double span = b.t_s - a.t_s;
+    if (span <= 0.0) return b.p;
+    return a.p + (t - a.t_s) / span * (b.p - a.p);
+  }
+
+ private:
+  const Trajectory* tr_;
+  std::size_t next_ = 1;
+};
+
+}  // namespace
+
 Encounter closest_approach(const Trajectory& a, const Trajectory& b, double t_max_s) {
   Encounter e;
   if (a.empty() || b.empty()) return e;
-  std::vector<double> times;
-  times.reserve(a.size() + b.size());
-  for (const auto& s : a) times.push_back(s.t_s);
-  for (const auto& s : b) times.push_back(s.t_s);
-  std::sort(times.begin(), times.end());
-  times.erase(std::unique(times.begin(), times.end()), times.end());
-  if (t_max_s < times.back()) {
-    times.erase(std::upper_bound(times.begin(), times.end(), t_max_s), times.end());
-    times.push_back(t_max_s);
-  }
-  auto consider = [&](double t0, double t1) {
-    const Vec3 pa0 = position_at(a, t0), pa1 = position_at(a, t1);
-    const Vec3 d0 = pa0 - position_at(b, t0), d1 = pa1 - position_at(b, t1);
+  Cursor ca(a), cb(b);
+  auto consider = [&](double t0, const Vec3& pa0, const Vec3& pb0, double t1, const Vec3& pa1, const Vec3& pb1) {
     double u = 0.0;
-    const double dist = point_segment_distance(Vec3::Zero(), d0, d1, &u);
+    const double dist = point_segment_distance(Vec3::Zero(), pa0 - pb0, pa1 - pb1, &u);
     if (dist < e.distance_m) {
       e.distance_m = dist;
       e.t_s = t0 + u * (t1 - t0);
       e.where = pa0 + u * (pa1 - pa0);
     }
   };
-  consider(times.front(), times.front());
-  for (std::size_t i = 1; i < times.size(); ++i) consider(times[i - 1], times[i]);
+  // The merged sample times in order (each once), cut at t_max_s.
+  std::size_t i = 0, j = 0;
+  bool first = true, cut = false;
+  double t_prev = 0.0;
+  Vec3 pa_prev, pb_prev;
+  while (!cut && (i < a.size() || j < b.size())) {
+    double t = i == a.size() ? b[j].t_s : j == b.size() ? a[i].t_s : std::min(a[i].t_s, b[j].t_s);
+    while (i < a.size() && a[i].t_s == t) ++i;
+    while (j < b.size() && b[j].t_s == t) ++j;
+    if (t > t_max_s) {
+      if (first) break;
+      t = t_max_s;
+      cut = true;
+    }
+    const Vec3 pa = ca.at(t), pb = cb.at(t);
+    if (first) consider(t, pa, pb, t, pa, pb);
+    else consider(t_prev, pa_prev, pb_prev, t, pa, pb);
+    first = false;
+    t_prev = t;
+    pa_prev = pa;
+    pb_prev = pb;
+  }
+  if (first) {  // every sample after t_max_s: where both are at t_max_s
+    const Vec3 pa = ca.at(t_max_s), pb = cb.at(t_max_s);
+    consider(t_max_s, pa, pb, t_max_s, pa, pb);
+  }
   return e;
+}
+
+SweptBoxes::SweptBoxes(std::span<const Trajectory* const> trs, int slices) : slices_(std::max(1, slices)) {
+  double t0 = World::kInf, t1 = -World::kInf;
+  for (const Trajectory* tr : trs)
+    if (!tr->empty()) t0 = std::min(t0, tr->front().t_s), t1 = std::max(t1, tr->back().t_s);
+  const double w = t1 > t0 ? (t1 - t0) / slices_ : 1.0;
+  boxes_.resize(trs.size() * static_cast<std::size_t>(slices_));
+  for (std::size_t n = 0; n < trs.size(); ++n) {
+    const Trajectory& tr = *trs[n];
+    if (tr.empty()) continue;
+    Aabb* box = &boxes_[n * static_cast<std::size_t>(slices_)];
+    Cursor c(tr);
+    std::size_t k = 0;
+    for (int s = 0; s < slices_; ++s) {
+      // Slice s: its two ends and every sample between them (held positions outside the samples).
+      const double a = t0 + s * w, b = s + 1 == slices_ ? t1 : t0 + (s + 1) * w;
+      box[s].extend(c.at(a));
+      while (k < tr.size() && tr[k].t_s <= b) {
+        if (tr[k].t_s >= a) box[s].extend(tr[k].p);
+        ++k;
+      }
+      box[s].extend(c.at(b));
+    }
+  }
+}
+
+double SweptBoxes::lower_bound_m(std::size_t i, std::size_t j) const {
+  const Aabb* a = &boxes_[i * static_cast<std::size_t>(slices_)];
+  const Aabb* b = &boxes_[j * static_cast<std::size_t>(slices_)];
+  double best = World::kInf;
+  for (int s = 0; s < slices_; ++s) {
+    if (a[s].empty() || b[s].empty()) continue;
+    const Vec3 gap = (a[s].min - b[s].max).cwiseMax(b[s].min - a[s].max).cwiseMax(Vec3::Zero());
+    best = std::min(best, gap.squaredNorm());
+  }
+  return std::sqrt(best);
 }
 
 Encounter closest_moving_approach(const World& world, const Trajectory& tr, int* index_out) {

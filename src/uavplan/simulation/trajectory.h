@@ -35,6 +35,20 @@ struct Encounter {
 Encounter closest_approach(const Trajectory& a, const Trajectory& b,
                            double t_max_s = std::numeric_limits<double>::infinity());
 
+// Lower bounds on closest_approach for many pairs at once: the common time span cut into
+// slices, each trajectory's bounding box per slice; two trajectories are never nearer than
+// their nearest pair of boxes of one slice. Pair checks over a group skip the pairs whose bound
+// already clears the distance in question.
+class SweptBoxes {
+ public:
+  explicit SweptBoxes(std::span<const Trajectory* const> trajectories, int slices = 64);
+  double lower_bound_m(std::size_t i, std::size_t j) const;
+
+ private:
+  int slices_ = 0;
+  std::vector<Aabb> boxes_;  // trajectory-major, `slices_` each
+};
+
 // Exact smallest gap between the trajectory and the surface of any moving obstacle;
 // `index_out` names the obstacle.
 Encounter closest_moving_approach(const World& world, const Trajectory& tr, int* index_out = nullptr);

@@ -44,6 +44,52 @@ TEST(Trajectory, ClosestApproachAgainstSampling) {
   }
 }
 
+TEST(Trajectory, ClosestApproachUpToAHorizonAndOnSharedTimes) {
+  Rng r(8);
+  for (int k = 0; k < 50; ++k) {
+    std::vector<Vec3> a{{r.uniform(0, 20), r.uniform(0, 20), 0}}, b{{r.uniform(0, 20), r.uniform(0, 20), 0}};
+    for (int i = 0; i < 3; ++i) {
+      a.emplace_back(r.uniform(0, 20), r.uniform(0, 20), 0);
+      b.emplace_back(r.uniform(0, 20), r.uniform(0, 20), 0);
+    }
+    // Equal speeds and sampling: many sample times coincide.
+    const Trajectory ta = time_route(a, 2.0, 0.0, 0.5), tb = time_route(b, k % 2 ? 2.0 : 3.0, 0.0, 0.5);
+    const double horizon = r.uniform(-1.0, 1.2 * ta.back().t_s);
+    const Encounter e = closest_approach(ta, tb, horizon);
+    double sampled = 1e300;
+    for (double t = std::min(0.0, horizon); t <= horizon; t += 0.001)
+      sampled = std::min(sampled, (position_at(ta, t) - position_at(tb, t)).norm());
+    sampled = std::min(sampled, (position_at(ta, horizon) - position_at(tb, horizon)).norm());
+    ASSERT_LE(e.distance_m, sampled + 1e-9);
+    ASSERT_NEAR(e.distance_m, sampled, 0.01);
+    ASSERT_LE(e.t_s, std::max(horizon, 0.0) + 1e-12);
+  }
+  // A single sample each: where they stand.
+  const Trajectory one{{0.0, Vec3(0, 0, 0)}}, other{{0.0, Vec3(3, 4, 0)}};
+  EXPECT_DOUBLE_EQ(closest_approach(one, other).distance_m, 5.0);
+}
+
+TEST(Trajectory, SweptBoxesNeverOverstateTheClosestApproach) {
+  Rng r(9);
+  std::vector<Trajectory> trs;
+  for (int k = 0; k < 30; ++k) {
+    std::vector<Vec3> pts;
+    for (int i = 0; i < 4; ++i) pts.emplace_back(r.uniform(0, 200), r.uniform(0, 200), r.uniform(0, 20));
+    trs.push_back(time_route(pts, r.uniform(2, 8), r.uniform(0, 20), 1.0));
+  }
+  std::vector<const Trajectory*> ptrs;
+  for (const auto& t : trs) ptrs.push_back(&t);
+  const SweptBoxes boxes(ptrs, 16);
+  int pruned = 0;
+  for (std::size_t i = 0; i < trs.size(); ++i)
+    for (std::size_t j = i + 1; j < trs.size(); ++j) {
+      const double exact = closest_approach(trs[i], trs[j]).distance_m;
+      ASSERT_LE(boxes.lower_bound_m(i, j), exact + 1e-12);
+      pruned += boxes.lower_bound_m(i, j) > 5.0;
+    }
+  EXPECT_GT(pruned, 100) << "the bound is useful: most far pairs are cleared";
+}
+
 TEST(Trajectory, MovingObstacleAfterArrivalCounts) {
   WorldSpec ws;
   ws.bounds = Aabb{Vec3(-100, -100, 0), Vec3(100, 100, 20)};
