@@ -1,5 +1,6 @@
 #include "p3_runner.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -18,34 +19,39 @@ using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 // n UAVs in a square block at the lower left, goals in the same block shape at the upper right,
-// random spheres in between. Spacing 1.5 m (so that a UAV can still pass between two that have
-// arrived), separation 0.5 m, radius 0.1 m.
+// random spheres in between and among the goals (none within the separation of a goal). Spacing
+// 1.5 m (so that a UAV can still pass between two that have arrived), separation 0.5 m, radius
+// 0.1 m.
 Scenario random_group(int n, std::uint64_t seed) {
   const int side_n = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
-  const double spacing = 1.5, side = spacing * side_n;
+  const double spacing = 1.5, side = spacing * side_n, separation = 0.5, radius = 0.1;
   const double span = 3.0 * side + 10.0;
-  Rng rng(seed);
-  WorldSpec ws;
-  ws.bounds = Aabb{Vec3(-2, -2, 0), Vec3(span + side + 2, span + side + 2, 0)};
-  const int obstacles = 2 * side * side / 3 + 5;
-  for (int k = 0; k < obstacles; ++k)
-    ws.obstacles.push_back(Sphere{Vec3(rng.uniform(side + 2.0, span - 2.0), rng.uniform(side + 2.0, span - 2.0), 0.0),
-                                  rng.uniform(0.1, 0.4)});
   Scenario sc;
   sc.name = "random_group_" + std::to_string(n);
-  sc.world = World(std::move(ws));
   for (int i = 0; i < n; ++i) {
     UavSpec u;
     u.id = "u" + std::to_string(i + 1);
     const double dx = spacing * (i % side_n), dy = spacing * (i / side_n);
     u.start = Vec3(dx, dy, 0);
     u.goal = Vec3(span + dx - side, span + dy - side, 0);
-    u.radius_m = 0.1;
+    u.radius_m = radius;
     u.speed = {0, 1, 1};
     sc.uavs.push_back(u);
   }
+  Rng rng(seed);
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(-2, -2, 0), Vec3(span + side + 2, span + side + 2, 0)};
+  const int obstacles = 2 * side * side / 3 + 5;
+  while (static_cast<int>(ws.obstacles.size()) < obstacles) {
+    const Vec3 c(rng.uniform(side + 2.0, span - 2.0), rng.uniform(side + 2.0, span - 2.0), 0.0);
+    const double r = rng.uniform(0.1, 0.4);
+    const bool on_a_goal = std::any_of(sc.uavs.begin(), sc.uavs.end(),
+                                       [&](const UavSpec& u) { return (*u.goal - c).norm() < r + radius + separation; });
+    if (!on_a_goal) ws.obstacles.push_back(Sphere{c, r});
+  }
+  sc.world = World(std::move(ws));
   sc.mission.type = MissionType::group;
-  sc.mission.separation_m = 0.5;
+  sc.mission.separation_m = separation;
   sc.planner.algorithm = "apf";
   return sc;
 }

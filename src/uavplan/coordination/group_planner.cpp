@@ -1,11 +1,16 @@
 #include "uavplan/coordination/group_planner.h"
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <cmath>
 #include <memory>
+#include <span>
 
 #include "uavplan/core/geometry.h"
 #include "uavplan/core/units.h"
+#include "uavplan/planning/field/field_guide.h"
+#include "uavplan/planning/segment_rule.h"
 
 namespace uavplan {
 
@@ -19,6 +24,105 @@ namespace {
 
 // Position at frame k (held at the last one afterwards).
 const Vec3& at(const std::vector<Vec3>& f, std::size_t k) { return f[std::min(k, f.size() - 1)]; }
+
+// Why UAV i cannot fly at all, else empty: its start or goal too near an obstacle (or above
+// the ceiling), or its goal or start closer than the separation to an earlier UAV's.
+std::string infeasible(const Scenario& sc, std::size_t i) {
+  const UavSpec& u = sc.uavs[i];
+  const SegmentRule rule(sc.world, u);
+  if (!rule.point_ok(u.start)) return "start is closer to an obstacle than the UAV radius, or above the ceiling";
+  if (!rule.point_ok(*u.goal)) return "goal is closer to an obstacle than the UAV radius, or above the ceiling";
+  for (std::size_t j = 0; j < i; ++j) {
+    const UavSpec& v = sc.uavs[j];
+    const double need = std::max(sc.mission.separation_m, u.radius_m + v.radius_m);
+    if (v.goal && (*v.goal - *u.goal).norm() < need) return "goal is closer than the separation to " + v.id + "'s goal";
+    if ((v.start - u.start).norm() < need) return "start is closer than the separation to " + v.id + "'s start";
+  }
+  return {};
+}
+
+// Points bucketed by a grid of `cell` metres (sorted by cell): near(p) visits every point in
+// the cells around p's, so every point within `cell` of p among others.
+class CellIndex {
+ public:
+  void build(std::span<const Vec3> points, double cell) {
+    cell_ = cell;
+    entries_.resize(points.size());
+    std::int64_t k_min = 0, k_max = 0;
+    for (std::size_t u = 0; u < points.size(); ++u) {
+      const Coords c = coords(points[u]);
+      entries_[u] = {key(c[0], c[1], c[2]), static_cast<std::uint32_t>(u)};
+      k_min = u == 0 ? c[2] : std::min(k_min, c[2]);
+      k_max = u == 0 ? c[2] : std::max(k_max, c[2]);
+    }
+    flat_ = k_min == k_max;
+    std::sort(entries_.begin(), entries_.end());
+  }
+  // f(index) for the points in the 27 cells around p's (9 when all points share one layer).
+  template <class F>
+  void near(const Vec3& p, F&& f) const {
+    const Coords c = coords(p);
+    for (int dk = flat_ ? 0 : -1; dk <= (flat_ ? 0 : 1); ++dk)
+      for (int dj = -1; dj <= 1; ++dj) {
+        // The three cells of a row are consecutive keys: one search.
+        const std::int64_t first = key(c[0] - 1, c[1] + dj, c[2] + dk);
+        for (auto it = std::lower_bound(entries_.begin(), entries_.end(), Entry{first, 0});
+             it != entries_.end() && it->key <= first + 2; ++it)
+          f(it->index);
+      }
+  }
+
+ private:
+  using Coords = std::array<std::int64_t, 3>;
+  struct Entry {
+    std::int64_t key;
+    std::uint32_t index;
+    bool operator<(const Entry& o) const { return key < o.key || (key == o.key && index < o.index); }
+  };
+  Coords coords(const Vec3& p) const {
+    Coords c;
+    for (int a = 0; a < 3; ++a) c[a] = static_cast<std::int64_t>(std::floor(p[a] / cell_)) + (1 << 20);
+    return c;
+  }
+  static std::int64_t key(std::int64_t i, std::int64_t j, std::int64_t k) { return (k << 42) + (j << 21) + i; }
+
+  double cell_ = 1.0;
+  bool flat_ = true;
+  std::vector<Entry> entries_;
+};
+
+// Per UAV and frame of its own path, the others within `reach` of it at that frame (positions
+// held after a path's end).
+class FrameNeighbours {
+ public:
+  FrameNeighbours(const std::vector<std::vector<Vec3>>& paths, double reach) : peers_(paths.size()), first_(paths.size()) {
+    const std::size_t n = paths.size();
+    std::size_t frames = 0;
+    for (const auto& p : paths) frames = std::max(frames, p.size());
+    std::vector<Vec3> pos(n);
+    CellIndex index;
+    for (std::size_t f = 0; f < frames; ++f) {
+      for (std::size_t u = 0; u < n; ++u) pos[u] = at(paths[u], f);
+      index.build(pos, reach);
+      for (std::size_t u = 0; u < n; ++u) {
+        if (f >= paths[u].size()) continue;
+        first_[u].push_back(static_cast<std::uint32_t>(peers_[u].size()));
+        index.near(pos[u], [&](std::uint32_t v) {
+          if (v != u && (pos[u] - pos[v]).norm() < reach) peers_[u].push_back(v);
+        });
+      }
+    }
+    for (std::size_t u = 0; u < n; ++u) first_[u].push_back(static_cast<std::uint32_t>(peers_[u].size()));
+  }
+
+  std::span<const std::uint32_t> at_frame(std::size_t u, std::size_t f) const {
+    return {peers_[u].data() + first_[u][f], peers_[u].data() + first_[u][f + 1]};
+  }
+
+ private:
+  std::vector<std::vector<std::uint32_t>> peers_;
+  std::vector<std::vector<std::uint32_t>> first_;  // per frame, where its peers begin
+};
 
 }  // namespace
 
@@ -46,48 +150,84 @@ GroupResult plan_group(const Scenario& sc, const ApfOptions& options, const Stop
   }
   std::vector<Vec3> cur(n), prev(n);
   std::vector<char> done(n, 0);
-  std::vector<StallWatch> watch(n);
+  std::vector<FieldFlight> flights;
   double longest = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     GroupUav g;
     g.id = sc.uavs[i].id;
     cur[i] = sc.uavs[i].start;
     g.raw.push_back(cur[i]);
+    const Vec3 goal = sc.uavs[i].goal.value_or(cur[i]);
+    flights.emplace_back(*fields[i], cur[i], goal, -1);  // stalls in a crowd pass: the frame budget bounds them
     if (!sc.uavs[i].goal) {
       g.message = "no goal given";
       done[i] = 1;
+    } else if (const std::string why = infeasible(sc, i); !why.empty()) {
+      g.message = why;
+      done[i] = 1;
+    } else if (goal == cur[i]) {
+      g.reached = true;
+      done[i] = 1;
     } else {
-      longest = std::max(longest, (*sc.uavs[i].goal - cur[i]).norm());
+      longest = std::max(longest, (goal - cur[i]).norm());
     }
     res.uavs.push_back(std::move(g));
   }
+  // Escape routes (FieldGuide): one grid per distinct body, built at the first stall; UAVs
+  // that are done (arrived or failed) never move again, so they are the routes' keep-outs.
+  std::vector<std::pair<std::size_t, std::unique_ptr<FieldGuide>>> guides;
+  auto guide_for = [&](std::size_t i) -> FieldGuide& {
+    const UavSpec& u = sc.uavs[i];
+    for (auto& [j, g] : guides) {
+      const UavSpec& v = sc.uavs[j];
+      if (v.radius_m == u.radius_m && v.max_climb_rad == u.max_climb_rad && v.ceiling_m == u.ceiling_m) return *g;
+    }
+    guides.emplace_back(i, std::make_unique<FieldGuide>(sc.world, u, step));
+    return *guides.back().second;
+  };
+  std::vector<KeepOut> keep_out;
   const int max_frames = options.max_frames > 0 ? options.max_frames : static_cast<int>(4.0 * longest / step) + 500;
-  const int escape_frames = static_cast<int>(2.0 * longest / step) + 50;
   std::vector<PeerMotion> peers;
+  // Peers near enough to matter: within reach + step (each UAV's own reach, below); the index
+  // holds the frame's starting positions and a UAV moves at most a step within the frame.
+  double max_radius = 0.0, max_reach = 0.0;
+  for (const UavSpec& u : sc.uavs) max_radius = std::max(max_radius, u.radius_m);
+  for (const ApfOptions& o : resolved) max_reach = std::max(max_reach, o.r_rep_m + base.separation_m + 2 * step + 2 * max_radius);
+  CellIndex index;
+  // The keep-outs' version for the escape routes: they change when a UAV is done.
+  std::uint64_t done_count = static_cast<std::uint64_t>(std::count(done.begin(), done.end(), 1));
   int frame = 0;
   for (; frame < max_frames && std::count(done.begin(), done.end(), 0) > 0 && !stop.should_stop(frame); ++frame) {
     prev = cur;
+    index.build(prev, max_reach + 3 * step);
     for (std::size_t i = 0; i < n; ++i) {
       if (done[i]) continue;
       const UavSpec& u = sc.uavs[i];
-      const Vec3& goal = *u.goal;
-      // Peers near enough to matter: earlier UAVs with this frame's motion, later ones where they are.
-      const double reach = resolved[i].r_rep_m + base.separation_m + 2 * step + 2 * u.radius_m;
+      // Earlier UAVs with this frame's motion, later ones where they are.
+      const double reach = resolved[i].r_rep_m + base.separation_m + 2 * step + u.radius_m + max_radius;
       peers.clear();
-      for (std::size_t j = 0; j < n; ++j) {
-        if (j == i || (cur[j] - cur[i]).norm() > reach + step) continue;
+      index.near(cur[i], [&](std::uint32_t j) {
+        if (j == i || (cur[j] - cur[i]).norm() > reach + step) return;
         peers.push_back({j < i ? prev[j] : cur[j], cur[j], sc.uavs[j].radius_m});
-      }
-      const bool escape = watch[i].update((cur[i] - goal).norm(), step, escape_frames);
-      if (watch[i].stalled()) {
-        res.uavs[i].message = "stalled in a local minimum at frame " + std::to_string(frame);
+      });
+      const FieldFlight::Guide guide = [&](const Vec3& from, const Vec3& to) {
+        keep_out.clear();
+        for (std::size_t j = 0; j < n; ++j)
+          if (j != i && done[j])
+            keep_out.push_back({cur[j], std::max(base.separation_m, u.radius_m + sc.uavs[j].radius_m) + kPlanningMargin_m});
+        return guide_for(i).route(from, to, keep_out);
+      };
+      cur[i] = flights[i].advance(peers, guide, done_count);
+      if (flights[i].failed()) {
+        res.uavs[i].message = flights[i].message() + " at frame " + std::to_string(frame);
         done[i] = 1;
+        ++done_count;
         continue;
       }
-      cur[i] = fields[i]->step(cur[i], goal, peers, escape ? watch[i].side() : 0);
       res.uavs[i].raw.push_back(cur[i]);
-      if (cur[i] == goal) {
+      if (flights[i].arrived()) {
         done[i] = 1;
+        ++done_count;
         res.uavs[i].reached = true;
       }
     }
@@ -97,20 +237,32 @@ GroupResult plan_group(const Scenario& sc, const ApfOptions& options, const Stop
     if (!res.uavs[i].reached && res.uavs[i].message.empty())
       res.uavs[i].message = "goal not reached within " + std::to_string(max_frames) + " frames";
 
-  // Smoothing, UAV by UAV, against everyone's current paths.
+  // Smoothing, UAV by UAV, against the current paths of the peers that can matter: a smoothed
+  // point stays within kDrift_steps steps of its raw place, so two UAVs that never come within
+  // `reach` of each other at equal frames cannot conflict after smoothing (near_pairs).
   for (std::size_t i = 0; i < n; ++i) res.uavs[i].smoothed = res.uavs[i].raw;
   if (!options.smooth) return res;
+  double need_max = base.separation_m;
+  for (const UavSpec& u : sc.uavs) need_max = std::max(need_max, 2.0 * u.radius_m);
+  const double drift_m = kDrift_steps * step;
+  // Endpoints move by at most 2 drifts relative to each other, a frame's relative motion is at
+  // most 2 (step + 2 drift) long and its middle lies within half that of an endpoint; a move at
+  // frame k is checked over frames k - 1 to k + 1, and raw steps are at most one step long.
+  const double reach = need_max + kPlanningMargin_m + step + 4.0 * drift_m + 2.0 * step;
+  std::vector<std::vector<Vec3>> raw(n);
+  for (std::size_t i = 0; i < n; ++i) raw[i] = res.uavs[i].raw;
+  const FrameNeighbours near(raw, reach);
   for (std::size_t i = 0; i < n; ++i) {
     GroupUav& g = res.uavs[i];
     if (!g.reached) continue;
     auto& pts = g.smoothed;
     auto accept = [&](std::size_t k, const Vec3& c) {
-      if (!fields[i]->step_safe(pts[k - 1], c, {}) || !fields[i]->step_safe(c, pts[k + 1], {})) {
+      if ((c - raw[i][k]).norm() > drift_m || !fields[i]->step_safe(pts[k - 1], c, {}) ||
+          !fields[i]->step_safe(c, pts[k + 1], {})) {
         ++g.kept_points;
         return false;
       }
-      for (std::size_t j = 0; j < n; ++j) {
-        if (j == i) continue;
+      for (const std::uint32_t j : near.at_frame(i, k)) {
         const auto& q = res.uavs[j].smoothed;
         const double need = std::max(base.separation_m, sc.uavs[i].radius_m + sc.uavs[j].radius_m) + 1e-3;
         if (point_segment_distance(Vec3::Zero(), pts[k - 1] - at(q, k - 1), c - at(q, k)) < need ||

@@ -4,8 +4,9 @@
 // the frame). Our addition: UAVs not yet moved in frame T are obstacles at their frame T-1
 // positions, so the earlier ones cannot step onto them. A UAV at its goal is skipped and stays
 // there as an obstacle. Afterwards every path gets P3's triple smoothing; a smoothed point that
-// would touch an obstacle or come closer to another UAV than the separation at equal times
-// keeps its original place.
+// would touch an obstacle, come closer to another UAV than the separation at equal times, or
+// drift more than kDrift_steps steps from its raw place keeps its original place (the drift
+// bound lets the conflict check skip UAVs that are never near).
 #pragma once
 
 #include <string>
@@ -34,6 +35,8 @@ struct GroupResult {
   int frames = 0;
   std::vector<GroupUav> uavs;
 };
+
+inline constexpr double kDrift_steps = 1.0;
 
 // options.separation_m is taken from the scenario's mission.
 GroupResult plan_group(const Scenario& scenario, const ApfOptions& options, const StopCondition& stop);

@@ -1,6 +1,10 @@
 // P3's group through the mission planner, verified, and scored before and after smoothing.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
+#include "uavplan/core/rng.h"
+
 #include "uavplan/coordination/group_planner.h"
 #include "uavplan/coordination/mission_planner.h"
 #include "uavplan/evaluation/metrics.h"
@@ -61,6 +65,89 @@ TEST(Group, TraditionalBaselineAlsoPlansButWithoutSmoothing) {
   sc.planner.algorithm = "apf_traditional";
   const GroupResult g = plan_group(sc, ApfOptions::from_params({}, false), {});
   for (const auto& u : g.uavs) EXPECT_EQ(u.raw, u.smoothed);
+}
+
+// n UAVs block to block (spacing 1.5 m) through random spheres that also stand among the goals:
+// the goals in the middle of the block are walled in by UAVs that arrived first unless the
+// late ones thread the gaps, and the field's local minima need the escape routes.
+Scenario crowded(int n, std::uint64_t seed) {
+  const int side_n = static_cast<int>(std::ceil(std::sqrt(n)));
+  const double spacing = 1.5, side = spacing * side_n, span = 3 * side + 10;
+  Scenario sc;
+  sc.name = "crowded";
+  for (int i = 0; i < n; ++i) {
+    UavSpec u;
+    u.id = "u" + std::to_string(i + 1);
+    u.start = Vec3(spacing * (i % side_n), spacing * (i / side_n), 0);
+    u.goal = u.start + Vec3(span - side, span - side, 0);
+    u.radius_m = 0.1;
+    u.speed = {0, 1, 1};
+    sc.uavs.push_back(u);
+  }
+  Rng rng(seed);
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(-2, -2, 0), Vec3(span + side + 2, span + side + 2, 0)};
+  while (ws.obstacles.size() < static_cast<std::size_t>(side * side)) {
+    const Vec3 c(rng.uniform(side + 2, span), rng.uniform(side + 2, span), 0);
+    const double r = rng.uniform(0.1, 0.4);
+    bool clear = true;
+    for (const UavSpec& u : sc.uavs) clear &= (*u.goal - c).norm() >= r + 0.6;
+    if (clear) ws.obstacles.push_back(Sphere{c, r});
+  }
+  sc.world = World(std::move(ws));
+  sc.mission.type = MissionType::group;
+  sc.mission.separation_m = 0.5;
+  sc.planner.algorithm = "apf";
+  return sc;
+}
+
+TEST(Group, CrowdedBlockThroughAFieldAllArriveSeparated) {
+  for (const std::uint64_t seed : {1, 2, 3}) {
+    const Scenario sc = crowded(25, seed);
+    Plan plan = plan_mission(sc, {});
+    const auto violations = finalize_plan(sc, plan);
+    for (const auto& v : violations) ADD_FAILURE() << "seed " << seed << ": " << describe(v);
+    EXPECT_EQ(plan.status, Status::solved) << "seed " << seed << ": " << plan.message;
+    EXPECT_GE(plan.metrics.at("min_separation_m"), 0.5);
+  }
+}
+
+TEST(Group, SmoothedPointsStayNearTheirFrames) {
+  const Scenario sc = crowded(25, 4);
+  const GroupResult g = plan_group(sc, ApfOptions::from_params({}, true), {});
+  int moved = 0;
+  for (const auto& u : g.uavs) {
+    ASSERT_EQ(u.raw.size(), u.smoothed.size());
+    for (std::size_t k = 0; k < u.raw.size(); ++k) {
+      EXPECT_LE((u.raw[k] - u.smoothed[k]).norm(), kDrift_steps * g.step_m + 1e-12);
+      moved += u.raw[k] != u.smoothed[k];
+    }
+  }
+  EXPECT_GT(moved, 100);
+}
+
+TEST(Group, UnreachableGoalsFailWithTheReasonAndTheOthersFly) {
+  Scenario sc = p3_group(false);
+  sc.uavs[4].goal = *sc.uavs[3].goal + Vec3(0.3, 0, 0);  // within the separation of u4's goal
+  WorldSpec ws = sc.world.spec();
+  ws.obstacles.push_back(Sphere{*sc.uavs[8].goal + Vec3(0.2, 0, 0), 0.15});  // u9's goal within its radius of it
+  sc.world = World(std::move(ws));
+  Plan plan = plan_mission(sc, {});
+  const auto violations = finalize_plan(sc, plan);
+  for (const auto& v : violations)
+    if (v.kind != ViolationKind::not_planned) ADD_FAILURE() << describe(v);
+  EXPECT_EQ(violations.size(), 2u);  // u5 and u9 have no trajectory
+  for (const auto& u : plan.uavs) {
+    if (u.id == "u5") {
+      EXPECT_EQ(u.status, Status::failed);
+      EXPECT_NE(u.message.find("closer than the separation to u4's goal"), std::string::npos) << u.message;
+    } else if (u.id == "u9") {
+      EXPECT_EQ(u.status, Status::failed);
+      EXPECT_NE(u.message.find("goal is closer to an obstacle"), std::string::npos) << u.message;
+    } else {
+      EXPECT_EQ(u.status, Status::solved) << u.id << ": " << u.message;
+    }
+  }
 }
 
 }  // namespace

@@ -42,7 +42,7 @@ class VoxelGrid {
 
   bool blocked(std::int64_t idx) const { return cells_.blocked(idx); }
   bool blocked(int i, int j, int k) const { return cells_.blocked(i, j, k); }
-  void set_blocked(std::int64_t idx) { cells_.set_blocked(idx); }
+  void set_blocked(std::int64_t idx, bool b = true) { cells_.set_blocked(idx, b); }
 
  private:
   Vec3 origin_ = Vec3::Zero();

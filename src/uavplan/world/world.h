@@ -55,6 +55,15 @@ class World {
     return in_bounds(a) && in_bounds(b) && !segment_collides(a, b, inflation_m);
   }
 
+  // Calls f(obstacle) for every static obstacle whose bounding box lies within `radius` of p.
+  template <class F>
+  void visit_near(const Vec3& p, double radius, F&& f) const {
+    bvh_.visit_point(p, radius, [&](std::int32_t i, double&) {
+      f(spec_.obstacles[static_cast<std::size_t>(i)]);
+      return false;
+    });
+  }
+
   // Smallest gap between the surface of any moving obstacle and a UAV flying straight from a
   // (at t_a) to b (at t_b); +inf without moving obstacles. `index_out` names the closest.
   double moving_clearance(const Vec3& a, double t_a_s, const Vec3& b, double t_b_s,

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
+#include <cstdint>
+#include <memory>
 
 #include "uavplan/core/geometry.h"
 #include "uavplan/core/units.h"
+#include "uavplan/planning/field/field_guide.h"
 #include "uavplan/planning/segment_rule.h"
 #include "uavplan/planning/smoothing/turn_limits.h"
 
@@ -47,56 +49,65 @@ ApfOptions apf_resolved(const ApfOptions& in, const UavSpec& uav, const World& w
 PotentialField::PotentialField(const World& world, const UavSpec& uav, const ApfOptions& resolved)
     : world_(&world), uav_(uav), o_(resolved), inflation_m_(uav.radius_m + kPlanningMargin_m) {}
 
-Vec3 PotentialField::direction(const Vec3& p, const Vec3& goal, std::span<const PeerMotion> peers) const {
-  const Vec3 to_goal = goal - p;
-  const double big_r = to_goal.norm();
+Vec3 PotentialField::direction(const Vec3& p, const Vec3& goal, std::span<const PeerMotion> peers, const Vec3* aim) const {
+  const double big_r = (goal - p).norm();
   if (big_r <= 0.0) return Vec3::Zero();
-  const Vec3 pa = to_goal / big_r;
+  const Vec3 to_aim = aim ? Vec3(*aim - p) : Vec3(goal - p);
+  const Vec3 pa = to_aim.norm() > 0.0 ? Vec3(to_aim.normalized()) : Vec3((goal - p) / big_r);
   Vec3 force = o_.k_att * (o_.improved ? std::min(big_r, o_.r_att_m) : big_r) * pa;
 
-  // Candidates: (clearance, unit vector from the obstacle to the UAV).
+  // Candidates: (sector, clearance, unit vector from the obstacle to the UAV). The scratch
+  // list is per thread, so a step allocates nothing once it has grown.
   struct Source {
+    std::int64_t sector;
     double r;
     Vec3 dir;
   };
-  std::vector<Source> sources;
+  thread_local std::vector<Source> sources;
+  sources.clear();
+  const double w = deg_to_rad(o_.sector_deg);
   auto add = [&](const Vec3& nearest, double clearance) {
     if (clearance >= o_.r_rep_m) return;
     const Vec3 d = p - nearest;
     const double n = d.norm();
-    sources.push_back({std::max(clearance, 1e-3 * o_.step_m), n > 0.0 ? Vec3(d / n) : Vec3(-pa)});
+    const Vec3 dir = n > 0.0 ? Vec3(d / n) : Vec3(-pa);
+    std::int64_t sector = 0;
+    if (o_.improved) {
+      const Vec3 v = -dir;  // from the UAV to the source
+      sector = static_cast<std::int64_t>(std::floor((std::atan2(v.y(), v.x()) + kPi) / w)) * 4096 +
+               static_cast<std::int64_t>(std::floor((std::asin(std::clamp(v.z(), -1.0, 1.0)) + kPi / 2) / w));
+    }
+    sources.push_back({sector, std::max(clearance, 1e-3 * o_.step_m), dir});
   };
-  const double reach = o_.r_rep_m + inflation_m_;
-  for (const Obstacle& ob : world_->obstacles()) {
-    if (bounding_box(ob).distance(p) > reach) continue;
-    const Vec3 c = closest_point(ob, p);
-    add(c, (c - p).norm() - uav_.radius_m);
-  }
-  if (const TerrainGrid* t = world_->terrain()) {
-    const double h = t->height_at(p.x(), p.y());
-    if (std::isfinite(h)) add(Vec3(p.x(), p.y(), h), p.z() - h - uav_.radius_m);
+  // Following a guide route the static world no longer repels: the route keeps clear of it,
+  // and its repulsion is what made the local minimum.
+  if (!aim) {
+    world_->visit_near(p, o_.r_rep_m + inflation_m_, [&](const Obstacle& ob) {
+      const Vec3 c = closest_point(ob, p);
+      add(c, (c - p).norm() - uav_.radius_m);
+    });
+    if (const TerrainGrid* t = world_->terrain()) {
+      const double h = t->height_at(p.x(), p.y());
+      if (std::isfinite(h)) add(Vec3(p.x(), p.y(), h), p.z() - h - uav_.radius_m);
+    }
   }
   // Peers repel only within two steps of their separation: they are obstacles of one frame, and
   // a wider field around UAVs already at their goals walls off the goals between them.
   const double peer_reach = 2.0 * o_.step_m;
   for (const PeerMotion& q : peers) {
+    if (aim && q.from == q.to) continue;  // a guided UAV: peers standing still are the route's keep-outs
     const double clearance = (q.to - p).norm() - std::max(o_.separation_m, uav_.radius_m + q.radius_m);
     if (clearance < peer_reach) add(q.to, clearance * o_.r_rep_m / peer_reach);
   }
 
   // Sector rule (improved field only): the nearest source per sector.
-  if (o_.improved) {
-    const double w = deg_to_rad(o_.sector_deg);
-    std::map<std::pair<int, int>, Source> nearest;
-    for (const Source& s : sources) {
-      const Vec3 v = -s.dir;  // direction from the UAV to the source
-      const std::pair<int, int> key{static_cast<int>(std::floor((std::atan2(v.y(), v.x()) + kPi) / w)),
-                                    static_cast<int>(std::floor((std::asin(std::clamp(v.z(), -1.0, 1.0)) + kPi / 2) / w))};
-      auto it = nearest.find(key);
-      if (it == nearest.end() || s.r < it->second.r) nearest[key] = s;
-    }
-    sources.clear();
-    for (const auto& [k, s] : nearest) sources.push_back(s);
+  if (o_.improved && sources.size() > 1) {
+    std::sort(sources.begin(), sources.end(),
+                     [](const Source& x, const Source& y) { return x.sector < y.sector || (x.sector == y.sector && x.r < y.r); });
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < sources.size(); ++k)
+      if (k == 0 || sources[k].sector != sources[k - 1].sector) sources[kept++] = sources[k];
+    sources.resize(kept);
   }
   for (const Source& s : sources) {
     const double inv = 1.0 / s.r - 1.0 / o_.r_rep_m;
@@ -122,19 +133,12 @@ bool PotentialField::step_safe(const Vec3& a, const Vec3& b, std::span<const Pee
   return true;
 }
 
-Vec3 PotentialField::step(const Vec3& p, const Vec3& goal, std::span<const PeerMotion> peers, int escape) const {
+Vec3 PotentialField::step(const Vec3& p, const Vec3& goal, std::span<const PeerMotion> peers, const Vec3* aim) const {
   const double l = o_.step_m;
-  const Vec3 to_goal = goal - p;
-  if (to_goal.norm() <= l && step_safe(p, goal, peers)) return goal;
-  Vec3 d = direction(p, goal, peers);
+  if ((goal - p).norm() <= l && step_safe(p, goal, peers)) return goal;
+  Vec3 d = direction(p, goal, peers, aim);
   if (d.norm() <= 0.0) return p;
   const bool flat = world_->bounds().extent().z() <= 0.0;
-  if (escape != 0) {
-    const Vec3 pa = to_goal.normalized();
-    d = escape * Vec3(-pa.y(), pa.x(), 0.0);
-    if (d.norm() <= 0.0) d = Vec3(1, 0, 0);
-    d.normalize();
-  }
   // Keep the climb limit: a steeper direction is levelled to it.
   const double h = d.head<2>().norm();
   if (!flat && std::atan2(std::abs(d.z()), h) > uav_.max_climb_rad) {
@@ -160,60 +164,84 @@ Vec3 PotentialField::step(const Vec3& p, const Vec3& goal, std::span<const PeerM
   return p;  // hold
 }
 
-bool StallWatch::update(double dist, double step, int escape_frames) {
-  constexpr std::size_t kWindow = 20;
-  constexpr int kMaxEscapes = 8;
-  if (escape_left_ > 0) {
-    if (dist < caught_at_ - step) {
-      escape_left_ = 0;  // left the minimum: back to the field
-      history_.clear();
-    } else {
-      --escape_left_;
-      return true;
-    }
-  }
-  history_.push_back(dist);
-  if (history_.size() > kWindow && history_[history_.size() - 1 - kWindow] - dist < step) {
-    if (escapes_ >= kMaxEscapes) {
-      stalled_ = true;
-      return false;
-    }
-    ++escapes_;
-    caught_at_ = dist;
-    escape_left_ = escape_frames;
-    history_.clear();
-    return true;
-  }
-  return false;
+double FieldFlight::progress_m() const {
+  return route_.empty() ? (goal_ - p_).norm() : (route_[next_] - p_).norm() + left_m_[next_];
 }
 
-ApfRun run_apf(const PotentialField& field, const Vec3& start, const Vec3& goal, const StopCondition& stop) {
+void FieldFlight::follow(std::vector<Vec3> route) {
+  route_ = std::move(route);
+  left_m_.assign(route_.size(), 0.0);
+  for (std::size_t k = route_.size(); k-- > 1;) left_m_[k - 1] = left_m_[k] + (route_[k] - route_[k - 1]).norm();
+  next_ = 0;
+}
+
+const Vec3& FieldFlight::advance(std::span<const PeerMotion> peers, const Guide& guide, std::uint64_t keep_out_version) {
+  if (arrived_ || failed_) return p_;
+  const double l = field_->options().step_m;
+  history_.push_back(progress_m());
+  if (history_.size() > kWindowFrames && history_[history_.size() - 1 - kWindowFrames] - history_.back() < l) {
+    ++stalls_;
+    history_.clear();
+    const std::string where = "(" + std::to_string(p_.x()) + ", " + std::to_string(p_.y()) + ", " + std::to_string(p_.z()) + ")";
+    if (guide && (route_.empty() || keep_out_version != route_version_)) {
+      // A first route, or the keep-outs changed since the last one: (re)plan from here.
+      std::vector<Vec3> r = guide(p_, goal_);
+      if (r.empty()) {
+        failed_ = true;
+        message_ = "stalled near " + where + " with no route to the goal from there (grid search around the obstacles" +
+                   " and the keep-outs)";
+        return p_;
+      }
+      follow(std::move(r));
+      route_version_ = keep_out_version;
+      stalls_on_route_ = 0;
+    } else if (patience_ >= 0 && ++stalls_on_route_ > patience_) {
+      failed_ = true;
+      message_ = "stalled near " + where + (route_.empty() ? std::string(" in a local minimum") : " on its escape route") +
+                 " after " + std::to_string(stalls_) + " stalls";
+      return p_;
+    }
+  }
+  const Vec3* aim = nullptr;
+  if (!route_.empty()) {
+    // Aim at the first route point more than two steps away, past any within reach now.
+    const std::size_t window = std::min(route_.size() - 1, next_ + 16);
+    for (std::size_t k = next_; k < window; ++k)
+      if ((route_[k] - p_).norm() <= 2.0 * l) next_ = k + 1;
+    aim = &route_[next_];
+  }
+  p_ = field_->step(p_, goal_, peers, aim);
+  if (p_ == goal_) arrived_ = true;
+  return p_;
+}
+
+ApfRun run_apf(const PotentialField& field, const Vec3& start, const Vec3& goal, const FieldFlight::Guide& guide,
+               const StopCondition& stop) {
   ApfRun run;
   run.points.push_back(start);
   const ApfOptions& o = field.options();
   const int max_frames = o.max_frames > 0 ? o.max_frames : static_cast<int>(4.0 * (goal - start).norm() / o.step_m) + 500;
-  StallWatch watch;
-  Vec3 p = start;
-  const int escape_frames = static_cast<int>(2.0 * (goal - start).norm() / o.step_m) + 50;
-  for (int f = 0; f < max_frames; ++f) {
-    if ((p - goal).norm() <= 0.0) {
-      run.reached = true;
-      return run;
-    }
+  // Alone in a static world a stall on the escape route will not pass: two more and it fails.
+  FieldFlight flight(field, start, goal, 2);
+  std::unique_ptr<FieldGuide> own;
+  const FieldFlight::Guide own_guide = [&](const Vec3& from, const Vec3& to) {
+    if (!own) own = std::make_unique<FieldGuide>(field.world(), field.uav(), o.step_m);
+    return own->route(from, to, {});
+  };
+  for (int f = 0; f < max_frames && !flight.arrived(); ++f) {
+    if (start == goal) break;
     if ((f & 63) == 0 && stop.should_stop(static_cast<std::uint64_t>(f))) {
       run.message = "stopped before the goal was reached";
       return run;
     }
-    const bool escape = watch.update((p - goal).norm(), o.step_m, escape_frames);
-    if (watch.stalled()) {
-      run.message = "stalled in a local minimum near (" + std::to_string(p.x()) + ", " + std::to_string(p.y()) + ", " +
-                    std::to_string(p.z()) + ")";
+    flight.advance({}, guide ? guide : own_guide);
+    if (flight.failed()) {
+      run.message = flight.message();
       return run;
     }
-    p = field.step(p, goal, {}, escape ? watch.side() : 0);
-    run.points.push_back(p);
+    run.points.push_back(flight.position());
   }
-  run.reached = (p - goal).norm() <= 0.0;
+  run.reached = start == goal || flight.arrived();
   if (!run.reached) run.message = "goal not reached within " + std::to_string(max_frames) + " frames";
   return run;
 }
@@ -222,12 +250,17 @@ PlanResult ApfPlanner::do_plan(const Problem& pb, const World& world, const Stop
   PlanResult res;
   const ApfOptions o = apf_resolved(options_, pb.uav, world);
   const PotentialField field(world, pb.uav, o);
+  std::unique_ptr<FieldGuide> guide_map;  // built at the first stall
+  const FieldFlight::Guide guide = [&](const Vec3& from, const Vec3& to) {
+    if (!guide_map) guide_map = std::make_unique<FieldGuide>(world, pb.uav, o.step_m);
+    return guide_map->route(from, to, {});
+  };
   std::vector<Vec3> stops = pb.via;
   stops.push_back(pb.goal);
   Vec3 from = pb.uav.start;
   res.route.waypoints.push_back(from);
   for (const Vec3& target : stops) {
-    const ApfRun run = run_apf(field, from, target, stop);
+    const ApfRun run = run_apf(field, from, target, guide, stop);
     res.route.waypoints.insert(res.route.waypoints.end(), run.points.begin() + 1, run.points.end());
     if (!run.reached) {
       res.message = run.message;

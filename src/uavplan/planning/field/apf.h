@@ -12,15 +12,17 @@
 //
 // Our additions, so that every emitted step is safe: a step whose segment would come closer to
 // an obstacle than the UAV radius, or to a peer than the separation, is replaced by the nearest
-// safe direction (rotated in 15-degree steps), else the UAV holds; steps keep the climb limit;
-// progress is watched, and a UAV that has not come a step closer in 20 frames is in a local
-// minimum: it escapes sideways (perpendicular to the goal direction, left and right in turn)
-// like a bug algorithm until it is a step closer to the goal than where it was caught, at most 8
-// times, before it is declared stalled. Routes get the same turn shaping as every planner (turn_limits.h).
+// safe direction (rotated in 15-degree steps), else the UAV holds; steps keep the climb limit.
+// Progress is watched (FieldFlight): a UAV that has not come a step closer in 20 frames is in a
+// local minimum and escapes along a grid A* route (field_guide.h) that the field then follows
+// (FieldFlight says when a route is rebuilt and when the UAV has failed).
+// Routes get the same turn shaping as every planner (turn_limits.h).
 #pragma once
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -62,14 +64,16 @@ class PotentialField {
  public:
   PotentialField(const World& world, const UavSpec& uav, const ApfOptions& resolved);
 
-  // The field's unit direction at p (no step safety).
-  Vec3 direction(const Vec3& p, const Vec3& goal, std::span<const PeerMotion> peers) const;
-  // One safe step from p (see the header comment); `escape` (+1 left, -1 right, 0 none) steps
-  // perpendicular to the goal direction instead. Returns p itself when it must hold.
-  Vec3 step(const Vec3& p, const Vec3& goal, std::span<const PeerMotion> peers, int escape) const;
+  // The field's unit direction at p (no step safety). With `aim` the attraction points at it
+  // instead of the goal (its size and the repulsion's sqrt(R) still use the goal's distance).
+  Vec3 direction(const Vec3& p, const Vec3& goal, std::span<const PeerMotion> peers, const Vec3* aim = nullptr) const;
+  // One safe step from p (see the header comment). Returns p itself when it must hold.
+  Vec3 step(const Vec3& p, const Vec3& goal, std::span<const PeerMotion> peers, const Vec3* aim = nullptr) const;
   bool step_safe(const Vec3& a, const Vec3& b, std::span<const PeerMotion> peers) const;
 
   const ApfOptions& options() const { return o_; }
+  const World& world() const { return *world_; }
+  const UavSpec& uav() const { return uav_; }
 
  private:
   const World* world_;
@@ -86,25 +90,56 @@ struct ApfRun {
   std::string message;
 };
 
-// Tracks progress and escapes; shared by the single-UAV planner and the group.
-class StallWatch {
+// One UAV flying the field frame by frame, shared by the single-UAV planner and the group.
+// Progress is the distance to the goal, or while guided the distance left along the guide
+// route; a stall is less than one step of progress in 20 frames. The first stall asks `guide`
+// for a route from where the UAV is, and the UAV follows it from then on, the attraction aimed
+// at the first route point more than two steps ahead; a later stall asks again only when the
+// keep-outs have changed (`keep_out_version`), else it counts against `patience` (stalls on one
+// route; negative: no limit, the caller's frame budget bounds the flight). No route fails the
+// UAV at once.
+class FieldFlight {
  public:
-  // Returns whether the next step should escape; sets `stalled` when out of escapes.
-  // `escape_frames` caps one escape.
-  bool update(double distance_to_goal, double step_m, int escape_frames);
-  bool stalled() const { return stalled_; }
-  // +1: escape to the left of the goal direction, -1: to the right (alternating per escape).
-  int side() const { return escapes_ % 2 == 1 ? 1 : -1; }
+  using Guide = std::function<std::vector<Vec3>(const Vec3& from, const Vec3& goal)>;
+
+  FieldFlight(const PotentialField& field, const Vec3& start, const Vec3& goal, int patience)
+      : field_(&field), p_(start), goal_(goal), patience_(patience) {}
+
+  // One frame: moves (or holds) and returns the new position; nothing once arrived or failed.
+  const Vec3& advance(std::span<const PeerMotion> peers, const Guide& guide, std::uint64_t keep_out_version = 0);
+
+  const Vec3& position() const { return p_; }
+  bool arrived() const { return arrived_; }
+  bool failed() const { return failed_; }
+  bool guided() const { return !route_.empty(); }
+  int stalls() const { return stalls_; }
+  const std::string& message() const { return message_; }
+
+  static constexpr int kWindowFrames = 20;
 
  private:
+  double progress_m() const;
+  void follow(std::vector<Vec3> route);
+
+  const PotentialField* field_;
+  Vec3 p_, goal_;
+  int patience_;
+  std::vector<Vec3> route_;
+  std::vector<double> left_m_;  // route length from each route point to the goal
+  std::size_t next_ = 0;        // the route point aimed at
+  std::uint64_t route_version_ = 0;
   std::vector<double> history_;
-  double caught_at_ = 0.0;
-  int escape_left_ = 0;
-  int escapes_ = 0;
-  bool stalled_ = false;
+  int stalls_ = 0;
+  int stalls_on_route_ = 0;
+  bool arrived_ = false;
+  bool failed_ = false;
+  std::string message_;
 };
 
-ApfRun run_apf(const PotentialField& field, const Vec3& start, const Vec3& goal, const StopCondition& stop = {});
+// `guide` answers the stalls (FieldFlight); empty: a FieldGuide over the field's world, built
+// at the first stall.
+ApfRun run_apf(const PotentialField& field, const Vec3& start, const Vec3& goal, const FieldFlight::Guide& guide = {},
+               const StopCondition& stop = {});
 
 class ApfPlanner final : public Planner {
  public:
@@ -123,13 +158,14 @@ class ApfPlanner final : public Planner {
 template <class Accept>
 int smooth_triples(std::vector<Vec3>& pts, double threshold_rad, Accept&& accept, int max_sweeps = 200) {
   int changed_total = 0;
+  const double cos_threshold = std::cos(std::clamp(threshold_rad, 0.0, kPi));
   for (int sweep = 0; sweep < max_sweeps; ++sweep) {
     int changed = 0;
     for (std::size_t i = 1; i + 1 < pts.size(); ++i) {
       const Vec3 ab = pts[i] - pts[i - 1], bc = pts[i + 1] - pts[i];
-      if (ab.norm() <= 1e-12 || bc.norm() <= 1e-12) continue;
-      const double turn = std::acos(std::clamp(ab.dot(bc) / (ab.norm() * bc.norm()), -1.0, 1.0));
-      if (turn <= threshold_rad) continue;
+      const double nab = ab.norm(), nbc = bc.norm();
+      if (nab <= 1e-12 || nbc <= 1e-12) continue;
+      if (ab.dot(bc) >= cos_threshold * nab * nbc) continue;  // turn within the threshold
       const Vec3 candidate = 0.5 * (pts[i] + 0.5 * (pts[i - 1] + pts[i + 1]));
       if ((candidate - pts[i]).norm() <= 1e-9 || !accept(i, candidate)) continue;
       pts[i] = candidate;

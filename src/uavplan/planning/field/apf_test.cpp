@@ -1,8 +1,11 @@
 #include "uavplan/planning/field/apf.h"
 
+#include <span>
+
 #include <gtest/gtest.h>
 
 #include "uavplan/core/geometry.h"
+#include "uavplan/planning/field/field_guide.h"
 
 namespace uavplan {
 namespace {
@@ -72,7 +75,7 @@ TEST(Apf, ReachesTheGoalPastAWallOrFailsWithAReason) {
   const World w = flat_world({Box{Vec3(5, -3, -1), Vec3(5.5, 3, 1)}});
   const PotentialField f(w, uav(), apf_resolved(opts(true), uav(), w));
   const ApfRun run = run_apf(f, Vec3(0, 0, 0), Vec3(10, 0, 0));
-  ASSERT_TRUE(run.reached) << run.message;  // the wall is short: the escape goes round it
+  ASSERT_TRUE(run.reached) << run.message;  // the wall is short: the guide goes round it
   for (std::size_t i = 1; i < run.points.size(); ++i) ASSERT_GE(w.segment_clearance(run.points[i - 1], run.points[i], 1.0), 0.1);
   // Enclosed goal: bounded, with a reason.
   const World cage = flat_world({Box{Vec3(8, -2, -1), Vec3(12, -1.5, 1)}, Box{Vec3(8, 1.5, -1), Vec3(12, 2, 1)},
@@ -80,7 +83,48 @@ TEST(Apf, ReachesTheGoalPastAWallOrFailsWithAReason) {
   const PotentialField fc(cage, uav(), apf_resolved(opts(true), uav(), cage));
   const ApfRun trapped = run_apf(fc, Vec3(0, 0, 0), Vec3(10, 0, 0));
   EXPECT_FALSE(trapped.reached);
-  EXPECT_FALSE(trapped.message.empty());
+  EXPECT_NE(trapped.message.find("no route to the goal"), std::string::npos) << trapped.message;
+}
+
+TEST(Apf, EscapesACupAlongTheGuideRoute) {
+  // A cup open toward the start, the goal behind its bottom: the field alone settles inside.
+  const World cup = flat_world({Box{Vec3(6, -3, -1), Vec3(6.5, 3, 1)}, Box{Vec3(2, 2.5, -1), Vec3(6.5, 3, 1)},
+                                Box{Vec3(2, -3, -1), Vec3(6.5, -2.5, 1)}});
+  const PotentialField f(cup, uav(), apf_resolved(opts(true), uav(), cup));
+  FieldFlight flight(f, Vec3(0, 0, 0), Vec3(10, 0, 0), 8);
+  std::vector<Vec3> path{flight.position()};
+  for (int k = 0; k < 2000 && !flight.arrived() && !flight.failed(); ++k) path.push_back(flight.advance({}, {}));
+  EXPECT_FALSE(flight.arrived()) << "without a guide the cup holds the UAV";
+
+  const ApfRun run = run_apf(f, Vec3(0, 0, 0), Vec3(10, 0, 0));
+  ASSERT_TRUE(run.reached) << run.message;
+  for (std::size_t i = 1; i < run.points.size(); ++i)
+    ASSERT_GE(cup.segment_clearance(run.points[i - 1], run.points[i], 1.0), 0.1);
+}
+
+TEST(Apf, GuideRoutesAroundKeepOutsAndForgetsThem) {
+  // A wall with one gap at y = 0; a keep-out in the gap sends the route round the wall's end.
+  const World w = flat_world({Box{Vec3(5, -10, -1), Vec3(5.5, -0.5, 1)}, Box{Vec3(5, 0.5, -1), Vec3(5.5, 6, 1)}});
+  FieldGuide guide(w, uav(), 0.25);
+  auto length = [](const std::vector<Vec3>& r) {
+    double l = 0;
+    for (std::size_t i = 1; i < r.size(); ++i) l += (r[i] - r[i - 1]).norm();
+    return l;
+  };
+  const std::vector<Vec3> through = guide.route(Vec3(0, 0, 0), Vec3(10, 0, 0), {});
+  ASSERT_FALSE(through.empty());
+  EXPECT_LT(length(through), 11.0);
+  EXPECT_EQ(through.back(), Vec3(10, 0, 0));
+  const KeepOut plug{Vec3(5.25, 0, 0), 0.6};
+  const std::vector<Vec3> around = guide.route(Vec3(0, 0, 0), Vec3(10, 0, 0), std::span(&plug, 1));
+  ASSERT_FALSE(around.empty());
+  EXPECT_GT(length(around), 15.0);
+  for (const Vec3& p : around) EXPECT_GE((p - plug.centre).norm(), plug.radius_m);
+  EXPECT_NEAR(length(guide.route(Vec3(0, 0, 0), Vec3(10, 0, 0), {})), length(through), 1e-12) << "keep-outs last one query";
+  // Closed in: no route.
+  const KeepOut ring[] = {{Vec3(10, 0, 0) + Vec3(1, 0, 0), 0.6}, {Vec3(9, 0, 0), 0.6}, {Vec3(10, 1, 0), 0.6}, {Vec3(10, -1, 0), 0.6},
+                          {Vec3(11, 1, 0), 0.6}, {Vec3(9, 1, 0), 0.6}, {Vec3(11, -1, 0), 0.6}, {Vec3(9, -1, 0), 0.6}};
+  EXPECT_TRUE(guide.route(Vec3(0, 0, 0), Vec3(10, 0, 0), ring).empty());
 }
 
 TEST(Apf, TripleSmoothingStraightensAndRespectsRefusals) {
