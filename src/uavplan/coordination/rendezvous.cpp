@@ -1,8 +1,13 @@
 #include "uavplan/coordination/rendezvous.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <memory>
+#include <functional>
+#include <mutex>
+#include <optional>
 #include <thread>
 
 #include "uavplan/core/geometry.h"
@@ -60,6 +65,46 @@ std::vector<Vec3> loiter_polygon(const Vec3& x0, const Vec3& heading, double ext
   return pts;
 }
 
+// Runs `qs` on one thread per engine, each thread taking the next query in index order.
+// `prepare(i, q)` may tighten query i from the routes finished so far (called under the lock);
+// `ends(i, route)` says whether route i ends the list: no query after the first such index is
+// started. Every query before that index completes, so a choice made afterwards in index order
+// does not depend on the timing or the thread count. Unstarted queries stay empty.
+template <class Prepare, class Ends>
+std::vector<std::optional<DirectionalRoute>> run_ordered(std::vector<DirectionalSearch>& engines, const World& world,
+                                                         std::vector<DirectionalQuery> qs, Prepare&& prepare, Ends&& ends,
+                                                         const StopCondition& stop) {
+  std::vector<std::optional<DirectionalRoute>> routes(qs.size());
+  // A query running past the end of the list is cancelled (its route is never chosen).
+  const std::unique_ptr<std::atomic<bool>[]> cancel(new std::atomic<bool>[qs.size()]);
+  for (std::size_t i = 0; i < qs.size(); ++i) cancel[i] = false;
+  std::mutex m;
+  std::size_t next = 0, end = qs.size();
+  auto worker = [&](DirectionalSearch& engine) {
+    for (;;) {
+      std::size_t i;
+      {
+        const std::lock_guard lock(m);
+        if (next >= end || stop.should_stop()) return;
+        i = next++;
+        prepare(i, qs[i], routes);
+      }
+      DirectionalRoute r = engine.run(world, qs[i], stop | StopCondition::cancel_flag(&cancel[i]));
+      const std::lock_guard lock(m);
+      if (ends(i, r) && i + 1 < end) {
+        end = i + 1;
+        for (std::size_t j = end; j < next; ++j) cancel[j] = true;
+      }
+      routes[i] = std::move(r);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t t = 1; t < std::min(engines.size(), qs.size()); ++t) pool.emplace_back(worker, std::ref(engines[t]));
+  worker(engines.front());
+  for (auto& th : pool) th.join();
+  return routes;
+}
+
 }  // namespace
 
 RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlanner& planner, const StopCondition& stop) {
@@ -78,33 +123,35 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
       return r;
     }
   } search{engine, res};
-  // Independent searches in batches, one per engine and thread; results in query order.
-  auto run_batch = [&](const std::vector<DirectionalQuery>& qs) {
-    std::vector<DirectionalRoute> routes(qs.size());
-    auto job = [&](std::size_t i) { routes[i] = engines[i % engines.size()].run(sc.world, qs[i], stop); };
-    for (std::size_t b0 = 0; b0 < qs.size(); b0 += engines.size()) {
-      const std::size_t nb = std::min(engines.size(), qs.size() - b0);
-      std::vector<std::thread> pool;
-      for (std::size_t t = 1; t < nb; ++t) pool.emplace_back(job, b0 + t);
-      job(b0);
-      for (auto& th : pool) th.join();
-    }
-    for (const DirectionalRoute& r : routes) {
-      ++res.searches;
-      res.expanded += r.expanded;
-    }
-    return routes;
+  auto count = [&](const std::vector<std::optional<DirectionalRoute>>& routes) {
+    for (const auto& r : routes)
+      if (r) {
+        ++res.searches;
+        res.expanded += r->expanded;
+      }
   };
   const DirectionalAStarOptions& opt = planner.options();
   std::vector<DirectionalQuery> queries;
-  for (const UavSpec& u : sc.uavs) {
+  for (const UavSpec& u : sc.uavs) queries.push_back(planner.query_for(Problem{u, u.goal.value_or(u.start), {}}, sc.world));
+  // The pre-plans are independent: side by side (a UAV without a goal gets no search).
+  std::vector<DirectionalQuery> with_goal;
+  for (std::size_t s = 0; s < sc.uavs.size(); ++s)
+    if (sc.uavs[s].goal) with_goal.push_back(queries[s]);
+  const auto preplans = run_ordered(
+      engines, sc.world, with_goal, [](std::size_t, DirectionalQuery&, const auto&) {},
+      [](std::size_t, const DirectionalRoute&) { return false; }, stop);
+  count(preplans);
+  for (std::size_t s = 0, k = 0; s < sc.uavs.size(); ++s) {
+    const UavSpec& u = sc.uavs[s];
     RendezvousUav r;
     r.id = u.id;
-    queries.push_back(planner.query_for(Problem{u, u.goal.value_or(u.start), {}}, sc.world));
     if (!u.goal) {
       r.detail = "no goal given";
+    } else if (!preplans[k]) {
+      r.detail = "stopped before a route was found";
+      ++k;
     } else {
-      const DirectionalRoute route = search.run(sc.world, queries.back(), stop);
+      const DirectionalRoute& route = *preplans[k++];
       r.ok = route.found;
       r.waypoints = route.waypoints;
       r.preplanned_m = r.final_m = route.length_m;
@@ -148,23 +195,31 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
     std::vector<std::pair<double, int>> combos;
     for (int li = 0; 1.0 + 0.2 * li <= opt.step_cells_max + 1e-9; ++li)
       for (int m = 3; m <= 6; ++m) combos.emplace_back(1.0 + 0.2 * li, m);
-    for (std::size_t c0 = 0; c0 < combos.size() && !r.ok; c0 += engines.size()) {
-      const std::size_t nb = std::min(engines.size(), combos.size() - c0);
-      std::vector<DirectionalQuery> qs(nb, q);
-      // A route longer than this can neither fall in the window nor come closer than the best.
-      const double bound = aim + std::max(std::abs(length(best) - aim), 0.5 * res.epsilon_m);
-      for (std::size_t t = 0; t < nb; ++t) {
-        qs[t].step_cells = combos[c0 + t].first;
-        qs[t].directions = combos[c0 + t].second;
-        qs[t].max_length_m = bound;
+    {
+      std::vector<DirectionalQuery> qs(combos.size(), q);
+      for (std::size_t c = 0; c < combos.size(); ++c) {
+        qs[c].step_cells = combos[c].first;
+        qs[c].directions = combos[c].second;
       }
-      const std::vector<DirectionalRoute> routes = run_batch(qs);
-      for (std::size_t t = 0; t < nb && !r.ok; ++t) {
-        const DirectionalRoute& route = routes[t];
-        if (!route.found) continue;
+      const double best0_m = length(best);
+      const auto routes = run_ordered(
+          engines, sc.world, std::move(qs),
+          [&](std::size_t, DirectionalQuery& qi, const std::vector<std::optional<DirectionalRoute>>& done) {
+            // A route longer than this can neither fall in the window nor come closer than the
+            // best so far (any finished subset of the routes gives a safe bound).
+            double off = std::abs(best0_m - aim);
+            for (const auto& d : done)
+              if (d && d->found) off = std::min(off, std::abs(d->length_m - aim));
+            qi.max_length_m = aim + std::max(off, 0.5 * res.epsilon_m);
+          },
+          [&](std::size_t, const DirectionalRoute& route) { return route.found && within(route.length_m); }, stop);
+      count(routes);
+      for (std::size_t c = 0; c < routes.size() && !r.ok; ++c) {
+        if (!routes[c] || !routes[c]->found) continue;
+        const DirectionalRoute& route = *routes[c];
         candidates.push_back(route.waypoints);
         if (within(route.length_m))
-          accept(route.waypoints, RendezvousStep::multi_point, fmt("L = %.1f, M = %.0f", combos[c0 + t].first, combos[c0 + t].second));
+          accept(route.waypoints, RendezvousStep::multi_point, fmt("L = %.1f, M = %.0f", combos[c].first, combos[c].second));
         else if (std::abs(route.length_m - aim) < std::abs(length(best) - aim)) best = route.waypoints;
       }
     }
@@ -224,9 +279,7 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
     // adjust-R: the length grows with R_x (by steps, the lattice being discrete), so R_x doubles
     // from half a cell until the route is long enough, then bisection narrows it to a quarter cell.
     double rx_used = 0.0;
-    auto try_radius = [&](double rx) -> double {  // the route's length, or -1 without a route
-      q.virtual_threats = {Sphere{h0, rx}};
-      const DirectionalRoute route = search.run(sc.world, q, stop);
+    auto take_radius = [&](double rx, const DirectionalRoute& route) -> double {  // its length, or -1 without a route
       if (!route.found) return -1.0;
       candidates.push_back(route.waypoints);
       if (route.length_m < lo) rx_used = std::max(rx_used, rx);
@@ -236,18 +289,31 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
       return route.length_m;
     };
     double short_rx = 0.0, long_rx = -1.0;
-    for (double rx = 0.5 * cell; rx < rx_max && !r.ok && !stop.should_stop(); rx *= 2.0) {
-      const double len = try_radius(rx);
-      if (len >= 0.0 && len < lo) short_rx = rx;
-      if (len > hi) {
-        long_rx = rx;
-        break;
+    {
+      // The doubling radii run side by side; taken in order, they end at the first route
+      // within the window or too long.
+      std::vector<double> radii;
+      for (double rx = 0.5 * cell; rx < rx_max; rx *= 2.0) radii.push_back(rx);
+      std::vector<DirectionalQuery> qs(radii.size(), q);
+      for (std::size_t k = 0; k < radii.size(); ++k) qs[k].virtual_threats = {Sphere{h0, radii[k]}};
+      const auto routes = run_ordered(
+          engines, sc.world, std::move(qs), [](std::size_t, DirectionalQuery&, const auto&) {},
+          [&](std::size_t, const DirectionalRoute& route) { return route.found && route.length_m >= lo; }, stop);
+      count(routes);
+      for (std::size_t k = 0; k < routes.size() && routes[k] && !r.ok; ++k) {
+        const double len = take_radius(radii[k], *routes[k]);
+        if (len >= 0.0 && len < lo) short_rx = radii[k];
+        if (len > hi) {
+          long_rx = radii[k];
+          break;
+        }
       }
     }
     if (long_rx < 0.0 && !r.ok && rx_max > short_rx) long_rx = rx_max;
     while (!r.ok && long_rx > 0.0 && long_rx - short_rx > 0.25 * cell && !stop.should_stop()) {
       const double rx = 0.5 * (short_rx + long_rx);
-      const double len = try_radius(rx);
+      q.virtual_threats = {Sphere{h0, rx}};
+      const double len = take_radius(rx, search.run(sc.world, q, stop));
       if (len >= 0.0 && len < lo) short_rx = rx;
       else long_rx = rx;
     }

@@ -188,10 +188,18 @@ bool DirectionalSearch::levels_reachable(const World& world, const DirectionalQu
 
 const DirectionalSearch::Cone& DirectionalSearch::cone(const DirectionalQuery& q, bool flat, int dx, int dy, int dz) {
   const ConeKey key{q.step_cells, q.max_yaw_rad, q.max_pitch_rad, std::max(1, q.directions), flat};
-  if (!(key == cone_key_)) {
-    cones_.clear();
-    cone_key_ = key;
+  if (!cone_table_ || !(cone_table_->key == key)) {
+    cone_table_ = nullptr;
+    for (const auto& t : cone_tables_)
+      if (t->key == key) cone_table_ = t.get();
+    if (!cone_table_) {
+      // A new key comes with a new search, before any of its cones is handed out.
+      if (cone_tables_.size() >= kMaxConeTables) cone_tables_.clear();
+      cone_tables_.push_back(std::make_unique<ConeTable>(ConeTable{key, {}}));
+      cone_table_ = cone_tables_.back().get();
+    }
   }
+  auto& cones_ = cone_table_->cones;
   const std::uint32_t k = pack_offset(dx, dy, dz);
   if (const auto it = cones_.find(k); it != cones_.end()) return it->second;
   // The expansion of the search below for a lattice point away from the bounds, in cells:
@@ -307,12 +315,16 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
     return point * kBins + bin;
   };
   const ConeLimits lim(q);
-  auto segment_ok = [&](const Vec3& a, const Vec3& b) {
+  // Everything but the static world, then the exact check.
+  auto segment_limits_ok = [&](const Vec3& a, const Vec3& b) {
     if (!world.in_bounds(a) || !world.in_bounds(b) || a.z() > q.ceiling_m || b.z() > q.ceiling_m) return false;
     if (!lim.pitch_ok(b - a)) return false;
     for (const Sphere& s : q.virtual_threats)
       if (point_segment_distance(s.center, a, b) < s.radius_m + q.inflation_m) return false;
-    return !world.segment_collides(a, b, q.inflation_m);
+    return true;
+  };
+  auto segment_ok = [&](const Vec3& a, const Vec3& b) {
+    return segment_limits_ok(a, b) && !world.segment_collides(a, b, q.inflation_m);
   };
   const double step_m = q.step_cells * q.cell_m;
   // Lattice points reached from a lattice point expand through the cone table (children outside
@@ -441,8 +453,14 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
     } else {
       heading = p - position(n.parent);
     }
+    // The start's children are lattice points: their clearances may cover a segment between
+    // two lattice points as in the cone path.
+    const float clearance_p = e.cell == kStart ? 0.0f : clearance_at(world, e.cell / kBins, p, clearance_cap_m_);
     general_children(lat, q, lim, flat, p, heading, [&](std::uint32_t id, const Vec3& to) {
-      if (segment_ok(p, to)) {
+      const double len_m = (to - p).norm();
+      const bool covered = e.cell != kStart && len_m <= (reach + 1) * q.cell_m &&
+                           static_cast<double>(clearance_p) + clearance_at(world, id, to, clearance_cap_m_) - 2 * q.inflation_m >= len_m;
+      if (covered ? segment_limits_ok(p, to) : segment_ok(p, to)) {
         ++children;
         relax(state_of(id, to - p), to);
       }

@@ -14,6 +14,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <unordered_map>
 #include <vector>
@@ -101,14 +102,21 @@ class DirectionalSearch {
   float clearance_at(const World& world, std::uint32_t point, const Vec3& p, double cap_m);
 
   SearchBuffers buf_;
-  // Cones by heading offset, for one (step, directions, limits, flatness).
+  // Cones by heading offset, one table per (step, directions, limits, flatness): the
+  // rendezvous's multi-step search comes back to each step and direction count per UAV.
   struct ConeKey {
     double step_cells = -1.0, max_yaw_rad = -1.0, max_pitch_rad = -1.0;
     int directions = -1;
     bool flat = false;
     bool operator==(const ConeKey&) const = default;
-  } cone_key_;
-  std::unordered_map<std::uint32_t, Cone> cones_;
+  };
+  struct ConeTable {
+    ConeKey key;
+    std::unordered_map<std::uint32_t, Cone> cones;
+  };
+  static constexpr std::size_t kMaxConeTables = 64;  // then all are dropped (between searches)
+  std::vector<std::unique_ptr<ConeTable>> cone_tables_;
+  ConeTable* cone_table_ = nullptr;
   // Clearance of lattice points (capped at clearance_cap_m_), for one world and lattice; NaN
   // where not yet computed.
   const World* clearance_world_ = nullptr;
