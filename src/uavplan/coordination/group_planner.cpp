@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <array>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <span>
 
@@ -42,11 +42,16 @@ std::string infeasible(const Scenario& sc, std::size_t i) {
 }
 
 // Points bucketed by a grid of `cell` metres (sorted by cell): near(p) visits every point in
-// the cells around p's, so every point within `cell` of p among others.
+// the cells around p's, so every point within `cell` of p among others (p within a cell of
+// the points' bounding box). The cell grows when the points span more than 2^20 cells, so the
+// packed keys never overflow.
 class CellIndex {
  public:
   void build(std::span<const Vec3> points, double cell) {
-    cell_ = cell;
+    Aabb box;
+    for (const Vec3& p : points) box.extend(p);
+    origin_ = points.empty() ? Vec3::Zero() : box.min;
+    cell_ = points.empty() ? cell : std::max(cell, box.extent().maxCoeff() / (1 << 20));
     entries_.resize(points.size());
     std::int64_t k_min = 0, k_max = 0;
     for (std::size_t u = 0; u < points.size(); ++u) {
@@ -81,11 +86,13 @@ class CellIndex {
   };
   Coords coords(const Vec3& p) const {
     Coords c;
-    for (int a = 0; a < 3; ++a) c[a] = static_cast<std::int64_t>(std::floor(p[a] / cell_)) + (1 << 20);
+    for (int a = 0; a < 3; ++a)
+      c[a] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((p[a] - origin_[a]) / cell_)), -2, (1 << 20) + 2) + 4;
     return c;
   }
   static std::int64_t key(std::int64_t i, std::int64_t j, std::int64_t k) { return (k << 42) + (j << 21) + i; }
 
+  Vec3 origin_ = Vec3::Zero();
   double cell_ = 1.0;
   bool flat_ = true;
   std::vector<Entry> entries_;
@@ -239,7 +246,7 @@ GroupResult plan_group(const Scenario& sc, const ApfOptions& options, const Stop
 
   // Smoothing, UAV by UAV, against the current paths of the peers that can matter: a smoothed
   // point stays within kDrift_steps steps of its raw place, so two UAVs that never come within
-  // `reach` of each other at equal frames cannot conflict after smoothing (near_pairs).
+  // `reach` of each other at equal frames cannot conflict after smoothing (FrameNeighbours).
   for (std::size_t i = 0; i < n; ++i) res.uavs[i].smoothed = res.uavs[i].raw;
   if (!options.smooth) return res;
   double need_max = base.separation_m;

@@ -16,6 +16,16 @@ VoxelGrid::VoxelGrid(const Aabb& region, const Vec3& cell) : origin_(region.min)
   cells_ = BitGrid(n[0], n[1], n[2]);
 }
 
+double VoxelGrid::cell_count(const Aabb& region, const Vec3& cell) {
+  const Vec3 ext = region.extent();
+  double count = 1.0;
+  for (int a = 0; a < 3; ++a) {
+    const double want = cell[a] > 0.0 ? cell[a] : 1.0;
+    count *= std::max(1.0, std::min(std::floor(ext[a] / want + 1e-9), 1e9));  // as the constructor
+  }
+  return count;
+}
+
 void VoxelGrid::cell_of(const Vec3& p, int& i, int& j, int& k) const {
   int* out[3] = {&i, &j, &k};
   const int n[3] = {nx(), ny(), nz()};

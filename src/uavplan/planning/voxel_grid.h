@@ -17,6 +17,8 @@ class VoxelGrid {
   VoxelGrid() = default;
   // Cells of about `cell` metres per axis (adjusted so they tile `region`).
   VoxelGrid(const Aabb& region, const Vec3& cell);
+  // How many cells that grid would have, without building it (as a double: it may be huge).
+  static double cell_count(const Aabb& region, const Vec3& cell);
 
   const BitGrid& cells() const { return cells_; }
   int nx() const { return cells_.nx(); }

@@ -14,7 +14,7 @@ Vec3 guide_cell(const World& world, const UavSpec& uav, double cell_m, std::int6
   const Vec3 ext = world.bounds().extent();
   for (;; cell_m *= 1.25) {
     const Vec3 cell(cell_m, cell_m, layer_height_m(cell_m, uav.max_climb_rad));
-    if (VoxelGrid(world.bounds(), cell).size() <= max_cells || cell_m > ext.norm()) return cell;
+    if (VoxelGrid::cell_count(world.bounds(), cell) <= static_cast<double>(max_cells) || cell_m > ext.norm()) return cell;
   }
 }
 
@@ -76,7 +76,7 @@ std::vector<Vec3> FieldGuide::route(const Vec3& from, const Vec3& goal, std::spa
   while (out.empty() && static_cast<int>(levels_.size()) <= kRefinements) {
     const VoxelGrid& g = levels_.back()->grid;
     const Vec3 finer(0.5 * g.cell().x(), 0.5 * g.cell().y(), g.nz() > 1 ? 0.5 * g.cell().z() : g.cell().z());
-    if (VoxelGrid(world_->bounds(), finer).size() > max_cells_) break;
+    if (VoxelGrid::cell_count(world_->bounds(), finer) > static_cast<double>(max_cells_)) break;
     levels_.push_back(std::make_unique<Level>(*world_, uav_, finer));
     out = route_on(*levels_.back(), from, goal, keep_out);
   }
