@@ -102,8 +102,9 @@ Vec3 PotentialField::direction(const Vec3& p, const Vec3& goal, std::span<const 
 
   // Sector rule (improved field only): the nearest source per sector.
   if (o_.improved && sources.size() > 1) {
-    std::sort(sources.begin(), sources.end(),
-                     [](const Source& x, const Source& y) { return x.sector < y.sector || (x.sector == y.sector && x.r < y.r); });
+    std::sort(sources.begin(), sources.end(), [](const Source& x, const Source& y) {
+      return x.sector < y.sector || (x.sector == y.sector && x.r < y.r);
+    });
     std::size_t kept = 0;
     for (std::size_t k = 0; k < sources.size(); ++k)
       if (k == 0 || sources[k].sector != sources[k - 1].sector) sources[kept++] = sources[k];
