@@ -98,21 +98,21 @@ class CellIndex {
   std::vector<Entry> entries_;
 };
 
-// Per UAV and frame of its own path, the others within `reach` of it at that frame (positions
-// held after a path's end).
+// Per UAV and frame of its own raw path, the others within `reach` of it at that frame
+// (positions held after a path's end).
 class FrameNeighbours {
  public:
-  FrameNeighbours(const std::vector<std::vector<Vec3>>& paths, double reach) : peers_(paths.size()), first_(paths.size()) {
-    const std::size_t n = paths.size();
+  FrameNeighbours(const std::vector<GroupUav>& uavs, double reach) : peers_(uavs.size()), first_(uavs.size()) {
+    const std::size_t n = uavs.size();
     std::size_t frames = 0;
-    for (const auto& p : paths) frames = std::max(frames, p.size());
+    for (const GroupUav& g : uavs) frames = std::max(frames, g.raw.size());
     std::vector<Vec3> pos(n);
     CellIndex index;
     for (std::size_t f = 0; f < frames; ++f) {
-      for (std::size_t u = 0; u < n; ++u) pos[u] = at(paths[u], f);
+      for (std::size_t u = 0; u < n; ++u) pos[u] = at(uavs[u].raw, f);
       index.build(pos, reach);
       for (std::size_t u = 0; u < n; ++u) {
-        if (f >= paths[u].size()) continue;
+        if (f >= uavs[u].raw.size()) continue;
         first_[u].push_back(static_cast<std::uint32_t>(peers_[u].size()));
         index.near(pos[u], [&](std::uint32_t v) {
           if (v != u && (pos[u] - pos[v]).norm() < reach) peers_[u].push_back(v);
@@ -203,8 +203,18 @@ GroupResult plan_group(const Scenario& sc, const ApfOptions& options, const Stop
   CellIndex index;
   // The keep-outs' version for the escape routes: they change when a UAV is done.
   std::uint64_t done_count = static_cast<std::uint64_t>(std::count(done.begin(), done.end(), 1));
+  // The escape route of the UAV moving now (`moving`), around the UAVs that are done.
+  std::size_t moving = 0;
+  const FieldFlight::Guide guide = [&](const Vec3& from, const Vec3& to) {
+    keep_out.clear();
+    for (std::size_t j = 0; j < n; ++j)
+      if (j != moving && done[j])
+        keep_out.push_back(
+            {cur[j], std::max(base.separation_m, sc.uavs[moving].radius_m + sc.uavs[j].radius_m) + kPlanningMargin_m});
+    return guide_for(moving).route(from, to, keep_out);
+  };
   int frame = 0;
-  for (; frame < max_frames && std::count(done.begin(), done.end(), 0) > 0 && !stop.should_stop(frame); ++frame) {
+  for (; frame < max_frames && done_count < n && !stop.should_stop(frame); ++frame) {
     prev = cur;
     index.build(prev, max_reach + 3 * step);
     for (std::size_t i = 0; i < n; ++i) {
@@ -217,13 +227,7 @@ GroupResult plan_group(const Scenario& sc, const ApfOptions& options, const Stop
         if (j == i || (cur[j] - cur[i]).norm() > reach + step) return;
         peers.push_back({j < i ? prev[j] : cur[j], cur[j], sc.uavs[j].radius_m});
       });
-      const FieldFlight::Guide guide = [&](const Vec3& from, const Vec3& to) {
-        keep_out.clear();
-        for (std::size_t j = 0; j < n; ++j)
-          if (j != i && done[j])
-            keep_out.push_back({cur[j], std::max(base.separation_m, u.radius_m + sc.uavs[j].radius_m) + kPlanningMargin_m});
-        return guide_for(i).route(from, to, keep_out);
-      };
+      moving = i;
       cur[i] = flights[i].advance(peers, guide, done_count);
       if (flights[i].failed()) {
         res.uavs[i].message = flights[i].message() + " at frame " + std::to_string(frame);
@@ -256,15 +260,13 @@ GroupResult plan_group(const Scenario& sc, const ApfOptions& options, const Stop
   // most 2 (step + 2 drift) long and its middle lies within half that of an endpoint; a move at
   // frame k is checked over frames k - 1 to k + 1, and raw steps are at most one step long.
   const double reach = need_max + kPlanningMargin_m + step + 4.0 * drift_m + 2.0 * step;
-  std::vector<std::vector<Vec3>> raw(n);
-  for (std::size_t i = 0; i < n; ++i) raw[i] = res.uavs[i].raw;
-  const FrameNeighbours near(raw, reach);
+  const FrameNeighbours near(res.uavs, reach);
   for (std::size_t i = 0; i < n; ++i) {
     GroupUav& g = res.uavs[i];
     if (!g.reached) continue;
     auto& pts = g.smoothed;
     auto accept = [&](std::size_t k, const Vec3& c) {
-      if ((c - raw[i][k]).norm() > drift_m || !fields[i]->step_safe(pts[k - 1], c, {}) ||
+      if ((c - g.raw[k]).norm() > drift_m || !fields[i]->step_safe(pts[k - 1], c, {}) ||
           !fields[i]->step_safe(c, pts[k + 1], {})) {
         ++g.kept_points;
         return false;

@@ -130,6 +130,7 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
         res.expanded += r->expanded;
       }
   };
+  const auto keep_query = [](std::size_t, DirectionalQuery&, const auto&) {};  // run_ordered's prepare: none
   const DirectionalAStarOptions& opt = planner.options();
   std::vector<DirectionalQuery> queries;
   for (const UavSpec& u : sc.uavs) queries.push_back(planner.query_for(Problem{u, u.goal.value_or(u.start), {}}, sc.world));
@@ -138,7 +139,7 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
   for (std::size_t s = 0; s < sc.uavs.size(); ++s)
     if (sc.uavs[s].goal) with_goal.push_back(queries[s]);
   const auto preplans = run_ordered(
-      engines, sc.world, with_goal, [](std::size_t, DirectionalQuery&, const auto&) {},
+      engines, sc.world, with_goal, keep_query,
       [](std::size_t, const DirectionalRoute&) { return false; }, stop);
   count(preplans);
   for (std::size_t s = 0, k = 0; s < sc.uavs.size(); ++s) {
@@ -297,7 +298,7 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
       std::vector<DirectionalQuery> qs(radii.size(), q);
       for (std::size_t k = 0; k < radii.size(); ++k) qs[k].virtual_threats = {Sphere{h0, radii[k]}};
       const auto routes = run_ordered(
-          engines, sc.world, std::move(qs), [](std::size_t, DirectionalQuery&, const auto&) {},
+          engines, sc.world, std::move(qs), keep_query,
           [&](std::size_t, const DirectionalRoute& route) { return route.found && route.length_m >= lo; }, stop);
       count(routes);
       for (std::size_t k = 0; k < routes.size() && routes[k] && !r.ok; ++k) {

@@ -183,13 +183,13 @@ const Vec3& FieldFlight::advance(std::span<const PeerMotion> peers, const Guide&
   if (history_.size() > kWindowFrames && history_[history_.size() - 1 - kWindowFrames] - history_.back() < l) {
     ++stalls_;
     history_.clear();
-    const std::string where = "(" + std::to_string(p_.x()) + ", " + std::to_string(p_.y()) + ", " + std::to_string(p_.z()) + ")";
+    auto where = [&] { return "(" + std::to_string(p_.x()) + ", " + std::to_string(p_.y()) + ", " + std::to_string(p_.z()) + ")"; };
     if (guide && (route_.empty() || keep_out_version != route_version_)) {
       // A first route, or the keep-outs changed since the last one: (re)plan from here.
       std::vector<Vec3> r = guide(p_, goal_);
       if (r.empty()) {
         failed_ = true;
-        message_ = "stalled near " + where + " with no route to the goal from there (grid search around the obstacles" +
+        message_ = "stalled near " + where() + " with no route to the goal from there (grid search around the obstacles" +
                    " and the keep-outs)";
         return p_;
       }
@@ -198,7 +198,7 @@ const Vec3& FieldFlight::advance(std::span<const PeerMotion> peers, const Guide&
       stalls_on_route_ = 0;
     } else if (patience_ >= 0 && ++stalls_on_route_ > patience_) {
       failed_ = true;
-      message_ = "stalled near " + where + (route_.empty() ? std::string(" in a local minimum") : " on its escape route") +
+      message_ = "stalled near " + where() + (route_.empty() ? std::string(" in a local minimum") : " on its escape route") +
                  " after " + std::to_string(stalls_) + " stalls";
       return p_;
     }
