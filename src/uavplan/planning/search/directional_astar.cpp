@@ -357,23 +357,29 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
 
   buf_.begin(states + 2);
   buf_.at(kStart).g = 0.0;
-  buf_.push((q.goal - q.start).norm(), 0.0, kStart);
-  while (!buf_.open_empty()) {
-    const SearchBuffers::Entry e = buf_.pop();
-    SearchBuffers::Node& n = buf_.at(e.cell);
-    if (SearchBuffers::closed(n) || e.g > n.g) continue;
+  const double h0 = (q.goal - q.start).norm();
+  // f grows by a fraction of a step per expansion: buckets of half a cell hold a few hundred
+  // entries each.
+  open_.reset(h0, 0.5 * q.cell_m);
+  open_.push(h0, 0.0, kStart);
+  while (!open_.empty()) {
+    const OpenList::Entry e = open_.pop();
+    SearchBuffers::Node& n = buf_.at(e.id);
+    // A node's later entries carry its best g and parent (read from the node), so any entry
+    // of a node expands it the same way: only the first one counts.
+    if (SearchBuffers::closed(n)) continue;
     if (e.f > q.max_length_m && q.heuristic_weight == 1.0) {
       out.message = "no route within the length bound";
       return out;
     }
     SearchBuffers::close(n);
-    if (e.cell == kGoal) break;
+    if (e.id == kGoal) break;
     if (static_cast<std::int64_t>(++out.expanded) > q.max_expansions || ((out.expanded & 255) == 0 && stop.should_stop(out.expanded))) {
       out.stopped = static_cast<std::int64_t>(out.expanded) <= q.max_expansions;
       out.message = out.stopped ? "stopped before a route was found" : "expansion limit reached";
       return out;
     }
-    const Vec3 p = position(e.cell);
+    const Vec3 p = position(e.id);
     const double gn = n.g;
     int children = 0;
     auto relax = [&](std::uint32_t id, const Vec3& to) {
@@ -381,8 +387,8 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
       SearchBuffers::Node& c = buf_.at(id);
       if (SearchBuffers::closed(c) || ng >= c.g) return;
       c.g = ng;
-      c.parent = e.cell;
-      buf_.push(ng + q.heuristic_weight * (q.goal - to).norm(), ng, id);
+      c.parent = e.id;
+      open_.push(ng + q.heuristic_weight * (q.goal - to).norm(), ng, id);
       ++out.generated;
     };
     // Within reach of the goal: try the last segment to the exact goal.
@@ -393,8 +399,8 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
         relax(kGoal, q.goal);
       }
     };
-    if (e.cell != kStart && n.parent != kStart) {
-      const std::uint32_t pt = e.cell / kBins, parent_pt = n.parent / kBins;
+    if (e.id != kStart && n.parent != kStart) {
+      const std::uint32_t pt = e.id / kBins, parent_pt = n.parent / kBins;
       const int i = static_cast<int>(pt % stride_y), j = static_cast<int>((pt / stride_y) % lat.n[1]),
                 k = static_cast<int>(pt / stride_z);
       if (level_locked && std::abs(q.goal.z() - p.z()) > goal_hop_m) {
@@ -448,17 +454,17 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
       }
     }
     std::optional<Vec3> heading;
-    if (e.cell == kStart) {
+    if (e.id == kStart) {
       if (q.heading_rad) heading = heading_vector(*q.heading_rad);
     } else {
       heading = p - position(n.parent);
     }
     // The start's children are lattice points: their clearances may cover a segment between
     // two lattice points as in the cone path.
-    const float clearance_p = e.cell == kStart ? 0.0f : clearance_at(world, e.cell / kBins, p, clearance_cap_m_);
+    const float clearance_p = e.id == kStart ? 0.0f : clearance_at(world, e.id / kBins, p, clearance_cap_m_);
     general_children(lat, q, lim, flat, p, heading, [&](std::uint32_t id, const Vec3& to) {
       const double len_m = (to - p).norm();
-      const bool covered = e.cell != kStart && len_m <= (reach + 1) * q.cell_m &&
+      const bool covered = e.id != kStart && len_m <= (reach + 1) * q.cell_m &&
                            static_cast<double>(clearance_p) + clearance_at(world, id, to, clearance_cap_m_) - 2 * q.inflation_m >= len_m;
       if (covered ? segment_limits_ok(p, to) : segment_ok(p, to)) {
         ++children;

@@ -21,6 +21,7 @@
 
 #include "uavplan/planning/params.h"
 #include "uavplan/planning/planner.h"
+#include "uavplan/planning/search/open_list.h"
 #include "uavplan/planning/search/search_buffers.h"
 #include "uavplan/world/shapes.h"
 
@@ -102,6 +103,7 @@ class DirectionalSearch {
   float clearance_at(const World& world, std::uint32_t point, const Vec3& p, double cap_m);
 
   SearchBuffers buf_;
+  OpenList open_;
   // Cones by heading offset, one table per (step, directions, limits, flatness): the
   // rendezvous's multi-step search comes back to each step and direction count per UAV.
   struct ConeKey {
