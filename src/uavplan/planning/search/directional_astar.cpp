@@ -358,6 +358,9 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
   buf_.begin(states + 2);
   buf_.at(kStart).g = 0.0;
   const double h0 = (q.goal - q.start).norm();
+  // With f = g + h a lower bound on the length through a node, the length bound prunes.
+  const bool bounded = q.heuristic_weight == 1.0 && std::isfinite(q.max_length_m);
+  bool beyond_bound = false;
   // f grows by a fraction of a step per expansion: buckets of half a cell hold a few hundred
   // entries each.
   open_.reset(h0, 0.5 * q.cell_m);
@@ -368,7 +371,7 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
     // A node's later entries carry its best g and parent (read from the node), so any entry
     // of a node expands it the same way: only the first one counts.
     if (SearchBuffers::closed(n)) continue;
-    if (e.f > q.max_length_m && q.heuristic_weight == 1.0) {
+    if (bounded && e.f > q.max_length_m) {
       out.message = "no route within the length bound";
       return out;
     }
@@ -384,11 +387,19 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
     int children = 0;
     auto relax = [&](std::uint32_t id, const Vec3& to) {
       const double ng = gn + (to - p).norm();
+      double f = -1.0;
+      if (bounded) {  // never popped before the search gives up: not worth a place in the list
+        f = ng + (q.goal - to).norm();
+        if (f > q.max_length_m) {
+          beyond_bound = true;
+          return;
+        }
+      }
       SearchBuffers::Node& c = buf_.at(id);
       if (SearchBuffers::closed(c) || ng >= c.g) return;
       c.g = ng;
       c.parent = e.id;
-      open_.push(ng + q.heuristic_weight * (q.goal - to).norm(), ng, id);
+      open_.push(f >= 0.0 ? f : ng + q.heuristic_weight * (q.goal - to).norm(), ng, id);
       ++out.generated;
     };
     // Within reach of the goal: try the last segment to the exact goal.
@@ -476,7 +487,8 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
   }
   SearchBuffers::Node& goal = buf_.at(kGoal);
   if (!SearchBuffers::closed(goal)) {
-    out.message = "no route within the turn and climb limits (" + std::to_string(out.dead_zones) + " dead zones)";
+    out.message = beyond_bound ? "no route within the length bound"
+                               : "no route within the turn and climb limits (" + std::to_string(out.dead_zones) + " dead zones)";
     return out;
   }
   out.found = true;
