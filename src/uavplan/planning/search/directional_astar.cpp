@@ -41,9 +41,31 @@ struct Lattice {
   std::uint32_t index(int i, int j, int k) const {
     return static_cast<std::uint32_t>((static_cast<std::int64_t>(k) * n[1] + j) * n[0] + i);
   }
+  double inv_n0 = 1.0, inv_n01 = 1.0;  // 1 / n[0] and 1 / (n[0] n[1]), for coords()
+
+  // The coordinates of a lattice index, dividing by multiplying with a reciprocal and correcting
+  // the quotient by one where rounding left it off (exact for any 32-bit index): the search
+  // decodes two indices per expansion, and integer division is slow.
+  static std::uint32_t quotient(std::uint32_t a, std::uint32_t d, double inv_d) {
+    auto q = static_cast<std::uint32_t>(static_cast<double>(a) * inv_d);
+    if (std::uint64_t{q} * d > a) --q;
+    else if ((std::uint64_t{q} + 1) * d <= a) ++q;
+    return q;
+  }
+  void coords(std::uint32_t id, int& i, int& j, int& k) const {
+    const auto n0 = static_cast<std::uint32_t>(n[0]), n01 = n0 * static_cast<std::uint32_t>(n[1]);
+    const std::uint32_t r = quotient(id, n0, inv_n0), kk = quotient(id, n01, inv_n01);
+    i = static_cast<int>(id - r * n0);
+    j = static_cast<int>(r - kk * static_cast<std::uint32_t>(n[1]));
+    k = static_cast<int>(kk);
+  }
+  Vec3 at(int i, int j, int k) const {
+    return origin + cell * Vec3(static_cast<double>(i), static_cast<double>(j), static_cast<double>(k));
+  }
   Vec3 point(std::uint32_t id) const {
-    const std::int64_t i = id % n[0], r = id / n[0];
-    return origin + cell * Vec3(static_cast<double>(i), static_cast<double>(r % n[1]), static_cast<double>(r / n[1]));
+    int i, j, k;
+    coords(id, i, j, k);
+    return at(i, j, k);
   }
   // The lattice points at the corners of the lattice cell around p (clamped into the bounds),
   // nearest first: the candidates for P4's "nearest equivalent". No integer division: corner
@@ -79,6 +101,8 @@ Lattice make_lattice(const World& world, double cell) {
   Lattice l{world.bounds().min, cell, {1, 1, 1}};
   const Vec3 ext = world.bounds().extent();
   for (int a = 0; a < 3; ++a) l.n[a] = 1 + static_cast<int>(std::min(std::floor(ext[a] / cell + 1e-9), 2e6));
+  l.inv_n0 = 1.0 / l.n[0];
+  l.inv_n01 = 1.0 / (static_cast<double>(l.n[0]) * l.n[1]);
   return l;
 }
 
@@ -234,7 +258,7 @@ const DirectionalSearch::Cone& DirectionalSearch::cone(const DirectionalQuery& q
         const Vec3& seg = pts[i];
         if (seg.norm() < 1e-9 || !lim.turn_ok(heading, seg) || !lim.pitch_ok(seg)) continue;
         const ConeChild child{{static_cast<std::int16_t>(seg.x()), static_cast<std::int16_t>(seg.y()), static_cast<std::int16_t>(seg.z())},
-                              static_cast<float>(seg.norm())};
+                              seg.norm()};
         const bool seen = std::any_of(c.children.begin(), c.children.end(), [&](const ConeChild& o) {
           return o.d[0] == child.d[0] && o.d[1] == child.d[1] && o.d[2] == child.d[2];
         });
@@ -306,13 +330,14 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
     return out;
   }
   const auto kStart = static_cast<std::uint32_t>(states), kGoal = kStart + 1;
-  auto position = [&](std::uint32_t id) { return id == kStart ? q.start : id == kGoal ? q.goal : lat.point(id / kBins); };
+  const unsigned bin_bits = kBins > 1 ? 3u : 0u;  // kBins is 1 or 8
+  auto position = [&](std::uint32_t id) { return id == kStart ? q.start : id == kGoal ? q.goal : lat.point(id >> bin_bits); };
   // Heading sector by octant (signs of x and y, and which is larger): no trigonometry.
   auto state_of = [&](std::uint32_t point, const Vec3& seg) {
     if (kBins == 1) return point;
     const std::uint32_t bin = (seg.x() < 0 ? 4u : 0u) | (seg.y() < 0 ? 2u : 0u) |
                               (std::abs(seg.x()) < std::abs(seg.y()) ? 1u : 0u);
-    return point * kBins + bin;
+    return point << bin_bits | bin;
   };
   const ConeLimits lim(q);
   // Everything but the static world, then the exact check.
@@ -382,11 +407,13 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
       out.message = out.stopped ? "stopped before a route was found" : "expansion limit reached";
       return out;
     }
-    const Vec3 p = position(e.id);
+    int i = 0, j = 0, k = 0;  // the lattice coordinates of a lattice node
+    if (e.id < kStart) lat.coords(e.id >> bin_bits, i, j, k);
+    const Vec3 p = e.id < kStart ? lat.at(i, j, k) : position(e.id);
     const double gn = n.g;
     int children = 0;
-    auto relax = [&](std::uint32_t id, const Vec3& to) {
-      const double ng = gn + (to - p).norm();
+    auto relax = [&](std::uint32_t id, const Vec3& to, double length_m) {
+      const double ng = gn + length_m;
       double f = -1.0;
       if (bounded) {  // never popped before the search gives up: not worth a place in the list
         f = ng + (q.goal - to).norm();
@@ -407,21 +434,19 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
       const Vec3 to_goal = q.goal - p;
       if (to_goal.norm() <= 1.5 * step_m + q.cell_m && lim.turn_ok(heading, to_goal) && segment_ok(p, q.goal)) {
         ++children;
-        relax(kGoal, q.goal);
+        relax(kGoal, q.goal, to_goal.norm());
       }
     };
     if (e.id != kStart && n.parent != kStart) {
-      const std::uint32_t pt = e.id / kBins, parent_pt = n.parent / kBins;
-      const int i = static_cast<int>(pt % stride_y), j = static_cast<int>((pt / stride_y) % lat.n[1]),
-                k = static_cast<int>(pt / stride_z);
+      const std::uint32_t pt = e.id >> bin_bits;
       if (level_locked && std::abs(q.goal.z() - p.z()) > goal_hop_m) {
         ++out.dead_zones;
         continue;
       }
       {
         const bool inside = interior(i, j, k);
-        const int pi = static_cast<int>(parent_pt % stride_y), pj = static_cast<int>((parent_pt / stride_y) % lat.n[1]),
-                  pk = static_cast<int>(parent_pt / stride_z);
+        int pi, pj, pk;
+        lat.coords(n.parent >> bin_bits, pi, pj, pk);
         const int dx = i - pi, dy = j - pj, dz = k - pk;
         const Cone* cone_ptr = nullptr;
         if (std::abs(dx) <= reach && std::abs(dy) <= reach && std::abs(dz) <= reach) {
@@ -457,9 +482,11 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
               world.segment_collides(p, to, q.inflation_m))
             continue;
           ++children;
-          relax(state_of(child_pt, to - p), to);
+          // g adds the lattice length of the move, cell |d|, not |to - p|: the same for every
+          // point, free of the rounding of positions far from the origin.
+          relax(state_of(child_pt, to - p), to, c.length_cells * q.cell_m);
         }
-        try_goal(p - position(n.parent));
+        try_goal(p - lat.at(pi, pj, pk));
         if (children == 0) ++out.dead_zones;
         continue;
       }
@@ -472,14 +499,14 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
     }
     // The start's children are lattice points: their clearances may cover a segment between
     // two lattice points as in the cone path.
-    const float clearance_p = e.id == kStart ? 0.0f : clearance_at(world, e.id / kBins, p, clearance_cap_m_);
+    const float clearance_p = e.id == kStart ? 0.0f : clearance_at(world, e.id >> bin_bits, p, clearance_cap_m_);
     general_children(lat, q, lim, flat, p, heading, [&](std::uint32_t id, const Vec3& to) {
       const double len_m = (to - p).norm();
       const bool covered = e.id != kStart && len_m <= (reach + 1) * q.cell_m &&
                            static_cast<double>(clearance_p) + clearance_at(world, id, to, clearance_cap_m_) - 2 * q.inflation_m >= len_m;
       if (covered ? segment_limits_ok(p, to) : segment_ok(p, to)) {
         ++children;
-        relax(state_of(id, to - p), to);
+        relax(state_of(id, to - p), to, len_m);
       }
     });
     try_goal(heading);

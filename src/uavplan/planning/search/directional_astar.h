@@ -80,17 +80,21 @@ struct DirectionalQuery {
 class DirectionalSearch {
  public:
   DirectionalRoute run(const World& world, const DirectionalQuery& q, const StopCondition& stop);
+  // Bytes held for reuse: search nodes, open list, clearance cache (cone tables not counted).
+  std::size_t memory_bytes() const {
+    return buf_.memory_bytes() + open_.memory_bytes() + clearance_.capacity() * sizeof(float);
+  }
 
   // The children of a lattice point reached along the lattice offset `heading` (in cells),
   // independent of where the point is: one per cone direction, snapped to the nearest
   // lattice point that keeps the turn and climb limits, duplicates merged.
   struct ConeChild {
     std::int16_t d[3];
-    float length_cells;
+    double length_cells;  // |d|: with the cell size, the segment's length in g
   };
   struct Cone {
     std::vector<ConeChild> children;
-    float max_length_cells = 0.0f;
+    double max_length_cells = 0.0;
   };
 
  private:

@@ -37,6 +37,11 @@ class OpenList {
   }
   bool empty() const { return size_ == 0; }
   std::size_t size() const { return size_; }
+  std::size_t memory_bytes() const {
+    std::size_t b = buckets_.capacity() * sizeof(buckets_[0]);
+    for (const auto& v : buckets_) b += v.capacity() * sizeof(Entry);
+    return b;
+  }
 
   void push(double f, double g, std::uint32_t id) {
     const Entry e{f, static_cast<float>(g), id};
