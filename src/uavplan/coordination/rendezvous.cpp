@@ -109,9 +109,11 @@ std::vector<std::optional<DirectionalRoute>> run_ordered(std::vector<Directional
 
 RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlanner& planner, const StopCondition& stop) {
   RendezvousResult res;
-  // One search engine per thread (buffers, cone tables, clearance cache); the first serves the
-  // sequential steps.
-  std::vector<DirectionalSearch> engines(std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 8));
+  // One search engine per thread (buffers, clearance cache), all on one set of cone tables; the
+  // first serves the sequential steps.
+  const auto cones = std::make_shared<DirectionalCones>();
+  std::vector<DirectionalSearch> engines;
+  for (std::size_t t = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 8); t > 0; --t) engines.emplace_back(cones);
   DirectionalSearch& engine = engines.front();
   struct Counting {
     DirectionalSearch& engine;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <unordered_map>
 #include <unordered_set>
 
 #include "uavplan/core/geometry.h"
@@ -123,9 +124,10 @@ double derived_cell(const World& world, std::int64_t target_points) {
 // phi_max). Scale-free, so they hold for offsets in metres or in cells.
 struct ConeLimits {
   double cos_turn, tan_pitch;
-  explicit ConeLimits(const DirectionalQuery& q)
-      : cos_turn(std::cos(std::min(q.max_yaw_rad + kAngleTolerance_rad, kPi))),
-        tan_pitch(q.max_pitch_rad + kAngleTolerance_rad >= kPi / 2 ? 1e300 : std::tan(q.max_pitch_rad + kAngleTolerance_rad)) {}
+  ConeLimits(double max_yaw_rad, double max_pitch_rad)
+      : cos_turn(std::cos(std::min(max_yaw_rad + kAngleTolerance_rad, kPi))),
+        tan_pitch(max_pitch_rad + kAngleTolerance_rad >= kPi / 2 ? 1e300 : std::tan(max_pitch_rad + kAngleTolerance_rad)) {}
+  explicit ConeLimits(const DirectionalQuery& q) : ConeLimits(q.max_yaw_rad, q.max_pitch_rad) {}
   bool pitch_ok(const Vec3& seg) const { return std::abs(seg.z()) <= tan_pitch * seg.head<2>().norm(); }
   bool turn_ok(const std::optional<Vec3>& from, const Vec3& seg) const {
     if (!from) return true;
@@ -138,13 +140,32 @@ struct ConeLimits {
   }
 };
 
-// Direction (a, b) of the cone: yaw spread over [yaw0 - span, yaw0 + span] (the whole circle
-// without a heading), pitch over [-phi_max, phi_max] (P4 eq. 8, psi and phi in their roles).
-Vec3 cone_direction(double yaw0, double yaw_span, int my, bool has_heading, int a, int mp, int b, double max_pitch) {
-  const double yaw = yaw0 + (my == 1 ? 0.0 : -yaw_span + 2.0 * yaw_span * a / (has_heading ? my - 1 : my));
-  const double pitch = mp == 1 ? 0.0 : -max_pitch + 2.0 * max_pitch * b / (mp - 1);
-  return {std::cos(pitch) * std::cos(yaw), std::cos(pitch) * std::sin(yaw), std::sin(pitch)};
-}
+// The directions of the cone (P4 eq. 8, psi and phi in their roles): yaw a of my spread over
+// [yaw0 - span, yaw0 + span] (the whole circle without a heading), pitch b of mp over
+// [-phi_max, phi_max], yaw outermost. Sines and cosines once per yaw and per pitch.
+class ConeDirections {
+ public:
+  static constexpr int kMaxPitches = 64;  // DirectionalQuery::directions is at most this
+  ConeDirections(int mp, double max_pitch) : mp_(std::clamp(mp, 1, kMaxPitches)) {
+    for (int b = 0; b < mp_; ++b) {
+      const double pitch = mp_ == 1 ? 0.0 : -max_pitch + 2.0 * max_pitch * b / (mp_ - 1);
+      cos_pitch_[b] = std::cos(pitch);
+      sin_pitch_[b] = std::sin(pitch);
+    }
+  }
+  template <class F>
+  void for_each(double yaw0, double yaw_span, int my, bool has_heading, F&& f) const {
+    for (int a = 0; a < my; ++a) {
+      const double yaw = yaw0 + (my == 1 ? 0.0 : -yaw_span + 2.0 * yaw_span * a / (has_heading ? my - 1 : my));
+      const double cy = std::cos(yaw), sy = std::sin(yaw);
+      for (int b = 0; b < mp_; ++b) f(Vec3(cos_pitch_[b] * cy, cos_pitch_[b] * sy, sin_pitch_[b]));
+    }
+  }
+
+ private:
+  int mp_;
+  double cos_pitch_[kMaxPitches], sin_pitch_[kMaxPitches];
+};
 
 std::uint32_t pack_offset(int dx, int dy, int dz) {
   return (static_cast<std::uint32_t>(dx + 512) << 20) | (static_cast<std::uint32_t>(dy + 512) << 10) |
@@ -161,115 +182,138 @@ void general_children(const Lattice& lat, const DirectionalQuery& q, const ConeL
   const double yaw0 = heading ? std::atan2(heading->y(), heading->x()) : std::atan2(q.goal.y() - p.y(), q.goal.x() - p.x());
   const double yaw_span = heading ? q.max_yaw_rad : kPi;
   const int my = heading ? m : std::max(m, static_cast<int>(std::ceil(2 * kPi / std::max(2 * q.max_yaw_rad / std::max(m - 1, 1), 1e-3))));
-  for (int a = 0; a < my; ++a)
-    for (int b = 0; b < mp; ++b) {
-      const Vec3 target = p + q.step_cells * q.cell_m * cone_direction(yaw0, yaw_span, my, heading.has_value(), a, mp, b, q.max_pitch_rad);
-      std::uint32_t cand[8];
-      Vec3 cand_pt[8];
-      const int nc = lat.corners(target, cand, cand_pt);
-      for (int c = 0; c < nc; ++c) {
-        const Vec3 seg = cand_pt[c] - p;
-        if (seg.norm() < 1e-9 || !lim.turn_ok(heading, seg) || !lim.pitch_ok(seg)) continue;
-        f(cand[c], cand_pt[c]);
-        break;
-      }
+  ConeDirections(mp, q.max_pitch_rad).for_each(yaw0, yaw_span, my, heading.has_value(), [&](const Vec3& dir) {
+    const Vec3 target = p + q.step_cells * q.cell_m * dir;
+    std::uint32_t cand[8];
+    Vec3 cand_pt[8];
+    const int nc = lat.corners(target, cand, cand_pt);
+    for (int c = 0; c < nc; ++c) {
+      const Vec3 seg = cand_pt[c] - p;
+      if (seg.norm() < 1e-9 || !lim.turn_ok(heading, seg) || !lim.pitch_ok(seg)) continue;
+      f(cand[c], cand_pt[c]);
+      break;
     }
+  });
+}
+
+// One cone (see DirectionalCones): the expansion of the search for a lattice point away from the
+// bounds, in cells: the target L cells along each direction, the corners of its lattice cell
+// nearest first, the first corner that keeps the limits.
+DirectionalCones::Cone build_cone(const DirectionalCones::Key& key, int dx, int dy, int dz) {
+  const ConeLimits lim(key.max_yaw_rad, key.max_pitch_rad);
+  const std::optional<Vec3> heading = Vec3(dx, dy, dz);
+  const double yaw0 = std::atan2(heading->y(), heading->x());
+  const int m = key.directions, mp = key.flat ? 1 : m;
+  DirectionalCones::Cone c;
+  ConeDirections(mp, key.max_pitch_rad).for_each(yaw0, key.max_yaw_rad, m, true, [&](const Vec3& dir) {
+    const Vec3 t = key.step_cells * dir;
+    const Vec3 lo(std::floor(t.x()), std::floor(t.y()), key.flat ? 0.0 : std::floor(t.z()));
+    Vec3 pts[8];
+    double d2[8];
+    int n = 0;
+    for (int cz = 0; cz <= (key.flat ? 0 : 1); ++cz)
+      for (int cy = 0; cy <= 1; ++cy)
+        for (int cx = 0; cx <= 1; ++cx) {
+          const Vec3 corner = lo + Vec3(cx, cy, cz);
+          const double dist = (corner - t).squaredNorm();
+          int j = n++;
+          for (; j > 0 && d2[j - 1] > dist; --j) {  // insertion, nearest first (as Lattice::corners)
+            d2[j] = d2[j - 1];
+            pts[j] = pts[j - 1];
+          }
+          d2[j] = dist;
+          pts[j] = corner;
+        }
+    for (int i = 0; i < n; ++i) {
+      const Vec3& seg = pts[i];
+      if (seg.norm() < 1e-9 || !lim.turn_ok(heading, seg) || !lim.pitch_ok(seg)) continue;
+      const DirectionalCones::Child child{
+          {static_cast<std::int16_t>(seg.x()), static_cast<std::int16_t>(seg.y()), static_cast<std::int16_t>(seg.z())}, seg.norm()};
+      const bool seen = std::any_of(c.children.begin(), c.children.end(), [&](const DirectionalCones::Child& o) {
+        return o.d[0] == child.d[0] && o.d[1] == child.d[1] && o.d[2] == child.d[2];
+      });
+      if (!seen) {
+        c.children.push_back(child);
+        c.max_length_cells = std::max(c.max_length_cells, child.length_cells);
+      }
+      break;
+    }
+  });
+  return c;
 }
 
 }  // namespace
 
-bool DirectionalSearch::levels_reachable(const World& world, const DirectionalQuery& q) {
+struct DirectionalCones::Table {
+  Key key;
+  std::unordered_map<std::uint32_t, Cone> cones;  // by packed heading offset
+  std::unordered_set<std::uint32_t> level_kept;   // headings from which no move changes level
+};
+
+DirectionalCones::DirectionalCones() = default;
+DirectionalCones::~DirectionalCones() = default;
+
+DirectionalCones::Table& DirectionalCones::table(const Key& key) {
+  const std::lock_guard lock(mutex_);
+  for (const auto& t : tables_)
+    if (t->key == key) return *t;
+  tables_.push_back(std::make_unique<Table>(Table{key, {}, {}}));
+  return *tables_.back();
+}
+
+const DirectionalCones::Cone& DirectionalCones::cone(Table& table, int dx, int dy, int dz) {
+  const std::lock_guard lock(mutex_);
+  return cone_locked(table, dx, dy, dz);
+}
+
+const DirectionalCones::Cone& DirectionalCones::cone_locked(Table& table, int dx, int dy, int dz) {
+  const std::uint32_t k = pack_offset(dx, dy, dz);
+  if (const auto it = table.cones.find(k); it != table.cones.end()) return it->second;
+  return table.cones.emplace(k, build_cone(table.key, dx, dy, dz)).first->second;
+}
+
+bool DirectionalCones::level_change_reachable(Table& table, const std::vector<std::uint32_t>& headings) {
+  const std::lock_guard lock(mutex_);
+  std::vector<std::uint32_t> frontier;  // headings whose cones are not yet read
+  std::unordered_set<std::uint32_t> seen;
+  auto visit = [&](std::uint32_t k) {
+    if (!table.level_kept.contains(k) && seen.insert(k).second) frontier.push_back(k);
+  };
+  for (const std::uint32_t k : headings) visit(k);
+  while (!frontier.empty()) {
+    const std::uint32_t k = frontier.back();
+    frontier.pop_back();
+    const int dx = static_cast<int>(k >> 20) - 512, dy = static_cast<int>((k >> 10) & 1023) - 512, dz = static_cast<int>(k & 1023) - 512;
+    for (const Child& c : cone_locked(table, dx, dy, dz).children) {
+      if (c.d[2] != 0) return true;
+      visit(pack_offset(c.d[0], c.d[1], c.d[2]));
+    }
+  }
+  // Every heading seen leads only to headings seen or known to keep the level.
+  table.level_kept.insert(seen.begin(), seen.end());
+  return false;
+}
+
+bool DirectionalSearch::levels_reachable(const World& world, const DirectionalQuery& q, DirectionalCones::Table& table) {
   const Lattice lat = make_lattice(world, q.cell_m);
   const bool flat = lat.n[2] == 1;
   if (flat) return true;
   const ConeLimits lim(q);
   // Headings of the start's grandchildren (collisions ignored: a superset), then every heading
   // the cone tables lead to from them.
-  std::vector<std::uint32_t> frontier;  // headings (packed offsets) whose cones are not yet read
-  std::unordered_set<std::uint32_t> seen;
+  std::vector<std::uint32_t> headings;
   bool change = false;
-  auto visit = [&](int dx, int dy, int dz) {
-    change = change || dz != 0;
-    const std::uint32_t k = pack_offset(dx, dy, dz);
-    if (seen.insert(k).second) frontier.push_back(k);
-  };
   const std::optional<Vec3> h0 = q.heading_rad ? std::optional<Vec3>(heading_vector(*q.heading_rad)) : std::nullopt;
   general_children(lat, q, lim, flat, q.start, h0, [&](std::uint32_t, const Vec3& c) {
     if (change) return;
     general_children(lat, q, lim, flat, c, c - q.start, [&](std::uint32_t, const Vec3& g) {
       const Vec3 d = (g - c) / q.cell_m;
-      visit(static_cast<int>(std::lround(d.x())), static_cast<int>(std::lround(d.y())), static_cast<int>(std::lround(d.z())));
+      const int dz = static_cast<int>(std::lround(d.z()));
+      change = change || dz != 0;
+      headings.push_back(pack_offset(static_cast<int>(std::lround(d.x())), static_cast<int>(std::lround(d.y())), dz));
     });
   });
-  while (!frontier.empty() && !change) {
-    const std::uint32_t k = frontier.back();
-    frontier.pop_back();
-    const int dx = static_cast<int>(k >> 20) - 512, dy = static_cast<int>((k >> 10) & 1023) - 512, dz = static_cast<int>(k & 1023) - 512;
-    for (const ConeChild& c : cone(q, flat, dx, dy, dz).children) visit(c.d[0], c.d[1], c.d[2]);
-  }
-  return change;
-}
-
-const DirectionalSearch::Cone& DirectionalSearch::cone(const DirectionalQuery& q, bool flat, int dx, int dy, int dz) {
-  const ConeKey key{q.step_cells, q.max_yaw_rad, q.max_pitch_rad, std::max(1, q.directions), flat};
-  if (!cone_table_ || !(cone_table_->key == key)) {
-    cone_table_ = nullptr;
-    for (const auto& t : cone_tables_)
-      if (t->key == key) cone_table_ = t.get();
-    if (!cone_table_) {
-      // A new key comes with a new search, before any of its cones is handed out.
-      if (cone_tables_.size() >= kMaxConeTables) cone_tables_.clear();
-      cone_tables_.push_back(std::make_unique<ConeTable>(ConeTable{key, {}}));
-      cone_table_ = cone_tables_.back().get();
-    }
-  }
-  auto& cones_ = cone_table_->cones;
-  const std::uint32_t k = pack_offset(dx, dy, dz);
-  if (const auto it = cones_.find(k); it != cones_.end()) return it->second;
-  // The expansion of the search below for a lattice point away from the bounds, in cells:
-  // the target L cells along each direction, the corners of its lattice cell nearest first, the
-  // first corner that keeps the limits.
-  const ConeLimits lim(q);
-  const std::optional<Vec3> heading = Vec3(dx, dy, dz);
-  const double yaw0 = std::atan2(heading->y(), heading->x());
-  const int m = std::max(1, q.directions), mp = flat ? 1 : m;
-  Cone c;
-  for (int a = 0; a < m; ++a)
-    for (int b = 0; b < mp; ++b) {
-      const Vec3 t = q.step_cells * cone_direction(yaw0, q.max_yaw_rad, m, true, a, mp, b, q.max_pitch_rad);
-      const Vec3 lo(std::floor(t.x()), std::floor(t.y()), flat ? 0.0 : std::floor(t.z()));
-      Vec3 pts[8];
-      double d2[8];
-      int n = 0;
-      for (int cz = 0; cz <= (flat ? 0 : 1); ++cz)
-        for (int cy = 0; cy <= 1; ++cy)
-          for (int cx = 0; cx <= 1; ++cx) {
-            const Vec3 corner = lo + Vec3(cx, cy, cz);
-            const double dist = (corner - t).squaredNorm();
-            int j = n++;
-            for (; j > 0 && d2[j - 1] > dist; --j) {  // insertion, nearest first (as Lattice::corners)
-              d2[j] = d2[j - 1];
-              pts[j] = pts[j - 1];
-            }
-            d2[j] = dist;
-            pts[j] = corner;
-          }
-      for (int i = 0; i < n; ++i) {
-        const Vec3& seg = pts[i];
-        if (seg.norm() < 1e-9 || !lim.turn_ok(heading, seg) || !lim.pitch_ok(seg)) continue;
-        const ConeChild child{{static_cast<std::int16_t>(seg.x()), static_cast<std::int16_t>(seg.y()), static_cast<std::int16_t>(seg.z())},
-                              seg.norm()};
-        const bool seen = std::any_of(c.children.begin(), c.children.end(), [&](const ConeChild& o) {
-          return o.d[0] == child.d[0] && o.d[1] == child.d[1] && o.d[2] == child.d[2];
-        });
-        if (!seen) {
-          c.children.push_back(child);
-          c.max_length_cells = std::max(c.max_length_cells, child.length_cells);
-        }
-        break;
-      }
-    }
-  return cones_.emplace(k, std::move(c)).first->second;
+  return change || cones_->level_change_reachable(table, headings);
 }
 
 float DirectionalSearch::clearance_at(const World& world, std::uint32_t point, const Vec3& p, double cap_m) {
@@ -306,6 +350,11 @@ DirectionalQuery DirectionalAStarPlanner::query_for(const Problem& pb, const Wor
 DirectionalRoute DirectionalSearch::run(const World& world, const DirectionalQuery& q, const StopCondition& stop) {
   // P4's search: one state per lattice point (its heading from the best parent), closed once.
   // Where that gets stuck behind dead zones, search again with the heading in the state.
+  if (q.directions > ConeDirections::kMaxPitches) {
+    DirectionalRoute r;
+    r.message = "directions: at most " + std::to_string(ConeDirections::kMaxPitches);
+    return r;
+  }
   DirectionalRoute r = run_with_bins(world, q, stop, q.heading_states_fallback ? 8 : 1);
   if (q.heading_states_fallback) return r;
   if (r.found || r.stopped || !q.heading_states_fallback) return r;
@@ -360,16 +409,18 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
   // level takes sqrt(3) cells across): then a node on a level from which the goal hop cannot
   // reach the goal is a dead end, and a search that must climb ends at once.
   const double goal_hop_m = 1.5 * step_m + q.cell_m;
-  const bool level_locked = !flat && std::abs(q.goal.z() - q.start.z()) > goal_hop_m && !levels_reachable(world, q);
+  DirectionalCones::Table& cone_table =
+      cones_->table({q.step_cells, q.max_yaw_rad, q.max_pitch_rad, std::max(1, q.directions), flat});
+  const bool level_locked = !flat && std::abs(q.goal.z() - q.start.z()) > goal_hop_m && !levels_reachable(world, q, cone_table);
   auto interior = [&](int i, int j, int k) {
     return i >= reach && i < lat.n[0] - reach && j >= reach && j < lat.n[1] - reach &&
            (flat || (k >= reach && k < lat.n[2] - reach));
   };
   // One clearance per lattice point replaces the segment checks of all its children when it
   // exceeds the longest child plus the inflation (every child segment stays inside that ball).
-  // The cones of this search by heading offset (element references in cones_ stay valid).
+  // The cones of this search by heading offset (references into the table stay valid).
   const int side = 2 * reach + 1;
-  std::vector<const Cone*> cone_index(static_cast<std::size_t>(side) * side * side, nullptr);
+  std::vector<const DirectionalCones::Cone*> cone_index(static_cast<std::size_t>(side) * side * side, nullptr);
   const double clearance_cap_m = (reach + 1) * q.cell_m + q.inflation_m;
   if (clearance_world_ != &world || clearance_cell_m_ != q.cell_m || clearance_cap_m_ < clearance_cap_m ||
       clearance_.size() != static_cast<std::size_t>(lat.size())) {
@@ -448,22 +499,22 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
         int pi, pj, pk;
         lat.coords(n.parent >> bin_bits, pi, pj, pk);
         const int dx = i - pi, dy = j - pj, dz = k - pk;
-        const Cone* cone_ptr = nullptr;
+        const DirectionalCones::Cone* cone_ptr = nullptr;
         if (std::abs(dx) <= reach && std::abs(dy) <= reach && std::abs(dz) <= reach) {
-          const Cone*& slot = cone_index[static_cast<std::size_t>(((dz + reach) * side + dy + reach) * side + dx + reach)];
-          if (!slot) slot = &cone(q, flat, dx, dy, dz);
+          const DirectionalCones::Cone*& slot = cone_index[static_cast<std::size_t>(((dz + reach) * side + dy + reach) * side + dx + reach)];
+          if (!slot) slot = &cones_->cone(cone_table, dx, dy, dz);
           cone_ptr = slot;
         } else {
-          cone_ptr = &cone(q, flat, dx, dy, dz);
+          cone_ptr = &cones_->cone(cone_table, dx, dy, dz);
         }
-        const Cone& cn = *cone_ptr;
+        const DirectionalCones::Cone& cn = *cone_ptr;
         const double max_len_m = cn.max_length_cells * q.cell_m;
         const float clearance_p = clearance_at(world, pt, p, clearance_cap_m_);
         const bool all_clear = clearance_p >= max_len_m + q.inflation_m;
         bool near_virtual = false;
         for (const Sphere& sp : q.virtual_threats)
           near_virtual = near_virtual || (sp.center - p).norm() - max_len_m < sp.radius_m + q.inflation_m;
-        for (const ConeChild& c : cn.children) {
+        for (const DirectionalCones::Child& c : cn.children) {
           if (!inside && (i + c.d[0] < 0 || i + c.d[0] >= lat.n[0] || j + c.d[1] < 0 || j + c.d[1] >= lat.n[1] ||
                           k + c.d[2] < 0 || k + c.d[2] >= lat.n[2]))
             continue;
@@ -475,12 +526,15 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
             continue;
           const auto child_pt = static_cast<std::uint32_t>(pt + c.d[0] + c.d[1] * stride_y + c.d[2] * stride_z);
           // Clear if the two end clearances cover the segment: every point of it is within
-          // (clearance - inflation) of one end. Else the exact check.
-          if (!all_clear &&
-              static_cast<double>(clearance_p) + clearance_at(world, child_pt, to, clearance_cap_m_) - 2 * q.inflation_m <
-                  c.length_cells * q.cell_m &&
-              world.segment_collides(p, to, q.inflation_m))
-            continue;
+          // (clearance - inflation) of one end. Blocked if the child itself is within the
+          // inflation (by more than the cache's float rounding). Else the exact check.
+          if (!all_clear) {
+            const double clearance_child = clearance_at(world, child_pt, to, clearance_cap_m_);
+            if (static_cast<double>(clearance_p) + clearance_child - 2 * q.inflation_m < c.length_cells * q.cell_m &&
+                (clearance_child + 1e-6 * (std::abs(clearance_child) + q.inflation_m) < q.inflation_m ||
+                 world.segment_collides(p, to, q.inflation_m)))
+              continue;
+          }
           ++children;
           // g adds the lattice length of the move, cell |d|, not |to - p|: the same for every
           // point, free of the rounding of positions far from the origin.

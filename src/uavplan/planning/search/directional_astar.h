@@ -15,8 +15,8 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <optional>
-#include <unordered_map>
 #include <vector>
 
 #include "uavplan/planning/params.h"
@@ -75,54 +75,69 @@ struct DirectionalQuery {
   double max_length_m = std::numeric_limits<double>::infinity();
 };
 
-// Reusable search state (buffers, cone tables, clearance cache): one per thread; repeated
-// queries on the same world (P4's rendezvous runs many) reuse what they can.
+// The cones of P4's expansion as lattice offsets, one table per (step, directions, limits,
+// flatness): the children of a lattice point reached along the offset `heading` (in cells),
+// independent of where the point is: one per cone direction, snapped to the nearest lattice
+// point that keeps the turn and climb limits, duplicates merged. Built on first use and kept;
+// several searches (and threads) may share one set: the rendezvous's multi-step search comes
+// back to each step and direction count for every UAV, on every engine.
+class DirectionalCones {
+ public:
+  struct Child {
+    std::int16_t d[3];
+    double length_cells;  // |d|: with the cell size, the segment's length in g
+  };
+  struct Cone {
+    std::vector<Child> children;
+    double max_length_cells = 0.0;
+  };
+  struct Key {
+    double step_cells = -1.0, max_yaw_rad = -1.0, max_pitch_rad = -1.0;
+    int directions = -1;
+    bool flat = false;
+    bool operator==(const Key&) const = default;
+  };
+  struct Table;
+
+  // Thread-safe; references stay valid for the life of this object.
+  Table& table(const Key& key);
+  const Cone& cone(Table& table, int dx, int dy, int dz);
+  // Whether a move that climbs or descends is reachable through the cones from these headings
+  // (packed offsets); the headings from which none is are remembered per table.
+  bool level_change_reachable(Table& table, const std::vector<std::uint32_t>& headings);
+
+  DirectionalCones();
+  ~DirectionalCones();
+
+ private:
+  const Cone& cone_locked(Table& table, int dx, int dy, int dz);
+  std::mutex mutex_;
+  std::vector<std::unique_ptr<Table>> tables_;
+};
+
+// Reusable search state (buffers, clearance cache): one per thread; repeated queries on the same
+// world (P4's rendezvous runs many) reuse what they can. Engines may share their cone tables.
 class DirectionalSearch {
  public:
+  explicit DirectionalSearch(std::shared_ptr<DirectionalCones> cones = std::make_shared<DirectionalCones>())
+      : cones_(std::move(cones)) {}
   DirectionalRoute run(const World& world, const DirectionalQuery& q, const StopCondition& stop);
   // Bytes held for reuse: search nodes, open list, clearance cache (cone tables not counted).
   std::size_t memory_bytes() const {
     return buf_.memory_bytes() + open_.memory_bytes() + clearance_.capacity() * sizeof(float);
   }
 
-  // The children of a lattice point reached along the lattice offset `heading` (in cells),
-  // independent of where the point is: one per cone direction, snapped to the nearest
-  // lattice point that keeps the turn and climb limits, duplicates merged.
-  struct ConeChild {
-    std::int16_t d[3];
-    double length_cells;  // |d|: with the cell size, the segment's length in g
-  };
-  struct Cone {
-    std::vector<ConeChild> children;
-    double max_length_cells = 0.0;
-  };
-
  private:
   DirectionalRoute run_with_bins(const World& world, const DirectionalQuery& q, const StopCondition& stop,
                                  std::uint32_t heading_bins);
-  const Cone& cone(const DirectionalQuery& q, bool flat, int dx, int dy, int dz);
   // Whether the search can ever change level: some move from the start, its children, or a cone
   // they lead to climbs or descends.
-  bool levels_reachable(const World& world, const DirectionalQuery& q);
+  bool levels_reachable(const World& world, const DirectionalQuery& q, DirectionalCones::Table& table);
   float clearance_at(const World& world, std::uint32_t point, const Vec3& p, double cap_m);
 
   SearchBuffers buf_;
   OpenList open_;
-  // Cones by heading offset, one table per (step, directions, limits, flatness): the
-  // rendezvous's multi-step search comes back to each step and direction count per UAV.
-  struct ConeKey {
-    double step_cells = -1.0, max_yaw_rad = -1.0, max_pitch_rad = -1.0;
-    int directions = -1;
-    bool flat = false;
-    bool operator==(const ConeKey&) const = default;
-  };
-  struct ConeTable {
-    ConeKey key;
-    std::unordered_map<std::uint32_t, Cone> cones;
-  };
-  static constexpr std::size_t kMaxConeTables = 64;  // then all are dropped (between searches)
-  std::vector<std::unique_ptr<ConeTable>> cone_tables_;
-  ConeTable* cone_table_ = nullptr;
+  std::shared_ptr<DirectionalCones> cones_;
   // Clearance of lattice points (capped at clearance_cap_m_), for one world and lattice; NaN
   // where not yet computed.
   const World* clearance_world_ = nullptr;

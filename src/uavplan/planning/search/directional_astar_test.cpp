@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <thread>
+
 #include "uavplan/core/rng.h"
 #include "uavplan/planning/segment_rule.h"
 
@@ -112,6 +114,47 @@ TEST(DirectionalAStar, ShortStepsThatCannotClimbAndTheLengthBoundEndEarly) {
   const DirectionalRoute cut = search.run(w, q, {});
   EXPECT_FALSE(cut.found);
   EXPECT_LT(cut.expanded, climbs.expanded);
+}
+
+// Engines sharing one set of cone tables, searching side by side with different steps and
+// direction counts, find what engines of their own find.
+TEST(DirectionalAStar, SharedConeTablesGiveTheSameRoutesAcrossThreads) {
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(40000, 40000, 20000)};
+  ws.obstacles.push_back(Sphere{Vec3(18000, 17000, 9000), 5000});
+  ws.obstacles.push_back(Sphere{Vec3(27000, 30000, 12000), 4000});
+  const World w(std::move(ws));
+  const Problem p = problem(Vec3(3000, 4000, 6000), Vec3(36000, 35000, 14000), deg_to_rad(90));
+  const DirectionalAStarPlanner planner(DirectionalAStarOptions::from_params({{"cell_m", "1000"}}));
+  std::vector<DirectionalQuery> qs;
+  for (const double step : {1.8, 2.4, 3.0})
+    for (const int m : {3, 5}) {
+      DirectionalQuery q = planner.query_for(p, w);
+      q.step_cells = step;
+      q.directions = m;
+      qs.push_back(q);
+    }
+  std::vector<DirectionalRoute> alone;
+  for (const auto& q : qs) alone.push_back(DirectionalSearch().run(w, q, {}));
+  const auto cones = std::make_shared<DirectionalCones>();
+  std::vector<DirectionalRoute> shared(qs.size());
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 3; ++t)
+    threads.emplace_back([&, t] {
+      DirectionalSearch engine(cones);
+      for (std::size_t i = 0; i < qs.size(); ++i) {
+        const std::size_t k = (i + 2 * t) % qs.size();  // each thread its own order
+        const DirectionalRoute r = engine.run(w, qs[k], {});
+        if (t == 0) shared[k] = r;
+        else EXPECT_EQ(r.waypoints, alone[k].waypoints) << k;
+      }
+    });
+  for (auto& th : threads) th.join();
+  for (std::size_t k = 0; k < qs.size(); ++k) {
+    ASSERT_TRUE(alone[k].found) << k;
+    EXPECT_EQ(shared[k].waypoints, alone[k].waypoints) << k;
+    EXPECT_EQ(shared[k].expanded, alone[k].expanded) << k;
+  }
 }
 
 TEST(DirectionalAStar, ParametersAreChecked) {
