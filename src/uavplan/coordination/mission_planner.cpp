@@ -126,18 +126,65 @@ void plan_group_mission(const Scenario& sc, const ApfOptions& aopt, const Missio
   if (opt.progress) opt.progress(sc.uavs.size(), sc.uavs.size());
 }
 
-// All UAVs depart at once and fly at their cruise speed: equal lengths, equal arrival times.
+// All UAVs depart at once and fly at their cruise speed: equal lengths, equal arrival times. A
+// UAV that would come closer than the separation to one timed before it (outside their meeting
+// at the goal) departs later instead, in delay_step_s steps, by at most its slack: it still
+// arrives within epsilon / speed of the earliest arrival (the spread the length tolerance allows
+// at equal speeds). UAVs are timed from the least slack up (scenario order among equals).
+// UAVs sharing a stretch of route or converging on the goal then pass one after the other; a
+// UAV with no such delay fails with the conflict.
 void plan_rendezvous_mission(const Scenario& sc, const DirectionalAStarOptions& dopt, const MissionOptions& opt, Plan& plan) {
   const DirectionalAStarPlanner planner(dopt);
   const RendezvousResult rr = plan_rendezvous(sc, planner, opt.stop);
-  for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
+  const std::size_t n = sc.uavs.size();
+  std::vector<UavPlan> planned(n);  // sized once: `committed` points into it
+  std::vector<std::string> messages(n);
+  std::vector<double> slack_s(n, 0.0);
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < n; ++i) {
     const RendezvousUav& r = rr.uavs[i];
     char buf[200];
     std::snprintf(buf, sizeof buf, "rendezvous: %s, pre-planned %.1f m, final %.1f m (target %.1f m, epsilon %.1f m)",
                   std::string(to_string(r.step)).c_str(), r.preplanned_m, r.final_m, rr.target_m, rr.epsilon_m);
-    const Trajectory tr = r.ok ? time_route(r.waypoints, sc.uavs[i].speed.cruise_mps, 0.0, opt.max_sample_dt_s) : Trajectory{};
-    plan.uavs.push_back(flown_plan(r.id, r.ok, std::string(buf) + (r.detail.empty() ? "" : "; " + r.detail), r.waypoints, tr));
-    if (opt.progress) opt.progress(i + 1, sc.uavs.size());
+    messages[i] = std::string(buf) + (r.detail.empty() ? "" : "; " + r.detail);
+    if (r.ok) order.push_back(i);
+    else planned[i] = flown_plan(r.id, false, messages[i], {}, {});
+  }
+  double earliest_s = World::kInf;
+  for (const std::size_t i : order) earliest_s = std::min(earliest_s, rr.uavs[i].final_m / sc.uavs[i].speed.cruise_mps);
+  for (const std::size_t i : order)
+    slack_s[i] = std::max(0.0, earliest_s + (rr.epsilon_m - rr.uavs[i].final_m) / sc.uavs[i].speed.cruise_mps);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return slack_s[a] < slack_s[b]; });
+  std::vector<std::pair<const UavSpec*, const UavPlan*>> committed;
+  for (const std::size_t i : order) {
+    const RendezvousUav& r = rr.uavs[i];
+    const UavSpec& u = sc.uavs[i];
+    Conflict first;
+    Trajectory tr;
+    bool placed = false;
+    double delay = 0.0;
+    for (int k = 0; delay <= slack_s[i] + 1e-9; delay = ++k * opt.delay_step_s) {
+      tr = time_route(r.waypoints, u.speed.cruise_mps, delay, opt.max_sample_dt_s);
+      const Conflict c = find_conflict(sc, u, tr, committed);
+      if (!first.any) first = c;
+      if ((placed = !c.any)) break;
+    }
+    char buf[200];
+    if (!placed) {
+      std::snprintf(buf, sizeof buf, " for every departure delay up to %.1f s (its arrival slack)", slack_s[i]);
+      planned[i] = flown_plan(r.id, false, messages[i] + "; conflicts with " + first.what + buf, {}, {});
+      continue;
+    }
+    if (delay > 0.0) {
+      std::snprintf(buf, sizeof buf, "; departs %.1f s late to keep the separation", delay);
+      messages[i] += buf;
+    }
+    planned[i] = flown_plan(r.id, true, messages[i], r.waypoints, std::move(tr));
+    committed.emplace_back(&u, &planned[i]);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    plan.uavs.push_back(std::move(planned[i]));
+    if (opt.progress) opt.progress(i + 1, n);
   }
 }
 
@@ -151,9 +198,19 @@ double separation_horizon_s(const Scenario& sc, const UavSpec& a, const Trajecto
                             const Trajectory& tb) {
   const double need = required_separation_m(sc, a, b);
   if (!a.goal || !b.goal || (*a.goal - *b.goal).norm() >= need || ta.empty() || tb.empty()) return World::kInf;
+  // The first time the trajectory comes within `need` of the goal, between samples too (a last
+  // sample far out would otherwise leave the approach itself checked).
   auto entering = [&](const Trajectory& tr) {
-    for (const auto& s : tr)
-      if ((s.p - *a.goal).norm() <= need) return s.t_s;
+    if ((tr.front().p - *a.goal).norm() <= need) return tr.front().t_s;
+    for (std::size_t k = 1; k < tr.size(); ++k) {
+      if ((tr[k].p - *a.goal).norm() > need) continue;
+      // |f + s d| = need on this segment, the smaller root: where it enters the sphere.
+      const Vec3 d = tr[k].p - tr[k - 1].p, f = tr[k - 1].p - *a.goal;
+      const double aa = d.squaredNorm(), bb = f.dot(d), cc = f.squaredNorm() - need * need;
+      const double disc = std::max(bb * bb - aa * cc, 0.0);
+      const double s = aa > 0.0 ? std::clamp((-bb - std::sqrt(disc)) / aa, 0.0, 1.0) : 1.0;
+      return tr[k - 1].t_s + s * (tr[k].t_s - tr[k - 1].t_s);
+    }
     return tr.back().t_s;
   };
   return std::min(entering(ta), entering(tb));

@@ -12,6 +12,7 @@
 
 #include "uavplan/core/geometry.h"
 #include "uavplan/planning/segment_rule.h"
+#include "uavplan/vehicle/uav.h"
 
 namespace uavplan {
 
@@ -32,6 +33,9 @@ namespace {
 // A re-planning search that has not found its route after this many expansions is dropped as a
 // candidate (a pre-planning search on these worlds needs a few thousand).
 constexpr std::int64_t kReplanExpansions = 20'000;
+// The last-resort loiter tries this many of the longest routes found, with up to this many laps.
+constexpr int kLoiterBases = 4;
+constexpr int kMaxLoiterLaps = 16;
 
 double length(const std::vector<Vec3>& pts) {
   double l = 0.0;
@@ -45,20 +49,22 @@ std::string fmt(const char* f, double a, double b = 0.0, double c = 0.0) {
   return buf;
 }
 
-// The loiter of P4 eq. 9-11 as a regular polygon flown counter-clockwise, the start at the
-// middle of its first side and that side along the heading, so the UAV leaves and rejoins its
-// route with its own heading; the centre is to the left, O = X0 - a v'/|v'| with
-// v' = [[0,1,0],[-1,0,0],[0,0,0]] v. Each vertex turns 2 pi / n. Perimeter = extra length.
-std::vector<Vec3> loiter_polygon(const Vec3& x0, const Vec3& heading, double extra_m, int n) {
+// The loiter of P4 eq. 9-11 as a regular polygon, x0 at the middle of its first side and that
+// side along the heading, so the UAV leaves and rejoins its route with its own heading: [x0,
+// v1, ..., vn, x0], each vertex turning 2 pi / n, perimeter `perimeter_m`. The paper's circle is
+// flown counter-clockwise, its centre to the left, O = X0 - a v'/|v'| with
+// v' = [[0,1,0],[-1,0,0],[0,0,0]] v; `left` false mirrors it (clockwise, centre to the right).
+std::vector<Vec3> loiter_polygon(const Vec3& x0, const Vec3& heading, double perimeter_m, int n, bool left = true) {
   const Vec3 h = Vec3(heading.x(), heading.y(), 0.0).normalized();
-  const Vec3 left(-h.y(), h.x(), 0.0);
-  const double apothem = extra_m / (2.0 * n * std::tan(kPi / n));
+  const Vec3 side = left ? Vec3(-h.y(), h.x(), 0.0) : Vec3(h.y(), -h.x(), 0.0);
+  const double apothem = perimeter_m / (2.0 * n * std::tan(kPi / n));
   const double circum = apothem / std::cos(kPi / n);
-  const Vec3 o = x0 + apothem * left;
-  const double a0 = std::atan2(-left.y(), -left.x());  // direction from the centre to the start
+  const Vec3 o = x0 + apothem * side;
+  const double a0 = std::atan2(-side.y(), -side.x());  // direction from the centre to x0
+  const double turn = left ? 1.0 : -1.0;
   std::vector<Vec3> pts{x0};
   for (int k = 0; k < n; ++k) {
-    const double a = a0 + (2 * k + 1) * kPi / n;
+    const double a = a0 + turn * (2 * k + 1) * kPi / n;
     pts.push_back(o + circum * Vec3(std::cos(a), std::sin(a), 0.0));
   }
   pts.push_back(x0);
@@ -234,23 +240,63 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
     const double r_min = opt.min_turn_radius_m > 0.0 ? opt.min_turn_radius_m : cell;
     const SegmentRule rule(sc.world, u);
     const int n = std::max(12, static_cast<int>(std::ceil(2 * kPi / (0.95 * std::min(u.max_turn_rad, q.max_yaw_rad)))));
+    // The limits the loiter's joins must keep (the search's, which are within the UAV's).
+    UavSpec limits = u;
+    limits.max_turn_rad = std::min(u.max_turn_rad, q.max_yaw_rad);
+    limits.max_climb_rad = std::min(u.max_climb_rad, q.max_pitch_rad);
+    // `base` with `laps` turns of a loiter of `extra` metres in all, inserted at route point
+    // `at` (entered and left along the horizontal heading there), if clear and within limits.
+    auto loiter_route = [&](const std::vector<Vec3>& base, std::size_t at, double extra, int laps,
+                            bool left) -> std::optional<std::vector<Vec3>> {
+      const Vec3 heading = at > 0 ? Vec3(base[at] - base[at - 1])
+                                  : (u.heading_rad ? heading_vector(*u.heading_rad) : Vec3(base[1] - base[0]));
+      if (heading.head<2>().norm() <= 1e-9 * heading.norm()) return std::nullopt;
+      const auto loop = loiter_polygon(base[at], heading, extra / laps, n, left);
+      for (std::size_t i = 1; i < loop.size(); ++i)
+        if (!rule(loop[i - 1], loop[i])) return std::nullopt;
+      std::vector<Vec3> route(base.begin(), base.begin() + static_cast<std::ptrdiff_t>(at) + 1);
+      for (int lap = 0; lap < laps; ++lap) route.insert(route.end(), loop.begin() + 1, loop.end() - 1);
+      route.insert(route.end(), base.begin() + static_cast<std::ptrdiff_t>(at), base.end());
+      if (!within(length(route)) || !check_route_limits(route, limits).empty()) return std::nullopt;
+      return route;
+    };
+    auto sort_candidates = [&] {
+      std::sort(candidates.begin(), candidates.end(), [](const auto& x, const auto& y) { return length(x) > length(y); });
+    };
+    // P4's loiter: one circle at the start, on the left.
     auto try_loiter = [&]() {
-      std::sort(candidates.begin(), candidates.end(),
-                [](const auto& x, const auto& y) { return length(x) > length(y); });
+      sort_candidates();
       for (const auto& base : candidates) {
         const double extra = aim - length(base);
         if (extra / (2 * kPi) < r_min || base.size() < 2) continue;
-        const Vec3 heading = u.heading_rad ? heading_vector(*u.heading_rad) : Vec3(base[1] - base[0]);
-        if (heading.head<2>().norm() <= 0.0) continue;
-        const auto loop = loiter_polygon(base.front(), heading, extra, n);
-        bool clear = true;
-        for (std::size_t i = 1; i < loop.size() && clear; ++i) clear = rule(loop[i - 1], loop[i]);
-        if (!clear) continue;
-        std::vector<Vec3> route = loop;
-        route.insert(route.end(), base.begin() + 1, base.end());
-        if (!within(length(route))) continue;
-        accept(route, RendezvousStep::loiter, fmt("radius %.1f m (R_min %.1f m), %.0f sides", extra / (2 * kPi), r_min, n));
-        return true;
+        if (auto route = loiter_route(base, 0, extra, 1, true)) {
+          accept(*route, RendezvousStep::loiter, fmt("radius %.1f m (R_min %.1f m), %.0f sides", extra / (2 * kPi), r_min, n));
+          return true;
+        }
+      }
+      return false;
+    };
+    // Where that circle does not fit (a boundary, a threat) and no virtual threat helped: the
+    // same extra length as k laps of a circle k times smaller (while R >= R_min), on either side
+    // of the heading, at the start or a later waypoint of the longest routes found; the first
+    // that fits in that order (start first, fewer laps first, left first).
+    auto try_loiter_anywhere = [&]() {
+      sort_candidates();
+      int bases = 0;
+      for (const auto& base : candidates) {
+        const double extra = aim - length(base);
+        if (extra / (2 * kPi) < r_min || base.size() < 2) continue;
+        if (++bases > kLoiterBases) break;
+        for (std::size_t at = 0; at + 1 < base.size(); ++at)
+          for (int laps = 1; laps <= kMaxLoiterLaps && extra / (2 * kPi * laps) >= r_min; ++laps)
+            for (const bool left : {true, false})
+              if (auto route = loiter_route(base, at, extra, laps, left)) {
+                accept(*route, RendezvousStep::loiter,
+                       fmt("radius %.1f m (R_min %.1f m), %.0f laps", extra / (2 * kPi * laps), r_min, laps) +
+                           (left ? " on the left" : " on the right") +
+                           (at == 0 ? std::string(" at the start") : fmt(" at waypoint %.0f", static_cast<double>(at))));
+                return true;
+              }
       }
       return false;
     };
@@ -334,7 +380,7 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
     }
     if (r.ok) continue;
     // Last: a loiter on any route found on the way.
-    if (try_loiter()) continue;
+    if (try_loiter() || try_loiter_anywhere()) continue;
     r.detail = fmt("no step brought the length (%.1f m) within [%.1f, %.1f] m", r.final_m, lo, hi);
   }
   return res;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "uavplan/coordination/mission_planner.h"
+#include "uavplan/planning/segment_rule.h"
 
 namespace uavplan {
 namespace {
@@ -74,6 +75,72 @@ TEST(Rendezvous, ImpossibleToleranceFailsClearly) {
   bool reason = false;
   for (const auto& u : p.uavs) reason |= u.status == Status::failed && u.message.find("no step") != std::string::npos;
   EXPECT_TRUE(reason);
+}
+
+// A UAV next to the goal needs a loiter of about 10 km, but starts 500 m from the north edge
+// heading east: the paper's circle (on the left) leaves the world, no virtual threat fits
+// between its start and goal; the loiter on the right does.
+TEST(Rendezvous, LoiterGoesWhereItFitsWhenThePapersCircleDoesNot) {
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(20000, 20000, 3000)};
+  Scenario sc;
+  sc.world = World(std::move(ws));
+  const Vec3 goal(10000, 17000, 1500);
+  const Vec3 starts[2] = {Vec3(1000, 1000, 1500), Vec3(7000, 19500, 1500)};
+  for (int i = 0; i < 2; ++i) {
+    UavSpec u;
+    u.id = "u" + std::to_string(i + 1);
+    u.start = starts[i];
+    u.goal = goal;
+    u.heading_rad = 0.0;
+    u.radius_m = 1.0;
+    u.speed = {0, 50, 50};
+    u.max_turn_rad = deg_to_rad(60);
+    u.max_climb_rad = deg_to_rad(30);
+    sc.uavs.push_back(u);
+  }
+  sc.mission.type = MissionType::rendezvous;
+  sc.mission.arrival_tolerance_m = 500;
+  sc.planner.params = {{"cell_m", "500"}, {"min_turn_radius_m", "500"}};
+  const DirectionalAStarPlanner planner(DirectionalAStarOptions::from_params(sc.planner.params));
+  const RendezvousResult r = plan_rendezvous(sc, planner, {});
+  ASSERT_TRUE(r.uavs[0].ok && r.uavs[1].ok) << r.uavs[1].detail;
+  const RendezvousUav& near = r.uavs[1];
+  EXPECT_EQ(near.step, RendezvousStep::loiter);
+  EXPECT_NE(near.detail.find("on the right"), std::string::npos) << near.detail;
+  EXPECT_GE(near.final_m, r.target_m - r.epsilon_m - 1e-6);
+  EXPECT_LE(near.final_m, r.target_m + 1e-6);
+  EXPECT_TRUE(check_route_limits(near.waypoints, sc.uavs[1]).empty());
+  const SegmentRule rule(sc.world, sc.uavs[1]);
+  for (std::size_t i = 1; i < near.waypoints.size(); ++i) EXPECT_TRUE(rule(near.waypoints[i - 1], near.waypoints[i])) << i;
+}
+
+// Two UAVs placed as mirror images about the line to the goal: equal lengths, and their routes
+// share lattice points on the way, at the same time. One departs later, within its arrival
+// slack, and the separation holds up to their meeting at the goal.
+TEST(Rendezvous, ConvergingUavsAreStaggeredWithinTheirSlack) {
+  Scenario sc = small_rendezvous();
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(30000, 30000, 12000)};
+  sc.world = World(std::move(ws));
+  sc.uavs.resize(2);
+  sc.uavs[0].start = Vec3(3000, 14000, 6000);
+  sc.uavs[1].start = Vec3(3000, 16000, 6000);
+  for (auto& u : sc.uavs) {
+    u.heading_rad = 0.0;
+    u.goal = Vec3(15000, 15000, 6000);
+  }
+  sc.mission.separation_m = 200;
+  const Plan p = plan_mission(sc, {});
+  ASSERT_EQ(p.status, Status::solved) << p.message;
+  bool delayed = false;
+  for (const auto& u : p.uavs) delayed |= u.message.find("departs") != std::string::npos;
+  EXPECT_TRUE(delayed);
+  const auto& a = p.uavs[0].trajectory;
+  const auto& b = p.uavs[1].trajectory;
+  const Encounter e = closest_approach(a, b, separation_horizon_s(sc, sc.uavs[0], a, sc.uavs[1], b));
+  EXPECT_GE(e.distance_m, 200.0 - 1e-6);
+  EXPECT_LE(std::abs(p.uavs[0].arrival_s - p.uavs[1].arrival_s), 1000.0 / 100.0 + 1e-6);
 }
 
 }  // namespace
