@@ -128,9 +128,10 @@ void plan_group_mission(const Scenario& sc, const ApfOptions& aopt, const Missio
 
 // All UAVs depart at once and fly at their cruise speed: equal lengths, equal arrival times. A
 // UAV that would come closer than the separation to one timed before it (outside their meeting
-// at the goal) departs later instead, in delay_step_s steps, by at most its slack: it still
-// arrives within epsilon / speed of the earliest arrival (the spread the length tolerance allows
-// at equal speeds). UAVs are timed from the least slack up (scenario order among equals).
+// at the goal) departs later instead, in delay_step_s steps, by at most its slack: the time its
+// cruise takes over what its length may still grow within the tolerance (shortest + epsilon -
+// own), so at equal speeds it arrives within epsilon / speed of the earliest arrival. UAVs are
+// timed from the least slack up (scenario order among equals).
 // UAVs sharing a stretch of route or converging on the goal then pass one after the other; a
 // UAV with no such delay fails with the conflict.
 void plan_rendezvous_mission(const Scenario& sc, const DirectionalAStarOptions& dopt, const MissionOptions& opt, Plan& plan) {
@@ -150,10 +151,10 @@ void plan_rendezvous_mission(const Scenario& sc, const DirectionalAStarOptions& 
     if (r.ok) order.push_back(i);
     else planned[i] = flown_plan(r.id, false, messages[i], {}, {});
   }
-  double earliest_s = World::kInf;
-  for (const std::size_t i : order) earliest_s = std::min(earliest_s, rr.uavs[i].final_m / sc.uavs[i].speed.cruise_mps);
+  double shortest_m = World::kInf;
+  for (const std::size_t i : order) shortest_m = std::min(shortest_m, rr.uavs[i].final_m);
   for (const std::size_t i : order)
-    slack_s[i] = std::max(0.0, earliest_s + (rr.epsilon_m - rr.uavs[i].final_m) / sc.uavs[i].speed.cruise_mps);
+    slack_s[i] = std::max(0.0, shortest_m + rr.epsilon_m - rr.uavs[i].final_m) / sc.uavs[i].speed.cruise_mps;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return slack_s[a] < slack_s[b]; });
   std::vector<std::pair<const UavSpec*, const UavPlan*>> committed;
   for (const std::size_t i : order) {

@@ -7,6 +7,7 @@
 #include <memory>
 #include <functional>
 #include <mutex>
+#include <numeric>
 #include <optional>
 #include <thread>
 
@@ -24,6 +25,7 @@ std::string_view to_string(RendezvousStep s) {
     case RendezvousStep::loiter: return "loiter circle";
     case RendezvousStep::virtual_adjust_r: return "virtual threat (adjust R)";
     case RendezvousStep::virtual_move_h: return "virtual threat (move H)";
+    case RendezvousStep::detour: return "detour waypoint";
   }
   return "none";
 }
@@ -36,6 +38,8 @@ constexpr std::int64_t kReplanExpansions = 20'000;
 // The last-resort loiter tries this many of the longest routes found, with up to this many laps.
 constexpr int kLoiterBases = 4;
 constexpr int kMaxLoiterLaps = 16;
+// A detour replaces at most this many consecutive route segments.
+constexpr std::size_t kDetourSpan = 8;
 
 double length(const std::vector<Vec3>& pts) {
   double l = 0.0;
@@ -301,6 +305,51 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
       return false;
     };
     if (try_loiter()) continue;
+    // A missing length too short for a loiter (R < R_min) that the virtual threat missed: the
+    // route between waypoints i and j (up to kDetourSpan segments apart) replaced by two legs
+    // through one waypoint beside the middle of the chord (horizontally, either side), offset by
+    // h so that the route is exactly `aim` long: 2 sqrt((D/2)^2 + h^2) = D + extra + (the
+    // replaced part's length - D). Longest chords of the longest routes found first, the legs
+    // clear and the joins within the limits.
+    auto try_detour = [&]() {
+      sort_candidates();
+      int bases = 0;
+      for (const auto& base : candidates) {
+        const double extra = aim - length(base);
+        if (extra <= 0.0 || base.size() < 2) continue;
+        if (++bases > kLoiterBases) break;
+        std::vector<std::pair<std::size_t, std::size_t>> spans;
+        for (std::size_t i = 0; i + 1 < base.size(); ++i)
+          for (std::size_t j = i + 1; j < base.size() && j - i <= kDetourSpan; ++j) spans.emplace_back(i, j);
+        std::stable_sort(spans.begin(), spans.end(), [&](const auto& x, const auto& y) {
+          return (base[x.second] - base[x.first]).norm() > (base[y.second] - base[y.first]).norm();
+        });
+        for (const auto& [i, j] : spans) {
+          const Vec3& a = base[i];
+          const Vec3& b = base[j];
+          const double chord = (b - a).norm();
+          double part = 0.0;
+          for (std::size_t k = i; k < j; ++k) part += (base[k + 1] - base[k]).norm();
+          const double legs = part + extra;  // the two new legs together
+          const Vec3 across(a.y() - b.y(), b.x() - a.x(), 0.0);  // horizontal, left of a -> b
+          if (across.norm() <= 1e-9 * chord || legs <= chord) continue;
+          const double h = std::sqrt(0.25 * legs * legs - 0.25 * chord * chord);
+          for (const double side : {1.0, -1.0}) {
+            const Vec3 m = 0.5 * (a + b) + side * h * across.normalized();
+            if (!rule(a, m) || !rule(m, b)) continue;
+            std::vector<Vec3> route(base.begin(), base.begin() + static_cast<std::ptrdiff_t>(i) + 1);
+            route.push_back(m);
+            route.insert(route.end(), base.begin() + static_cast<std::ptrdiff_t>(j), base.end());
+            if (!within(length(route)) || !check_route_limits(route, limits).empty()) continue;
+            accept(route, RendezvousStep::detour,
+                   fmt("%.1f m beside waypoints %.0f to %.0f", h, static_cast<double>(i), static_cast<double>(j)) +
+                       (side > 0 ? ", on the left" : ", on the right"));
+            return true;
+          }
+        }
+      }
+      return false;
+    };
     // (3) Virtual threat (P4 eq. 12-13): a sphere centred on the route point nearest the
     // start-goal midpoint; its radius stays below the distance to the other UAVs' routes and
     // leaves the start and the goal outside. adjust-R grows it; move-H keeps R_x and re-centres
@@ -379,8 +428,8 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
       if (within(route.length_m)) accept(route.waypoints, RendezvousStep::virtual_move_h, fmt("R_x = %.1f m, %.0f moves", rx, it + 1));
     }
     if (r.ok) continue;
-    // Last: a loiter on any route found on the way.
-    if (try_loiter() || try_loiter_anywhere()) continue;
+    // Last: a loiter on any route found on the way, or a detour.
+    if (try_loiter() || try_loiter_anywhere() || try_detour()) continue;
     r.detail = fmt("no step brought the length (%.1f m) within [%.1f, %.1f] m", r.final_m, lo, hi);
   }
   return res;

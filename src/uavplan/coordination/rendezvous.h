@@ -3,8 +3,10 @@
 // each shorter one into [P_max - epsilon, P_max] (so all lengths lie within epsilon of each
 // other) by, in turn: (1) the variable-step multi-point search (L from 1 to L_max step 0.2,
 // M from 3 to 6, keep the closest), (2) a loiter circle at the start (P4 eq. 9-11), (3) a virtual
-// spherical threat (P4 eq. 12-13), adjust-R then move-H. With equal speeds equal lengths are
-// equal arrival times.
+// spherical threat (P4 eq. 12-13), adjust-R then move-H. Where none fits, two extensions: a
+// loiter of several laps, on either side, at the start or a later waypoint; a detour waypoint
+// beside a segment for a length too short to loiter. With equal speeds equal lengths are equal
+// arrival times.
 #pragma once
 
 #include <string>
@@ -16,7 +18,7 @@
 
 namespace uavplan {
 
-enum class RendezvousStep { none, preplanned, multi_point, loiter, virtual_adjust_r, virtual_move_h };
+enum class RendezvousStep { none, preplanned, multi_point, loiter, virtual_adjust_r, virtual_move_h, detour };
 std::string_view to_string(RendezvousStep s);
 
 struct RendezvousUav {

@@ -67,14 +67,36 @@ TEST(Rendezvous, ThroughTheMissionPlannerArrivalTimesMatch) {
   EXPECT_LE(t_hi - t_lo, 1000.0 / 100.0 + 1e-6);  // equal speeds: spread <= epsilon / speed
 }
 
-TEST(Rendezvous, ImpossibleToleranceFailsClearly) {
-  Scenario sc = small_rendezvous();
-  sc.mission.arrival_tolerance_m = 1e-3;
+// In a corridor 1.5 km wide and high, a UAV 9 km from the goal cannot fly the 19 km more its
+// partner needs: no circle of R_min fits, no detour, no virtual threat leaves a way through.
+TEST(Rendezvous, NoRoomToLengthenFailsClearly) {
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(30000, 1500, 1500)};
+  Scenario sc;
+  sc.world = World(std::move(ws));
+  const Vec3 starts[2] = {Vec3(1000, 750, 750), Vec3(20000, 750, 750)};
+  for (int i = 0; i < 2; ++i) {
+    UavSpec u;
+    u.id = "u" + std::to_string(i + 1);
+    u.start = starts[i];
+    u.goal = Vec3(29000, 750, 750);
+    u.heading_rad = 0.0;
+    u.radius_m = 1.0;
+    u.speed = {0, 100, 100};
+    u.max_turn_rad = deg_to_rad(60);
+    u.max_climb_rad = deg_to_rad(30);
+    sc.uavs.push_back(u);
+  }
+  sc.mission.type = MissionType::rendezvous;
+  sc.mission.arrival_tolerance_m = 500;
+  sc.planner.algorithm = "directional_astar";
+  sc.planner.params = {{"cell_m", "250"}, {"min_turn_radius_m", "1000"}};
   const Plan p = plan_mission(sc, {});
   EXPECT_NE(p.status, Status::solved);
-  bool reason = false;
-  for (const auto& u : p.uavs) reason |= u.status == Status::failed && u.message.find("no step") != std::string::npos;
-  EXPECT_TRUE(reason);
+  ASSERT_EQ(p.uavs.size(), 2u);
+  EXPECT_EQ(p.uavs[0].status, Status::solved) << p.uavs[0].message;
+  EXPECT_EQ(p.uavs[1].status, Status::failed);
+  EXPECT_NE(p.uavs[1].message.find("no step"), std::string::npos) << p.uavs[1].message;
 }
 
 // A UAV next to the goal needs a loiter of about 10 km, but starts 500 m from the north edge
@@ -113,6 +135,43 @@ TEST(Rendezvous, LoiterGoesWhereItFitsWhenThePapersCircleDoesNot) {
   EXPECT_TRUE(check_route_limits(near.waypoints, sc.uavs[1]).empty());
   const SegmentRule rule(sc.world, sc.uavs[1]);
   for (std::size_t i = 1; i < near.waypoints.size(); ++i) EXPECT_TRUE(rule(near.waypoints[i - 1], near.waypoints[i])) << i;
+}
+
+// 1.2 km short with R_min 1 km: too short for a loiter; a 10 m window that the lattice's
+// routes miss. A detour waypoint beside the route makes the length exact.
+TEST(Rendezvous, DetourWaypointMakesUpALengthTooShortToLoiter) {
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(20000, 20000, 3000)};
+  Scenario sc;
+  sc.world = World(std::move(ws));
+  const Vec3 starts[2] = {Vec3(1000, 1000, 1500), Vec3(2500, 1500, 1500)};
+  const double headings[2] = {0.0, kPi / 2};
+  for (int i = 0; i < 2; ++i) {
+    UavSpec u;
+    u.id = "u" + std::to_string(i + 1);
+    u.start = starts[i];
+    u.goal = Vec3(15000, 15000, 1500);
+    u.heading_rad = headings[i];
+    u.radius_m = 1.0;
+    u.speed = {0, 100, 100};
+    u.max_turn_rad = deg_to_rad(60);
+    u.max_climb_rad = deg_to_rad(30);
+    sc.uavs.push_back(u);
+  }
+  sc.mission.type = MissionType::rendezvous;
+  sc.mission.arrival_tolerance_m = 10;
+  sc.planner.params = {{"cell_m", "500"}, {"min_turn_radius_m", "1000"}};
+  const DirectionalAStarPlanner planner(DirectionalAStarOptions::from_params(sc.planner.params));
+  const RendezvousResult r = plan_rendezvous(sc, planner, {});
+  ASSERT_TRUE(r.uavs[0].ok && r.uavs[1].ok) << r.uavs[1].detail;
+  const RendezvousUav& u2 = r.uavs[1];
+  EXPECT_EQ(u2.step, RendezvousStep::detour) << u2.detail;
+  EXPECT_LT(r.target_m - u2.preplanned_m, 2 * kPi * 1000.0);
+  EXPECT_GE(u2.final_m, r.target_m - 10.0 - 1e-6);
+  EXPECT_LE(u2.final_m, r.target_m + 1e-6);
+  EXPECT_TRUE(check_route_limits(u2.waypoints, sc.uavs[1]).empty());
+  const SegmentRule rule(sc.world, sc.uavs[1]);
+  for (std::size_t i = 1; i < u2.waypoints.size(); ++i) EXPECT_TRUE(rule(u2.waypoints[i - 1], u2.waypoints[i])) << i;
 }
 
 // Two UAVs placed as mirror images about the line to the goal: equal lengths, and their routes
