@@ -25,6 +25,7 @@ DirectionalAStarOptions DirectionalAStarOptions::from_params(const Params& param
   o.step_cells_max = r.number("step_cells_max", o.step_cells_max, 0.5, 100.0);
   o.min_turn_radius_m = r.number("min_turn_radius_m", o.min_turn_radius_m, 0.0, 1e9);
   o.heuristic_weight = r.number("heuristic_weight", o.heuristic_weight, 1.0, 10.0);
+  o.climb_bound = r.boolean("climb_bound", o.climb_bound);
   r.finish();
   return o;
 }
@@ -344,6 +345,7 @@ DirectionalQuery DirectionalAStarPlanner::query_for(const Problem& pb, const Wor
   q.ceiling_m = rule.ceiling_m();
   q.max_expansions = options_.max_expansions;
   q.heuristic_weight = options_.heuristic_weight;
+  q.climb_bound = options_.climb_bound;
   return q;
 }
 
@@ -433,7 +435,14 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
 
   buf_.begin(states + 2);
   buf_.at(kStart).g = 0.0;
-  const double h0 = (q.goal - q.start).norm();
+  // h: the Euclidean distance (P4 eq. 6); with climb_bound, raised to |dz| / sin(phi_max) where
+  // that is larger: every segment climbs at most sin(phi_max) of its length, so no route to the
+  // goal is shorter (still a lower bound, and consistent along feasible segments). It changes
+  // nothing where the climb is gentle and spares a climb-limited search (a spiral up) most of
+  // its expansions.
+  const double inv_sin_pitch = q.climb_bound ? 1.0 / std::sin(std::min(q.max_pitch_rad + kAngleTolerance_rad, kPi / 2)) : 0.0;
+  auto h = [&](const Vec3& to) { return std::max((q.goal - to).norm(), std::abs(q.goal.z() - to.z()) * inv_sin_pitch); };
+  const double h0 = h(q.start);
   // With f = g + h a lower bound on the length through a node, the length bound prunes.
   const bool bounded = q.heuristic_weight == 1.0 && std::isfinite(q.max_length_m);
   bool beyond_bound = false;
@@ -467,7 +476,7 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
       const double ng = gn + length_m;
       double f = -1.0;
       if (bounded) {  // never popped before the search gives up: not worth a place in the list
-        f = ng + (q.goal - to).norm();
+        f = ng + h(to);
         if (f > q.max_length_m) {
           beyond_bound = true;
           return;
@@ -477,7 +486,7 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
       if (SearchBuffers::closed(c) || ng >= c.g) return;
       c.g = ng;
       c.parent = e.id;
-      open_.push(f >= 0.0 ? f : ng + q.heuristic_weight * (q.goal - to).norm(), ng, id);
+      open_.push(f >= 0.0 ? f : ng + q.heuristic_weight * h(to), ng, id);
       ++out.generated;
     };
     // Within reach of the goal: try the last segment to the exact goal.

@@ -41,6 +41,9 @@ struct DirectionalAStarOptions {
   double step_cells_max = 3.0;
   double min_turn_radius_m = 0.0;
   double heuristic_weight = 1.0;  // f = g + w h; w > 1 trades length for speed
+  // h = max(Euclidean, |dz| / sin(phi_max)): still a lower bound, far fewer expansions where the
+  // climb limit binds (a spiral up); off by default, P4's h being the Euclidean distance.
+  bool climb_bound = false;
 
   static DirectionalAStarOptions from_params(const Params& params);
 };
@@ -69,6 +72,7 @@ struct DirectionalQuery {
   std::vector<Sphere> virtual_threats;
   bool heading_states_fallback = true;  // search again with heading sectors when stuck
   double heuristic_weight = 1.0;
+  bool climb_bound = false;  // see DirectionalAStarOptions
   // Give up once every open route is longer than this (f = g + h is a lower bound on the
   // length through a node when heuristic_weight is 1): the rendezvous' multi-step search
   // need not finish a route that cannot beat its best.
