@@ -188,7 +188,7 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
     DirectionalQuery q = queries[s];
     // The re-planning steps run many searches; each keeps P4's one state per lattice point and
     // a route that gets stuck is simply not a candidate.
-    q.heading_states_fallback = false;
+    q.heading_states = false;
     q.max_expansions = std::min<std::int64_t>(q.max_expansions, kReplanExpansions);
     r.ok = false;
     // Every route found on the way; the loiter may extend any of them.
@@ -370,7 +370,7 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
       return lim;
     };
     q = queries[s];
-    q.heading_states_fallback = false;
+    q.heading_states = false;
     q.max_expansions = std::min<std::int64_t>(q.max_expansions, kReplanExpansions);
     const Vec3 h0 = centre_on(best);
     const double rx_max = radius_limit(h0);

@@ -350,21 +350,12 @@ DirectionalQuery DirectionalAStarPlanner::query_for(const Problem& pb, const Wor
 }
 
 DirectionalRoute DirectionalSearch::run(const World& world, const DirectionalQuery& q, const StopCondition& stop) {
-  // P4's search: one state per lattice point (its heading from the best parent), closed once.
-  // Where that gets stuck behind dead zones, search again with the heading in the state.
   if (q.directions > ConeDirections::kMaxPitches) {
     DirectionalRoute r;
     r.message = "directions: at most " + std::to_string(ConeDirections::kMaxPitches);
     return r;
   }
-  DirectionalRoute r = run_with_bins(world, q, stop, q.heading_states_fallback ? 8 : 1);
-  if (q.heading_states_fallback) return r;
-  if (r.found || r.stopped || !q.heading_states_fallback) return r;
-  DirectionalRoute binned = run_with_bins(world, q, stop, 8);
-  binned.expanded += r.expanded;
-  binned.generated += r.generated;
-  binned.dead_zones += r.dead_zones;
-  return binned;
+  return run_with_bins(world, q, stop, q.heading_states ? 8 : 1);
 }
 
 DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const DirectionalQuery& q,

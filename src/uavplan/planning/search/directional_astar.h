@@ -3,9 +3,10 @@
 // heading and pitch over [-phi_max, phi_max], M directions each, at step L cells, each end
 // snapped to the nearest lattice point ("nearest equivalent", P4 sec. 2.2). f = g + Euclidean h
 // (P4 eq. 5-6). A node with no feasible child is a dead zone: it is closed and the next best
-// open node is taken, in a loop, until a route is found (P4 sec. 2.3, eq. 7). As in P4 a lattice
-// point is closed once; when that leaves no route, the search runs again with the heading sector
-// (8 of them) in the state, so a point closed facing a wall can be passed facing along it.
+// open node is taken, in a loop, until a route is found (P4 sec. 2.3, eq. 7). P4 closes a lattice
+// point once, which leaves no route where a point was first reached facing a wall; by default a
+// state is a lattice point with the heading sector (8 of them) it was reached in, so such a point
+// can be passed again facing along the wall (the rendezvous's re-planning keeps P4's one state).
 // Every segment is checked exactly: inside the bounds, clear of obstacles after inflation,
 // pitch within phi_max, turn (3-D angle and yaw change) within psi_max, the first one against
 // the start heading. Eq. 8 of the paper swaps psi and phi; we use
@@ -70,7 +71,9 @@ struct DirectionalQuery {
   double ceiling_m;
   std::int64_t max_expansions = 2'000'000;
   std::vector<Sphere> virtual_threats;
-  bool heading_states_fallback = true;  // search again with heading sectors when stuck
+  // A state is a lattice point and the heading sector (of 8) it was reached in, so a point
+  // closed facing a wall can still be passed facing along it; false: P4's one state per point.
+  bool heading_states = true;
   double heuristic_weight = 1.0;
   bool climb_bound = false;  // see DirectionalAStarOptions
   // Give up once every open route is longer than this (f = g + h is a lower bound on the

@@ -96,7 +96,7 @@ TEST(DirectionalAStar, ShortStepsThatCannotClimbAndTheLengthBoundEndEarly) {
   const Problem p = problem(Vec3(3000, 4000, 5000), Vec3(37000, 28000, 25000), deg_to_rad(90));
   const DirectionalAStarPlanner planner(DirectionalAStarOptions::from_params({{"cell_m", "1000"}}));
   DirectionalQuery q = planner.query_for(p, w);
-  q.heading_states_fallback = false;
+  q.heading_states = false;
   DirectionalSearch search;
   q.step_cells = 1.2;
   const DirectionalRoute flat = search.run(w, q, {});
