@@ -75,6 +75,60 @@ std::vector<Vec3> loiter_polygon(const Vec3& x0, const Vec3& heading, double per
   return pts;
 }
 
+// What a lengthened route must keep: clear of the world after inflation (`rule`), the turn and
+// climb limits of `limits` (its heading the start's), its length inside [lo, hi].
+struct Lengthening {
+  const SegmentRule& rule;
+  const UavSpec& limits;
+  double lo, hi;
+  int sides;  // of the loiter polygon
+
+  bool keeps(const std::vector<Vec3>& route) const {
+    const double l = length(route);
+    return l >= lo && l <= hi && check_route_limits(route, limits).empty();
+  }
+
+  // `base` with `laps` turns of a loiter of `extra` metres in all at route point `at`, entered
+  // and left along the horizontal heading there (the start's own heading at the start).
+  std::optional<std::vector<Vec3>> loiter(const std::vector<Vec3>& base, std::size_t at, double extra, int laps,
+                                          bool left) const {
+    const Vec3 heading = at > 0 ? Vec3(base[at] - base[at - 1])
+                                : (limits.heading_rad ? heading_vector(*limits.heading_rad) : Vec3(base[1] - base[0]));
+    if (heading.head<2>().norm() <= 1e-9 * heading.norm()) return std::nullopt;
+    const auto loop = loiter_polygon(base[at], heading, extra / laps, sides, left);
+    for (std::size_t i = 1; i < loop.size(); ++i)
+      if (!rule(loop[i - 1], loop[i])) return std::nullopt;
+    std::vector<Vec3> route(base.begin(), base.begin() + static_cast<std::ptrdiff_t>(at) + 1);
+    for (int lap = 0; lap < laps; ++lap) route.insert(route.end(), loop.begin() + 1, loop.end() - 1);
+    route.insert(route.end(), base.begin() + static_cast<std::ptrdiff_t>(at), base.end());
+    if (!keeps(route)) return std::nullopt;
+    return route;
+  }
+
+  // `base` with its waypoints i..j replaced by two legs through one waypoint beside the middle of
+  // the chord (horizontally, on the left of i -> j or the right), offset by h so that the route
+  // grows by `extra`: 2 sqrt((D/2)^2 + h^2) = (the replaced part's length) + extra.
+  std::optional<std::vector<Vec3>> detour(const std::vector<Vec3>& base, std::size_t i, std::size_t j, double extra,
+                                          bool left, double* offset_m) const {
+    const Vec3& a = base[i];
+    const Vec3& b = base[j];
+    const double chord = (b - a).norm();
+    double legs = extra;  // the two new legs together
+    for (std::size_t k = i; k < j; ++k) legs += (base[k + 1] - base[k]).norm();
+    const Vec3 across(a.y() - b.y(), b.x() - a.x(), 0.0);  // horizontal, left of a -> b
+    if (across.norm() <= 1e-9 * chord || legs <= chord) return std::nullopt;
+    const double h = std::sqrt(0.25 * legs * legs - 0.25 * chord * chord);
+    const Vec3 m = 0.5 * (a + b) + (left ? h : -h) * across.normalized();
+    if (!rule(a, m) || !rule(m, b)) return std::nullopt;
+    std::vector<Vec3> route(base.begin(), base.begin() + static_cast<std::ptrdiff_t>(i) + 1);
+    route.push_back(m);
+    route.insert(route.end(), base.begin() + static_cast<std::ptrdiff_t>(j), base.end());
+    if (!keeps(route)) return std::nullopt;
+    *offset_m = h;
+    return route;
+  }
+};
+
 // Runs `qs` on one thread per engine, each thread taking the next query in index order.
 // `prepare(i, q)` may tighten query i from the routes finished so far (called under the lock);
 // `ends(i, route)` says whether route i ends the list: no query after the first such index is
@@ -244,26 +298,11 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
     const double r_min = opt.min_turn_radius_m > 0.0 ? opt.min_turn_radius_m : cell;
     const SegmentRule rule(sc.world, u);
     const int n = std::max(12, static_cast<int>(std::ceil(2 * kPi / (0.95 * std::min(u.max_turn_rad, q.max_yaw_rad)))));
-    // The limits the loiter's joins must keep (the search's, which are within the UAV's).
+    // The limits the lengthened routes must keep (the search's, which are within the UAV's).
     UavSpec limits = u;
     limits.max_turn_rad = std::min(u.max_turn_rad, q.max_yaw_rad);
     limits.max_climb_rad = std::min(u.max_climb_rad, q.max_pitch_rad);
-    // `base` with `laps` turns of a loiter of `extra` metres in all, inserted at route point
-    // `at` (entered and left along the horizontal heading there), if clear and within limits.
-    auto loiter_route = [&](const std::vector<Vec3>& base, std::size_t at, double extra, int laps,
-                            bool left) -> std::optional<std::vector<Vec3>> {
-      const Vec3 heading = at > 0 ? Vec3(base[at] - base[at - 1])
-                                  : (u.heading_rad ? heading_vector(*u.heading_rad) : Vec3(base[1] - base[0]));
-      if (heading.head<2>().norm() <= 1e-9 * heading.norm()) return std::nullopt;
-      const auto loop = loiter_polygon(base[at], heading, extra / laps, n, left);
-      for (std::size_t i = 1; i < loop.size(); ++i)
-        if (!rule(loop[i - 1], loop[i])) return std::nullopt;
-      std::vector<Vec3> route(base.begin(), base.begin() + static_cast<std::ptrdiff_t>(at) + 1);
-      for (int lap = 0; lap < laps; ++lap) route.insert(route.end(), loop.begin() + 1, loop.end() - 1);
-      route.insert(route.end(), base.begin() + static_cast<std::ptrdiff_t>(at), base.end());
-      if (!within(length(route)) || !check_route_limits(route, limits).empty()) return std::nullopt;
-      return route;
-    };
+    const Lengthening lengthen{rule, limits, lo, hi, n};
     auto sort_candidates = [&] {
       std::sort(candidates.begin(), candidates.end(), [](const auto& x, const auto& y) { return length(x) > length(y); });
     };
@@ -273,7 +312,7 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
       for (const auto& base : candidates) {
         const double extra = aim - length(base);
         if (extra / (2 * kPi) < r_min || base.size() < 2) continue;
-        if (auto route = loiter_route(base, 0, extra, 1, true)) {
+        if (auto route = lengthen.loiter(base, 0, extra, 1, true)) {
           accept(*route, RendezvousStep::loiter, fmt("radius %.1f m (R_min %.1f m), %.0f sides", extra / (2 * kPi), r_min, n));
           return true;
         }
@@ -294,7 +333,7 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
         for (std::size_t at = 0; at + 1 < base.size(); ++at)
           for (int laps = 1; laps <= kMaxLoiterLaps && extra / (2 * kPi * laps) >= r_min; ++laps)
             for (const bool left : {true, false})
-              if (auto route = loiter_route(base, at, extra, laps, left)) {
+              if (auto route = lengthen.loiter(base, at, extra, laps, left)) {
                 accept(*route, RendezvousStep::loiter,
                        fmt("radius %.1f m (R_min %.1f m), %.0f laps", extra / (2 * kPi * laps), r_min, laps) +
                            (left ? " on the left" : " on the right") +
@@ -304,13 +343,9 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
       }
       return false;
     };
-    if (try_loiter()) continue;
-    // A missing length too short for a loiter (R < R_min) that the virtual threat missed: the
-    // route between waypoints i and j (up to kDetourSpan segments apart) replaced by two legs
-    // through one waypoint beside the middle of the chord (horizontally, either side), offset by
-    // h so that the route is exactly `aim` long: 2 sqrt((D/2)^2 + h^2) = D + extra + (the
-    // replaced part's length - D). Longest chords of the longest routes found first, the legs
-    // clear and the joins within the limits.
+    // A missing length too short for a loiter (R < R_min) that the virtual threat missed: a
+    // detour through one waypoint beside up to kDetourSpan segments, exactly `aim` long; the
+    // longest chords of the longest routes found first.
     auto try_detour = [&]() {
       sort_candidates();
       int bases = 0;
@@ -324,32 +359,20 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
         std::stable_sort(spans.begin(), spans.end(), [&](const auto& x, const auto& y) {
           return (base[x.second] - base[x.first]).norm() > (base[y.second] - base[y.first]).norm();
         });
-        for (const auto& [i, j] : spans) {
-          const Vec3& a = base[i];
-          const Vec3& b = base[j];
-          const double chord = (b - a).norm();
-          double part = 0.0;
-          for (std::size_t k = i; k < j; ++k) part += (base[k + 1] - base[k]).norm();
-          const double legs = part + extra;  // the two new legs together
-          const Vec3 across(a.y() - b.y(), b.x() - a.x(), 0.0);  // horizontal, left of a -> b
-          if (across.norm() <= 1e-9 * chord || legs <= chord) continue;
-          const double h = std::sqrt(0.25 * legs * legs - 0.25 * chord * chord);
-          for (const double side : {1.0, -1.0}) {
-            const Vec3 m = 0.5 * (a + b) + side * h * across.normalized();
-            if (!rule(a, m) || !rule(m, b)) continue;
-            std::vector<Vec3> route(base.begin(), base.begin() + static_cast<std::ptrdiff_t>(i) + 1);
-            route.push_back(m);
-            route.insert(route.end(), base.begin() + static_cast<std::ptrdiff_t>(j), base.end());
-            if (!within(length(route)) || !check_route_limits(route, limits).empty()) continue;
-            accept(route, RendezvousStep::detour,
-                   fmt("%.1f m beside waypoints %.0f to %.0f", h, static_cast<double>(i), static_cast<double>(j)) +
-                       (side > 0 ? ", on the left" : ", on the right"));
-            return true;
+        for (const auto& [i, j] : spans)
+          for (const bool left : {true, false}) {
+            double offset_m = 0.0;
+            if (auto route = lengthen.detour(base, i, j, extra, left, &offset_m)) {
+              accept(*route, RendezvousStep::detour,
+                     fmt("%.1f m beside waypoints %.0f to %.0f", offset_m, static_cast<double>(i), static_cast<double>(j)) +
+                         (left ? ", on the left" : ", on the right"));
+              return true;
+            }
           }
-        }
       }
       return false;
     };
+    if (try_loiter()) continue;
     // (3) Virtual threat (P4 eq. 12-13): a sphere centred on the route point nearest the
     // start-goal midpoint; its radius stays below the distance to the other UAVs' routes and
     // leaves the start and the goal outside. adjust-R grows it; move-H keeps R_x and re-centres
