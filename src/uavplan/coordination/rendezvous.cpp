@@ -200,14 +200,32 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
   const DirectionalAStarOptions& opt = planner.options();
   std::vector<DirectionalQuery> queries;
   for (const UavSpec& u : sc.uavs) queries.push_back(planner.query_for(Problem{u, u.goal.value_or(u.start), {}}, sc.world));
-  // The pre-plans are independent: side by side (a UAV without a goal gets no search).
+  // The pre-plans are independent: side by side (a UAV without a goal gets no search). Like
+  // every later search they keep P4's one state per lattice point; a UAV that finds no route
+  // that way is searched again with heading sectors in the state (DirectionalQuery::heading_states).
+  const auto never_ends = [](std::size_t, const DirectionalRoute&) { return false; };
   std::vector<DirectionalQuery> with_goal;
   for (std::size_t s = 0; s < sc.uavs.size(); ++s)
-    if (sc.uavs[s].goal) with_goal.push_back(queries[s]);
-  const auto preplans = run_ordered(
-      engines, sc.world, with_goal, keep_query,
-      [](std::size_t, const DirectionalRoute&) { return false; }, stop);
+    if (sc.uavs[s].goal) {
+      with_goal.push_back(queries[s]);
+      with_goal.back().heading_states = false;
+    }
+  auto preplans = run_ordered(engines, sc.world, with_goal, keep_query, never_ends, stop);
   count(preplans);
+  {
+    std::vector<DirectionalQuery> again;
+    std::vector<std::size_t> again_of;
+    for (std::size_t k = 0; k < preplans.size(); ++k)
+      if (preplans[k] && !preplans[k]->found && !preplans[k]->stopped) {
+        again.push_back(with_goal[k]);
+        again.back().heading_states = true;
+        again_of.push_back(k);
+      }
+    auto second = run_ordered(engines, sc.world, std::move(again), keep_query, never_ends, stop);
+    count(second);
+    for (std::size_t m = 0; m < second.size(); ++m)
+      if (second[m]) preplans[again_of[m]] = std::move(second[m]);
+  }
   for (std::size_t s = 0, k = 0; s < sc.uavs.size(); ++s) {
     const UavSpec& u = sc.uavs[s];
     RendezvousUav r;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "uavplan/coordination/mission_planner.h"
+#include "uavplan/core/rng.h"
 #include "uavplan/planning/segment_rule.h"
 
 namespace uavplan {
@@ -97,6 +98,45 @@ TEST(Rendezvous, NoRoomToLengthenFailsClearly) {
   EXPECT_EQ(p.uavs[0].status, Status::solved) << p.uavs[0].message;
   EXPECT_EQ(p.uavs[1].status, Status::failed);
   EXPECT_NE(p.uavs[1].message.find("no step"), std::string::npos) << p.uavs[1].message;
+}
+
+// A flat world of boxes where P4's one state per lattice point leaves the first UAV no route
+// (points closed while facing a wall): its pre-plan is searched again with heading sectors.
+TEST(Rendezvous, PrePlansFallBackToHeadingSectors) {
+  Rng r(8);
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(20000, 20000, 0)};
+  for (int k = 0; k < 40; ++k) ws.obstacles.push_back(Box{Vec3(r.uniform(2000, 18000), r.uniform(2000, 18000), -1), Vec3(0, 0, 1)});
+  for (auto& o : ws.obstacles) {
+    Box& b = std::get<Box>(o);
+    b.max = b.min + Vec3(r.uniform(500, 3000), r.uniform(500, 3000), 2);
+  }
+  Scenario sc;
+  sc.world = World(std::move(ws));
+  UavSpec u;
+  u.id = "u1";
+  u.start = Vec3(1000, 1000, 0);
+  u.goal = Vec3(19000, 19000, 0);
+  u.radius_m = 1.0;
+  u.speed = {0, 100, 100};
+  u.max_turn_rad = deg_to_rad(r.uniform(30, 60));
+  u.max_climb_rad = deg_to_rad(30);
+  u.heading_rad = r.uniform(-kPi, kPi);
+  sc.uavs.push_back(u);
+  u.id = "u2";
+  u.start = Vec3(19000, 1500, 0);
+  u.heading_rad = kPi / 2;
+  sc.uavs.push_back(u);
+  sc.mission.type = MissionType::rendezvous;
+  sc.mission.arrival_tolerance_m = 1000;
+  sc.planner.params = {{"cell_m", "500"}};
+  const DirectionalAStarPlanner planner(DirectionalAStarOptions::from_params(sc.planner.params));
+  DirectionalQuery q = planner.query_for(Problem{sc.uavs[0], *sc.uavs[0].goal, {}}, sc.world);
+  q.heading_states = false;
+  ASSERT_FALSE(DirectionalSearch().run(sc.world, q, {}).found);  // P4's search alone: none
+  const RendezvousResult res = plan_rendezvous(sc, planner, {});
+  EXPECT_GT(res.uavs[0].preplanned_m, 0.0) << res.uavs[0].detail;
+  EXPECT_TRUE(check_route_limits(res.uavs[0].waypoints, sc.uavs[0]).empty());
 }
 
 // A UAV next to the goal needs a loiter of about 10 km, but starts 500 m from the north edge
