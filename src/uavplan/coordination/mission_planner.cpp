@@ -26,8 +26,10 @@ struct Conflict {
   std::string what;
 };
 
-Conflict find_conflict(const Scenario& sc, const UavSpec& uav, const Trajectory& tr,
-                       const std::vector<std::pair<const UavSpec*, const UavPlan*>>& committed) {
+// UAVs already timed, with their plans.
+using Committed = std::vector<std::pair<const UavSpec*, const UavPlan*>>;
+
+Conflict find_conflict(const Scenario& sc, const UavSpec& uav, const Trajectory& tr, const Committed& committed) {
   int idx = -1;
   const Encounter m = closest_moving_approach(sc.world, tr, &idx);
   if (m.distance_m < uav.radius_m + kTimingMargin_m)
@@ -63,33 +65,51 @@ void plan_routes(const Scenario& sc, const Planner& planner, const MissionOption
   }
 }
 
+// The earliest departure delay, in delay_step_s steps up to max_delay_s, at which the route flown
+// at cruise speed keeps clear of the moving obstacles and of the UAVs committed before it; when
+// none does, the first conflict met (for the message).
+struct Departure {
+  bool placed = false;
+  double delay_s = 0.0;
+  Trajectory trajectory;
+  Conflict first;
+};
+Departure earliest_departure(const Scenario& sc, const UavSpec& u, const std::vector<Vec3>& waypoints, double max_delay_s,
+                             const Committed& committed, const MissionOptions& opt) {
+  Departure d;
+  for (int k = 0; k == 0 || (opt.delay_step_s > 0.0 && k * opt.delay_step_s <= max_delay_s + 1e-9); ++k) {
+    const double delay = k * opt.delay_step_s;
+    Trajectory tr = time_route(waypoints, u.speed.cruise_mps, delay, opt.max_sample_dt_s);
+    const Conflict c = find_conflict(sc, u, tr, committed);
+    if (!d.first.any) d.first = c;
+    if (c.any) continue;
+    d.placed = true;
+    d.delay_s = delay;
+    d.trajectory = std::move(tr);
+    break;
+  }
+  return d;
+}
+
 // Departure delays, in the scenario's UAV order.
 void time_routes(const Scenario& sc, const MissionOptions& opt, Plan& plan) {
   double horizon_s = 60.0;
   for (std::size_t i = 0; i < sc.uavs.size(); ++i)
     if (plan.uavs[i].status == Status::solved) horizon_s += 2.0 * plan.uavs[i].length_m / sc.uavs[i].speed.cruise_mps;
-  std::vector<std::pair<const UavSpec*, const UavPlan*>> committed;
+  Committed committed;
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
     UavPlan& up = plan.uavs[i];
     const UavSpec& u = sc.uavs[i];
     if (up.status != Status::solved) continue;
-    Conflict c;
-    bool placed = false;
-    for (double delay = 0.0; delay <= horizon_s && !placed; delay += opt.delay_step_s) {
-      Trajectory tr = time_route(up.waypoints, u.speed.cruise_mps, delay, opt.max_sample_dt_s);
-      const Conflict now = find_conflict(sc, u, tr, committed);
-      if (!c.any) c = now;  // remember the first conflict for the message
-      if (now.any) continue;
-      up.trajectory = std::move(tr);
-      up.arrival_s = up.trajectory.back().t_s;
-      placed = true;
-    }
-    if (!placed) {
+    Departure d = earliest_departure(sc, u, up.waypoints, horizon_s, committed, opt);
+    if (!d.placed) {
       up.status = Status::failed;
-      up.message = "conflicts with " + c.what + " for every departure delay up to " +
+      up.message = "conflicts with " + d.first.what + " for every departure delay up to " +
                    std::to_string(static_cast<int>(horizon_s)) + " s";
       continue;
     }
+    up.trajectory = std::move(d.trajectory);
+    up.arrival_s = up.trajectory.back().t_s;
     committed.emplace_back(&u, &up);
   }
 }
@@ -156,31 +176,22 @@ void plan_rendezvous_mission(const Scenario& sc, const DirectionalAStarOptions& 
   for (const std::size_t i : order)
     slack_s[i] = std::max(0.0, shortest_m + rr.epsilon_m - rr.uavs[i].final_m) / sc.uavs[i].speed.cruise_mps;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return slack_s[a] < slack_s[b]; });
-  std::vector<std::pair<const UavSpec*, const UavPlan*>> committed;
+  Committed committed;
   for (const std::size_t i : order) {
     const RendezvousUav& r = rr.uavs[i];
     const UavSpec& u = sc.uavs[i];
-    Conflict first;
-    Trajectory tr;
-    bool placed = false;
-    double delay = 0.0;
-    for (int k = 0; delay <= slack_s[i] + 1e-9; delay = ++k * opt.delay_step_s) {
-      tr = time_route(r.waypoints, u.speed.cruise_mps, delay, opt.max_sample_dt_s);
-      const Conflict c = find_conflict(sc, u, tr, committed);
-      if (!first.any) first = c;
-      if ((placed = !c.any)) break;
-    }
+    Departure d = earliest_departure(sc, u, r.waypoints, slack_s[i], committed, opt);
     char buf[200];
-    if (!placed) {
+    if (!d.placed) {
       std::snprintf(buf, sizeof buf, " for every departure delay up to %.1f s (its arrival slack)", slack_s[i]);
-      planned[i] = flown_plan(r.id, false, messages[i] + "; conflicts with " + first.what + buf, {}, {});
+      planned[i] = flown_plan(r.id, false, messages[i] + "; conflicts with " + d.first.what + buf, {}, {});
       continue;
     }
-    if (delay > 0.0) {
-      std::snprintf(buf, sizeof buf, "; departs %.1f s late to keep the separation", delay);
+    if (d.delay_s > 0.0) {
+      std::snprintf(buf, sizeof buf, "; departs %.1f s late to keep the separation", d.delay_s);
       messages[i] += buf;
     }
-    planned[i] = flown_plan(r.id, true, messages[i], r.waypoints, std::move(tr));
+    planned[i] = flown_plan(r.id, true, messages[i], r.waypoints, std::move(d.trajectory));
     committed.emplace_back(&u, &planned[i]);
   }
   for (std::size_t i = 0; i < n; ++i) {

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <functional>
 #include <mutex>
@@ -321,33 +322,34 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
     limits.max_turn_rad = std::min(u.max_turn_rad, q.max_yaw_rad);
     limits.max_climb_rad = std::min(u.max_climb_rad, q.max_pitch_rad);
     const Lengthening lengthen{rule, limits, lo, hi, n};
-    auto sort_candidates = [&] {
+    // f(base, extra) on the routes found, longest first, whose missing length `usable` takes
+    // (at most `max_bases` of them); true at the first f that accepts a route.
+    auto on_candidates = [&](auto&& usable, int max_bases, auto&& f) {
       std::sort(candidates.begin(), candidates.end(), [](const auto& x, const auto& y) { return length(x) > length(y); });
-    };
-    // P4's loiter: one circle at the start, on the left.
-    auto try_loiter = [&]() {
-      sort_candidates();
+      int bases = 0;
       for (const auto& base : candidates) {
         const double extra = aim - length(base);
-        if (extra / (2 * kPi) < r_min || base.size() < 2) continue;
-        if (auto route = lengthen.loiter(base, 0, extra, 1, true)) {
-          accept(*route, RendezvousStep::loiter, fmt("radius %.1f m (R_min %.1f m), %.0f sides", extra / (2 * kPi), r_min, n));
-          return true;
-        }
+        if (!usable(extra) || base.size() < 2) continue;
+        if (++bases > max_bases) break;
+        if (f(base, extra)) return true;
       }
       return false;
+    };
+    const auto loiter_fits = [&](double extra) { return extra / (2 * kPi) >= r_min; };
+    // P4's loiter: one circle at the start, on the left.
+    auto try_loiter = [&]() {
+      return on_candidates(loiter_fits, std::numeric_limits<int>::max(), [&](const std::vector<Vec3>& base, double extra) {
+        auto route = lengthen.loiter(base, 0, extra, 1, true);
+        if (route) accept(*route, RendezvousStep::loiter, fmt("radius %.1f m (R_min %.1f m), %.0f sides", extra / (2 * kPi), r_min, n));
+        return route.has_value();
+      });
     };
     // Where that circle does not fit (a boundary, a threat) and no virtual threat helped: the
     // same extra length as k laps of a circle k times smaller (while R >= R_min), on either side
     // of the heading, at the start or a later waypoint of the longest routes found; the first
     // that fits in that order (start first, fewer laps first, left first).
     auto try_loiter_anywhere = [&]() {
-      sort_candidates();
-      int bases = 0;
-      for (const auto& base : candidates) {
-        const double extra = aim - length(base);
-        if (extra / (2 * kPi) < r_min || base.size() < 2) continue;
-        if (++bases > kLoiterBases) break;
+      return on_candidates(loiter_fits, kLoiterBases, [&](const std::vector<Vec3>& base, double extra) {
         for (std::size_t at = 0; at + 1 < base.size(); ++at)
           for (int laps = 1; laps <= kMaxLoiterLaps && extra / (2 * kPi * laps) >= r_min; ++laps)
             for (const bool left : {true, false})
@@ -358,19 +360,14 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
                            (at == 0 ? std::string(" at the start") : fmt(" at waypoint %.0f", static_cast<double>(at))));
                 return true;
               }
-      }
-      return false;
+        return false;
+      });
     };
     // A missing length too short for a loiter (R < R_min) that the virtual threat missed: a
     // detour through one waypoint beside up to kDetourSpan segments, exactly `aim` long; the
     // longest chords of the longest routes found first.
     auto try_detour = [&]() {
-      sort_candidates();
-      int bases = 0;
-      for (const auto& base : candidates) {
-        const double extra = aim - length(base);
-        if (extra <= 0.0 || base.size() < 2) continue;
-        if (++bases > kLoiterBases) break;
+      return on_candidates([](double extra) { return extra > 0.0; }, kLoiterBases, [&](const std::vector<Vec3>& base, double extra) {
         std::vector<std::pair<std::size_t, std::size_t>> spans;
         for (std::size_t i = 0; i + 1 < base.size(); ++i)
           for (std::size_t j = i + 1; j < base.size() && j - i <= kDetourSpan; ++j) spans.emplace_back(i, j);
@@ -387,8 +384,8 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
               return true;
             }
           }
-      }
-      return false;
+        return false;
+      });
     };
     if (try_loiter()) continue;
     // (3) Virtual threat (P4 eq. 12-13): a sphere centred on the route point nearest the

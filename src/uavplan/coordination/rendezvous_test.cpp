@@ -9,34 +9,53 @@
 namespace uavplan {
 namespace {
 
+// A UAV of P4's kind: 1 m radius, turns within 60 deg, climbs within 30 deg.
+UavSpec p4_uav(int index, const Vec3& start, const Vec3& goal, double heading_rad, double speed_mps) {
+  UavSpec u;
+  u.id = "u" + std::to_string(index);
+  u.start = start;
+  u.goal = goal;
+  u.heading_rad = heading_rad;
+  u.radius_m = 1.0;
+  u.speed = {0, speed_mps, speed_mps};
+  u.max_turn_rad = deg_to_rad(60);
+  u.max_climb_rad = deg_to_rad(30);
+  return u;
+}
+
+// A rendezvous of `uavs` in `ws` with directional A*'s `params`.
+Scenario rendezvous(WorldSpec ws, std::vector<UavSpec> uavs, double tolerance_m, Params params) {
+  Scenario sc;
+  sc.name = "rv";
+  sc.world = World(std::move(ws));
+  sc.uavs = std::move(uavs);
+  sc.mission.type = MissionType::rendezvous;
+  sc.mission.arrival_tolerance_m = tolerance_m;
+  sc.planner.algorithm = "directional_astar";
+  sc.planner.params = std::move(params);
+  return sc;
+}
+
+// UAV i's route: its length inside the window, the limits kept, every segment clear.
+void expect_route_holds(const Scenario& sc, const RendezvousResult& r, std::size_t i) {
+  const RendezvousUav& u = r.uavs[i];
+  EXPECT_GE(u.final_m, r.target_m - r.epsilon_m - 1e-6);
+  EXPECT_LE(u.final_m, r.target_m + 1e-6);
+  EXPECT_TRUE(check_route_limits(u.waypoints, sc.uavs[i]).empty());
+  const SegmentRule rule(sc.world, sc.uavs[i]);
+  for (std::size_t k = 1; k < u.waypoints.size(); ++k) EXPECT_TRUE(rule(u.waypoints[k - 1], u.waypoints[k])) << k;
+}
+
 Scenario small_rendezvous() {
   WorldSpec ws;
   ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(30000, 30000, 12000)};
   ws.obstacles.push_back(Sphere{Vec3(12000, 12000, 5000), 3000});
   ws.obstacles.push_back(Sphere{Vec3(20000, 9000, 6000), 2500});
-  Scenario sc;
-  sc.name = "rv";
-  sc.world = World(std::move(ws));
   const Vec3 goal(18000, 18000, 8000);
-  const Vec3 starts[3] = {Vec3(2000, 2000, 4000), Vec3(28000, 3000, 4000), Vec3(27000, 27000, 5000)};
-  const double headings[3] = {kPi / 2, kPi / 2, kPi};
-  for (int i = 0; i < 3; ++i) {
-    UavSpec u;
-    u.id = "u" + std::to_string(i + 1);
-    u.start = starts[i];
-    u.goal = goal;
-    u.heading_rad = headings[i];
-    u.radius_m = 1.0;
-    u.speed = {0, 100, 100};
-    u.max_turn_rad = deg_to_rad(60);
-    u.max_climb_rad = deg_to_rad(30);
-    sc.uavs.push_back(u);
-  }
-  sc.mission.type = MissionType::rendezvous;
-  sc.mission.arrival_tolerance_m = 1000;
-  sc.planner.algorithm = "directional_astar";
-  sc.planner.params = {{"cell_m", "1000"}, {"directions", "6"}};
-  return sc;
+  return rendezvous(std::move(ws),
+                    {p4_uav(1, Vec3(2000, 2000, 4000), goal, kPi / 2, 100), p4_uav(2, Vec3(28000, 3000, 4000), goal, kPi / 2, 100),
+                     p4_uav(3, Vec3(27000, 27000, 5000), goal, kPi, 100)},
+                    1000, {{"cell_m", "1000"}, {"directions", "6"}});
 }
 
 TEST(Rendezvous, LengthsEndWithinEpsilonAndEachStepIsReported) {
@@ -73,25 +92,9 @@ TEST(Rendezvous, ThroughTheMissionPlannerArrivalTimesMatch) {
 TEST(Rendezvous, NoRoomToLengthenFailsClearly) {
   WorldSpec ws;
   ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(30000, 1500, 1500)};
-  Scenario sc;
-  sc.world = World(std::move(ws));
-  const Vec3 starts[2] = {Vec3(1000, 750, 750), Vec3(20000, 750, 750)};
-  for (int i = 0; i < 2; ++i) {
-    UavSpec u;
-    u.id = "u" + std::to_string(i + 1);
-    u.start = starts[i];
-    u.goal = Vec3(29000, 750, 750);
-    u.heading_rad = 0.0;
-    u.radius_m = 1.0;
-    u.speed = {0, 100, 100};
-    u.max_turn_rad = deg_to_rad(60);
-    u.max_climb_rad = deg_to_rad(30);
-    sc.uavs.push_back(u);
-  }
-  sc.mission.type = MissionType::rendezvous;
-  sc.mission.arrival_tolerance_m = 500;
-  sc.planner.algorithm = "directional_astar";
-  sc.planner.params = {{"cell_m", "250"}, {"min_turn_radius_m", "1000"}};
+  const Vec3 goal(29000, 750, 750);
+  const Scenario sc = rendezvous(std::move(ws), {p4_uav(1, Vec3(1000, 750, 750), goal, 0.0, 100), p4_uav(2, Vec3(20000, 750, 750), goal, 0.0, 100)},
+                                 500, {{"cell_m", "250"}, {"min_turn_radius_m", "1000"}});
   const Plan p = plan_mission(sc, {});
   EXPECT_NE(p.status, Status::solved);
   ASSERT_EQ(p.uavs.size(), 2u);
@@ -111,25 +114,15 @@ TEST(Rendezvous, PrePlansFallBackToHeadingSectors) {
     Box& b = std::get<Box>(o);
     b.max = b.min + Vec3(r.uniform(500, 3000), r.uniform(500, 3000), 2);
   }
-  Scenario sc;
-  sc.world = World(std::move(ws));
-  UavSpec u;
-  u.id = "u1";
-  u.start = Vec3(1000, 1000, 0);
-  u.goal = Vec3(19000, 19000, 0);
-  u.radius_m = 1.0;
-  u.speed = {0, 100, 100};
-  u.max_turn_rad = deg_to_rad(r.uniform(30, 60));
-  u.max_climb_rad = deg_to_rad(30);
-  u.heading_rad = r.uniform(-kPi, kPi);
-  sc.uavs.push_back(u);
-  u.id = "u2";
-  u.start = Vec3(19000, 1500, 0);
-  u.heading_rad = kPi / 2;
-  sc.uavs.push_back(u);
-  sc.mission.type = MissionType::rendezvous;
-  sc.mission.arrival_tolerance_m = 1000;
-  sc.planner.params = {{"cell_m", "500"}};
+  const Vec3 goal(19000, 19000, 0);
+  UavSpec u1 = p4_uav(1, Vec3(1000, 1000, 0), goal, 0.0, 100);
+  u1.max_turn_rad = deg_to_rad(r.uniform(30, 60));
+  u1.heading_rad = r.uniform(-kPi, kPi);
+  UavSpec u2 = u1;
+  u2.id = "u2";
+  u2.start = Vec3(19000, 1500, 0);
+  u2.heading_rad = kPi / 2;
+  const Scenario sc = rendezvous(std::move(ws), {u1, u2}, 1000, {{"cell_m", "500"}});
   const DirectionalAStarPlanner planner(DirectionalAStarOptions::from_params(sc.planner.params));
   DirectionalQuery q = planner.query_for(Problem{sc.uavs[0], *sc.uavs[0].goal, {}}, sc.world);
   q.heading_states = false;
@@ -145,36 +138,16 @@ TEST(Rendezvous, PrePlansFallBackToHeadingSectors) {
 TEST(Rendezvous, LoiterGoesWhereItFitsWhenThePapersCircleDoesNot) {
   WorldSpec ws;
   ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(20000, 20000, 3000)};
-  Scenario sc;
-  sc.world = World(std::move(ws));
   const Vec3 goal(10000, 17000, 1500);
-  const Vec3 starts[2] = {Vec3(1000, 1000, 1500), Vec3(7000, 19500, 1500)};
-  for (int i = 0; i < 2; ++i) {
-    UavSpec u;
-    u.id = "u" + std::to_string(i + 1);
-    u.start = starts[i];
-    u.goal = goal;
-    u.heading_rad = 0.0;
-    u.radius_m = 1.0;
-    u.speed = {0, 50, 50};
-    u.max_turn_rad = deg_to_rad(60);
-    u.max_climb_rad = deg_to_rad(30);
-    sc.uavs.push_back(u);
-  }
-  sc.mission.type = MissionType::rendezvous;
-  sc.mission.arrival_tolerance_m = 500;
-  sc.planner.params = {{"cell_m", "500"}, {"min_turn_radius_m", "500"}};
+  const Scenario sc = rendezvous(std::move(ws), {p4_uav(1, Vec3(1000, 1000, 1500), goal, 0.0, 50), p4_uav(2, Vec3(7000, 19500, 1500), goal, 0.0, 50)},
+                                 500, {{"cell_m", "500"}, {"min_turn_radius_m", "500"}});
   const DirectionalAStarPlanner planner(DirectionalAStarOptions::from_params(sc.planner.params));
   const RendezvousResult r = plan_rendezvous(sc, planner, {});
   ASSERT_TRUE(r.uavs[0].ok && r.uavs[1].ok) << r.uavs[1].detail;
   const RendezvousUav& near = r.uavs[1];
   EXPECT_EQ(near.step, RendezvousStep::loiter);
   EXPECT_NE(near.detail.find("on the right"), std::string::npos) << near.detail;
-  EXPECT_GE(near.final_m, r.target_m - r.epsilon_m - 1e-6);
-  EXPECT_LE(near.final_m, r.target_m + 1e-6);
-  EXPECT_TRUE(check_route_limits(near.waypoints, sc.uavs[1]).empty());
-  const SegmentRule rule(sc.world, sc.uavs[1]);
-  for (std::size_t i = 1; i < near.waypoints.size(); ++i) EXPECT_TRUE(rule(near.waypoints[i - 1], near.waypoints[i])) << i;
+  expect_route_holds(sc, r, 1);
 }
 
 // 1.2 km short with R_min 1 km: too short for a loiter; a 10 m window that the lattice's
@@ -182,53 +155,28 @@ TEST(Rendezvous, LoiterGoesWhereItFitsWhenThePapersCircleDoesNot) {
 TEST(Rendezvous, DetourWaypointMakesUpALengthTooShortToLoiter) {
   WorldSpec ws;
   ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(20000, 20000, 3000)};
-  Scenario sc;
-  sc.world = World(std::move(ws));
-  const Vec3 starts[2] = {Vec3(1000, 1000, 1500), Vec3(2500, 1500, 1500)};
-  const double headings[2] = {0.0, kPi / 2};
-  for (int i = 0; i < 2; ++i) {
-    UavSpec u;
-    u.id = "u" + std::to_string(i + 1);
-    u.start = starts[i];
-    u.goal = Vec3(15000, 15000, 1500);
-    u.heading_rad = headings[i];
-    u.radius_m = 1.0;
-    u.speed = {0, 100, 100};
-    u.max_turn_rad = deg_to_rad(60);
-    u.max_climb_rad = deg_to_rad(30);
-    sc.uavs.push_back(u);
-  }
-  sc.mission.type = MissionType::rendezvous;
-  sc.mission.arrival_tolerance_m = 10;
-  sc.planner.params = {{"cell_m", "500"}, {"min_turn_radius_m", "1000"}};
+  const Vec3 goal(15000, 15000, 1500);
+  const Scenario sc = rendezvous(std::move(ws), {p4_uav(1, Vec3(1000, 1000, 1500), goal, 0.0, 100), p4_uav(2, Vec3(2500, 1500, 1500), goal, kPi / 2, 100)},
+                                 10, {{"cell_m", "500"}, {"min_turn_radius_m", "1000"}});
   const DirectionalAStarPlanner planner(DirectionalAStarOptions::from_params(sc.planner.params));
   const RendezvousResult r = plan_rendezvous(sc, planner, {});
   ASSERT_TRUE(r.uavs[0].ok && r.uavs[1].ok) << r.uavs[1].detail;
   const RendezvousUav& u2 = r.uavs[1];
   EXPECT_EQ(u2.step, RendezvousStep::detour) << u2.detail;
   EXPECT_LT(r.target_m - u2.preplanned_m, 2 * kPi * 1000.0);
-  EXPECT_GE(u2.final_m, r.target_m - 10.0 - 1e-6);
-  EXPECT_LE(u2.final_m, r.target_m + 1e-6);
-  EXPECT_TRUE(check_route_limits(u2.waypoints, sc.uavs[1]).empty());
-  const SegmentRule rule(sc.world, sc.uavs[1]);
-  for (std::size_t i = 1; i < u2.waypoints.size(); ++i) EXPECT_TRUE(rule(u2.waypoints[i - 1], u2.waypoints[i])) << i;
+  EXPECT_DOUBLE_EQ(r.epsilon_m, 10.0);
+  expect_route_holds(sc, r, 1);
 }
 
 // Two UAVs placed as mirror images about the line to the goal: equal lengths, and their routes
 // share lattice points on the way, at the same time. One departs later, within its arrival
 // slack, and the separation holds up to their meeting at the goal.
 TEST(Rendezvous, ConvergingUavsAreStaggeredWithinTheirSlack) {
-  Scenario sc = small_rendezvous();
   WorldSpec ws;
   ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(30000, 30000, 12000)};
-  sc.world = World(std::move(ws));
-  sc.uavs.resize(2);
-  sc.uavs[0].start = Vec3(3000, 14000, 6000);
-  sc.uavs[1].start = Vec3(3000, 16000, 6000);
-  for (auto& u : sc.uavs) {
-    u.heading_rad = 0.0;
-    u.goal = Vec3(15000, 15000, 6000);
-  }
+  const Vec3 goal(15000, 15000, 6000);
+  Scenario sc = rendezvous(std::move(ws), {p4_uav(1, Vec3(3000, 14000, 6000), goal, 0.0, 100), p4_uav(2, Vec3(3000, 16000, 6000), goal, 0.0, 100)},
+                           1000, {{"cell_m", "1000"}, {"directions", "6"}});
   sc.mission.separation_m = 200;
   const Plan p = plan_mission(sc, {});
   ASSERT_EQ(p.status, Status::solved) << p.message;
