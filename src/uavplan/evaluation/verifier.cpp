@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "uavplan/coordination/mission_planner.h"
+#include "uavplan/coordination/separation.h"
 #include "uavplan/core/geometry.h"
 #include "uavplan/core/units.h"
 #include "uavplan/evaluation/metrics.h"

@@ -1,0 +1,64 @@
+#include "uavplan/coordination/timing.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "uavplan/coordination/separation.h"
+
+namespace uavplan {
+namespace {
+
+std::string at(const Encounter& e) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "t=%.2f s at (%.1f, %.1f, %.1f)", e.t_s, e.where.x(), e.where.y(), e.where.z());
+  return buf;
+}
+
+}  // namespace
+
+Conflict find_conflict(const Scenario& sc, const UavSpec& uav, const Trajectory& tr, const Committed& committed) {
+  int idx = -1;
+  const Encounter m = closest_moving_approach(sc.world, tr, &idx);
+  if (m.distance_m < uav.radius_m + kTimingMargin_m)
+    return {true, "moving obstacle '" + sc.world.moving()[idx].id + "' at " + at(m)};
+  for (const auto& [spec, other] : committed) {
+    const Encounter e = closest_approach(tr, other->trajectory, separation_horizon_s(sc, uav, tr, *spec, other->trajectory));
+    if (e.distance_m < required_separation_m(sc, uav, *spec) + kTimingMargin_m)
+      return {true, "UAV '" + other->id + "' at " + at(e)};
+  }
+  return {};
+}
+
+Departure earliest_departure(const Scenario& sc, const UavSpec& u, const std::vector<Vec3>& waypoints, double max_delay_s,
+                             const Committed& committed, double delay_step_s, double max_sample_dt_s) {
+  Departure d;
+  for (int k = 0; k == 0 || (delay_step_s > 0.0 && k * delay_step_s <= max_delay_s + 1e-9); ++k) {
+    const double delay = k * delay_step_s;
+    Trajectory tr = time_route(waypoints, u.speed.cruise_mps, delay, max_sample_dt_s);
+    const Conflict c = find_conflict(sc, u, tr, committed);
+    if (!d.first.any) d.first = c;
+    if (c.any) continue;
+    d.placed = true;
+    d.delay_s = delay;
+    d.trajectory = std::move(tr);
+    break;
+  }
+  return d;
+}
+
+UavPlan flown_plan(const std::string& id, bool ok, std::string message, std::vector<Vec3> waypoints, Trajectory trajectory) {
+  UavPlan up;
+  up.id = id;
+  up.status = ok ? Status::solved : Status::failed;
+  up.message = std::move(message);
+  if (ok) {
+    up.waypoints = std::move(waypoints);
+    up.waypoints.erase(std::unique(up.waypoints.begin(), up.waypoints.end()), up.waypoints.end());
+    up.length_m = Route{up.waypoints}.length_m();
+    up.trajectory = std::move(trajectory);
+    up.arrival_s = up.trajectory.back().t_s;
+  }
+  return up;
+}
+
+}  // namespace uavplan
