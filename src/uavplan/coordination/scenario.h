@@ -22,6 +22,7 @@ struct MissionSpec {
   double separation_m = 0.0;                  // between any two UAVs at any time
   std::vector<Vec3> waypoints;                // route: via points, in order
   std::optional<double> arrival_tolerance_m;  // rendezvous: max spread of route lengths
+  double step_s = 1.0;                        // sensing / control period T of flights in the loop
 };
 
 struct PlannerSpec {

@@ -214,13 +214,31 @@ void read_buildings(const At& b, const std::optional<GeoOrigin>& origin, const A
   }
 }
 
+// Rows [t, x, y, z] with strictly increasing times, at least two.
+std::vector<TimedPoint> read_timed_path(const At& list) {
+  list.expect_seq();
+  if (list.size() < 2) list.fail("a trajectory needs at least 2 rows [t, x, y, z], got " + std::to_string(list.size()));
+  std::vector<TimedPoint> rows;
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const At row = list.item(k);
+    if (!row.node.IsSequence() || row.size() != 4) row.fail("expected a row [t, x, y, z]");
+    TimedPoint r{row.item(0).number(), Vec3(row.item(1).number(), row.item(2).number(), row.item(3).number())};
+    if (!rows.empty() && !(r.t_s > rows.back().t_s))
+      row.item(0).fail("times must increase: t = " + At::fmt(r.t_s) + " is not after the previous row's " +
+                       At::fmt(rows.back().t_s));
+    rows.push_back(r);
+  }
+  return rows;
+}
+
 void check_placed(const At& at, const Vec3& p, const World& world, const std::string& what) {
   if (!world.in_bounds(p)) at.fail(what + " is outside the world bounds");
   if (world.clearance(p, 1e-9) <= 0.0) at.fail(what + " is inside an obstacle or below the terrain");
 }
 
 UavSpec read_uav(const At& u) {
-  u.keys({"id", "start", "heading_deg", "goal", "radius", "speed", "max_turn_deg", "max_climb_deg", "ceiling"});
+  u.keys({"id", "start", "heading_deg", "goal", "radius", "speed", "max_turn_deg", "max_climb_deg", "ceiling",
+          "sensor_range"});
   UavSpec s;
   s.id = u.req("id").text();
   if (s.id.empty()) u["id"].fail("must not be empty");
@@ -245,6 +263,7 @@ UavSpec read_uav(const At& u) {
   if (u.has("max_turn_deg")) s.max_turn_rad = deg_to_rad(u["max_turn_deg"].in_range(1e-6, 180.0));
   if (u.has("max_climb_deg")) s.max_climb_rad = deg_to_rad(u["max_climb_deg"].in_range(1e-6, 90.0));
   if (u.has("ceiling")) s.ceiling_m = u["ceiling"].number();
+  if (u.has("sensor_range")) s.sensor_range_m = u["sensor_range"].positive();
   return s;
 }
 
@@ -374,12 +393,20 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
     std::set<std::string> ids;
     for (std::size_t i = 0; i < list.size(); ++i) {
       const At m = list.item(i);
-      m.keys({"id", "radius", "position", "velocity"});
+      m.keys({"id", "radius", "position", "velocity", "trajectory"});
       MovingObstacle mo;
       mo.id = m.has("id") ? m["id"].text() : std::string("m").append(std::to_string(i + 1));
+      if (!ids.insert(mo.id).second) m["id"].fail("duplicate moving obstacle id '" + mo.id + "'");
       mo.radius_m = m.req("radius").positive();
-      mo.position = m.req("position").vec3();
-      mo.velocity_mps = m.has("velocity") ? m["velocity"].vec3() : Vec3::Zero();
+      if (m.has("trajectory")) {
+        if (m.has("velocity")) m["velocity"].fail("give either 'velocity' or 'trajectory', not both");
+        if (m.has("position")) m["position"].fail("a 'trajectory' obstacle starts at its first row; drop 'position'");
+        mo.path = read_timed_path(m["trajectory"]);
+        mo.position = mo.path.front().p;
+      } else {
+        mo.position = m.req("position").vec3();
+        mo.velocity_mps = m.has("velocity") ? m["velocity"].vec3() : Vec3::Zero();
+      }
       ws.moving.push_back(std::move(mo));
     }
   }
@@ -405,7 +432,7 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
   // Mission.
   if (top.has("mission")) {
     const At m = top["mission"];
-    m.keys({"type", "separation", "waypoints", "arrival_tolerance"});
+    m.keys({"type", "separation", "waypoints", "arrival_tolerance", "step_s"});
     if (m.has("type")) {
       const auto t = mission_type_from_string(m["type"].text());
       if (!t) m["type"].fail("unknown mission type '" + m["type"].text() + "' (expected independent, route, group, rendezvous or formation)");
@@ -422,6 +449,7 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
       }
     }
     if (m.has("arrival_tolerance")) sc.mission.arrival_tolerance_m = m["arrival_tolerance"].positive();
+    if (m.has("step_s")) sc.mission.step_s = m["step_s"].positive();
     if (sc.mission.type == MissionType::route && sc.mission.waypoints.empty())
       m.req("waypoints").fail("a route mission needs at least one waypoint");
   }

@@ -130,5 +130,40 @@ TEST(ScenarioIo, BadInputIsOneClearLine) {
                {"duplicate UAV id"});
 }
 
+TEST(ScenarioIo, SensingAndPathObstacles) {
+  const std::string text = replace(replace(replace(kGood, "    - {id: m1, radius: 1, position: [0, 50, 10], velocity: [1, 0, 0]}\n",
+                                                   "    - {id: m1, radius: 1, position: [0, 50, 10], velocity: [1, 0, 0]}\n"
+                                                   "    - {id: m2, radius: 2, trajectory: [[0, 0, 0, 10], [10, 50, 0, 10], [20, 50, 50, 10]]}\n"),
+                                           "    max_climb_deg: 30\n", "    max_climb_deg: 30\n    sensor_range: 40\n"),
+                                   "  separation: 2\n", "  separation: 2\n  step_s: 0.5\n");
+  const Scenario sc = parse_scenario(text, "s.yaml");
+  ASSERT_EQ(sc.world.moving().size(), 2u);
+  EXPECT_EQ(sc.world.moving()[1].path.size(), 3u);
+  EXPECT_EQ(sc.world.moving()[1].position_at(15), Vec3(50, 25, 10));
+  EXPECT_DOUBLE_EQ(*sc.uavs[0].sensor_range_m, 40);
+  EXPECT_DOUBLE_EQ(sc.mission.step_s, 0.5);
+
+  const std::string m1 = "{id: m1, radius: 1, position: [0, 50, 10], velocity: [1, 0, 0]}";
+  auto with_m = [&](const std::string& m) { return replace(kGood, m1, m); };
+  expect_error(with_m("{id: m1, radius: 1, trajectory: [[0, 0, 0, 10]]}"), {"world.moving_obstacles[0].trajectory", "at least 2 rows"});
+  expect_error(with_m("{id: m1, radius: 1, trajectory: [[0, 0, 0, 10], [0, 5, 0, 10]]}"),
+               {"world.moving_obstacles[0].trajectory[1][0]", "times must increase"});
+  expect_error(with_m("{id: m1, radius: 1, trajectory: [[5, 0, 0, 10], [2, 5, 0, 10]]}"), {"times must increase"});
+  expect_error(with_m("{id: m1, radius: 1, trajectory: [[0, 0, 0, 10], [1, .nan, 0, 10]]}"),
+               {"world.moving_obstacles[0].trajectory[1][1]", "finite"});
+  expect_error(with_m("{id: m1, radius: 1, trajectory: [[0, 0, 0, 10], [.inf, 1, 0, 10]]}"), {"finite"});
+  expect_error(with_m("{id: m1, radius: 1, trajectory: [[0, 0, 0, 10], [1, 0, 10]]}"), {"trajectory[1]", "[t, x, y, z]"});
+  expect_error(with_m("{id: m1, radius: 1, velocity: [1, 0, 0], trajectory: [[0, 0, 0, 10], [1, 1, 0, 10]]}"),
+               {"world.moving_obstacles[0].velocity", "not both"});
+  expect_error(with_m("{id: m1, radius: 1, position: [0, 0, 10], trajectory: [[0, 0, 0, 10], [1, 1, 0, 10]]}"),
+               {"world.moving_obstacles[0].position"});
+  const std::string climb = "    max_climb_deg: 30\n";
+  expect_error(replace(kGood, climb, climb + "    sensor_range: 0\n"), {"uavs[0].sensor_range", "positive"});
+  expect_error(replace(kGood, climb, climb + "    sensor_range: -4\n"), {"uavs[0].sensor_range", "positive"});
+  expect_error(replace(kGood, climb, climb + "    sensor_range: far\n"), {"uavs[0].sensor_range", "expected a number"});
+  expect_error(replace(kGood, climb, climb + "    sensor_range: .nan\n"), {"uavs[0].sensor_range", "finite"});
+  expect_error(replace(kGood, "  separation: 2\n", "  separation: 2\n  step_s: 0\n"), {"mission.step_s", "positive"});
+}
+
 }  // namespace
 }  // namespace uavplan

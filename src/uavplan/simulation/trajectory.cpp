@@ -160,10 +160,15 @@ Encounter closest_moving_approach(const World& world, const Trajectory& tr, int*
   consider(tr.front(), tr.front());
   for (std::size_t i = 1; i < tr.size(); ++i) consider(tr[i - 1], tr[i]);
   // After arrival the UAV stays at its last position while obstacles keep moving: check until
-  // every obstacle has passed (its closest approach to the point), or an hour on.
+  // every obstacle has passed (a constant velocity: its closest approach to the point; a path:
+  // its last row, after which it stays).
   const TrajectorySample& last = tr.back();
   double t_far = last.t_s;
   for (const auto& m : world.moving()) {
+    if (!m.path.empty()) {
+      t_far = std::max(t_far, m.path.back().t_s);
+      continue;
+    }
     const double v2 = m.velocity_mps.squaredNorm();
     if (v2 > 0.0) t_far = std::max(t_far, (last.p - m.position).dot(m.velocity_mps) / v2);
   }

@@ -100,5 +100,16 @@ TEST(Trajectory, MovingObstacleAfterArrivalCounts) {
   EXPECT_LT(closest_moving_approach(w, tr).distance_m, 0.0);
 }
 
+TEST(Trajectory, PathObstacleStoppingOnTheGoalCountsAfterArrival) {
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(-100, -100, 0), Vec3(100, 100, 20)};
+  // Reaches the goal (50, 0) at t = 60, long after the UAV, and stays there.
+  ws.moving.push_back({"parks", 1.0, Vec3::Zero(), Vec3::Zero(), {{0, Vec3(50, -90, 5)}, {60, Vec3(50, 0, 5)}}});
+  const World w(std::move(ws));
+  const std::vector<Vec3> pts{{0, 0, 5}, {50, 0, 5}};
+  const Encounter e = closest_moving_approach(w, time_route(pts, 5.0, 0.0, 1.0));
+  EXPECT_LT(e.distance_m, 0.0);
+}
+
 }  // namespace
 }  // namespace uavplan

@@ -27,6 +27,9 @@ struct UavSpec {
   double max_turn_rad = kPi;           // heading change between consecutive segments
   double max_climb_rad = kPi / 2;      // |pitch| of any segment
   std::optional<double> ceiling_m;     // highest altitude allowed, below the world's top
+  // Moving obstacles and other UAVs are known to it only within this range, sensed every
+  // mission step; absent: moving obstacles are known in advance.
+  std::optional<double> sensor_range_m;
 };
 
 // Tolerance of every angle check: routes are built to the limit, floating error must not fail them.

@@ -25,9 +25,17 @@ void validate(const WorldSpec& s) {
         throw std::invalid_argument(where + "prism polygon has zero area");
     }
   }
-  for (const auto& m : s.moving)
+  for (const auto& m : s.moving) {
     if (!(m.radius_m >= 0.0) || !finite(m.position) || !finite(m.velocity_mps))
       throw std::invalid_argument("moving obstacle '" + m.id + "': bad radius, position or velocity");
+    if (m.path.size() == 1) throw std::invalid_argument("moving obstacle '" + m.id + "': a path needs at least 2 rows");
+    for (std::size_t k = 0; k < m.path.size(); ++k) {
+      if (!std::isfinite(m.path[k].t_s) || !finite(m.path[k].p))
+        throw std::invalid_argument("moving obstacle '" + m.id + "': non-finite path row " + std::to_string(k));
+      if (k > 0 && !(m.path[k].t_s > m.path[k - 1].t_s))
+        throw std::invalid_argument("moving obstacle '" + m.id + "': path times must increase (row " + std::to_string(k) + ")");
+    }
+  }
   for (const auto& r : s.radars)
     if (!finite(r.position) || !std::isfinite(r.weight) || r.weight < 0.0)
       throw std::invalid_argument("radar: bad position or weight");
@@ -71,12 +79,22 @@ double World::segment_clearance(const Vec3& a, const Vec3& b, double cap) const 
 
 double World::moving_clearance(const Vec3& a, double t_a_s, const Vec3& b, double t_b_s, int* index_out) const {
   double best = kInf;
+  const double span = t_b_s - t_a_s;
+  auto uav_at = [&](double t) { return span > 0.0 ? Vec3(a + (t - t_a_s) / span * (b - a)) : a; };
   for (std::size_t k = 0; k < spec_.moving.size(); ++k) {
     const MovingObstacle& m = spec_.moving[k];
-    // Relative position is linear in the segment parameter, so its minimum norm is exact.
-    const Vec3 d0 = a - m.position_at(t_a_s);
-    const Vec3 d1 = b - m.position_at(t_b_s);
-    const double gap = point_segment_distance(Vec3::Zero(), d0, d1) - m.radius_m;
+    // Between the obstacle's rows the relative position is linear in time, so the minimum norm
+    // of each piece is exact.
+    double gap = kInf;
+    Vec3 d0 = a - m.position_at(t_a_s);
+    for (const TimedPoint& row : m.rows()) {
+      if (row.t_s <= t_a_s) continue;
+      if (row.t_s >= t_b_s) break;
+      const Vec3 d1 = uav_at(row.t_s) - row.p;
+      gap = std::min(gap, point_segment_distance(Vec3::Zero(), d0, d1));
+      d0 = d1;
+    }
+    gap = std::min(gap, point_segment_distance(Vec3::Zero(), d0, Vec3(b - m.position_at(t_b_s)))) - m.radius_m;
     if (gap < best) {
       best = gap;
       if (index_out) *index_out = static_cast<int>(k);

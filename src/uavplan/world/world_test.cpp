@@ -94,12 +94,46 @@ TEST(World, MovingObstacleClearanceIsExactInTime) {
   EXPECT_GT(w.moving_clearance(Vec3(-50, 0, 10), 10.0, Vec3(50, 0, 10), 30.0), 20.0);
 }
 
+TEST(World, PathObstacleIsPiecewiseLinearAndItsClearanceExact) {
+  // A turning obstacle: east for 10 s, then north for 10 s, then it stays.
+  MovingObstacle m{"turn", 1.0, Vec3::Zero(), Vec3::Zero(), {{0, Vec3(0, 0, 5)}, {10, Vec3(50, 0, 5)}, {20, Vec3(50, 50, 5)}}};
+  EXPECT_EQ(m.position_at(-3), Vec3(0, 0, 5));
+  EXPECT_EQ(m.position_at(15), Vec3(50, 25, 5));
+  EXPECT_EQ(m.position_at(99), Vec3(50, 50, 5));
+  EXPECT_EQ(m.velocity_at(5), Vec3(5, 0, 0));
+  EXPECT_EQ(m.velocity_at(10), Vec3(0, 5, 0));
+  EXPECT_EQ(m.velocity_at(25), Vec3::Zero());
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(-100, -100, 0), Vec3(100, 100, 50)};
+  ws.moving.push_back(m);
+  const World w(std::move(ws));
+  // Against fine sampling on random UAV segments spanning the turn.
+  Rng r(5);
+  for (int k = 0; k < 200; ++k) {
+    const Vec3 a(r.uniform(-20, 80), r.uniform(-20, 80), 5), b(r.uniform(-20, 80), r.uniform(-20, 80), 5);
+    const double ta = r.uniform(-5, 15), tb = ta + r.uniform(0.1, 20);
+    double sampled = World::kInf;
+    for (int i = 0; i <= 20000; ++i) {
+      const double f = i / 20000.0, t = ta + f * (tb - ta);
+      sampled = std::min(sampled, (a + f * (b - a) - m.position_at(t)).norm() - 1.0);
+    }
+    const double exact = w.moving_clearance(a, ta, b, tb);
+    EXPECT_LE(exact, sampled + 1e-9);
+    EXPECT_GE(exact, sampled - 0.01);
+  }
+}
+
 TEST(World, RejectsInvalidSpecs) {
   WorldSpec ws;
   ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(-1, 1, 1)};
   EXPECT_THROW(World{ws}, std::invalid_argument);
   ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(1, 1, 1)};
   ws.obstacles.push_back(Prism{{{0, 0}, {1, 1}}, 0, 1});
+  EXPECT_THROW(World{ws}, std::invalid_argument);
+  ws.obstacles.clear();
+  ws.moving.push_back({"one_row", 1.0, Vec3::Zero(), Vec3::Zero(), {{0, Vec3::Zero()}}});
+  EXPECT_THROW(World{ws}, std::invalid_argument);
+  ws.moving.back().path = {{0, Vec3::Zero()}, {0, Vec3::Ones()}};
   EXPECT_THROW(World{ws}, std::invalid_argument);
 }
 
