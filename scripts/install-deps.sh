@@ -10,6 +10,7 @@ PACKAGES=(
   nlohmann-json3-dev     # io: scenario JSON, plan JSON
   libcli11-dev           # apps: command line
   libboost-dev           # graph / polygon algorithms used by planners
+  libnanoflann-dev       # planning: nearest neighbours of the RRT trees
   libgtest-dev libgmock-dev googletest
   libbenchmark-dev
   libgeographiclib-dev   # io: local frame <-> WGS84 (exports, OSM buildings)

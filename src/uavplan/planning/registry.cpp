@@ -6,6 +6,7 @@
 #include "uavplan/planning/cells/cell_astar.h"
 #include "uavplan/planning/cells/cellular_aco.h"
 #include "uavplan/planning/field/apf.h"
+#include "uavplan/planning/sampling/rrt.h"
 #include "uavplan/planning/search/astar_planner.h"
 #include "uavplan/planning/search/directional_astar.h"
 
@@ -27,6 +28,10 @@ const std::vector<Entry>& entries() {
        [](const Params& p) { return std::make_unique<CellularAcoPlanner>(CellularAcoOptions::from_params(p)); }},
       {{"cell_astar", "A* on P2's cell graph with the same penalty J (optimal for it; the ant colony's baseline)"},
        [](const Params& p) { return std::make_unique<CellAStarPlanner>(CellAStarOptions::from_params(p)); }},
+      {{"rrt", "P1's common RRT: goal bias 0.5, fixed step, uniform samples, no pruning (the baseline)", false},
+       [](const Params& p) { return std::make_unique<RrtPlanner>("rrt", RrtOptions::from_params(p, false)); }},
+      {{"improved_rrt", "P1's improved RRT: chaotic samples, obstacle-velocity growth bias, 5-look-ahead pruning, shortcut", false},
+       [](const Params& p) { return std::make_unique<RrtPlanner>("improved_rrt", RrtOptions::from_params(p, true)); }},
       {{"apf", "P3 improved potential field: capped attraction, sqrt(R)-faded repulsion, 15-degree sector rule", false},
        [](const Params& p) { return std::make_unique<ApfPlanner>(ApfOptions::from_params(p, true)); }},
       {{"apf_traditional", "the traditional potential field (P3's baseline): no cap, no sqrt(R), no sector rule", false},

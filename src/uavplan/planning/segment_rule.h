@@ -30,6 +30,7 @@ class SegmentRule {
   }
   double inflation_m() const { return inflation_m_; }
   double ceiling_m() const { return ceiling_m_; }
+  double max_climb_rad() const { return max_climb_rad_; }
   const World& world() const { return *world_; }
 
  private:

@@ -1,0 +1,292 @@
+#include "uavplan/planning/sampling/rrt.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+
+#include "uavplan/core/geometry.h"
+#include "uavplan/core/rng.h"
+#include "uavplan/planning/sampling/chaotic_sampler.h"
+#include "uavplan/planning/sampling/rrt_tree.h"
+#include "uavplan/planning/smoothing/waypoint_pruning.h"
+
+namespace uavplan {
+
+RrtOptions RrtOptions::common() { return RrtOptions{}; }
+
+RrtOptions RrtOptions::improved() {
+  RrtOptions o;
+  o.chaotic = true;
+  o.lambda = 1.0;
+  o.prune = true;
+  o.shortcut = true;
+  return o;
+}
+
+RrtOptions RrtOptions::from_params(const Params& params, bool improved) {
+  ParamReader r(params, improved ? "improved_rrt" : "rrt");
+  RrtOptions o = improved ? RrtOptions::improved() : RrtOptions::common();
+  o.step_m = r.number("step_m", o.step_m, 0.0, 1e9);
+  o.goal_bias = r.number("goal_bias", o.goal_bias, 0.0, 1.0);
+  o.max_nodes = r.integer("max_nodes", o.max_nodes, 2, 10'000'000);
+  if (improved) {
+    o.chaotic = r.boolean("chaotic", o.chaotic);
+    o.arcsine_uniform = r.boolean("arcsine_uniform", o.arcsine_uniform);
+    o.lambda = r.number("lambda", o.lambda, -100.0, 100.0);
+    o.prune = r.boolean("prune", o.prune);
+    o.lookahead = r.integer("lookahead", o.lookahead, 1, 1000);
+    o.shortcut = r.boolean("shortcut", o.shortcut);
+  }
+  r.finish();
+  return o;
+}
+
+double RrtOptions::step_in(const Aabb& bounds) const {
+  if (step_m > 0.0) return step_m;
+  // P1's 2 m suits its 40 m x 45 m window; a larger world would need thousands of steps to cross.
+  return std::max(2.0, bounds.extent().norm() / 50.0);
+}
+
+double keep_out_distance(const MovingKeepOut& k, const Vec3& a, double t_a_s, const Vec3& b, double t_b_s) {
+  const double cut = k.t0_s + k.hold_s;
+  if (t_a_s < cut && cut < t_b_s) {  // both sides of the moment the centre starts to move
+    const Vec3 m = a + (cut - t_a_s) / (t_b_s - t_a_s) * (b - a);
+    return std::min(point_segment_distance(k.center, a, m),
+                    point_segment_distance(Vec3::Zero(), Vec3(m - k.center_at(cut)), Vec3(b - k.center_at(t_b_s))));
+  }
+  if (t_b_s <= cut) return point_segment_distance(k.center, a, b);
+  // Relative motion is linear over the segment, so its smallest norm is exact.
+  return point_segment_distance(Vec3::Zero(), Vec3(a - k.center_at(t_a_s)), Vec3(b - k.center_at(t_b_s)));
+}
+
+namespace {
+
+// What an edge must satisfy: the static rule, and every keep-out at the times it is flown.
+class EdgeCheck {
+ public:
+  EdgeCheck(const SegmentRule& rule, const RrtQuery& q) : rule_(rule), q_(q) {}
+  bool operator()(const Vec3& a, double along_m, const Vec3& b) const {
+    if (!rule_(a, b)) return false;
+    if (q_.keep_outs.empty()) return true;
+    const double t_a = q_.start_time_s + along_m / q_.speed_mps;
+    const double t_b = t_a + (b - a).norm() / q_.speed_mps;
+    for (const MovingKeepOut& k : q_.keep_outs)
+      if (keep_out_distance(k, a, t_a, b, t_b) < k.radius_m) return false;
+    return true;
+  }
+
+ private:
+  const SegmentRule& rule_;
+  const RrtQuery& q_;
+};
+
+// The growth direction held to the limits: pitch within the climb limit and, when it turns
+// more than the turn limit from the incoming edge, rotated toward that edge (the largest
+// rotation that keeps the limit, by bisection; the incoming direction itself always does).
+std::optional<Vec3> limited(Vec3 dir, const std::optional<Vec3>& in, double max_turn, double max_climb, bool planar) {
+  const auto climb_limited = [&](Vec3 d) -> std::optional<Vec3> {
+    if (planar) d.z() = 0.0;
+    const double h = d.head<2>().norm();
+    if (h <= 1e-12 * d.norm()) return std::nullopt;  // straight up or down
+    const double pitch = std::clamp(std::atan2(d.z(), h), -max_climb, max_climb);
+    return Vec3(std::cos(pitch) * d.x() / h, std::cos(pitch) * d.y() / h, std::sin(pitch));
+  };
+  auto out = climb_limited(dir);
+  if (!in || max_turn >= kPi || (out && turn_rad(*in, *out) <= max_turn)) return out;
+  const Vec3 a = in->normalized(), b = dir.normalized();
+  const double angle = std::acos(std::clamp(a.dot(b), -1.0, 1.0));
+  // Rotation from a toward b by `f` of the angle between them (in their plane).
+  Vec3 perp = b - a.dot(b) * a;
+  if (perp.norm() < 1e-12) perp = std::abs(a.z()) < 0.9 ? a.cross(Vec3::UnitZ()) : a.cross(Vec3::UnitX());
+  perp.normalize();
+  const auto rotated = [&](double f) { return Vec3(std::cos(f * angle) * a + std::sin(f * angle) * perp); };
+  std::optional<Vec3> best;
+  double lo = 0.0, hi = std::min(1.0, max_turn / angle);
+  for (int i = 0; i < 12; ++i) {
+    const double f = i == 0 ? hi : 0.5 * (lo + hi);
+    const auto d = climb_limited(rotated(f));
+    if (d && turn_rad(*in, *d) <= max_turn) {
+      best = d;
+      if (i == 0) break;
+      lo = f;
+    } else {
+      hi = f;
+    }
+  }
+  return best;
+}
+
+bool path_ok(const std::vector<Vec3>& path, const EdgeCheck& ok, const PruneLimits& limits) {
+  double along = 0.0;
+  std::optional<Vec3> in = limits.start_direction;
+  for (std::size_t i = 1; i < path.size(); ++i) {
+    const Vec3 seg = path[i] - path[i - 1];
+    if (in && turn_rad(*in, seg) > limits.max_turn_rad + kAngleTolerance_rad) return false;
+    if (!ok(path[i - 1], along, path[i])) return false;
+    along += seg.norm();
+    if (seg.norm() > 0.0) in = seg;
+  }
+  return !(in && limits.end_direction && turn_rad(*in, *limits.end_direction) > limits.max_turn_rad + kAngleTolerance_rad);
+}
+
+std::string fmt(const Vec3& p) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "(%.1f, %.1f, %.1f)", p.x(), p.y(), p.z());
+  return buf;
+}
+
+}  // namespace
+
+RrtResult rrt_search(const SegmentRule& rule, double max_turn, const RrtQuery& q, const RrtOptions& opt,
+                     const StopCondition& stop) {
+  RrtResult res;
+  const EdgeCheck ok(rule, q);
+  if (!rule.point_ok(q.start)) {
+    res.message = "start " + fmt(q.start) + " is outside the free space";
+    return res;
+  }
+  if (!rule.point_ok(q.goal)) {
+    res.message = "goal " + fmt(q.goal) + " is outside the free space";
+    return res;
+  }
+  if ((q.goal - q.start).norm() == 0.0) {
+    res.ok = true;
+    res.path = res.raw = {q.start};
+    return res;
+  }
+  const double step = opt.step_in(rule.world().bounds());
+  const double max_climb = std::min(rule.max_climb_rad(), kPi / 2 - 1e-9);
+  Rng rng(q.seed);
+  ChaoticSampler chaos(rng.split(1).next_u64(), opt.arcsine_uniform);
+  RrtTree tree(q.start, opt.max_nodes);
+  const auto incoming = [&](int i) -> std::optional<Vec3> {
+    const int p = tree.parent(i);
+    return p < 0 ? q.start_direction : std::optional<Vec3>(tree.pos(i) - tree.pos(p));
+  };
+  const std::uint64_t max_iterations = 50ull * static_cast<std::uint64_t>(opt.max_nodes);
+  int reached = -1;
+  // Step 2 of P1: the newest node within one step of the goal, and the last edge clear. Under a
+  // turn limit a node one step away rarely faces the goal; within four steps the tree can turn
+  // into it.
+  const double arrive_m = max_turn < kPi - 1e-9 ? 4.0 * step : step;
+  const auto arrives = [&](int i) {
+    const Vec3 last = q.goal - tree.pos(i);
+    if (last.norm() > arrive_m) return false;
+    const auto in = incoming(i);
+    if (in && turn_rad(*in, last) > max_turn + kAngleTolerance_rad) return false;
+    // The way it comes into the goal (its own edge when the node is on the goal) against the way on.
+    const std::optional<Vec3> into = last.norm() > 0.0 ? std::optional<Vec3>(last) : in;
+    if (q.goal_direction && into && turn_rad(*into, *q.goal_direction) > max_turn + kAngleTolerance_rad) return false;
+    return ok(tree.pos(i), tree.along(i), q.goal);
+  };
+  if (arrives(0)) reached = 0;
+  std::vector<char> goal_tried(1, 0);
+  goal_tried.reserve(static_cast<std::size_t>(opt.max_nodes));
+  const bool biased = opt.lambda != 0.0 && q.bias_velocity_mps.squaredNorm() > 0.0;
+  while (reached < 0) {
+    if (stop.should_stop(res.iterations)) {
+      res.message = "stopped after " + std::to_string(tree.size()) + " nodes";
+      break;
+    }
+    // A start every move from which is refused (boxed in by keep-outs) is given up early.
+    if (tree.size() >= opt.max_nodes || res.iterations >= max_iterations || (tree.size() == 1 && res.iterations >= 2000)) {
+      res.message = "no route within " + std::to_string(tree.size()) + " nodes of " + std::to_string(step).substr(0, 5) + " m";
+      break;
+    }
+    ++res.iterations;
+    Vec3 target = q.goal;
+    int near = -1;
+    bool to_goal = rng.uniform01() < opt.goal_bias;  // steps 3-4: goal bias
+    if (to_goal) {
+      // Each node grows toward the goal once: a node near the goal whose heading or climb cannot
+      // reach it would otherwise take every goal-biased step.
+      near = tree.nearest_usable(q.goal, [&](int i) { return !goal_tried[static_cast<std::size_t>(i)]; });
+      if (near < 0) to_goal = false;
+      else goal_tried[static_cast<std::size_t>(near)] = 1;
+    }
+    if (!to_goal) {  // step 5: a sample, chaotic or pseudo-random
+      target = opt.chaotic ? chaos.sample(q.sample_box)
+                           : Vec3(rng.uniform(q.sample_box.min.x(), q.sample_box.max.x()),
+                                  rng.uniform(q.sample_box.min.y(), q.sample_box.max.y()),
+                                  rng.uniform(q.sample_box.min.z(), q.sample_box.max.z()));
+      if (q.planar) target.z() = q.start.z();
+      near = tree.nearest(target);
+    }
+    Vec3 dir = target - tree.pos(near);
+    const double dist = dir.norm();
+    if (dist <= 1e-12) continue;
+    dir /= dist;
+    if (!to_goal && biased) dir += opt.lambda * q.bias_velocity_mps / q.speed_mps;  // P1: + V_b
+    const auto d = limited(dir, incoming(near), max_turn, max_climb, q.planar);
+    if (!d) continue;
+    // Short of the target only when heading straight at it: a step bent by the limits would
+    // stop beside the target, needing a sharp turn to finish.
+    const bool straight = (*d - dir.normalized()).norm() < 1e-9;
+    const double len = straight ? std::min(step, dist) : step;
+    if (len < 1e-3 * step) continue;
+    const Vec3 next = tree.pos(near) + len * *d;
+    if (!ok(tree.pos(near), tree.along(near), next)) continue;  // step 6
+    const int added = tree.add(next, near);
+    goal_tried.push_back(0);
+    if (arrives(added)) reached = added;
+  }
+  res.nodes = tree.size();
+  if (reached < 0) return res;
+  res.raw = tree.path_to(reached);  // step 7: backtrack
+  if (res.raw.back() != q.goal) res.raw.push_back(q.goal);
+  res.path = res.raw;
+  res.ok = true;
+  // Step 8 and the shortcut; kept only when the whole route still holds at its new times
+  // (a shorter route reaches each point earlier, and keep-outs move).
+  const PruneLimits limits{q.start_direction, q.goal_direction, max_turn, !q.keep_outs.empty()};
+  if (opt.prune) {
+    auto pruned = prune_within_step(res.path, q.uav_step_m, opt.lookahead, limits, ok);
+    if (path_ok(pruned, ok, limits)) res.path = std::move(pruned);
+  }
+  if (opt.shortcut) {
+    auto cut = shortcut_within_limits(res.path, limits, ok);
+    if (path_ok(cut, ok, limits)) res.path = std::move(cut);
+  }
+  return res;
+}
+
+PlanResult RrtPlanner::do_plan(const Problem& pb, const World& world, const StopCondition& stop) const {
+  PlanResult out;
+  const SegmentRule rule(world, pb.uav);
+  std::vector<Vec3> stops{pb.uav.start};
+  stops.insert(stops.end(), pb.via.begin(), pb.via.end());
+  stops.push_back(pb.goal);
+  RrtQuery q;
+  q.sample_box = world.bounds();
+  q.sample_box.max.z() = std::max(q.sample_box.min.z(), std::min(q.sample_box.max.z(), rule.ceiling_m()));
+  q.planar = world.bounds().extent().z() <= 0.0;
+  q.speed_mps = pb.uav.speed.cruise_mps;
+  q.uav_step_m = pb.uav.speed.cruise_mps * 1.0;  // one second of flight
+  if (pb.uav.heading_rad) q.start_direction = heading_vector(*pb.uav.heading_rad);
+  out.route.waypoints = {pb.uav.start};
+  for (std::size_t leg = 0; leg + 1 < stops.size(); ++leg) {
+    q.start = stops[leg];
+    q.goal = stops[leg + 1];
+    q.seed = Rng(pb.seed).split(leg).next_u64();
+    const RrtResult r = rrt_search(rule, pb.uav.max_turn_rad, q, options_, stop);
+    out.stats.nodes_expanded += static_cast<std::uint64_t>(r.nodes);
+    if (!r.ok) {
+      out.route.waypoints.clear();
+      out.message = name_ + ": leg " + std::to_string(leg) + " from " + fmt(q.start) + " to " + fmt(q.goal) + ": " +
+                    r.message;
+      return out;
+    }
+    for (std::size_t i = 1; i < r.path.size(); ++i) {
+      const Vec3 seg = r.path[i] - out.route.waypoints.back();
+      if (seg.norm() > 0.0) q.start_direction = seg;
+      out.route.waypoints.push_back(r.path[i]);
+    }
+  }
+  out.status = Status::solved;
+  return out;
+}
+
+}  // namespace uavplan
