@@ -25,11 +25,13 @@ struct MissionOptions {
   std::function<void(std::size_t done, std::size_t total)> progress;
 };
 
-// What a mission plans with: the options, and the planner chosen for it with its parameters.
+// What a mission plans with: the options, the planner chosen for it with its parameters, and
+// the parameters the mission reads itself (Mission::parameters()).
 struct MissionContext {
   const MissionOptions& options;
   std::string algorithm;
   Params params;
+  Params mission_params;
 };
 
 class Mission {
@@ -37,6 +39,8 @@ class Mission {
   virtual ~Mission() = default;
   // The planners this mission plans with, the default first; empty: any registered planner.
   virtual std::vector<std::string> algorithms() const { return {}; }
+  // Keys of planner.params (and --set) that the mission reads itself, not its planner.
+  virtual std::vector<std::string> parameters() const { return {}; }
   // Appends one UavPlan per scenario UAV, in scenario order. Throws std::invalid_argument for
   // bad parameters or a malformed problem.
   virtual void plan(const Scenario& scenario, const MissionContext& context, Plan& plan) const = 0;

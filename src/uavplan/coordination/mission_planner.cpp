@@ -16,7 +16,13 @@ Plan plan_mission(const Scenario& sc, const MissionOptions& opt) {
   Params params = sc.planner.params;
   for (const auto& [k, v] : opt.params) params[k] = v;
   const Mission* mission = find_mission(sc.mission.type);
-  MissionContext ctx{opt, requested, params};
+  MissionContext ctx{opt, requested, params, {}};
+  if (mission)
+    for (const std::string& key : mission->parameters())
+      if (const auto it = ctx.params.find(key); it != ctx.params.end()) {
+        ctx.mission_params.insert(*it);
+        ctx.params.erase(it);
+      }
   const std::vector<std::string> allowed = mission ? mission->algorithms() : std::vector<std::string>{};
   if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), requested) == allowed.end()) {
     // The mission plans with its own method: other planners' parameters do not apply.

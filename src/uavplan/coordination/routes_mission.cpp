@@ -1,10 +1,16 @@
 #include "uavplan/coordination/routes_mission.h"
 
+#include <Eigen/Geometry>
+#include <cstdio>
+
+#include "uavplan/coordination/rolling_window.h"
 #include "uavplan/coordination/timing.h"
 #include "uavplan/planning/registry.h"
 
 namespace uavplan {
 namespace {
+
+bool senses(const UavSpec& u) { return u.sensor_range_m.has_value(); }
 
 void plan_routes(const Scenario& sc, const Planner& planner, const MissionOptions& opt, Plan& plan) {
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
@@ -29,8 +35,11 @@ void plan_routes(const Scenario& sc, const Planner& planner, const MissionOption
   }
 }
 
-// Departure delays, in the scenario's UAV order.
-void time_routes(const Scenario& sc, const MissionOptions& opt, Plan& plan) {
+// Departure delays, in the scenario's order: each UAV takes the earliest departure that keeps
+// the separation from those timed before it; UAVs without sensors also keep clear of the moving
+// obstacles (known in advance to them), UAVs with sensors only plan to (they meet the moving
+// obstacles in the loop).
+Committed time_routes(const Scenario& sc, const MissionOptions& opt, Plan& plan) {
   double horizon_s = 60.0;
   for (std::size_t i = 0; i < sc.uavs.size(); ++i)
     if (plan.uavs[i].status == Status::solved) horizon_s += 2.0 * plan.uavs[i].length_m / sc.uavs[i].speed.cruise_mps;
@@ -39,7 +48,12 @@ void time_routes(const Scenario& sc, const MissionOptions& opt, Plan& plan) {
     UavPlan& up = plan.uavs[i];
     const UavSpec& u = sc.uavs[i];
     if (up.status != Status::solved) continue;
-    Departure d = earliest_departure(sc, u, up.waypoints, horizon_s, committed, opt.delay_step_s, opt.max_sample_dt_s);
+    Departure d = earliest_departure(sc, u, up.waypoints, horizon_s, committed, opt.delay_step_s, opt.max_sample_dt_s,
+                                     !senses(u));
+    if (!d.placed && senses(u)) {  // no clear departure planned: it departs at once and sees to it in the loop
+      d.placed = true;
+      d.trajectory = time_route(up.waypoints, u.speed.cruise_mps, 0.0, opt.max_sample_dt_s);
+    }
     if (!d.placed) {
       up.status = Status::failed;
       up.message = "conflicts with " + d.first.what + " for every departure delay up to " +
@@ -50,6 +64,121 @@ void time_routes(const Scenario& sc, const MissionOptions& opt, Plan& plan) {
     up.arrival_s = up.trajectory.back().t_s;
     committed.emplace_back(&u, &up);
   }
+  return committed;
+}
+
+// When a timed UAV departs: the end of its wait at the start.
+double departure_s(const Trajectory& tr) {
+  return tr.size() >= 2 && tr[1].p == tr[0].p ? tr[1].t_s : 0.0;
+}
+
+// The corners of a flown trajectory (rows on a straight line at constant speed dropped).
+std::vector<Vec3> corners(const Trajectory& tr) {
+  std::vector<Vec3> out;
+  for (std::size_t i = 0; i < tr.size(); ++i) {
+    if (!out.empty() && tr[i].p == out.back()) continue;
+    if (out.size() >= 2) {
+      const Vec3 a = out[out.size() - 1] - out[out.size() - 2], b = tr[i].p - out.back();
+      if (a.cross(b).norm() <= 1e-12 * a.norm() * b.norm() && a.dot(b) > 0.0) out.pop_back();
+    }
+    out.push_back(tr[i].p);
+  }
+  return out;
+}
+
+// The mission's own parameters: the local replanner and the window.
+struct LocalLayer {
+  RrtOptions rrt;
+  double window_m = 0.0;  // 0: each UAV's sensor range
+};
+LocalLayer local_layer(const MissionContext& ctx) {
+  ParamReader r(ctx.mission_params, ctx.algorithm);
+  const std::string local = r.text("local", "improved_rrt");
+  if (local != "improved_rrt" && local != "rrt")
+    throw std::invalid_argument("planner.params.local: expected improved_rrt or rrt, got '" + local + "'");
+  LocalLayer out;
+  out.window_m = r.number("window_m", 0.0, 0.0, 1e12);
+  r.finish();
+  // The global planner's own RRT parameters apply to the local one of the same kind.
+  out.rrt = local == ctx.algorithm ? RrtOptions::from_params(ctx.params, local == "improved_rrt")
+            : local == "rrt"       ? RrtOptions::common()
+                                   : RrtOptions::improved();
+  return out;
+}
+
+// The UAVs with sensors fly their routes in the loop, with the timed ones as objects to sense.
+void fly_sensing(const Scenario& sc, const MissionContext& ctx, const Committed& committed, Plan& plan) {
+  const MissionOptions& opt = ctx.options;
+  const LocalLayer layer = local_layer(ctx);
+  RollingWindowOptions rw;
+  rw.step_s = sc.mission.step_s;
+  rw.separation_m = sc.mission.separation_m;
+  rw.local = layer.rrt;
+  rw.seed = opt.seed;
+  rw.stop = opt.stop;
+  std::vector<LoopUav> loop;
+  std::vector<std::size_t> index;  // scenario index of each loop UAV
+  std::vector<double> windows;
+  double horizon_s = 0.0;  // three times the longest planned flight and two minutes more
+  for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
+    const UavSpec& u = sc.uavs[i];
+    if (!senses(u) || plan.uavs[i].status != Status::solved) continue;
+    loop.push_back({&u, plan.uavs[i].waypoints, *u.sensor_range_m, departure_s(plan.uavs[i].trajectory)});
+    index.push_back(i);
+    windows.push_back(layer.window_m > 0.0 ? layer.window_m : *u.sensor_range_m);
+    horizon_s = std::max(horizon_s, 120.0 + 3.0 * plan.uavs[i].trajectory.back().t_s);
+  }
+  if (loop.empty()) return;
+  std::vector<ScriptedUav> scripted;
+  for (const auto& [spec, up] : committed)
+    if (!senses(*spec)) scripted.push_back({spec, &up->trajectory});
+  std::vector<std::string> ids;
+  for (const std::size_t i : index) ids.push_back(sc.uavs[i].id);
+  RollingWindow controller(sc.world, rw, windows, ids);
+  LoopOptions lo;
+  lo.step_s = sc.mission.step_s;
+  lo.horizon_s = horizon_s;
+  lo.max_sample_dt_s = opt.max_sample_dt_s;
+  lo.separation_m = sc.mission.separation_m;
+  const LoopResult flight = fly_closed_loop(sc.world, loop, scripted, controller, lo, opt.stop);
+  for (std::size_t k = 0; k < loop.size(); ++k) {
+    UavPlan& up = plan.uavs[index[k]];
+    const FlightState& f = flight.uavs[k];
+    const RollingWindowLog& log = controller.log(k);
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "flown in the loop (T = %g s): %d local replans, %d holds, %d escapes",
+                  sc.mission.step_s, log.replans, log.holds, log.escapes);
+    up.stats.plan_ms += log.local_ms;  // wall time stays out of the plan's text (same bytes every run)
+    up.trajectory = f.flown;  // what it flew, also when it failed (the report shows it)
+    if (!f.done) {
+      up.status = Status::failed;
+      up.message = "did not reach its goal by t=" + std::to_string(static_cast<int>(lo.horizon_s)) + " s" +
+                   (log.trouble.empty() ? "" : ": " + log.trouble);
+      continue;
+    }
+    up.message = buf;
+    up.waypoints = corners(f.flown);
+    up.length_m = Route{up.waypoints}.length_m();
+    up.arrival_s = f.flown.back().t_s;
+  }
+  // Against the truth: what they flew must keep clear of everything that moves.
+  Committed all;
+  for (const auto& c : committed)
+    if (!senses(*c.first)) all.push_back(c);
+  for (const std::size_t i : index)
+    if (!plan.uavs[i].trajectory.empty()) all.emplace_back(&sc.uavs[i], &plan.uavs[i]);
+  for (std::size_t k = 0; k < index.size(); ++k) {
+    UavPlan& up = plan.uavs[index[k]];
+    if (up.status != Status::solved) continue;
+    Committed others;
+    for (const auto& c : all)
+      if (c.second != &up) others.push_back(c);
+    const Conflict c = find_conflict(sc, sc.uavs[index[k]], up.trajectory, others);
+    if (!c.any) continue;
+    const std::string& trouble = controller.log(k).trouble;
+    up.status = Status::failed;
+    up.message = "could not avoid " + c.what + (trouble.empty() ? "" : "; " + trouble);
+  }
 }
 
 }  // namespace
@@ -57,7 +186,8 @@ void time_routes(const Scenario& sc, const MissionOptions& opt, Plan& plan) {
 void RoutesMission::plan(const Scenario& sc, const MissionContext& ctx, Plan& plan) const {
   const auto planner = make_planner(ctx.algorithm, ctx.params);
   plan_routes(sc, *planner, ctx.options, plan);
-  time_routes(sc, ctx.options, plan);
+  const Committed committed = time_routes(sc, ctx.options, plan);
+  fly_sensing(sc, ctx, committed, plan);
 }
 
 }  // namespace uavplan

@@ -1,7 +1,12 @@
 // Missions `independent` and `route`: each UAV's route by the chosen planner (through the via
 // points in order for `route`), then the routes are timed so that UAVs keep their separation and
 // stay clear of moving obstacles (prioritised departure delays: each UAV in turn takes the
-// earliest departure that conflicts with none planned before it).
+// earliest departure that conflicts with none planned before it). UAVs with a sensor_range know
+// moving obstacles and other UAVs only through their sensors: they fly their routes in the
+// closed loop with P1's rolling-window replanning (rolling_window.h), after the UAVs without
+// sensors are timed (those fly as planned, and the sensing ones see them as moving objects).
+// Mission parameters: `local` (improved_rrt, default, or rrt: the local replanner) and
+// `window_m` (route ahead checked; default the sensor range).
 #pragma once
 
 #include "uavplan/coordination/mission.h"
@@ -10,6 +15,7 @@ namespace uavplan {
 
 class RoutesMission final : public Mission {
  public:
+  std::vector<std::string> parameters() const override { return {"local", "window_m"}; }
   void plan(const Scenario& scenario, const MissionContext& context, Plan& plan) const override;
 };
 

@@ -16,9 +16,10 @@ std::string at(const Encounter& e) {
 
 }  // namespace
 
-Conflict find_conflict(const Scenario& sc, const UavSpec& uav, const Trajectory& tr, const Committed& committed) {
+Conflict find_conflict(const Scenario& sc, const UavSpec& uav, const Trajectory& tr, const Committed& committed,
+                       bool moving_obstacles) {
   int idx = -1;
-  const Encounter m = closest_moving_approach(sc.world, tr, &idx);
+  const Encounter m = moving_obstacles ? closest_moving_approach(sc.world, tr, &idx) : Encounter{};
   if (m.distance_m < uav.radius_m + kTimingMargin_m)
     return {true, "moving obstacle '" + sc.world.moving()[idx].id + "' at " + at(m)};
   for (const auto& [spec, other] : committed) {
@@ -30,12 +31,13 @@ Conflict find_conflict(const Scenario& sc, const UavSpec& uav, const Trajectory&
 }
 
 Departure earliest_departure(const Scenario& sc, const UavSpec& u, const std::vector<Vec3>& waypoints, double max_delay_s,
-                             const Committed& committed, double delay_step_s, double max_sample_dt_s) {
+                             const Committed& committed, double delay_step_s, double max_sample_dt_s,
+                             bool moving_obstacles) {
   Departure d;
   for (int k = 0; k == 0 || (delay_step_s > 0.0 && k * delay_step_s <= max_delay_s + 1e-9); ++k) {
     const double delay = k * delay_step_s;
     Trajectory tr = time_route(waypoints, u.speed.cruise_mps, delay, max_sample_dt_s);
-    const Conflict c = find_conflict(sc, u, tr, committed);
+    const Conflict c = find_conflict(sc, u, tr, committed, moving_obstacles);
     if (!d.first.any) d.first = c;
     if (c.any) continue;
     d.placed = true;

@@ -22,8 +22,9 @@ struct Conflict {
   std::string what;
 };
 
-// The first conflict of a trajectory with the moving obstacles or a committed UAV.
-Conflict find_conflict(const Scenario& sc, const UavSpec& uav, const Trajectory& tr, const Committed& committed);
+// The first conflict of a trajectory with the moving obstacles (unless left out) or a committed UAV.
+Conflict find_conflict(const Scenario& sc, const UavSpec& uav, const Trajectory& tr, const Committed& committed,
+                       bool moving_obstacles = true);
 
 // The earliest departure delay, in delay_step_s steps up to max_delay_s, at which the route flown
 // at cruise speed keeps clear of the moving obstacles and of the UAVs committed before it; when
@@ -35,7 +36,8 @@ struct Departure {
   Conflict first;
 };
 Departure earliest_departure(const Scenario& sc, const UavSpec& u, const std::vector<Vec3>& waypoints, double max_delay_s,
-                             const Committed& committed, double delay_step_s, double max_sample_dt_s);
+                             const Committed& committed, double delay_step_s, double max_sample_dt_s,
+                             bool moving_obstacles = true);
 
 // A UAV's entry in the plan: solved with its route and trajectory, or failed with the message.
 UavPlan flown_plan(const std::string& id, bool ok, std::string message, std::vector<Vec3> waypoints,
