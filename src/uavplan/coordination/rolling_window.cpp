@@ -25,7 +25,7 @@ std::vector<ThreatDisc> threat_discs(const UavSpec& u, const std::vector<Track>&
     const Vec3 velocity = k.velocity_mps ? *k.velocity_mps
                           : k.relative_m.norm() > 0.0 ? Vec3(-speed * k.relative_m.normalized())
                                                       : Vec3::Zero();
-    out.push_back({{k.position(), velocity, body + step_s * speed + kPlanningMargin_m, t_s, 0.0}, body + kPlanningMargin_m});
+    out.push_back({{k.position(), velocity, body + step_s * speed + kPlanningMargin_m, t_s}, body + kPlanningMargin_m});
   }
   return out;
 }

@@ -51,14 +51,6 @@ double RrtOptions::step_in(const Aabb& bounds) const {
 }
 
 double keep_out_distance(const MovingKeepOut& k, const Vec3& a, double t_a_s, const Vec3& b, double t_b_s) {
-  const double cut = k.t0_s + k.hold_s;
-  if (t_a_s < cut && cut < t_b_s) {  // both sides of the moment the centre starts to move
-    const Vec3 m = a + (cut - t_a_s) / (t_b_s - t_a_s) * (b - a);
-    return std::min(point_segment_distance(k.center, a, m),
-                    point_segment_distance(Vec3::Zero(), Vec3(m - k.center_at(cut)), Vec3(b - k.center_at(t_b_s))));
-  }
-  if (t_b_s <= cut) return point_segment_distance(k.center, a, b);
-  // Relative motion is linear over the segment, so its smallest norm is exact.
   return point_segment_distance(Vec3::Zero(), Vec3(a - k.center_at(t_a_s)), Vec3(b - k.center_at(t_b_s)));
 }
 

@@ -43,22 +43,18 @@ struct RrtOptions {
 };
 
 // A sphere (a disc in a flat world) whose centre is `center` at time t0_s and moves with
-// `velocity_mps`; a route must stay `radius_m` from its centre. Until t0_s + hold_s the centre is
-// taken to stay put (the radius then covers any motion over that time).
+// `velocity_mps`; a route must stay `radius_m` from its centre.
 struct MovingKeepOut {
   Vec3 center = Vec3::Zero();
   Vec3 velocity_mps = Vec3::Zero();
   double radius_m = 0.0;
   double t0_s = 0.0;
-  double hold_s = 0.0;
 
-  Vec3 center_at(double t_s) const {
-    return t_s < t0_s + hold_s ? center : Vec3(center + (t_s - t0_s) * velocity_mps);
-  }
+  Vec3 center_at(double t_s) const { return center + (t_s - t0_s) * velocity_mps; }
 };
 
 // Smallest distance from the UAV flying a -> b over [t_a, t_b] to the keep-out's centre (exact:
-// the relative motion is linear on each side of t0_s + hold_s).
+// the relative motion is linear).
 double keep_out_distance(const MovingKeepOut& k, const Vec3& a, double t_a_s, const Vec3& b, double t_b_s);
 
 struct RrtQuery {

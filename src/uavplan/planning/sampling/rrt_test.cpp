@@ -25,11 +25,11 @@ TEST(RrtTree, NearestMatchesBruteForce) {
   EXPECT_DOUBLE_EQ(tree.along(5), tree.along(tree.parent(5)) + (tree.pos(5) - tree.pos(tree.parent(5))).norm());
 }
 
-TEST(KeepOut, DistanceIsExactInTimeWithAHeldStart) {
+TEST(KeepOut, DistanceIsExactInTime) {
   Rng r(8);
   for (int k = 0; k < 200; ++k) {
     const MovingKeepOut ko{Vec3(r.uniform(-10, 10), r.uniform(-10, 10), 0), Vec3(r.uniform(-5, 5), r.uniform(-5, 5), 0),
-                           2.0, r.uniform(0, 3), r.uniform(0, 2)};
+                           2.0, r.uniform(0, 3)};
     const Vec3 a(r.uniform(-20, 20), r.uniform(-20, 20), 0), b(r.uniform(-20, 20), r.uniform(-20, 20), 0);
     const double ta = r.uniform(0, 5), tb = ta + r.uniform(0.1, 6);
     double sampled = World::kInf;
