@@ -13,6 +13,7 @@ PACKAGES=(
   libnanoflann-dev       # planning: nearest neighbours of the RRT trees
   libgtest-dev libgmock-dev googletest
   libbenchmark-dev
+  libompl-dev            # bench: OMPL's RRT, RRTConnect and RRT* as the baselines of P1's local layer
   libgeographiclib-dev   # io: local frame <-> WGS84 (exports, OSM buildings)
   gdal-bin               # tests: ogr2ogr reads the GeoJSON and KML exports back
   chromium               # tests: the HTML report in a headless browser

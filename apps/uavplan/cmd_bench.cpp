@@ -3,6 +3,7 @@
 
 #include "commands.h"
 #include "movingai_runner.h"
+#include "p1_local_runner.h"
 #include "p2_runner.h"
 #include "p3_runner.h"
 #include "p4_runner.h"
@@ -131,6 +132,23 @@ void add_p2(CLI::App* cmd, std::function<int()>& run) {
   });
 }
 
+void add_p1_local(CLI::App* cmd, std::function<int()>& run) {
+  auto opt = std::make_shared<bench::P1LocalOptions>();
+  auto json = std::make_shared<bool>(false);
+  CLI::App* p = cmd->add_subcommand("p1-local", "P1 Table 1: improved vs common RRT vs OMPL RRT/RRTConnect/RRT* in the 40 m x 45 m window");
+  p->add_option("--problems", opt->problems, "Seeded local problems (default 200)")->check(CLI::PositiveNumber);
+  p->add_option("--seed", opt->seed, "Seed of the problems (default 1)");
+  p->add_option("--rrtstar-ms", opt->rrtstar_budget_ms, "RRT*'s time budget per problem (default 25 ms)")->check(CLI::PositiveNumber);
+  p->add_flag("--json", *json, "Print one JSON object per planner instead of the table");
+  p->callback([opt, json, &run] {
+    run = [opt, json] {
+      const auto rows = bench::run_p1_local(*opt);
+      std::cout << (*json ? bench::p1_local_json(rows) : bench::format_p1_local(rows, *opt));
+      return bench::p1_local_targets_met(rows) ? kExitOk : kExitNotSolved;
+    };
+  });
+}
+
 }  // namespace
 
 void add_bench_command(CLI::App& app, std::function<int()>& run) {
@@ -141,6 +159,7 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
   add_p4(cmd, run);
   add_p3(cmd, run);
   add_p2(cmd, run);
+  add_p1_local(cmd, run);
 }
 
 }  // namespace uavplan::cli

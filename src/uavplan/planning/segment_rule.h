@@ -17,6 +17,8 @@ class SegmentRule {
       : world_(&world),
         inflation_m_(uav.radius_m + kPlanningMargin_m),
         max_climb_rad_(uav.max_climb_rad),
+        // |pitch| <= limit + tolerance as |dz| <= horizontal * tan(limit + tolerance): no atan2 per segment.
+        tan_climb_(max_climb_rad_ + kAngleTolerance_rad < kPi / 2 ? std::tan(max_climb_rad_ + kAngleTolerance_rad) : -1.0),
         ceiling_m_(uav.ceiling_m ? std::min(*uav.ceiling_m, world.bounds().max.z()) : world.bounds().max.z()) {}
 
   bool point_ok(const Vec3& p) const {
@@ -25,7 +27,7 @@ class SegmentRule {
   bool operator()(const Vec3& a, const Vec3& b) const {
     if (!world_->in_bounds(a) || !world_->in_bounds(b)) return false;
     if (a.z() > ceiling_m_ || b.z() > ceiling_m_) return false;
-    if (std::abs(pitch_rad(b - a)) > max_climb_rad_ + kAngleTolerance_rad) return false;
+    if (tan_climb_ >= 0.0 && std::abs(b.z() - a.z()) > tan_climb_ * (b - a).head<2>().norm()) return false;
     return !world_->segment_collides(a, b, inflation_m_);
   }
   double inflation_m() const { return inflation_m_; }
@@ -37,6 +39,7 @@ class SegmentRule {
   const World* world_;
   double inflation_m_;
   double max_climb_rad_;
+  double tan_climb_;  // negative: no climb limit
   double ceiling_m_;
 };
 

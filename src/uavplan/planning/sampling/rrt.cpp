@@ -79,6 +79,11 @@ class EdgeCheck {
 // more than the turn limit from the incoming edge, rotated toward that edge (the largest
 // rotation that keeps the limit, by bisection; the incoming direction itself always does).
 std::optional<Vec3> limited(Vec3 dir, const std::optional<Vec3>& in, double max_turn, double max_climb, bool planar) {
+  if (planar) dir.z() = 0.0;
+  if ((planar || max_climb >= kPi / 2 - 1e-9) && (!in || max_turn >= kPi)) {  // nothing to limit
+    const double n = dir.norm();
+    return n > 0.0 ? std::optional<Vec3>(dir / n) : std::nullopt;
+  }
   const auto climb_limited = [&](Vec3 d) -> std::optional<Vec3> {
     if (planar) d.z() = 0.0;
     const double h = d.head<2>().norm();
@@ -113,13 +118,13 @@ std::optional<Vec3> limited(Vec3 dir, const std::optional<Vec3>& in, double max_
 
 bool path_ok(const std::vector<Vec3>& path, const EdgeCheck& ok, const PruneLimits& limits) {
   double along = 0.0;
-  std::optional<Vec3> in = limits.start_direction;
+  std::optional<Vec3> in = limits.max_turn_rad < kPi ? limits.start_direction : std::nullopt;
   for (std::size_t i = 1; i < path.size(); ++i) {
     const Vec3 seg = path[i] - path[i - 1];
     if (in && turn_rad(*in, seg) > limits.max_turn_rad + kAngleTolerance_rad) return false;
     if (!ok(path[i - 1], along, path[i])) return false;
     along += seg.norm();
-    if (seg.norm() > 0.0) in = seg;
+    if (seg.norm() > 0.0 && limits.max_turn_rad < kPi) in = seg;
   }
   return !(in && limits.end_direction && turn_rad(*in, *limits.end_direction) > limits.max_turn_rad + kAngleTolerance_rad);
 }
@@ -167,16 +172,18 @@ RrtResult rrt_search(const SegmentRule& rule, double max_turn, const RrtQuery& q
   const auto arrives = [&](int i) {
     const Vec3 last = q.goal - tree.pos(i);
     if (last.norm() > arrive_m) return false;
-    const auto in = incoming(i);
-    if (in && turn_rad(*in, last) > max_turn + kAngleTolerance_rad) return false;
-    // The way it comes into the goal (its own edge when the node is on the goal) against the way on.
-    const std::optional<Vec3> into = last.norm() > 0.0 ? std::optional<Vec3>(last) : in;
-    if (q.goal_direction && into && turn_rad(*into, *q.goal_direction) > max_turn + kAngleTolerance_rad) return false;
+    if (max_turn < kPi) {
+      const auto in = incoming(i);
+      if (in && turn_rad(*in, last) > max_turn + kAngleTolerance_rad) return false;
+      // The way it comes into the goal (its own edge when the node is on the goal) against the way on.
+      const std::optional<Vec3> into = last.norm() > 0.0 ? std::optional<Vec3>(last) : in;
+      if (q.goal_direction && into && turn_rad(*into, *q.goal_direction) > max_turn + kAngleTolerance_rad) return false;
+    }
     return ok(tree.pos(i), tree.along(i), q.goal);
   };
   if (arrives(0)) reached = 0;
   std::vector<char> goal_tried(1, 0);
-  goal_tried.reserve(static_cast<std::size_t>(opt.max_nodes));
+  goal_tried.reserve(512);
   const bool biased = opt.lambda != 0.0 && q.bias_velocity_mps.squaredNorm() > 0.0;
   while (reached < 0) {
     if (stop.should_stop(res.iterations)) {
@@ -233,7 +240,9 @@ RrtResult rrt_search(const SegmentRule& rule, double max_turn, const RrtQuery& q
   res.ok = true;
   // Step 8 and the shortcut; kept only when the whole route still holds at its new times
   // (a shorter route reaches each point earlier, and keep-outs move).
-  const PruneLimits limits{q.start_direction, q.goal_direction, max_turn, !q.keep_outs.empty()};
+  const bool timed = std::any_of(q.keep_outs.begin(), q.keep_outs.end(),
+                                 [](const MovingKeepOut& k) { return k.velocity_mps.squaredNorm() > 0.0; });
+  const PruneLimits limits{q.start_direction, q.goal_direction, max_turn, timed};
   if (opt.prune) {
     auto pruned = prune_within_step(res.path, q.uav_step_m, opt.lookahead, limits, ok);
     if (path_ok(pruned, ok, limits)) res.path = std::move(pruned);

@@ -23,15 +23,16 @@ std::vector<Vec3> jump(std::span<const Vec3> pts, const PruneLimits& limits, con
   if (pts.empty()) return out;
   out.push_back(pts[0]);
   std::optional<Vec3> in = limits.start_direction;
+  const bool turns = limits.max_turn_rad < kPi;  // any turn is allowed otherwise
   double along = 0.0;
   std::size_t head = 0;
   while (head + 1 < pts.size()) {
     std::size_t next = head + 1;
     for (std::size_t j = last(head); j > head + 1; --j) {
       const Vec3 seg = pts[j] - pts[head];
-      if (in && turn_rad(*in, seg) > limits.max_turn_rad + kAngleTolerance_rad) continue;
+      if (turns && in && turn_rad(*in, seg) > limits.max_turn_rad + kAngleTolerance_rad) continue;
       const std::optional<Vec3> on = j + 1 < pts.size() ? std::optional<Vec3>(pts[j + 1] - pts[j]) : limits.end_direction;
-      if (on && turn_rad(seg, *on) > limits.max_turn_rad + kAngleTolerance_rad) continue;
+      if (turns && on && turn_rad(seg, *on) > limits.max_turn_rad + kAngleTolerance_rad) continue;
       if (!admissible(head, j, along)) continue;
       if (limits.timed && !rest_holds(pts, j, along + seg.norm(), ok)) continue;
       next = j;
