@@ -43,6 +43,23 @@ for sc in p4_table3 p4_rendezvous p3_group9 p3_group9_3d; do
   "$BIN" verify "$SRC/scenarios/$sc.yaml" "$TMP/$sc/plan.json" >/dev/null 2>&1; check "$sc.verify" 0 $?
 done
 
+# P1's local layer: UAVs with sensors fly in the loop around moving obstacles; verified, and the
+# same bytes twice. Bad sensing input is exit 2 with one line and nothing written.
+p1="$SRC/scenarios/p1_moving.yaml"
+"$BIN" plan "$p1" -o "$TMP/p1a" >/dev/null 2>&1; check p1_moving.plan 0 $?
+"$BIN" verify "$p1" "$TMP/p1a/plan.json" >/dev/null 2>&1; check p1_moving.verify 0 $?
+"$BIN" plan "$p1" -o "$TMP/p1b" >/dev/null 2>&1
+cmp -s "$TMP/p1a/plan.json" "$TMP/p1b/plan.json"; check p1_moving.deterministic 0 $?
+grep -q "flown in the loop" "$TMP/p1a/plan.json" || { echo "FAIL p1_moving: not flown in the loop"; fails=$((fails + 1)); }
+"$BIN" plan "$p1" -o "$TMP/p1c" --set local=rrt >/dev/null 2>&1; check p1_moving.local_rrt 0 $?
+mkp1() { sed "$1" "$p1" >"$TMP/$2"; echo "$TMP/$2"; }
+expect_bad sensor.zero "$(mkp1 's/sensor_range: 30}/sensor_range: 0}/' s0.yaml)" "uavs[0].sensor_range"
+expect_bad sensor.text "$(mkp1 's/sensor_range: 30}/sensor_range: far}/' s1.yaml)" "expected a number"
+expect_bad trajectory.one.row "$(mkp1 's/trajectory: \[\[0, 150, 118, 0\], .*\]}/trajectory: [[0, 150, 118, 0]]}/' t1.yaml)" "at least 2 rows"
+expect_bad trajectory.times "$(mkp1 's/\[12, 150, 94, 0\]/[0, 150, 94, 0]/' t2.yaml)" "times must increase"
+expect_bad trajectory.nan "$(mkp1 's/\[12, 150, 94, 0\]/[12, .nan, 94, 0]/' t3.yaml)" "finite"
+expect_bad trajectory.and.velocity "$(mkp1 's/{id: turning, radius: 2, /{id: turning, radius: 2, velocity: [1, 0, 0], /' t4.yaml)" "not both"
+
 # A tampered plan: verify lists violations and exits 1.
 awk 'BEGIN{n=0} /"trajectory": \[/ && n==0 {print; getline; sub(/\[0.0,20.0,20.0,30.0\]/, "[0.0,230.0,230.0,30.0]"); n=1} {print}' \
   "$TMP/a/plan.json" >"$TMP/tampered.json"

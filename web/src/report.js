@@ -193,7 +193,8 @@ function setTime(t) {
   timeLabel.textContent = `t = ${currentTime.toFixed(1)} s`;
   for (const { u, dot } of uavMarkers) dot.position.set(...positionAt(u.trajectory, currentTime));
   for (const { m, mesh } of movers)
-    mesh.position.set(...[0, 1, 2].map((k) => m.position[k] + currentTime * m.velocity[k]));
+    mesh.position.set(...(m.trajectory ? positionAt(m.trajectory, currentTime)
+                                        : [0, 1, 2].map((k) => m.position[k] + currentTime * m.velocity[k])));
   for (const c of charts) c.setCursor({ left: c.valToPos(currentTime, 'x'), top: 10 }, false);
 }
 

@@ -82,8 +82,14 @@ std::string report_data_json(const Scenario& sc, const Plan& plan, const std::ve
   j["threats"] = ojson::array();
   for (const Radar& r : w.radars()) j["threats"].push_back({{"position", vec(r.position)}, {"weight", r.weight}});
   j["moving"] = ojson::array();
-  for (const MovingObstacle& m : w.moving())
-    j["moving"].push_back({{"id", m.id}, {"radius", m.radius_m}, {"position", vec(m.position)}, {"velocity", vec(m.velocity_mps)}});
+  for (const MovingObstacle& m : w.moving()) {
+    ojson jm = {{"id", m.id}, {"radius", m.radius_m}, {"position", vec(m.position)}, {"velocity", vec(m.velocity_mps)}};
+    if (!m.path.empty()) {
+      jm["trajectory"] = ojson::array();
+      for (const TimedPoint& r : m.path) jm["trajectory"].push_back({r.t_s, r.p.x(), r.p.y(), r.p.z()});
+    }
+    j["moving"].push_back(std::move(jm));
+  }
   j["terrain"] = w.terrain() ? terrain_json(*w.terrain(), opt.max_terrain_cells) : ojson(nullptr);
 
   // UAVs with their trajectories, colours by their place in the plan (as in the KML export).
