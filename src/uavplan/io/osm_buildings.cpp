@@ -7,6 +7,7 @@
 
 #include "uavplan/core/geometry.h"
 #include "uavplan/io/input_error.h"
+#include "uavplan/io/text_input.h"
 
 namespace uavplan {
 namespace {
@@ -164,8 +165,10 @@ std::vector<Prism> buildings_from_geojson(const std::string& text, const std::st
   json doc;
   try {
     doc = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw InputError(file, 0, "", std::string("not valid JSON: ") + e.what());
+  } catch (const json::exception& e) {
+    int line = 0;
+    const std::string what = json_error_text(e, text, line);
+    throw InputError(file, line, "", "not valid JSON: " + what);
   }
   BuildingCounts local_counts;
   std::vector<Prism> out;

@@ -2,10 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <yaml-cpp/yaml.h>
+
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "uavplan/io/files.h"
 #include "uavplan/io/input_error.h"
+#include "uavplan/io/text_input.h"
+#include "uavplan/io/tree_check.h"
 
 namespace uavplan {
 namespace {
@@ -58,8 +63,15 @@ void write_json(const Json& j, int depth, std::string& out) {
 
 struct Reader {
   const std::string& file;
+  const std::string& source;
+  // The line of the place is looked up only for the error (a YAML reading of the JSON text).
   [[noreturn]] void fail(const std::string& place, const std::string& what) const {
-    throw InputError(file, 0, place, what);
+    int line = 0;
+    try {
+      line = place.empty() ? 0 : line_of(YAML::Load(source), place);
+    } catch (const YAML::Exception&) {
+    }
+    throw InputError(file, line, place, what);
   }
   const Json& req(const Json& obj, const char* key, const std::string& place) const {
     if (!obj.is_object()) fail(place, "expected an object");
@@ -122,19 +134,32 @@ std::string plan_to_json(const Plan& plan, const PlanWriteOptions& options) {
   return out + "\n";
 }
 
-Plan parse_plan(const std::string& text, const std::string& file) {
-  if (text.find_first_not_of(" \t\r\n") == std::string::npos) throw InputError(file, 0, "", "file is empty");
+Plan parse_plan(const std::string& raw, const std::string& file) {
+  const std::string text = checked_text(raw, file);
   Json j;
+  bool duplicate = false;
+  std::vector<std::set<std::string>> keys;  // of the objects open while parsing
+  const Json::parser_callback_t cb = [&](int, Json::parse_event_t ev, Json& parsed) {
+    if (ev == Json::parse_event_t::object_start) keys.emplace_back();
+    if (ev == Json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
+    if (ev == Json::parse_event_t::key && !keys.empty()) duplicate |= !keys.back().insert(parsed.get<std::string>()).second;
+    return true;
+  };
   try {
-    j = Json::parse(text);
-  } catch (const Json::parse_error& e) {
-    const auto upto = text.substr(0, std::min(text.size(), e.byte));
-    const int line = 1 + static_cast<int>(std::count(upto.begin(), upto.end(), '\n'));
-    std::string what = e.what();
-    if (const auto p = what.find("parse error"); p != std::string::npos) what = what.substr(p);
+    j = Json::parse(text, cb);
+  } catch (const Json::exception& e) {
+    int line = 0;
+    const std::string what = json_error_text(e, text, line);
     throw InputError(file, line, "", "not valid JSON: " + what);
   }
-  const Reader r{file};
+  if (duplicate) {  // nlohmann kept the last of them: name it with its line
+    try {
+      check_tree(YAML::Load(text), file, static_cast<std::size_t>(-1));
+    } catch (const YAML::Exception&) {
+    }
+    throw InputError(file, 0, "", "a key appears twice in one object");
+  }
+  const Reader r{file, text};
   if (!j.is_object()) r.fail("", "the top level must be a JSON object");
   if (r.text(r.req(j, "format", ""), "format") != "uavplan-plan") r.fail("format", "expected \"uavplan-plan\"");
   const Json& ver = r.req(j, "version", "");

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <map>
 #include <set>
 
 #include "uavplan/core/geometry.h"
@@ -15,31 +16,42 @@
 #include "uavplan/io/geo.h"
 #include "uavplan/io/input_error.h"
 #include "uavplan/io/osm_buildings.h"
+#include "uavplan/io/text_input.h"
+#include "uavplan/io/tree_check.h"
 
 namespace uavplan {
 namespace {
+
+// The --set overrides applied: the place each one set, and the argument as given.
+using Applied = std::vector<std::pair<std::string, std::string>>;
 
 // A YAML node with the key path that leads to it, for error messages.
 struct At {
   YAML::Node node;
   std::string path;
   const std::string* file;
+  const Applied* applied = nullptr;
 
   [[noreturn]] void fail(const std::string& what) const {
+    // A value from the command line is named by its argument, not by a line of the file.
+    if (applied)
+      for (const auto& [place, arg] : *applied)
+        if (path == place || path.rfind(place + ".", 0) == 0 || path.rfind(place + "[", 0) == 0)
+          throw InputError(*file, 0, arg, what);
     int line = 0;
     if (node.IsDefined()) line = node.Mark().line >= 0 ? node.Mark().line + 1 : 0;
     throw InputError(*file, line, path, what);
   }
   bool has(const char* key) const { return node.IsMap() && node[key].IsDefined() && !node[key].IsNull(); }
   At operator[](const char* key) const {
-    return {node[key], path.empty() ? std::string(key) : path + "." + key, file};
+    return {node[key], path.empty() ? std::string(key) : path + "." + key, file, applied};
   }
   At req(const char* key) const {
     if (!node.IsMap()) fail("expected a mapping");
     if (!has(key)) fail(std::string("missing required key '") + key + "'");
     return (*this)[key];
   }
-  At item(std::size_t i) const { return {node[i], path + "[" + std::to_string(i) + "]", file}; }
+  At item(std::size_t i) const { return {node[i], path + "[" + std::to_string(i) + "]", file, applied}; }
   std::size_t size() const { return node.size(); }
 
   void expect_map() const {
@@ -55,7 +67,7 @@ struct At {
       if (std::none_of(allowed.begin(), allowed.end(), [&](const char* a) { return k == a; })) {
         std::string list;
         for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-        At{kv.first, path.empty() ? k : path + "." + k, file}.fail("unknown key '" + k + "' (expected one of: " + list + ")");
+        At{kv.first, path.empty() ? k : path + "." + k, file, applied}.fail("unknown key '" + k + "' (expected one of: " + list + ")");
       }
     }
   }
@@ -63,6 +75,8 @@ struct At {
   double number() const {
     if (!node.IsScalar()) fail("expected a number");
     if (node.Tag() == "!") fail("expected a number, got the quoted string \"" + node.Scalar() + "\"");
+    if (node.Tag() != "?" && node.Tag() != "tag:yaml.org,2002:int" && node.Tag() != "tag:yaml.org,2002:float")
+      fail("expected a number, got a value tagged " + node.Tag());
     const std::string& s = node.Scalar();
     std::string lower = s;
     std::transform(lower.begin(), lower.end(), lower.begin(), ::tolower);
@@ -77,12 +91,12 @@ struct At {
     return v;
   }
   double positive() const {
-    const double v = number();
+    const double v = coordinate();
     if (!(v > 0.0)) fail("must be positive, got " + node.Scalar());
     return v;
   }
   double non_negative() const {
-    const double v = number();
+    const double v = coordinate();
     if (v < 0.0) fail("must not be negative, got " + node.Scalar());
     return v;
   }
@@ -100,13 +114,19 @@ struct At {
     if (!node.IsScalar()) fail("expected a string");
     return node.Scalar();
   }
+  // A coordinate, velocity or range: within +-kMaxCoordinate_m.
+  double coordinate() const {
+    const double v = number();
+    if (std::abs(v) > kMaxCoordinate_m) fail("must be within +-" + fmt(kMaxCoordinate_m) + ", got " + node.Scalar());
+    return v;
+  }
   Vec3 vec3() const {
     if (!node.IsSequence() || node.size() != 3) fail("expected a list of 3 numbers [x, y, z]");
-    return {item(0).number(), item(1).number(), item(2).number()};
+    return {item(0).coordinate(), item(1).coordinate(), item(2).coordinate()};
   }
   Vec2 vec2() const {
     if (!node.IsSequence() || node.size() != 2) fail("expected a list of 2 numbers [x, y]");
-    return {item(0).number(), item(1).number()};
+    return {item(0).coordinate(), item(1).coordinate()};
   }
   static std::string fmt(double x) {
     char buf[32];
@@ -124,7 +144,7 @@ Obstacle read_obstacle(const At& o) {
   }
   if (type == "cylinder") {
     o.keys({"type", "id", "center", "radius", "z_min", "z_max"});
-    Cylinder c{o.req("center").vec2(), o.req("radius").positive(), o.req("z_min").number(), o.req("z_max").number()};
+    Cylinder c{o.req("center").vec2(), o.req("radius").positive(), o.req("z_min").coordinate(), o.req("z_max").coordinate()};
     if (!(c.z_min_m < c.z_max_m)) o["z_max"].fail("must be above z_min");
     return c;
   }
@@ -143,8 +163,8 @@ Obstacle read_obstacle(const At& o) {
     if (p.polygon.size() >= 2 && p.polygon.front() == p.polygon.back()) p.polygon.pop_back();  // closed ring
     if (p.polygon.size() < 3) poly.fail("a prism needs at least 3 distinct vertices");
     if (polygon_signed_area(p.polygon) == 0.0) poly.fail("polygon has zero area");
-    p.z_min_m = o.req("z_min").number();
-    p.z_max_m = o.req("z_max").number();
+    p.z_min_m = o.req("z_min").coordinate();
+    p.z_max_m = o.req("z_max").coordinate();
     if (!(p.z_min_m < p.z_max_m)) o["z_max"].fail("must be above z_min");
     return p;
   }
@@ -160,7 +180,13 @@ TerrainGrid read_terrain(const At& t) {
   const At rows = t.req("heights");
   rows.expect_seq();
   if (rows.size() == 0) rows.fail("needs at least one row");
+  const At first = rows.item(0);
+  first.expect_seq();
+  if (rows.size() * first.size() > kMaxTerrainCells)
+    rows.fail(std::to_string(rows.size()) + " x " + std::to_string(first.size()) + " cells, above the " +
+              std::to_string(kMaxTerrainCells) + " a terrain may have");
   std::vector<double> h;
+  h.reserve(rows.size() * first.size());
   std::size_t nx = 0;
   for (std::size_t j = 0; j < rows.size(); ++j) {
     const At row = rows.item(j);
@@ -169,7 +195,7 @@ TerrainGrid read_terrain(const At& t) {
     if (j == 0) nx = row.size();
     if (row.size() != nx)
       row.fail("has " + std::to_string(row.size()) + " heights, row 0 has " + std::to_string(nx) + " (rows must be equal)");
-    for (std::size_t i = 0; i < nx; ++i) h.push_back(row.item(i).number());
+    for (std::size_t i = 0; i < nx; ++i) h.push_back(row.item(i).coordinate());
   }
   return TerrainGrid(origin, cell, static_cast<int>(nx), static_cast<int>(rows.size()), std::move(h));
 }
@@ -222,7 +248,7 @@ std::vector<TimedPoint> read_timed_path(const At& list) {
   for (std::size_t k = 0; k < list.size(); ++k) {
     const At row = list.item(k);
     if (!row.node.IsSequence() || row.size() != 4) row.fail("expected a row [t, x, y, z]");
-    TimedPoint r{row.item(0).number(), Vec3(row.item(1).number(), row.item(2).number(), row.item(3).number())};
+    TimedPoint r{row.item(0).coordinate(), Vec3(row.item(1).coordinate(), row.item(2).coordinate(), row.item(3).coordinate())};
     if (!rows.empty() && !(r.t_s > rows.back().t_s))
       row.item(0).fail("times must increase: t = " + At::fmt(r.t_s) + " is not after the previous row's " +
                        At::fmt(rows.back().t_s));
@@ -262,36 +288,42 @@ UavSpec read_uav(const At& u) {
   }
   if (u.has("max_turn_deg")) s.max_turn_rad = deg_to_rad(u["max_turn_deg"].in_range(1e-6, 180.0));
   if (u.has("max_climb_deg")) s.max_climb_rad = deg_to_rad(u["max_climb_deg"].in_range(1e-6, 90.0));
-  if (u.has("ceiling")) s.ceiling_m = u["ceiling"].number();
+  if (u.has("ceiling")) s.ceiling_m = u["ceiling"].coordinate();
   if (u.has("sensor_range")) s.sensor_range_m = u["sensor_range"].positive();
   return s;
 }
 
-YAML::Node parse_yaml(const std::string& text, const std::string& file) {
-  if (text.find_first_not_of(" \t\r\n") == std::string::npos) throw InputError(file, 0, "", "file is empty");
-  if (text.find('\0') != std::string::npos) throw InputError(file, 0, "", "not a text file (contains NUL bytes)");
+YAML::Node parse_yaml(const std::string& raw, const std::string& file) {
+  const std::string text = checked_text(raw, file);
   const bool json = file.size() >= 5 && file.compare(file.size() - 5, 5, ".json") == 0;
   if (json) {
     try {
       const auto parsed = nlohmann::json::parse(text);
       (void)parsed;
-    } catch (const nlohmann::json::parse_error& e) {
-      const auto upto = text.substr(0, std::min(text.size(), e.byte));
-      const int line = 1 + static_cast<int>(std::count(upto.begin(), upto.end(), '\n'));
-      std::string what = e.what();
-      if (const auto p = what.find("parse error"); p != std::string::npos) what = what.substr(p);
+    } catch (const nlohmann::json::exception& e) {
+      int line = 0;
+      const std::string what = json_error_text(e, text, line);
       throw InputError(file, line, "", "JSON " + what);
     }
   }
+  std::vector<YAML::Node> docs;
   try {
-    return YAML::Load(text);
+    docs = YAML::LoadAll(text);
   } catch (const YAML::Exception& e) {
     throw InputError(file, e.mark.line >= 0 ? e.mark.line + 1 : 0, "", "YAML syntax error: " + e.msg);
   }
+  if (docs.empty()) throw InputError(file, 0, "", "file is empty");
+  if (docs.size() > 1)
+    throw InputError(file, docs[1].Mark().line + 1, "",
+                     "a second YAML document (after '...' or '---'): a scenario file holds one");
+  check_tree(docs[0], file, kMaxScenarioValues);
+  return docs[0];
 }
 
-void apply_override(YAML::Node& root, const std::string& key, const std::string& value, const std::string& file) {
-  const std::string place = "--set " + key;
+// Sets one --set override into the tree; returns the place it set and the argument as given.
+std::pair<std::string, std::string> apply_override(YAML::Node& root, const std::string& key, const std::string& value,
+                                                   const std::string& file) {
+  const std::string place = "--set " + key + "=" + value;
   if (key.empty()) throw InputError(file, 0, place, "empty key");
   const std::string path = key.find_first_of(".[") == std::string::npos ? "planner.params." + key : key;
   YAML::Node v;
@@ -326,10 +358,11 @@ void apply_override(YAML::Node& root, const std::string& key, const std::string&
     }
     if (i >= path.size()) {
       next = v;  // assigns into the tree (yaml-cpp reference semantics)
-      return;
+      return {path, place};
     }
     cur.reset(next);
   }
+  throw InputError(file, 0, place, "empty key");
 }
 
 }  // namespace
@@ -337,8 +370,9 @@ void apply_override(YAML::Node& root, const std::string& key, const std::string&
 Scenario parse_scenario(const std::string& text, const std::string& file, const Overrides& overrides) {
   YAML::Node root = parse_yaml(text, file);
   if (!root.IsMap()) throw InputError(file, 0, "", "the top level must be a mapping of scenario keys");
-  for (const auto& [k, v] : overrides) apply_override(root, k, v, file);
-  const At top{root, "", &file};
+  Applied applied;
+  for (const auto& [k, v] : overrides) applied.push_back(apply_override(root, k, v, file));
+  const At top{root, "", &file, &applied};
   top.keys({"version", "name", "seed", "origin", "world", "uavs", "mission", "planner"});
 
   Scenario sc;
@@ -449,9 +483,29 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
       }
     }
     if (m.has("arrival_tolerance")) sc.mission.arrival_tolerance_m = m["arrival_tolerance"].positive();
-    if (m.has("step_s")) sc.mission.step_s = m["step_s"].positive();
+    if (m.has("step_s")) sc.mission.step_s = m["step_s"].in_range(kMinStep_s, 3600.0);
     if (sc.mission.type == MissionType::route && sc.mission.waypoints.empty())
       m.req("waypoints").fail("a route mission needs at least one waypoint");
+  }
+
+  // Every plan's trajectory has a row at least every second: a route that would take longer than
+  // kMaxFlight_s at its cruise speed is refused here, not after writing millions of rows.
+  for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
+    const UavSpec& u = sc.uavs[i];
+    if (!u.goal) continue;
+    double length = 0.0;
+    Vec3 at = u.start;
+    if (sc.mission.type == MissionType::route)
+      for (const Vec3& via : sc.mission.waypoints) {
+        length += (via - at).norm();
+        at = via;
+      }
+    length += (*u.goal - at).norm();
+    if (length / u.speed.cruise_mps <= kMaxFlight_s) continue;
+    const At ui = uavs.item(i);
+    (ui.has("speed") ? ui["speed"] : ui)
+        .fail("at " + At::fmt(u.speed.cruise_mps) + " m/s its " + At::fmt(length) + " m straight route would take " +
+              At::fmt(length / u.speed.cruise_mps) + " s; a plan may last at most " + At::fmt(kMaxFlight_s) + " s");
   }
 
   // Planner.

@@ -3,6 +3,7 @@
 // unknown keys are errors (they are usually typos).
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <utility>
 #include <vector>
@@ -10,6 +11,14 @@
 #include "uavplan/coordination/scenario.h"
 
 namespace uavplan {
+
+// What a scenario may hold, so that no file that loads can exhaust the machine (each is an
+// error at load, naming the key):
+inline constexpr double kMaxCoordinate_m = 1e9;             // |any coordinate|, velocity, range
+inline constexpr double kMaxFlight_s = 1e6;                  // straight route / cruise speed
+inline constexpr std::size_t kMaxTerrainCells = 16'777'216;  // 4096 x 4096
+inline constexpr std::size_t kMaxScenarioValues = 20'000'000;  // values the file expands to (YAML aliases)
+inline constexpr double kMinStep_s = 1e-3;                   // mission.step_s
 
 // "key=value" overrides from the command line: a bare key sets planner.params.KEY; a dotted
 // path (a.b[2].c) sets that place of the scenario; the value is read as YAML.

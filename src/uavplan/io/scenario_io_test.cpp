@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+
 #include "uavplan/io/input_error.h"
 
 namespace uavplan {
@@ -162,7 +164,85 @@ TEST(ScenarioIo, SensingAndPathObstacles) {
   expect_error(replace(kGood, climb, climb + "    sensor_range: -4\n"), {"uavs[0].sensor_range", "positive"});
   expect_error(replace(kGood, climb, climb + "    sensor_range: far\n"), {"uavs[0].sensor_range", "expected a number"});
   expect_error(replace(kGood, climb, climb + "    sensor_range: .nan\n"), {"uavs[0].sensor_range", "finite"});
-  expect_error(replace(kGood, "  separation: 2\n", "  separation: 2\n  step_s: 0\n"), {"mission.step_s", "positive"});
+  expect_error(replace(kGood, "  separation: 2\n", "  separation: 2\n  step_s: 0\n"), {"mission.step_s", "must be in"});
+}
+
+TEST(ScenarioIo, DuplicateKeysAndSecondDocumentsAreErrors) {
+  // yaml-cpp would take the first radius, a JSON reader the last: one file, two worlds.
+  expect_error(replace(kGood, "{type: sphere, center: [50, 50, 20], radius: 5}", "{type: sphere, center: [50, 50, 20], radius: 1, radius: 10}"),
+               {"s.yaml:8", "world.obstacles[0].radius", "duplicate key 'radius'"});
+  expect_error(replace(kGood, "name: t\n", "name: t\nname: u\n"), {"s.yaml:3", "duplicate key 'name' (first at line 2)"});
+  const std::string json = R"({"version": 1, "world": {"bounds": {"min": [0, 0, 0], "max": [10, 10, 5]}},
+    "uavs": [{"id": "a", "start": [1, 1, 1], "goal": [9, 9, 1], "goal": [2, 2, 1]}]})";
+  expect_error(json, {"s.json:2", "uavs[0].goal", "duplicate key"}, "s.json");
+  // A via point after "..." (or in a second document) is not silently dropped.
+  expect_error(kGood + "...\nmission: {type: independent}\n", {"second YAML document"});
+  expect_error(kGood + "---\nname: other\n", {"second YAML document"});
+  EXPECT_NO_THROW(parse_scenario("---\n" + kGood + "...\n", "s.yaml"));
+}
+
+TEST(ScenarioIo, ErrorsStayOneEscapedLineNamingTheFile) {
+  // A key with a newline and a terminal escape in it.
+  const std::string evil = replace(kGood, "    radius: 0.5\n", "    \"bad\\nkey\\e[31m\": 3\n");
+  try {
+    parse_scenario(evil, "s.yaml");
+    FAIL();
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+    EXPECT_EQ(msg.find('\x1b'), std::string::npos) << msg;
+    EXPECT_NE(msg.find("bad\\nkey\\x1b[31m"), std::string::npos) << msg;
+  }
+  // 1e400 in JSON, invalid UTF-8 in an id: the file and the line.
+  expect_error(R"({"version": 1,
+    "world": {"bounds": {"min": [0, 0, 0], "max": [1e400, 10, 5]}}})", {"s.json:2", "1e400"}, "s.json");
+  expect_error(replace(kGood, "  - id: u1", "  - id: u\xff" "1"), {"s.yaml:18", "not valid UTF-8"});
+  // CR-only line endings read like any other.
+  std::string cr = kGood;
+  for (char& c : cr)
+    if (c == '\n') c = '\r';
+  EXPECT_EQ(parse_scenario(cr, "s.yaml").uavs[0].id, "u1");
+  // A string tagged !!str is not a number; bounds beyond the documented limit are refused.
+  expect_error(replace(kGood, "max_turn_deg: 60", "max_turn_deg: !!str 60"), {"uavs[0].max_turn_deg", "tagged"});
+  expect_error(replace(kGood, "max: [100, 100, 50]", "max: [1e308, 100, 50]"), {"world.bounds.max[0]", "within"});
+}
+
+TEST(ScenarioIo, SizesAreCheckedBeforeTheyAreBuilt) {
+  // Rows that are aliases of one row: 4200 x 4200 cells (17.6 M) from a few kilobytes, refused
+  // before a height is read; 20 000 x 20 000 (400 M) is refused as an expansion.
+  const auto terrain = [](int n) {
+    std::string t = "version: 1\nworld:\n  bounds: {min: [0, 0, 0], max: [10, 10, 5]}\n  terrain:\n    type: grid\n"
+                    "    origin: [0, 0]\n    cell: 1\n    heights:\n      - &row [0";
+    for (int i = 1; i < n; ++i) t += ", 0";
+    t += "]\n";
+    for (int i = 1; i < n; ++i) t += "      - *row\n";
+    return t + "uavs: [{id: a, start: [1, 1, 1]}]\n";
+  };
+  const auto t0 = std::chrono::steady_clock::now();
+  expect_error(terrain(4200), {"world.terrain.heights", "cells, above"});
+  expect_error(terrain(20000), {"expands", "values"});
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5.0);
+  // Nested aliases: a list of lists of lists ... (billions of values).
+  std::string laughs = "version: 1\nname: x\nworld:\n  bounds: {min: [0, 0, 0], max: [10, 10, 5]}\n  a0: &a0 [1, 1, 1, 1, 1, 1, 1, 1, 1, 1]\n";
+  for (int i = 1; i < 10; ++i) {
+    laughs += "  a" + std::to_string(i) + ": &a" + std::to_string(i) + " [";
+    for (int k = 0; k < 10; ++k) laughs += std::string(k ? ", " : "") + "*a" + std::to_string(i - 1);
+    laughs += "]\n";
+  }
+  expect_error(laughs, {"expands", "values"});
+  // A speed that would need ten million trajectory rows.
+  expect_error(replace(kGood, "speed: {min: 1, cruise: 4, max: 6}", "speed: 1e-6"), {"uavs[0].speed", "at most 1e+06 s"});
+  expect_error(replace(kGood, "speed: {min: 1, cruise: 4, max: 6}", "speed: 1e-300"), {"uavs[0].speed"});
+}
+
+TEST(ScenarioIo, SetErrorsNameTheArgument) {
+  try {
+    parse_scenario(kGood, "s.yaml", {{"uavs[0].speed", "-3"}});
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("s.yaml: --set uavs[0].speed=-3: must be positive"), std::string::npos) << e.what();
+  }
+  expect_error(kGood, {"--set uavs[0].radius=x", "expected a number"}, "s.yaml", {{"uavs[0].radius", "x"}});
 }
 
 }  // namespace
