@@ -86,7 +86,7 @@ TEST(OsmBuildings, BadInputNamesTheFileAndFeature) {
     }
     return std::string("no error");
   };
-  EXPECT_NE(message("{\"type\": ").find("b.geojson: not valid JSON"), std::string::npos);
+  EXPECT_NE(message("{\"type\": ").find("b.geojson:1: not valid JSON"), std::string::npos);
   EXPECT_NE(message("[1, 2]").find("expected a GeoJSON object"), std::string::npos);
   // Projected metres where degrees belong (a common export mistake).
   const std::string projected = R"({"type": "FeatureCollection", "features": [{"type": "Feature", "properties": {},
