@@ -100,6 +100,62 @@ expect_bad terrain.rows "$(mk 's/- \[0, 2, 4, 4, 2, 0\]/- [0, 2, 4, 4, 2]/' rows
 expect_bad missing.file "$TMP/does-not-exist.yaml" "cannot open"
 printf '{"version": 1, "world": {"bounds": {"min": [0,0,0], "max": [1,1,1]}},}' >"$TMP/bad.json"; expect_bad json "$TMP/bad.json" "JSON"
 
+# Run control: --threads changes nothing in the plan; --time-limit bounds the whole command;
+# Ctrl-C ends with exit 130 and nothing written; a killed run's temporary file is cleaned up.
+for sc in "$SRC"/scenarios/*.yaml; do
+  n=$(basename "$sc" .yaml)
+  for t in 1 2 8; do "$BIN" plan "$sc" -o "$TMP/thr.$n.$t" --threads $t >/dev/null 2>&1; done
+  cmp -s "$TMP/thr.$n.1/plan.json" "$TMP/thr.$n.2/plan.json" && cmp -s "$TMP/thr.$n.1/plan.json" "$TMP/thr.$n.8/plan.json"
+  check "threads.$n.same_bytes" 0 $?
+done
+fifty="$TMP/fifty.yaml"
+sed '/^uavs:/,$d' "$good" >"$fifty"
+echo "uavs:" >>"$fifty"
+for i in $(seq 0 49); do
+  echo "  - {id: q$i, start: [$((15 + i % 5 * 8)), $((12 + i * 11)), 30], goal: [$((585 - i % 7 * 6)), $((588 - i * 11)), 40], speed: 5, max_turn_deg: 60, max_climb_deg: 30}" >>"$fifty"
+done
+printf 'mission: {type: independent, separation: 5}\nplanner: {algorithm: astar}\n' >>"$fifty"
+t0=$(date +%s.%N)
+"$BIN" plan "$fifty" -o "$TMP/fifty" --time-limit 1 >/dev/null 2>&1; check time_limit.exit 1 $?
+t1=$(date +%s.%N)
+awk -v a="$t0" -v b="$t1" 'BEGIN { exit !(b - a < 1.6) }' || { echo "FAIL time_limit: took $(awk -v a="$t0" -v b="$t1" 'BEGIN { print b - a }') s for 1 s"; fails=$((fails + 1)); }
+grep -q "stopped (time limit" "$TMP/fifty/plan.json" || { echo "FAIL time_limit: no UAV says it was stopped"; fails=$((fails + 1)); }
+"$BIN" plan "$fifty" -o "$TMP/interrupted" >/dev/null 2>"$TMP/stderr" &
+pid=$!
+sleep 0.5
+kill -INT $pid
+wait $pid; check interrupt.exit 130 $?
+grep -q "interrupted" "$TMP/stderr" && [ ! -e "$TMP/interrupted/plan.json" ] || { echo "FAIL interrupt: message or output"; fails=$((fails + 1)); }
+mkdir -p "$TMP/stale" && : >"$TMP/stale/plan.json.tmp.999999999"
+"$BIN" plan "$good" -o "$TMP/stale" >/dev/null 2>&1; check stale.plan 0 $?
+[ ! -e "$TMP/stale/plan.json.tmp.999999999" ] || { echo "FAIL stale temporary file kept"; fails=$((fails + 1)); }
+
+# Refused before anything is planned or written: one line on stderr, exit 2, no output.
+expect_refused() {  # expect_refused NAME PART ARGS...
+  local name=$1 part=$2
+  shift 2
+  rm -rf "$TMP/refused"
+  "$BIN" plan "$@" -o "$TMP/refused" >/dev/null 2>"$TMP/stderr"
+  check "$name" 2 $?
+  if [ "$(wc -l <"$TMP/stderr")" != 1 ] || ! grep -qF -- "$part" "$TMP/stderr"; then
+    echo "FAIL $name: stderr is not one line with '$part':"; cat "$TMP/stderr"; fails=$((fails + 1))
+  fi
+  [ -e "$TMP/refused" ] && { echo "FAIL $name: wrote output"; fails=$((fails + 1)); }
+}
+expect_refused seed.negative "--seed" "$good" --seed -1
+expect_refused time_limit.negative "--time-limit" "$good" --time-limit -5
+expect_refused firmware.without.export "apply to --export" "$good" --firmware ardupilot
+sed '/^origin:/d' "$good" >"$TMP/noorigin_plan.yaml"
+expect_refused export.needs.origin "no origin" "$TMP/noorigin_plan.yaml" --export qgc
+expect_refused tiny.cell "planner.params.cell_m = 0.0001 m" "$good" --set cell_m=0.0001
+expect_refused memory.cap "--max-memory" "$good" --set cell_m=0.5 --max-memory 10M
+expect_bad slow.uav "$(mk 's/goal: \[580, 580, 40\], radius: 0.5, speed: 5,/goal: [580, 580, 40], radius: 0.5, speed: 1e-6,/' slow.yaml)" "uavs[0].speed"
+expect_bad duplicate.key "$(mk 's/seed: 7/seed: 7\nseed: 8/' dup.yaml)" "duplicate key 'seed'"
+expect_bad second.document "$(printf '%s\n...\nname: other\n' "$(cat "$good")" >"$TMP/twodocs.yaml"; echo "$TMP/twodocs.yaml")" "second YAML document"
+expect_refused set.newline.escaped 'speed=fast\nx' "$good" --set $'uavs[0].speed=fast\nx'
+expect_refused set.escape.escaped 'speed=\x1b[31m' "$good" --set $'uavs[0].speed=\e[31m'
+expect_refused set.error.names.argument "--set uavs[0].speed=-3" "$good" --set "uavs[0].speed=-3"
+
 # verify: a plan naming a UAV the scenario lacks, and a malformed plan, are bad input.
 sed 's/"id": "u3"/"id": "u9"/' "$TMP/a/plan.json" >"$TMP/u9.json"
 "$BIN" verify "$good" "$TMP/u9.json" >/dev/null 2>"$TMP/stderr"; check verify.unknown.uav 2 $?

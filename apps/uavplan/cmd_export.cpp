@@ -7,6 +7,18 @@
 
 namespace uavplan::cli {
 
+std::optional<std::string> export_request_problem(const Scenario& sc, const ExportArgs& a) {
+  if (a.formats.empty()) {
+    if (a.options_given) return std::string("--firmware, --vehicle and --end apply to --export: give the formats too");
+    return std::nullopt;
+  }
+  for (const std::string& f : a.formats)
+    if (needs_origin(*export_format_from_string(f)) && !sc.origin)
+      return "scenario '" + sc.name + "' has no origin: add origin: {lat, lon, alt} to export " + f +
+             " (WGS84); csv exports local coordinates without one";
+  return std::nullopt;
+}
+
 void add_export_options(CLI::App& cmd, ExportArgs& a, bool formats_required) {
   auto* f = cmd.add_option("--format,--export", a.formats,
                            "Export format(s): qgc (QGroundControl .plan), wpl (QGC WPL 110), geojson, kml, csv; "
@@ -14,12 +26,16 @@ void add_export_options(CLI::App& cmd, ExportArgs& a, bool formats_required) {
                 ->delimiter(',')
                 ->check(CLI::IsMember({"qgc", "wpl", "geojson", "kml", "csv"}));
   if (formats_required) f->required();
+  const auto given = [&a](const std::string&) { a.options_given = true; };
   cmd.add_option("--firmware", a.firmware, "Autopilot of the .plan: px4 (firmwareType 12) or ardupilot (3)")
-      ->check(CLI::IsMember({"px4", "ardupilot"}));
+      ->check(CLI::IsMember({"px4", "ardupilot"}))
+      ->each(given);
   cmd.add_option("--vehicle", a.vehicle, "Vehicle type of the .plan: multirotor or fixedwing")
-      ->check(CLI::IsMember({"multirotor", "fixedwing"}));
+      ->check(CLI::IsMember({"multirotor", "fixedwing"}))
+      ->each(given);
   cmd.add_option("--end", a.end, "How missions end: land (21), rtl (return, 20) or none")
-      ->check(CLI::IsMember({"land", "rtl", "none"}));
+      ->check(CLI::IsMember({"land", "rtl", "none"}))
+      ->each(given);
 }
 
 int write_exports(const std::string& scenario_path, const Scenario& sc, const Plan& plan, const ExportArgs& a,
@@ -57,6 +73,10 @@ int run_export(const Args& a) {
   Scenario sc;
   Plan plan;
   if (!load_scenario_and_plan(a.scenario, a.plan, sc, plan)) return kExitBadInput;
+  if (const auto problem = export_request_problem(sc, a.exp)) {
+    std::cerr << a.scenario << ": export: " << *problem << "\n";
+    return kExitBadInput;
+  }
   return write_exports(a.scenario, sc, plan, a.exp, a.out_dir);
 }
 

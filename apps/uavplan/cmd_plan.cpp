@@ -20,7 +20,7 @@ struct PlanArgs {
   std::string algorithm;
   std::optional<std::uint64_t> seed;
   std::vector<std::string> sets;
-  double time_limit_s = 0.0;
+  RunArgs run;
   bool timing = false;
   ExportArgs exp;
 };
@@ -69,10 +69,15 @@ int run_plan(const PlanArgs& a) {
     std::cerr << e.what() << "\n";
     return kExitBadInput;
   }
+  // An export that cannot be made is bad input now, before planning writes anything.
+  if (const auto problem = export_request_problem(sc, a.exp)) {
+    std::cerr << a.scenario << ": export: " << *problem << "\n";
+    return kExitBadInput;
+  }
   MissionOptions opt;
   if (!a.algorithm.empty()) opt.algorithm = a.algorithm;
   opt.seed = a.seed.value_or(sc.seed.value_or(1));
-  if (a.time_limit_s > 0.0) opt.stop = StopCondition::time_limit(a.time_limit_s);
+  opt.stop = run_stop(a.run);
   Progress progress;
   opt.progress = [&](std::size_t done, std::size_t total) {
     progress.update("planning: " + std::to_string(done) + "/" + std::to_string(total) + " UAVs");
@@ -83,6 +88,10 @@ int run_plan(const PlanArgs& a) {
   } catch (const std::invalid_argument& e) {
     std::cerr << a.scenario << ": planner: " << e.what() << "\n";
     return kExitBadInput;
+  }
+  if (interrupted()) {
+    std::cerr << "uavplan: interrupted; nothing written\n";
+    return kExitInterrupted;
   }
   finalize_plan(sc, plan);
   const std::string path = a.out_dir + "/plan.json";
@@ -103,14 +112,20 @@ void add_plan_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("scenario", args->scenario, "Scenario file (YAML or JSON)")->required();
   cmd->add_option("-o,--out", args->out_dir, "Output directory (default: out)");
   cmd->add_option("--algorithm", args->algorithm, "Planner name, overriding the scenario's");
-  cmd->add_option("--seed", args->seed, "Random seed, overriding the scenario's");
+  cmd->add_option("--seed", args->seed, "Random seed, overriding the scenario's")->check(non_negative_integer());
   cmd->add_option("--set", args->sets,
                   "key=value override: a bare key sets planner.params.KEY, a dotted path (uavs[0].speed) any field");
-  cmd->add_option("--time-limit", args->time_limit_s, "Stop planning after this many seconds");
+  add_run_options(*cmd, args->run);
   cmd->add_flag("--timing", args->timing, "Also write wall-clock timing into plan.json (not byte-reproducible)");
   add_export_options(*cmd, args->exp, false);
   cmd->footer("Example: uavplan plan scenarios/demo.yaml -o out --set cell_m=4 --export qgc,geojson");
-  cmd->callback([args, &run] { run = [args] { return run_plan(*args); }; });
+  args->run.max_memory_bytes = default_memory_cap_bytes();
+  cmd->callback([args, &run] {
+    run = [args] {
+      install_interrupt_handlers();
+      return run_plan(*args);
+    };
+  });
 }
 
 }  // namespace uavplan::cli

@@ -4,11 +4,13 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "uavplan/coordination/plan.h"
 #include "uavplan/coordination/scenario.h"
+#include "uavplan/core/stop.h"
 
 namespace uavplan::cli {
 
@@ -34,11 +36,32 @@ struct ExportArgs {
   std::string firmware = "px4";
   std::string vehicle = "multirotor";
   std::string end = "land";
+  bool options_given = false;  // --firmware, --vehicle or --end on the command line
 };
 void add_export_options(CLI::App& cmd, ExportArgs& a, bool formats_required);
+// Why the export asked for cannot be made (checked before anything is planned or written).
+std::optional<std::string> export_request_problem(const Scenario& sc, const ExportArgs& a);
 // Writes every file of every format into dir; prints what it wrote. Returns an exit code.
 int write_exports(const std::string& scenario_path, const Scenario& sc, const Plan& plan, const ExportArgs& a,
                   const std::string& dir);
+
+// Limits every planning command takes: --time-limit, --threads, --max-memory.
+struct RunArgs {
+  double time_limit_s = 0.0;
+  int threads = 0;
+  std::uint64_t max_memory_bytes = 0;  // set to the default when the options are added
+};
+std::uint64_t default_memory_cap_bytes();
+// Validators with one-line messages.
+CLI::Validator positive_number();
+CLI::Validator non_negative_integer();
+void add_run_options(CLI::App& cmd, RunArgs& a);
+// Interrupts: the first SIGINT / SIGTERM stops planning (the command ends with exit 130).
+void install_interrupt_handlers();
+bool interrupted();
+inline constexpr int kExitInterrupted = 130;
+// The stop condition of a run: the interrupt, the time limit, threads and memory.
+StopCondition run_stop(const RunArgs& a);
 
 // Progress on stderr, only on a terminal and only once a run has taken over a second.
 class Progress {

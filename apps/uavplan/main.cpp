@@ -1,5 +1,6 @@
 // uavplan: plans routes for UAVs, groups and formations, verifies them, benchmarks planners.
 #include <iostream>
+#include <new>
 
 #include "commands.h"
 
@@ -17,6 +18,8 @@ int main(int argc, char** argv) {
       "  uavplan info scenarios/demo.yaml                 summarise a scenario's world\n"
       "  uavplan bench world                              world-query benchmark table\n"
       "Exit codes: 0 solved (or plan holds), 1 not solved (or violations), 2 bad input.");
+  // Usage errors are one line too, like every bad input.
+  app.failure_message([](const CLI::App*, const CLI::Error& e) { return "uavplan: " + std::string(e.what()) + "\n"; });
   std::function<int()> run;
   add_plan_command(app, run);
   add_verify_command(app, run);
@@ -36,6 +39,9 @@ int main(int argc, char** argv) {
   }
   try {
     return run ? run() : kExitBadInput;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "uavplan: out of memory: the input asks for more than this machine has (see --max-memory)\n";
+    return kExitBadInput;
   } catch (const std::exception& e) {
     std::cerr << "uavplan: " << e.what() << "\n";
     return kExitBadInput;

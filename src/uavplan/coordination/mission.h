@@ -25,6 +25,9 @@ struct MissionOptions {
   std::function<void(std::size_t done, std::size_t total)> progress;
 };
 
+// Why a UAV has no plan when the stop condition ended the run first.
+inline constexpr const char* kStoppedMessage = "stopped (time limit or interrupt) before it was planned";
+
 // What a mission plans with: the options, the planner chosen for it with its parameters, and
 // the parameters the mission reads itself (Mission::parameters()).
 struct MissionContext {

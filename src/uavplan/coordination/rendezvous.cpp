@@ -178,7 +178,7 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
   // first serves the sequential steps.
   const auto cones = std::make_shared<DirectionalCones>();
   std::vector<DirectionalSearch> engines;
-  for (std::size_t t = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 8); t > 0; --t) engines.emplace_back(cones);
+  for (int t = stop.threads(8); t > 0; --t) engines.emplace_back(cones);
   DirectionalSearch& engine = engines.front();
   struct Counting {
     DirectionalSearch& engine;
@@ -201,6 +201,7 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
   const DirectionalAStarOptions& opt = planner.options();
   std::vector<DirectionalQuery> queries;
   for (const UavSpec& u : sc.uavs) queries.push_back(planner.query_for(Problem{u, u.goal.value_or(u.start), {}}, sc.world));
+  if (!queries.empty()) DirectionalAStarPlanner::require_lattice(sc.world, queries.front(), static_cast<int>(engines.size()), stop);
   // The pre-plans are independent: side by side (a UAV without a goal gets no search). Like
   // every later search they keep P4's one state per lattice point; a UAV that finds no route
   // that way is searched again with heading sectors in the state (DirectionalQuery::heading_states).

@@ -12,44 +12,46 @@ namespace {
 
 bool senses(const UavSpec& u) { return u.sensor_range_m.has_value(); }
 
-void plan_routes(const Scenario& sc, const Planner& planner, const MissionOptions& opt, Plan& plan) {
+// Each UAV in the scenario's order: its route by the planner, then its departure: the earliest
+// that keeps the separation from those timed before it (searched up to a minute plus twice the
+// flights so far). UAVs without sensors also keep clear of the moving obstacles (known in advance
+// to them); UAVs with sensors only plan to (they meet the moving obstacles in the loop). Planning
+// and timing go UAV by UAV, so a stop leaves the UAVs done so far complete.
+Committed plan_and_time(const Scenario& sc, const Planner& planner, const MissionOptions& opt, Plan& plan) {
+  plan.uavs.reserve(sc.uavs.size());  // `committed` points into it
+  Committed committed;
+  double horizon_s = 60.0;
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
     const UavSpec& u = sc.uavs[i];
-    UavPlan up;
+    UavPlan& up = plan.uavs.emplace_back();
     up.id = u.id;
+    if (opt.progress) opt.progress(i, sc.uavs.size());
     if (!u.goal) {
       up.message = "no goal given";
-    } else {
-      Problem pb{u, *u.goal, {}};
-      if (sc.mission.type == MissionType::route) pb.via = sc.mission.waypoints;
-      pb.seed = opt.seed + i;  // one stream per UAV
-      const PlanResult r = planner.plan(pb, sc.world, opt.stop);
-      up.status = r.status;
-      up.message = r.message;
-      up.stats = r.stats;
-      up.waypoints = r.route.waypoints;
-      up.length_m = r.route.length_m();
+      continue;
     }
-    plan.uavs.push_back(std::move(up));
-    if (opt.progress) opt.progress(i + 1, sc.uavs.size());
-  }
-}
-
-// Departure delays, in the scenario's order: each UAV takes the earliest departure that keeps
-// the separation from those timed before it; UAVs without sensors also keep clear of the moving
-// obstacles (known in advance to them), UAVs with sensors only plan to (they meet the moving
-// obstacles in the loop).
-Committed time_routes(const Scenario& sc, const MissionOptions& opt, Plan& plan) {
-  double horizon_s = 60.0;
-  for (std::size_t i = 0; i < sc.uavs.size(); ++i)
-    if (plan.uavs[i].status == Status::solved) horizon_s += 2.0 * plan.uavs[i].length_m / sc.uavs[i].speed.cruise_mps;
-  Committed committed;
-  for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
-    UavPlan& up = plan.uavs[i];
-    const UavSpec& u = sc.uavs[i];
+    if (opt.stop.should_stop()) {
+      up.message = kStoppedMessage;
+      continue;
+    }
+    Problem pb{u, *u.goal, {}};
+    if (sc.mission.type == MissionType::route) pb.via = sc.mission.waypoints;
+    pb.seed = opt.seed + i;  // one stream per UAV
+    const PlanResult r = planner.plan(pb, sc.world, opt.stop);
+    up.status = r.status;
+    up.message = r.message;
+    up.stats = r.stats;
+    up.waypoints = r.route.waypoints;
+    up.length_m = r.route.length_m();
     if (up.status != Status::solved) continue;
+    horizon_s += 2.0 * up.length_m / u.speed.cruise_mps;
     Departure d = earliest_departure(sc, u, up.waypoints, horizon_s, committed, opt.delay_step_s, opt.max_sample_dt_s,
-                                     !senses(u));
+                                     opt.stop, !senses(u));
+    if (d.stopped) {
+      up.status = Status::failed;
+      up.message = kStoppedMessage;
+      continue;
+    }
     if (!d.placed && senses(u)) {  // no clear departure planned: it departs at once and sees to it in the loop
       d.placed = true;
       d.trajectory = time_route(up.waypoints, u.speed.cruise_mps, 0.0, opt.max_sample_dt_s);
@@ -64,6 +66,7 @@ Committed time_routes(const Scenario& sc, const MissionOptions& opt, Plan& plan)
     up.arrival_s = up.trajectory.back().t_s;
     committed.emplace_back(&u, &up);
   }
+  if (opt.progress) opt.progress(sc.uavs.size(), sc.uavs.size());
   return committed;
 }
 
@@ -185,8 +188,7 @@ void fly_sensing(const Scenario& sc, const MissionContext& ctx, const Committed&
 
 void RoutesMission::plan(const Scenario& sc, const MissionContext& ctx, Plan& plan) const {
   const auto planner = make_planner(ctx.algorithm, ctx.params);
-  plan_routes(sc, *planner, ctx.options, plan);
-  const Committed committed = time_routes(sc, ctx.options, plan);
+  const Committed committed = plan_and_time(sc, *planner, ctx.options, plan);
   fly_sensing(sc, ctx, committed, plan);
 }
 

@@ -32,9 +32,13 @@ Conflict find_conflict(const Scenario& sc, const UavSpec& uav, const Trajectory&
 
 Departure earliest_departure(const Scenario& sc, const UavSpec& u, const std::vector<Vec3>& waypoints, double max_delay_s,
                              const Committed& committed, double delay_step_s, double max_sample_dt_s,
-                             bool moving_obstacles) {
+                             const StopCondition& stop, bool moving_obstacles) {
   Departure d;
   for (int k = 0; k == 0 || (delay_step_s > 0.0 && k * delay_step_s <= max_delay_s + 1e-9); ++k) {
+    if (stop.should_stop()) {
+      d.stopped = true;
+      break;
+    }
     const double delay = k * delay_step_s;
     Trajectory tr = time_route(waypoints, u.speed.cruise_mps, delay, max_sample_dt_s);
     const Conflict c = find_conflict(sc, u, tr, committed, moving_obstacles);

@@ -8,6 +8,7 @@
 
 #include "uavplan/coordination/plan.h"
 #include "uavplan/coordination/scenario.h"
+#include "uavplan/core/stop.h"
 
 namespace uavplan {
 
@@ -28,16 +29,17 @@ Conflict find_conflict(const Scenario& sc, const UavSpec& uav, const Trajectory&
 
 // The earliest departure delay, in delay_step_s steps up to max_delay_s, at which the route flown
 // at cruise speed keeps clear of the moving obstacles and of the UAVs committed before it; when
-// none does, the first conflict met (for the message).
+// none does, the first conflict met (for the message). A stop ends the search (`stopped`).
 struct Departure {
   bool placed = false;
+  bool stopped = false;
   double delay_s = 0.0;
   Trajectory trajectory;
   Conflict first;
 };
 Departure earliest_departure(const Scenario& sc, const UavSpec& u, const std::vector<Vec3>& waypoints, double max_delay_s,
                              const Committed& committed, double delay_step_s, double max_sample_dt_s,
-                             bool moving_obstacles = true);
+                             const StopCondition& stop, bool moving_obstacles = true);
 
 // A UAV's entry in the plan: solved with its route and trajectory, or failed with the message.
 UavPlan flown_plan(const std::string& id, bool ok, std::string message, std::vector<Vec3> waypoints,

@@ -1,6 +1,10 @@
 #include "uavplan/core/stop.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+#include <thread>
 
 namespace uavplan {
 
@@ -30,7 +34,40 @@ StopCondition StopCondition::operator|(const StopCondition& other) const {
     c.max_iterations_ = c.max_iterations_ ? std::min(*c.max_iterations_, *other.max_iterations_)
                                           : *other.max_iterations_;
   c.cancel_flags_.insert(c.cancel_flags_.end(), other.cancel_flags_.begin(), other.cancel_flags_.end());
+  if (other.threads_ > 0) c.threads_ = c.threads_ > 0 ? std::min(c.threads_, other.threads_) : other.threads_;
+  if (other.memory_cap_bytes_ > 0)
+    c.memory_cap_bytes_ = c.memory_cap_bytes_ > 0 ? std::min(c.memory_cap_bytes_, other.memory_cap_bytes_) : other.memory_cap_bytes_;
   return c;
+}
+
+double StopCondition::seconds_left() const {
+  if (!deadline_) return std::numeric_limits<double>::infinity();
+  return std::chrono::duration<double>(*deadline_ - Clock::now()).count();
+}
+
+StopCondition StopCondition::with_threads(int threads) const {
+  StopCondition c = *this;
+  c.threads_ = std::max(0, threads);
+  return c;
+}
+
+StopCondition StopCondition::with_memory_cap(std::uint64_t bytes) const {
+  StopCondition c = *this;
+  c.memory_cap_bytes_ = bytes;
+  return c;
+}
+
+int StopCondition::threads(int most) const {
+  const int n = threads_ > 0 ? threads_ : static_cast<int>(std::thread::hardware_concurrency());
+  return std::clamp(n, 1, std::max(1, most));
+}
+
+void StopCondition::require_memory(std::uint64_t bytes, const std::string& what) const {
+  if (memory_cap_bytes_ == 0 || bytes <= memory_cap_bytes_) return;
+  char buf[160];
+  std::snprintf(buf, sizeof buf, " needs %.4g MiB, above the memory cap of %.4g MiB (--max-memory)", bytes / 1048576.0,
+                memory_cap_bytes_ / 1048576.0);
+  throw std::invalid_argument(what + buf);
 }
 
 bool StopCondition::should_stop(std::uint64_t iteration) const {

@@ -415,18 +415,25 @@ std::string plan_kml(const Scenario& sc, const Plan& plan) {
 }
 
 std::string trajectory_csv(const Scenario& sc, const UavPlan& uav) {
-  const GeoFrame frame(origin_of(sc));
-  std::string out = "t,x,y,z,lat,lon,alt\n";
+  // Local coordinates always; WGS84 columns when the scenario has an origin.
+  std::optional<GeoFrame> frame;
+  if (sc.origin) frame.emplace(*sc.origin);
+  std::string out = frame ? "t,x,y,z,lat,lon,alt\n" : "t,x,y,z\n";
   for (const auto& s : uav.trajectory) {
-    const LatLonAlt g = rounded(frame.to_wgs84(s.p));
-    out += num(s.t_s) + "," + num(s.p.x()) + "," + num(s.p.y()) + "," + num(s.p.z()) + "," + num(g.lat_deg) + "," +
-           num(g.lon_deg) + "," + num(g.alt_m) + "\n";
+    out += num(s.t_s) + "," + num(s.p.x()) + "," + num(s.p.y()) + "," + num(s.p.z());
+    if (frame) {
+      const LatLonAlt g = rounded(frame->to_wgs84(s.p));
+      out += "," + num(g.lat_deg) + "," + num(g.lon_deg) + "," + num(g.alt_m);
+    }
+    out += "\n";
   }
   return out;
 }
 
+bool needs_origin(ExportFormat f) { return f != ExportFormat::csv; }
+
 std::vector<ExportFile> export_plan(const Scenario& sc, const Plan& plan, ExportFormat format, const ExportOptions& opt) {
-  origin_of(sc);
+  if (needs_origin(format)) origin_of(sc);
   std::vector<ExportFile> files;
   switch (format) {
     case ExportFormat::geojson: files.push_back({"plan.geojson", plan_geojson(sc, plan)}); break;

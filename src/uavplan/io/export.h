@@ -1,6 +1,6 @@
 // Exports of a plan for the tools operators fly and look at: QGroundControl .plan, QGC WPL 110
 // (MAVLink mission text), GeoJSON (RFC 7946), KML and CSV. Local ENU coordinates go to WGS84
-// through the scenario's `origin` (GeoFrame); a scenario without one cannot be exported.
+// through the scenario's `origin` (GeoFrame); without one only CSV (local coordinates) exports.
 #pragma once
 
 #include <array>
@@ -18,6 +18,8 @@ namespace uavplan {
 enum class ExportFormat { qgc, wpl, geojson, kml, csv };
 std::optional<ExportFormat> export_format_from_string(std::string_view s);
 std::string_view to_string(ExportFormat f);
+// Whether the format is in WGS84 (needs the scenario's origin); CSV is local without one.
+bool needs_origin(ExportFormat f);
 
 enum class Firmware { px4, ardupilot };             // QGC firmwareType 12 / 3
 enum class VehicleKind { multirotor, fixed_wing };  // MAV_TYPE 2 / 1

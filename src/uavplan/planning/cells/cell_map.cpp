@@ -1,5 +1,9 @@
 #include "uavplan/planning/cells/cell_map.h"
 
+#include <cstdio>
+
+#include "uavplan/planning/grid_budget.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -57,7 +61,7 @@ std::pair<double, double> footprint_distance_and_top(const Obstacle& o, const Ve
 
 }  // namespace
 
-CellMap::CellMap(const World& world, const CellMapOptions& opt) {
+CellMap::CellMap(const World& world, const CellMapOptions& opt, const StopCondition& stop) {
   const Aabb& b = world.bounds();
   const TerrainGrid* terrain = world.terrain();
   cell_m_ = opt.cell_m > 0.0 ? opt.cell_m
@@ -65,15 +69,25 @@ CellMap::CellMap(const World& world, const CellMapOptions& opt) {
                           : std::max(b.max.x() - b.min.x(), b.max.y() - b.min.y()) / 64.0;
   level_m_ = opt.level_m > 0.0 ? opt.level_m : cell_m_ / 2.0;
   origin_ = Vec2(b.min.x(), b.min.y());
+  {  // sized before anything is built (or an int overflows)
+    const double nx = std::max(1.0, std::ceil((b.max.x() - b.min.x()) / cell_m_ - 1e-9));
+    const double ny = std::max(1.0, std::ceil((b.max.y() - b.min.y()) / cell_m_ - 1e-9));
+    const double nz = std::max(1.0, std::floor((opt.ceiling_m - opt.inflation_m - b.min.z() - opt.inflation_m) / level_m_ + 1e-9) + 1);
+    char what[120];
+    std::snprintf(what, sizeof what, "planner.params.cell_m = %g m, level_m = %g m", cell_m_, level_m_);
+    // Heights per column, and per node the graph's costs, pheromone and search state.
+    require_grid(nx * ny * nz, 48.0, stop, what);
+    if (nx * ny * nz > 50'000'000)
+      throw std::invalid_argument(std::string(what) + ": a cell map of " + std::to_string(static_cast<long long>(nx)) +
+                                  " x " + std::to_string(static_cast<long long>(ny)) + " x " +
+                                  std::to_string(static_cast<long long>(nz)) + " cells is too large: raise cell_m");
+  }
   nx_ = std::max(1, static_cast<int>(std::ceil((b.max.x() - b.min.x()) / cell_m_ - 1e-9)));
   ny_ = std::max(1, static_cast<int>(std::ceil((b.max.y() - b.min.y()) / cell_m_ - 1e-9)));
   // Cells must lie inside the bounds: shrink the cell so the grid fits exactly.
   cell_m_ = std::min((b.max.x() - b.min.x()) / nx_, (b.max.y() - b.min.y()) / ny_);
   z0_ = b.min.z() + opt.inflation_m;
   nz_ = std::max(0, static_cast<int>(std::floor((opt.ceiling_m - opt.inflation_m - z0_) / level_m_ + 1e-9)) + 1);
-  if (static_cast<std::int64_t>(nx_) * ny_ * std::max(nz_, 1) > 50'000'000)
-    throw std::invalid_argument("cell map of " + std::to_string(nx_) + " x " + std::to_string(ny_) + " x " +
-                                std::to_string(nz_) + " cells is too large: raise cell_m");
 
   const double r = opt.inflation_m;
   // A level exactly at top + r would sit on the boundary of the exact segment check and fail it

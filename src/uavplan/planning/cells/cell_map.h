@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "uavplan/core/stop.h"
 #include "uavplan/core/vec.h"
 #include "uavplan/world/world.h"
 
@@ -20,7 +21,9 @@ struct CellMapOptions {
 
 class CellMap {
  public:
-  CellMap(const World& world, const CellMapOptions& options);
+  // Throws std::invalid_argument naming cell_m / level_m when the map would be too large for an
+  // index or for the run's memory cap.
+  CellMap(const World& world, const CellMapOptions& options, const StopCondition& stop = {});
 
   int nx() const { return nx_; }
   int ny() const { return ny_; }

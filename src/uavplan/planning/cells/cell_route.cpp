@@ -23,13 +23,13 @@ double ceiling_of(const Problem& p, const World& w) {
   return p.uav.ceiling_m ? std::min(*p.uav.ceiling_m, w.bounds().max.z()) : w.bounds().max.z();
 }
 
-CellMap make_map(const Problem& p, const World& w, const CellPlanOptions& o) {
+CellMap make_map(const Problem& p, const World& w, const CellPlanOptions& o, const StopCondition& stop) {
   CellMapOptions mo;
   mo.cell_m = o.cell_m;
   mo.level_m = o.level_m;
   mo.inflation_m = p.uav.radius_m + kPlanningMargin_m;
   mo.ceiling_m = ceiling_of(p, w);
-  return CellMap(w, mo);
+  return CellMap(w, mo, stop);
 }
 
 // A free node near p (its column and the eight around, levels near p's height) that p reaches
@@ -51,8 +51,8 @@ std::int64_t attach(const CellMap& map, const Vec3& p, const SegmentRule& rule) 
 
 }  // namespace
 
-CellWorld::CellWorld(const Problem& p, const World& w, const CellPlanOptions& o)
-    : map(make_map(p, w, o)),
+CellWorld::CellWorld(const Problem& p, const World& w, const CellPlanOptions& o, const StopCondition& stop)
+    : map(make_map(p, w, o, stop)),
       graph(map, w, p.uav.speed.cruise_mps, o.weights, p.uav.max_climb_rad, ceiling_of(p, w)) {}
 
 double cell_route_cost(const CellGraph& g, const std::vector<Vec3>& wp) {
@@ -69,7 +69,7 @@ PlanResult plan_once(const Problem& problem, const World& world, const CellPlanO
                      const StopCondition& stop, const CellLegSearch& search, bool& finer_may_help) {
   finer_may_help = false;
   PlanResult res;
-  const CellWorld cw(problem, world, options);
+  const CellWorld cw(problem, world, options, stop);
   const CellMap& map = cw.map;
   const SegmentRule rule(world, problem.uav);
   res.stats.grid_cells = static_cast<std::uint64_t>(map.nodes());

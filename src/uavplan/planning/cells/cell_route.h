@@ -37,7 +37,7 @@ double cell_route_cost(const CellGraph& g, const std::vector<Vec3>& waypoints);
 // The map and graph plan_on_cells builds for this problem (for benchmarks and tests). The graph
 // points into the map, so a CellWorld stays where it was built.
 struct CellWorld {
-  CellWorld(const Problem& problem, const World& world, const CellPlanOptions& options);
+  CellWorld(const Problem& problem, const World& world, const CellPlanOptions& options, const StopCondition& stop = {});
   CellWorld(const CellWorld&) = delete;
   CellWorld& operator=(const CellWorld&) = delete;
   CellMap map;

@@ -211,7 +211,7 @@ std::optional<std::vector<std::int64_t>> cellular_aco_search(const CellGraph& g,
   Colony colony(g, from, to, o);
   if (!colony.reachable()) return std::nullopt;
   const std::size_t nodes = static_cast<std::size_t>(g.map().nodes());
-  const int threads = std::max(1, std::min(o.ants, o.threads > 0 ? o.threads : static_cast<int>(std::thread::hardware_concurrency())));
+  const int threads = o.threads > 0 ? std::min(o.ants, o.threads) : stop.threads(o.ants);
   std::vector<std::vector<std::uint32_t>> seen(static_cast<std::size_t>(threads), std::vector<std::uint32_t>(nodes, 0));
   std::vector<std::uint32_t> stamps(static_cast<std::size_t>(threads), 0);
   std::vector<std::uint64_t> steps(static_cast<std::size_t>(threads), 0);

@@ -24,7 +24,7 @@ struct CellularAcoOptions {
   double tau_max = 1.0;      // pheromone bounds, relative: deposits are scaled by J_best / Q so that
   double tau_min = 0.01;     //   the best ant deposits 1 whatever the cost's units
   int max_steps_factor = 8;  // an ant dies after this many times the straight-line cell count
-  int threads = 0;           // 0 = hardware concurrency
+  int threads = 0;           // 0 = the run's (--threads, else every core)
   bool local_update = true;  // the cellular-automaton update of the best route
   static CellularAcoOptions from_params(const Params& params);
 };

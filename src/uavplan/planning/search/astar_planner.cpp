@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
+#include "uavplan/planning/grid_budget.h"
 #include "uavplan/planning/search/grid_astar.h"
 #include "uavplan/planning/segment_rule.h"
 #include "uavplan/planning/smoothing/shortcut.h"
@@ -69,6 +71,12 @@ std::int64_t attach(const VoxelGrid& g, const Vec3& p, const SegmentRule& rule) 
   return -1;
 }
 
+std::string fmt_m(double x) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%g m", x);
+  return buf;
+}
+
 struct LegResult {
   bool ok = false;
   bool stopped = false;
@@ -99,8 +107,10 @@ PlanResult AStarPlanner::do_plan(const Problem& pb, const World& world, const St
   bool found = false;
   for (int attempt = 0; attempt < attempts && !found; ++attempt, cell *= 0.5) {
     const Vec3 cell3(cell, cell, layer_height_m(cell, uav.max_climb_rad));
-    VoxelGrid probe(world.bounds(), cell3);
-    if (attempt > 0 && probe.size() > options_.max_cells) break;
+    const double cells = VoxelGrid::cell_count(world.bounds(), cell3);
+    if (attempt > 0 && cells > static_cast<double>(options_.max_cells)) break;
+    // A bit per voxel and a search node (16 bytes) per voxel reached.
+    require_grid(cells, 16.125, stop, derived ? "the derived cell of " + fmt_m(cell) : "planner.params.cell_m = " + fmt_m(cell));
     const VoxelGrid grid = voxelize(world, cell3, rule.inflation_m(), rule.ceiling_m());
     const Vec3 cs = grid.cell();
     GridAStar search(grid.cells(), bounding_box_moves(grid.cells(), cs.x(), cs.y(), cs.z(), uav.max_climb_rad),

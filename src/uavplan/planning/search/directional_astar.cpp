@@ -1,5 +1,9 @@
 #include "uavplan/planning/search/directional_astar.h"
 
+#include <cstdio>
+
+#include "uavplan/planning/grid_budget.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -582,6 +586,18 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
   return out;
 }
 
+void DirectionalAStarPlanner::require_lattice(const World& world, const DirectionalQuery& q, int engines,
+                                              const StopCondition& stop) {
+  const Vec3 ext = world.bounds().extent();
+  double points = 1.0;
+  for (int a = 0; a < 3; ++a) points *= 1.0 + std::floor(ext[a] / q.cell_m + 1e-9);
+  char what[80];
+  std::snprintf(what, sizeof what, "planner.params.cell_m = %g m", q.cell_m);
+  // Per lattice point: a cached clearance (4 bytes) and search nodes (16 bytes) for up to 8
+  // heading sectors, per engine.
+  require_grid(points * 8.0, engines * (4.0 / 8.0 + 16.0), stop, what);
+}
+
 PlanResult DirectionalAStarPlanner::do_plan(const Problem& pb, const World& world, const StopCondition& stop) const {
   PlanResult res;
   if (!pb.via.empty()) {
@@ -595,6 +611,7 @@ PlanResult DirectionalAStarPlanner::do_plan(const Problem& pb, const World& worl
   }
   DirectionalSearch search;
   const DirectionalQuery q = query_for(pb, world);
+  require_lattice(world, q, 1, stop);
   const DirectionalRoute r = search.run(world, q, stop);
   res.stats.nodes_expanded = r.expanded;
   res.stats.open_max = r.generated;

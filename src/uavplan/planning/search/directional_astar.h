@@ -159,6 +159,9 @@ class DirectionalAStarPlanner final : public Planner {
   const DirectionalAStarOptions& options() const { return options_; }
   // The query this planner would run for a problem (limits and cell resolved).
   DirectionalQuery query_for(const Problem& problem, const World& world) const;
+  // Throws std::invalid_argument naming cell_m when `engines` searches on the lattice of q would
+  // need more memory than the run's cap (or more points than an index holds).
+  static void require_lattice(const World& world, const DirectionalQuery& q, int engines, const StopCondition& stop);
 
  private:
   PlanResult do_plan(const Problem& problem, const World& world, const StopCondition& stop) const override;

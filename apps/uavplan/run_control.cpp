@@ -1,0 +1,79 @@
+// What every long-running command shares: interrupts (SIGINT, SIGTERM) that stop planning
+// cleanly, thread and memory limits.
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <cmath>
+#include <cstdlib>
+
+#include "commands.h"
+
+namespace uavplan::cli {
+namespace {
+
+std::atomic<bool> g_interrupted{false};
+
+extern "C" void on_interrupt(int sig) {
+  // The first one asks planning to stop (it ends with a message, exit 130, nothing half
+  // written); a second one ends the process at once.
+  if (g_interrupted.exchange(true)) {
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);
+  }
+}
+
+}  // namespace
+
+CLI::Validator positive_number() {
+  return CLI::Validator(
+      [](std::string& v) {
+        double x = 0.0;
+        return CLI::detail::lexical_cast(v, x) && x > 0.0 && std::isfinite(x) ? std::string()
+                                                                             : "must be a positive number, got '" + v + "'";
+      },
+      "POSITIVE");
+}
+
+CLI::Validator non_negative_integer() {
+  return CLI::Validator(
+      [](std::string& v) {
+        long long x = 0;
+        return CLI::detail::lexical_cast(v, x) && x >= 0 ? std::string() : "must be a non-negative integer, got '" + v + "'";
+      },
+      "NONNEGATIVE");
+}
+
+void install_interrupt_handlers() {
+  struct sigaction sa{};
+  sa.sa_handler = on_interrupt;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+
+bool interrupted() { return g_interrupted.load(); }
+
+StopCondition run_stop(const RunArgs& a) {
+  StopCondition stop = StopCondition::cancel_flag(&g_interrupted);
+  if (a.time_limit_s > 0.0) stop = stop | StopCondition::time_limit(a.time_limit_s);
+  return stop.with_threads(a.threads).with_memory_cap(a.max_memory_bytes);
+}
+
+std::uint64_t default_memory_cap_bytes() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
+  if (pages <= 0 || page <= 0) return 0;
+  return static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) / 2;
+}
+
+void add_run_options(CLI::App& cmd, RunArgs& a) {
+  cmd.add_option("--time-limit", a.time_limit_s, "Stop after this many seconds of wall time (the whole command)")
+      ->check(positive_number());
+  cmd.add_option("--threads", a.threads, "Threads the planners may use (default 0: every core); plans are the same for any count")
+      ->check(non_negative_integer());
+  cmd.add_option("--max-memory", a.max_memory_bytes,
+                 "Memory a planner's grids may take, e.g. 512M or 8G (default half the machine's RAM; 0: no cap)")
+      ->transform(CLI::AsSizeValue(false));
+}
+
+}  // namespace uavplan::cli

@@ -1,0 +1,16 @@
+#include "uavplan/planning/grid_budget.h"
+
+#include <cstdio>
+#include <stdexcept>
+
+namespace uavplan {
+
+void require_grid(double cells, double bytes_per_cell, const StopCondition& stop, const std::string& what) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, ": a %.3g-cell grid", cells);
+  if (!(cells <= kMaxGridCells))
+    throw std::invalid_argument(what + buf + " is more than a grid can index (2^31 cells); use larger cells");
+  stop.require_memory(static_cast<std::uint64_t>(cells * bytes_per_cell), what + buf);
+}
+
+}  // namespace uavplan
