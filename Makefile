@@ -3,7 +3,7 @@ BUILD ?= build
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps build demo test bench asan clean
+.PHONY: all deps build demo test bench asan tsan fuzz clean
 
 all: build
 
@@ -25,11 +25,27 @@ test: build
 bench: build
 	./$(BUILD)/bench/world_queries
 
-# Unit tests under AddressSanitizer + UBSan (CI runs this too).
+# The whole test suite (unit, CLI, exports, report) under AddressSanitizer + UBSan (CI runs it).
 asan: deps
 	@cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUAVPLAN_SANITIZE=ON $(CMAKE_FLAGS) >/dev/null
 	@cmake --build build-asan -j $(JOBS)
 	cd build-asan && ctest --output-on-failure -j $(JOBS)
 
+# The tests that run several threads (rendezvous engines, the ant colony, --threads), under
+# ThreadSanitizer (CI runs it).
+TSAN_TESTS ?= Rendezvous|DirectionalAStar|Cellular|Cells|threads
+tsan: deps
+	@cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUAVPLAN_TSAN=ON $(CMAKE_FLAGS) >/dev/null
+	@cmake --build build-tsan -j $(JOBS)
+	cd build-tsan && TSAN_OPTIONS=halt_on_error=1 ctest --output-on-failure -j $(JOBS) -R "$(TSAN_TESTS)"
+
+# libFuzzer (clang) on every reader of outside input, FUZZ_SECONDS each (CI: 60 s each).
+FUZZ_SECONDS ?= 60
+fuzz: deps
+	@cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUAVPLAN_FUZZ=ON -DCMAKE_C_COMPILER=clang-14 \
+	  -DCMAKE_CXX_COMPILER=clang++-14 >/dev/null
+	@cmake --build build-fuzz -j $(JOBS) --target fuzz_scenario fuzz_plan fuzz_geojson fuzz_movingai
+	bash fuzz/run.sh build-fuzz $(FUZZ_SECONDS)
+
 clean:
-	rm -rf $(BUILD) build-asan out
+	rm -rf $(BUILD) build-asan build-tsan build-fuzz out

@@ -16,6 +16,7 @@ PACKAGES=(
   libompl-dev            # bench: OMPL's RRT, RRTConnect and RRT* as the baselines of P1's local layer
   libgeographiclib-dev   # io: local frame <-> WGS84 (exports, OSM buildings)
   gdal-bin               # tests: ogr2ogr reads the GeoJSON and KML exports back
+  clang-14 libclang-rt-14-dev  # make fuzz: libFuzzer with AddressSanitizer and UBSan
   chromium               # tests: the HTML report in a headless browser
   fonts-dejavu-core      #   and a font for it
 )

@@ -7,6 +7,7 @@
 #include "p2_runner.h"
 #include "p3_runner.h"
 #include "p4_runner.h"
+#include "soak_runner.h"
 #include "uavplan/evaluation/world_bench.h"
 #include "uavplan/io/input_error.h"
 
@@ -149,6 +150,20 @@ void add_p1_local(CLI::App* cmd, std::function<int()>& run) {
   });
 }
 
+void add_soak(CLI::App* cmd, std::function<int()>& run) {
+  auto opt = std::make_shared<bench::SoakOptions>();
+  CLI::App* s = cmd->add_subcommand("soak", "Random worlds per planner and mission: every claimed solution must verify");
+  s->add_option("--worlds", opt->worlds, "Random worlds per row (default 1000)")->check(CLI::PositiveNumber);
+  s->add_option("--seed", opt->seed, "Seed of the worlds (default 1)");
+  s->callback([opt, &run] {
+    run = [opt] {
+      bool held = false;
+      std::cout << bench::run_soak(*opt, &held);
+      return held ? kExitOk : kExitNotSolved;
+    };
+  });
+}
+
 }  // namespace
 
 void add_bench_command(CLI::App& app, std::function<int()>& run) {
@@ -160,6 +175,7 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
   add_p3(cmd, run);
   add_p2(cmd, run);
   add_p1_local(cmd, run);
+  add_soak(cmd, run);
 }
 
 }  // namespace uavplan::cli

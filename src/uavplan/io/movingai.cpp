@@ -4,9 +4,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <sstream>
+#include <type_traits>
 
 #include "uavplan/io/input_error.h"
 
@@ -43,6 +45,8 @@ T parse_num(const std::string& s, const std::string& path, int line, const char*
   T v{};
   const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
   if (ec != std::errc() || p != s.data() + s.size()) throw InputError(path, line, what, "expected a number, got '" + s + "'");
+  if constexpr (std::is_floating_point_v<T>)
+    if (!std::isfinite(v) || std::abs(v) > 1e15) throw InputError(path, line, what, "must be a finite number below 1e15, got '" + s + "'");
   return v;
 }
 
@@ -64,6 +68,13 @@ BitGrid read_movingai_map(const std::string& path) {
     if (f[0] == "width" && f.size() == 2) width = parse_num<int>(f[1], path, lineno, "width");
   }
   if (width <= 0 || height <= 0) throw InputError(path, lineno, "header", "missing or bad 'height'/'width' before 'map'");
+  // Every cell is a character of the file: a header claiming more is refused before allocating.
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(path, ec);
+  if (!ec && static_cast<double>(width) * height > static_cast<double>(bytes))
+    throw InputError(path, lineno, "header",
+                     std::to_string(width) + " x " + std::to_string(height) + " cells, more than the file's " +
+                         std::to_string(bytes) + " bytes can hold");
   BitGrid g(width, height, 1);
   for (int y = 0; y < height; ++y) {
     if (!std::getline(in, line)) throw InputError(path, lineno + 1, "map", "expected " + std::to_string(height) + " rows");
@@ -114,6 +125,9 @@ BitGrid read_movingai_3dmap(const std::string& path) {
     if (buf[strspn(buf, " \t\r\n")] != '\0') throw InputError(path, lineno, "header", "expected 'voxel X Y Z'");
   }
   if (dims[0] <= 0 || dims[1] <= 0 || dims[2] <= 0) throw InputError(path, lineno, "header", "bad or missing 'voxel X Y Z'");
+  if (static_cast<double>(dims[0]) * dims[1] * dims[2] > kMaxMovingAiVoxels)
+    throw InputError(path, lineno, "header", "more than " + std::to_string(static_cast<long long>(kMaxMovingAiVoxels)) +
+                                                 " voxels (a grid of 128 MiB)");
   BitGrid g(dims[0], dims[1], dims[2]);
   while (std::fgets(buf, sizeof buf, f.get())) {
     ++lineno;

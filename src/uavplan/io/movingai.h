@@ -18,6 +18,9 @@ struct MovingAiProblem {
   double optimal = 0.0;
 };
 
+// The largest 3-D map read (the Warframe maps have up to about 90 M voxels).
+inline constexpr double kMaxMovingAiVoxels = 1073741824.0;
+
 BitGrid read_movingai_map(const std::string& path);
 BitGrid read_movingai_3dmap(const std::string& path);
 // 2-D: the bucket is the file's; 3-D files have none: bucket = floor(optimal / 10).

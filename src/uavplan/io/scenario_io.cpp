@@ -293,6 +293,36 @@ UavSpec read_uav(const At& u) {
   return s;
 }
 
+// One document per file: content after a "..." end marker or a second "---" start would be
+// dropped by a loader that reads the first document. Markers stand at the start of a line and
+// cannot occur inside a scalar, so lines tell. (yaml-cpp 0.7's LoadAll would say it too, but it
+// loops forever on input such as a leading ',': jbeder/yaml-cpp#1040, fixed after 0.7.)
+void check_single_document(const std::string& text, const std::string& file) {
+  bool content = false, ended = false;
+  int line = 0;
+  for (std::size_t at = 0; at < text.size(); ++line) {
+    const std::size_t end = std::min(text.find('\n', at), text.size());
+    const std::string_view l(text.data() + at, end - at);
+    at = end + 1;
+    const auto marker = [&](std::string_view m) {
+      return l.substr(0, 3) == m && (l.size() == 3 || l[3] == ' ' || l[3] == '\t');
+    };
+    const std::size_t first = l.find_first_not_of(" \t");
+    const bool blank = first == std::string_view::npos || l[first] == '#';
+    if (marker("---")) {
+      if (content || ended)
+        throw InputError(file, line + 1, "", "a second YAML document (after '---'): a scenario file holds one");
+      content = l.find_first_not_of(" \t", 3) != std::string_view::npos && l[l.find_first_not_of(" \t", 3)] != '#';
+    } else if (marker("...")) {
+      ended = true;
+    } else if (!blank && !(l[0] == '%' && !content)) {
+      if (ended)
+        throw InputError(file, line + 1, "", "content after the document's end ('...'): a scenario file holds one document");
+      content = true;
+    }
+  }
+}
+
 YAML::Node parse_yaml(const std::string& raw, const std::string& file) {
   const std::string text = checked_text(raw, file);
   const bool json = file.size() >= 5 && file.compare(file.size() - 5, 5, ".json") == 0;
@@ -306,18 +336,15 @@ YAML::Node parse_yaml(const std::string& raw, const std::string& file) {
       throw InputError(file, line, "", "JSON " + what);
     }
   }
-  std::vector<YAML::Node> docs;
+  check_single_document(text, file);
+  YAML::Node root;
   try {
-    docs = YAML::LoadAll(text);
+    root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
     throw InputError(file, e.mark.line >= 0 ? e.mark.line + 1 : 0, "", "YAML syntax error: " + e.msg);
   }
-  if (docs.empty()) throw InputError(file, 0, "", "file is empty");
-  if (docs.size() > 1)
-    throw InputError(file, docs[1].Mark().line + 1, "",
-                     "a second YAML document (after '...' or '---'): a scenario file holds one");
-  check_tree(docs[0], file, kMaxScenarioValues);
-  return docs[0];
+  check_tree(root, file, kMaxScenarioValues);
+  return root;
 }
 
 // Sets one --set override into the tree; returns the place it set and the argument as given.

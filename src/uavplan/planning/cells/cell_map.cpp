@@ -86,14 +86,16 @@ CellMap::CellMap(const World& world, const CellMapOptions& opt, const StopCondit
   ny_ = std::max(1, static_cast<int>(std::ceil((b.max.y() - b.min.y()) / cell_m_ - 1e-9)));
   // Cells must lie inside the bounds: shrink the cell so the grid fits exactly.
   cell_m_ = std::min((b.max.x() - b.min.x()) / nx_, (b.max.y() - b.min.y()) / ny_);
-  z0_ = b.min.z() + opt.inflation_m;
-  nz_ = std::max(0, static_cast<int>(std::floor((opt.ceiling_m - opt.inflation_m - z0_) / level_m_ + 1e-9)) + 1);
+  // A flat world (no height) is one level in its plane: no ground to keep the radius from.
+  const bool flat = b.extent().z() <= 0.0;
+  z0_ = flat ? b.min.z() : b.min.z() + opt.inflation_m;
+  nz_ = flat ? 1 : std::max(0, static_cast<int>(std::floor((opt.ceiling_m - opt.inflation_m - z0_) / level_m_ + 1e-9)) + 1);
 
   const double r = opt.inflation_m;
   // A level exactly at top + r would sit on the boundary of the exact segment check and fail it
   // by rounding (10.501 - 10 < 0.501): free cells keep a micrometre above it.
   constexpr double kAbove_m = 1e-6;
-  required_.assign(static_cast<std::size_t>(nx_) * ny_, b.min.z() + r);
+  required_.assign(static_cast<std::size_t>(nx_) * ny_, flat ? b.min.z() : b.min.z() + r);
   for (const Obstacle& o : world.obstacles()) {
     const Aabb ob = bounding_box(o);
     const int i0 = std::max(0, static_cast<int>(std::floor((ob.min.x() - r - origin_.x()) / cell_m_)));

@@ -180,7 +180,7 @@ PlanResult plan_on_cells(const Problem& problem, const World& world, const CellP
   bool finer_may_help = false;
   PlanResult res = plan_once(problem, world, o, stop, search, finer_may_help);
   while (res.status != Status::solved && finer_may_help && options.cell_m <= 0.0 && !stop.should_stop() &&
-         res.stats.grid_cells * 8 <= kMaxRefinedNodes) {
+         res.stats.grid_cells > 0 && res.stats.grid_cells * 8 <= kMaxRefinedNodes) {
     o.cell_m = res.stats.cell_m / 2.0;
     if (options.level_m <= 0.0) o.level_m = o.cell_m / 2.0;
     res = plan_once(problem, world, o, stop, search, finer_may_help);

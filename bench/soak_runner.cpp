@@ -1,0 +1,65 @@
+#include "soak_runner.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+#include "uavplan/coordination/mission_planner.h"
+#include "uavplan/evaluation/random_worlds.h"
+#include "uavplan/evaluation/verifier.h"
+#include "uavplan/planning/registry.h"
+
+namespace uavplan::bench {
+
+std::string run_soak(const SoakOptions& opt, bool* all_held) {
+  struct Kind {
+    std::string algorithm;
+    MissionType mission;
+  };
+  std::vector<Kind> kinds;
+  for (const auto& p : planner_catalog()) kinds.push_back({p.name, MissionType::independent});
+  kinds.push_back({"apf", MissionType::group});
+  kinds.push_back({"directional_astar", MissionType::rendezvous});
+  std::string out;
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "soak: %d random worlds per row, seed %llu, 2 s stop per plan\n", opt.worlds,
+                static_cast<unsigned long long>(opt.seed));
+  out += buf;
+  std::snprintf(buf, sizeof buf, "%-20s %-12s %7s %8s %10s %10s %10s\n", "planner", "mission", "uavs", "solved", "bad_claims",
+                "median_ms", "max_ms");
+  out += buf;
+  bool held = true;
+  for (const Kind& k : kinds) {
+    int uavs = 0, solved = 0, bad = 0;
+    std::vector<double> ms;
+    RandomWorldOptions wo;
+    wo.mission = k.mission;
+    for (int w = 0; w < opt.worlds; ++w) {
+      const Scenario sc = random_world(opt.seed * 1000003 + static_cast<std::uint64_t>(w), wo);
+      MissionOptions mo;
+      mo.algorithm = k.algorithm;
+      mo.seed = opt.seed + static_cast<std::uint64_t>(w);
+      mo.stop = StopCondition::time_limit(2.0);
+      const auto t0 = std::chrono::steady_clock::now();
+      const Plan plan = plan_mission(sc, mo);
+      ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+      const auto violations = verify_plan(sc, plan);
+      for (const UavPlan& u : plan.uavs) {
+        ++uavs;
+        if (u.status != Status::solved) continue;
+        ++solved;
+        bad += std::any_of(violations.begin(), violations.end(), [&](const Violation& v) { return v.uav == u.id; });
+      }
+    }
+    std::sort(ms.begin(), ms.end());
+    held = held && bad == 0;
+    std::snprintf(buf, sizeof buf, "%-20s %-12s %7d %8d %10d %10.2f %10.1f\n", k.algorithm.c_str(),
+                  std::string(to_string(k.mission)).c_str(), uavs, solved, bad, ms.empty() ? 0.0 : ms[ms.size() / 2],
+                  ms.empty() ? 0.0 : ms.back());
+    out += buf;
+  }
+  if (all_held) *all_held = held;
+  return out;
+}
+
+}  // namespace uavplan::bench

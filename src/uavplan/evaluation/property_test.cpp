@@ -1,0 +1,126 @@
+// Properties every registered planner and mission type keeps on random worlds: what a planner
+// calls solved holds under the verifier (before the verifier gets to fail it), what it does not
+// solve says why, an enclosed goal fails within the stop condition, start = goal is handled, and
+// the same seed gives the same plan. (bench/soak runs thousands of these.)
+#include <gtest/gtest.h>
+
+#include <chrono>
+
+#include "uavplan/coordination/mission_planner.h"
+#include "uavplan/evaluation/random_worlds.h"
+#include "uavplan/evaluation/verifier.h"
+#include "uavplan/planning/registry.h"
+
+namespace uavplan {
+namespace {
+
+constexpr double kLimit_s = 2.0;
+
+MissionOptions options(const std::string& algorithm, std::uint64_t seed) {
+  MissionOptions o;
+  o.algorithm = algorithm;
+  o.seed = seed;
+  o.stop = StopCondition::time_limit(kLimit_s);
+  return o;
+}
+
+// The planner's own claims, checked: a UAV it calls solved has no violation.
+void expect_claims_hold(const Scenario& sc, const Plan& plan, const std::string& what) {
+  const auto violations = verify_plan(sc, plan);
+  for (const UavPlan& u : plan.uavs) {
+    if (u.status != Status::solved) {
+      EXPECT_FALSE(u.message.empty()) << what << " " << u.id << ": failed without a reason";
+      continue;
+    }
+    for (const Violation& v : violations)
+      EXPECT_TRUE(v.uav != u.id) << what << ": solved but " << describe(v);
+  }
+}
+
+bool same_trajectories(const Plan& a, const Plan& b) {
+  if (a.uavs.size() != b.uavs.size()) return false;
+  for (std::size_t i = 0; i < a.uavs.size(); ++i) {
+    const Trajectory &x = a.uavs[i].trajectory, &y = b.uavs[i].trajectory;
+    if (x.size() != y.size() || a.uavs[i].status != b.uavs[i].status) return false;
+    for (std::size_t k = 0; k < x.size(); ++k)
+      if (x[k].t_s != y[k].t_s || x[k].p != y[k].p) return false;
+  }
+  return true;
+}
+
+class PlannerProperties : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(PlannerProperties, RandomWorldsClaimsHoldAndRepeat) {
+  const std::string name = GetParam();
+  // 200 worlds a planner; the ant colony (100 ants by default) takes 80 to stay within a minute.
+  const std::uint64_t worlds = name == "cellular_aco" ? 80 : 200;
+  int solved = 0, uavs = 0;
+  for (std::uint64_t seed = 1; seed <= worlds; ++seed) {
+    const Scenario sc = random_world(seed * 7919 + name.size());
+    const Plan plan = plan_mission(sc, options(name, seed));
+    expect_claims_hold(sc, plan, name + " seed " + std::to_string(seed));
+    for (const UavPlan& u : plan.uavs) solved += u.status == Status::solved, ++uavs;
+    if (seed % 10 == 0) {  // determinism, on a sample
+      const Plan again = plan_mission(sc, options(name, seed));
+      EXPECT_TRUE(same_trajectories(plan, again)) << name << " seed " << seed << ": not repeatable";
+    }
+  }
+  RecordProperty("solved", solved);
+  EXPECT_GT(solved, uavs / 3) << name << ": " << solved << " of " << uavs;
+}
+
+TEST_P(PlannerProperties, EnclosedGoalFailsWithinTheStop) {
+  const std::string name = GetParam();
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const Scenario sc = enclosed_goal_world(seed);
+    const auto t0 = std::chrono::steady_clock::now();
+    const Plan plan = plan_mission(sc, options(name, seed));
+    const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_EQ(plan.uavs[0].status, Status::failed) << name;
+    EXPECT_FALSE(plan.uavs[0].message.empty()) << name;
+    EXPECT_LT(took, kLimit_s * 1.25 + 0.2) << name;
+  }
+}
+
+TEST_P(PlannerProperties, StartEqualsGoalIsHandled) {
+  const std::string name = GetParam();
+  Scenario sc = random_world(42);
+  sc.uavs.resize(1);
+  sc.uavs[0].goal = sc.uavs[0].start;
+  const Plan plan = plan_mission(sc, options(name, 1));
+  expect_claims_hold(sc, plan, name + " start = goal");
+}
+
+std::vector<std::string> planners() {
+  std::vector<std::string> n;
+  for (const auto& p : planner_catalog()) n.push_back(p.name);
+  return n;
+}
+
+INSTANTIATE_TEST_SUITE_P(Registered, PlannerProperties, ::testing::ValuesIn(planners()),
+                         [](const auto& param_info) { return param_info.param; });
+
+// Mission types that plan with their own method: group (P3), rendezvous (P4), and independent
+// UAVs with sensors flown in the loop (P1's local layer).
+TEST(MissionProperties, GroupRendezvousAndSensingClaimsHold) {
+  for (std::uint64_t seed = 1; seed <= 25; ++seed) {
+    for (const MissionType type : {MissionType::group, MissionType::rendezvous}) {
+      RandomWorldOptions o;
+      o.mission = type;
+      o.limits = type == MissionType::rendezvous;
+      const Scenario sc = random_world(seed * 31 + static_cast<int>(type), o);
+      const Plan plan = plan_mission(sc, options(type == MissionType::group ? "apf" : "directional_astar", seed));
+      expect_claims_hold(sc, plan, std::string(to_string(type)) + " seed " + std::to_string(seed));
+    }
+    Scenario sensing = random_world(seed * 17);
+    WorldSpec ws = sensing.world.spec();
+    ws.moving.push_back({"m", 2.0, sensing.world.bounds().center(), Vec3(1.5, -1.0, 0.0)});
+    sensing.world = World(std::move(ws));
+    for (UavSpec& u : sensing.uavs) u.sensor_range_m = 30.0;
+    const Plan plan = plan_mission(sensing, options("improved_rrt", seed));
+    expect_claims_hold(sensing, plan, "sensing seed " + std::to_string(seed));
+  }
+}
+
+}  // namespace
+}  // namespace uavplan

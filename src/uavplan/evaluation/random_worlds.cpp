@@ -1,0 +1,109 @@
+#include "uavplan/evaluation/random_worlds.h"
+
+#include <algorithm>
+#include <optional>
+
+#include "uavplan/core/rng.h"
+#include "uavplan/core/units.h"
+
+namespace uavplan {
+namespace {
+
+Obstacle random_obstacle(Rng& r, const Aabb& b) {
+  const Vec3 e = b.extent();
+  const double s = r.uniform(0.04, 0.12) * std::max(e.x(), e.y());
+  const Vec3 c(r.uniform(b.min.x(), b.max.x()), r.uniform(b.min.y(), b.max.y()),
+               e.z() > 0.0 ? r.uniform(b.min.z(), b.max.z()) : b.min.z());
+  const double z0 = e.z() > 0.0 ? b.min.z() : b.min.z() - 1.0, z1 = e.z() > 0.0 ? r.uniform(c.z(), b.max.z()) + 1.0 : b.min.z() + 1.0;
+  switch (r.uniform_int(0, 3)) {
+    case 0: return Sphere{c, s};
+    case 1: return Cylinder{c.head<2>(), s, z0, z1};
+    case 2: return Box{Vec3(c.x() - s, c.y() - 0.6 * s, z0), Vec3(c.x() + s, c.y() + 0.6 * s, z1)};
+    default:
+      return Prism{{{c.x() - s, c.y() - s}, {c.x() + s, c.y() - 0.5 * s}, {c.x() + 0.3 * s, c.y() + s}, {c.x() - s, c.y() + 0.2 * s}}, z0, z1};
+  }
+}
+
+// A free point: inside the bounds, clear of everything by `margin` (none after 500 tries).
+std::optional<Vec3> free_point(Rng& r, const World& w, double margin) {
+  const Aabb& b = w.bounds();
+  for (int k = 0; k < 500; ++k) {
+    Vec3 p(r.uniform(b.min.x(), b.max.x()), r.uniform(b.min.y(), b.max.y()),
+           b.extent().z() > 0.0 ? r.uniform(b.min.z(), b.max.z()) : b.min.z());
+    if (b.extent().z() > 2 * margin) p.z() = std::clamp(p.z(), b.min.z() + margin, b.max.z() - margin);
+    if (w.clearance(p, margin) >= margin) return p;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+Scenario random_world(std::uint64_t seed, const RandomWorldOptions& opt) {
+  Rng r(seed);
+  const bool flat = r.uniform01() < 0.4;
+  const double size = r.uniform(60, 200), height = flat ? 0.0 : r.uniform(20, 60);
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3::Zero(), Vec3(size, r.uniform(0.6, 1.0) * size, height)};
+  for (int k = static_cast<int>(r.uniform_int(0, 12)); k > 0; --k) ws.obstacles.push_back(random_obstacle(r, ws.bounds));
+  if (!flat && r.uniform01() < 0.3) {
+    const int n = 6;
+    std::vector<double> h(n * n);
+    for (double& x : h) x = r.uniform(0, 0.25 * height);
+    ws.terrain = TerrainGrid(Vec2::Zero(), size / n, n, n, std::move(h));
+  }
+  Scenario sc;
+  sc.name = "random" + std::to_string(seed);
+  sc.world = World(std::move(ws));
+  sc.mission.type = opt.mission;
+  sc.mission.separation_m = r.uniform(1, 4);
+  const int n = static_cast<int>(r.uniform_int(1, opt.max_uavs));
+  const std::optional<Vec3> common_goal = free_point(r, sc.world, 5);
+  for (int i = 0; i < n; ++i) {
+    UavSpec u;
+    u.id = "u" + std::to_string(i + 1);
+    u.radius_m = r.uniform(0.2, 1.0);
+    std::optional<Vec3> start;
+    for (int k = 0; k < 20 && !start; ++k) {
+      start = free_point(r, sc.world, u.radius_m + 2);
+      for (const UavSpec& o : sc.uavs)
+        if (start && (o.start - *start).norm() < 3 * sc.mission.separation_m + o.radius_m + u.radius_m) start.reset();
+    }
+    const std::optional<Vec3> goal = opt.mission == MissionType::rendezvous ? common_goal : free_point(r, sc.world, u.radius_m + 2);
+    if (!start || !goal) continue;  // a crowded world: fewer UAVs
+    u.start = *start;
+    u.goal = *goal;
+    const double v = r.uniform(2, 10);
+    u.speed = {0, v, v};
+    if (opt.limits && r.uniform01() < 0.4) u.max_turn_rad = deg_to_rad(r.uniform(45, 120));
+    if (opt.limits && !flat && r.uniform01() < 0.4) u.max_climb_rad = deg_to_rad(r.uniform(25, 60));
+    sc.uavs.push_back(u);
+  }
+  if (sc.uavs.empty()) return random_world(seed + 1000003, opt);
+  if (opt.mission == MissionType::rendezvous) sc.mission.arrival_tolerance_m = r.uniform(5, 30);
+  return sc;
+}
+
+Scenario enclosed_goal_world(std::uint64_t seed) {
+  Rng r(seed);
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3::Zero(), Vec3(100, 100, 40)};
+  const Vec3 c(r.uniform(60, 80), r.uniform(60, 80), 20);
+  const double in = 5, out = 7;
+  ws.obstacles.push_back(Box{c + Vec3(-out, -out, -out), c + Vec3(out, out, -in)});
+  ws.obstacles.push_back(Box{c + Vec3(-out, -out, in), c + Vec3(out, out, out)});
+  ws.obstacles.push_back(Box{c + Vec3(-out, -out, -in), c + Vec3(-in, out, in)});
+  ws.obstacles.push_back(Box{c + Vec3(in, -out, -in), c + Vec3(out, out, in)});
+  ws.obstacles.push_back(Box{c + Vec3(-in, -out, -in), c + Vec3(in, -in, in)});
+  ws.obstacles.push_back(Box{c + Vec3(-in, in, -in), c + Vec3(in, out, in)});
+  Scenario sc;
+  sc.name = "enclosed" + std::to_string(seed);
+  sc.world = World(std::move(ws));
+  UavSpec u;
+  u.id = "u1";
+  u.start = Vec3(r.uniform(5, 30), r.uniform(5, 30), r.uniform(5, 35));
+  u.goal = c;
+  sc.uavs.push_back(u);
+  return sc;
+}
+
+}  // namespace uavplan
