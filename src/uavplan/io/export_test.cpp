@@ -54,6 +54,20 @@ TEST(GeoFrame, RoundTripAndKnownScale) {
   EXPECT_LT((f.to_local(g.lat_deg, g.lon_deg, g.alt_m) - p).norm(), 1e-6);
 }
 
+TEST(GeoFrame, AltitudeIsOriginPlusLocalHeightEvenFarAway) {
+  // P4's world reaches 65 km from its origin: the tangent plane is 330 m above the datum there,
+  // but a route at z = 100 m flies at origin.alt + 100 m.
+  const GeoFrame f(GeoOrigin{30.0, 110.0, 500.0});
+  for (const Vec3& p : {Vec3(65000, 0, 100), Vec3(-40000, 50000, 100), Vec3(2000, 0, 0)}) {
+    const LatLonAlt g = f.to_wgs84(p);
+    EXPECT_DOUBLE_EQ(g.alt_m, 500.0 + p.z());
+    EXPECT_LT((f.to_local(g.lat_deg, g.lon_deg, g.alt_m) - p).norm(), 1e-6) << p.transpose();
+  }
+  // Horizontally: 65 km east is 65 km along the ground (to within the tangent plane's 1 m).
+  const LatLonAlt e = f.to_wgs84(Vec3(65000, 0, 100));
+  EXPECT_NEAR((e.lon_deg - 110.0) * 111'320.0 * std::cos(30.0 * kPi / 180.0), 65000.0, 150.0);
+}
+
 TEST(Export, MissionFollowsTheTrajectory) {
   const Scenario sc = scenario_with();
   const auto items = mission_items(sc, sample_uav(), {});

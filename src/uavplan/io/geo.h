@@ -11,10 +11,12 @@ struct LatLonAlt {
   double alt_m = 0.0;  // origin.alt + z: metres above the origin's datum (mean sea level)
 };
 
-// Local tangent plane (ENU) at the origin, by GeographicLib's LocalCartesian: exact on the
-// WGS84 ellipsoid, not a flat-earth approximation. Altitudes are treated as heights over the
-// ellipsoid inside the transform; no geoid model is applied (none ships offline), so an
-// altitude out is the origin's altitude plus the local height, in the origin's datum.
+// The local frame on WGS84. Horizontally, x and y are a point on the origin's tangent plane
+// (ENU), placed by GeographicLib's LocalCartesian (exact on the ellipsoid); its latitude and
+// longitude are those of that point. Vertically, z is height above the origin's datum: the
+// altitude is origin.alt + z exactly, without the earth's curvature (which would put a point
+// at z = 0 330 m above the datum 65 km away) — what a pilot reads on an altimeter. No geoid
+// model is applied (none ships offline): altitudes stay in the origin's datum.
 class GeoFrame {
  public:
   explicit GeoFrame(const GeoOrigin& origin);

@@ -5,6 +5,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include <nlohmann/json.hpp>
+#include <limits>
+#include <map>
 #include <set>
 
 #include "uavplan/io/files.h"
@@ -88,6 +90,16 @@ struct Reader {
   std::string text(const Json& v, const std::string& place) const {
     if (!v.is_string()) fail(place, "expected a string");
     return v.get<std::string>();
+  }
+  // Metrics as written: numbers, or null for a value that is not finite (+inf clearance).
+  std::map<std::string, double> metrics(const Json& v, const std::string& place) const {
+    if (!v.is_object()) fail(place, "expected an object");
+    std::map<std::string, double> out;
+    for (const auto& [k, x] : v.items()) {
+      if (x.is_null()) out[k] = std::numeric_limits<double>::infinity();
+      else out[k] = number(x, place + "." + k);
+    }
+    return out;
   }
 };
 
@@ -206,8 +218,24 @@ Plan parse_plan(const std::string& raw, const std::string& file) {
     }
     if (ju.contains("length_m")) u.length_m = r.number(ju["length_m"], at + ".length_m");
     if (ju.contains("arrival_s")) u.arrival_s = r.number(ju["arrival_s"], at + ".arrival_s");
+    if (ju.contains("metrics")) u.metrics = r.metrics(ju["metrics"], at + ".metrics");
+    if (ju.contains("stats")) {
+      const Json& st = ju["stats"];
+      if (!st.is_object()) r.fail(at + ".stats", "expected an object");
+      const auto count = [&](const char* key) -> std::uint64_t {
+        if (!st.contains(key)) return 0;
+        const double v = r.number(st[key], at + ".stats." + key);
+        if (v < 0 || v > 1.8e19) r.fail(at + ".stats." + key, "expected a count");
+        return static_cast<std::uint64_t>(v);
+      };
+      u.stats.nodes_expanded = count("nodes_expanded");
+      u.stats.open_max = count("open_max");
+      u.stats.grid_cells = count("grid_cells");
+      if (st.contains("cell_m")) u.stats.cell_m = r.number(st["cell_m"], at + ".stats.cell_m");
+    }
     p.uavs.push_back(std::move(u));
   }
+  if (j.contains("metrics")) p.metrics = r.metrics(j["metrics"], "metrics");
   return p;
 }
 

@@ -37,6 +37,7 @@ TEST(PlanIo, RoundTripIsExact) {
   EXPECT_EQ(q.uavs[0].trajectory[1].t_s, p.uavs[0].trajectory[1].t_s);
   EXPECT_EQ(q.uavs[0].trajectory[1].p, p.uavs[0].trajectory[1].p);
   EXPECT_EQ(q.uavs[1].status, Status::failed);
+  EXPECT_EQ(q.uavs[0].metrics, p.uavs[0].metrics) << "metrics are read back (the report shows them)";
   EXPECT_EQ(plan_to_json(q).size() > 0, true);
   EXPECT_EQ(text, plan_to_json(p));  // deterministic
   EXPECT_NE(text.find("\"timing\": {}"), std::string::npos);
