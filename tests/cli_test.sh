@@ -199,5 +199,42 @@ if [ "$(wc -l <"$TMP/stderr")" != 1 ] || ! grep -q "noorigin.yaml.*origin" "$TMP
 "$BIN" report "$good" "$TMP/a/plan.json" -o "$TMP/r.html" >/dev/null 2>&1; check report.demo 0 $?
 grep -q '<script type="application/json" id="uavplan-data">' "$TMP/r.html" || { echo "FAIL report.demo content"; fails=$((fails + 1)); }
 
+# Planners compared on one file: another planner's parameter is a note, not an error; a mission
+# that plans with its own method says which planners it takes.
+"$BIN" plan "$good" -o "$TMP/note" --set ants=5 >/dev/null 2>"$TMP/stderr"; check other.planner.param 0 $?
+grep -q "note: planner.params.ants is not a parameter of astar (it is one of cellular_aco): ignored" "$TMP/stderr" ||
+  { echo "FAIL other.planner.param note: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
+expect_refused forced.planner "apf" "$SRC/scenarios/p3_group9.yaml" --algorithm astar
+expect_bad self.intersecting "$(mk 's/- {type: box, id: tower_a, min: \[200, 200, 0\], max: \[260, 260, 60\]}/- {type: prism, polygon: [[200, 200], [260, 260], [260, 200], [200, 262]], z_min: 0, z_max: 60}/' bowtie.yaml)" "self-intersecting"
+mkdir -p "$TMP/adir"
+"$BIN" report "$good" "$TMP/a/plan.json" -o "$TMP/adir" >/dev/null 2>"$TMP/stderr"; check report.folder 2 $?
+grep -q "is a folder" "$TMP/stderr" || { echo "FAIL report.folder message: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
+
+# On the ground: take-off and landing legs, clearance and min_agl, a shared landing spot.
+cat >"$TMP/ground.yaml" <<'YAML'
+version: 1
+name: ground
+world:
+  bounds: {min: [0, 0, 0], max: [300, 200, 60]}
+  obstacles:
+    - {type: box, min: [120, 40, 0], max: [160, 160, 35]}
+  terrain: {type: grid, origin: [0, 0], cell: 50, heights: [[0, 2, 4, 6, 4, 2], [0, 2, 5, 8, 5, 2], [1, 3, 6, 9, 6, 3], [0, 2, 4, 6, 4, 2]]}
+uavs:
+  - {id: a, start: [20, 30, 0], goal: [270, 170, 2], clearance: 2, min_agl: 10, speed: 6, max_climb_deg: 30}
+  - {id: b, start: [20, 90, 0], goal: [270, 170, 2], clearance: 2, min_agl: 10, speed: 6, max_climb_deg: 30}
+mission: {type: independent, separation: 5}
+planner: {algorithm: astar, params: {cell_m: 4}}
+YAML
+"$BIN" plan "$TMP/ground.yaml" -o "$TMP/ground" >/dev/null 2>&1; check ground.plan 0 $?
+"$BIN" verify "$TMP/ground.yaml" "$TMP/ground/plan.json" >/dev/null 2>&1; check ground.verify 0 $?
+node -e '
+const p = require(process.argv[1]);
+const [a, b] = p.uavs.map(u => u.trajectory);
+const ok = a[0][3] === 0 && a[1][1] === a[0][1] && a[1][2] === a[0][2] && a[a.length - 1][3] === 2 &&
+  Math.hypot(a[a.length - 1][1] - b[b.length - 1][1], a[a.length - 1][2] - b[b.length - 1][2]) >= 5 &&
+  p.uavs.every(u => u.metrics.min_agl_m >= 10 - 1e-6 && u.metrics.max_climb_deg <= 30 + 1e-6);
+process.exit(ok ? 0 : 1);' "$TMP/ground/plan.json"; check ground.legs.and.spacing 0 $?
+expect_bad ground.below.min_agl "$(sed 's/start: \[20, 90, 0\]/start: [20, 90, 5]/' "$TMP/ground.yaml" >"$TMP/g2.yaml"; echo "$TMP/g2.yaml")" "below min_agl"
+
 echo "$pass passed, $fails failed"
 [ "$fails" = 0 ]

@@ -89,6 +89,7 @@ int run_plan(const PlanArgs& a) {
     std::cerr << a.scenario << ": planner: " << e.what() << "\n";
     return kExitBadInput;
   }
+  for (const std::string& note : plan.notes) std::cerr << a.scenario << ": note: " << note << "\n";
   if (interrupted()) {
     std::cerr << "uavplan: interrupted; nothing written\n";
     return kExitInterrupted;

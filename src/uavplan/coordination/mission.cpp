@@ -1,11 +1,14 @@
 #include "uavplan/coordination/mission.h"
 
+#include <algorithm>
 #include <memory>
+#include <stdexcept>
 #include <utility>
 
 #include "uavplan/coordination/group_mission.h"
 #include "uavplan/coordination/rendezvous_mission.h"
 #include "uavplan/coordination/routes_mission.h"
+#include "uavplan/planning/registry.h"
 
 namespace uavplan {
 namespace {
@@ -28,6 +31,29 @@ const Mission* find_mission(MissionType type) {
   for (const auto& [t, m] : registry())
     if (t == type) return m.get();
   return nullptr;
+}
+
+std::string mission_algorithm(const Scenario& sc, const std::optional<std::string>& asked_cli) {
+  const Mission* mission = find_mission(sc.mission.type);
+  const std::vector<std::string> allowed = mission ? mission->algorithms() : std::vector<std::string>{};
+  const std::optional<std::string> asked =
+      asked_cli ? asked_cli : sc.planner.algorithm_given ? std::optional<std::string>(sc.planner.algorithm) : std::nullopt;
+  const std::string type(to_string(sc.mission.type));
+  if (!asked) return allowed.empty() ? std::string("astar") : allowed.front();
+  if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), *asked) == allowed.end()) {
+    std::string list;
+    for (std::size_t i = 0; i < allowed.size(); ++i) list += (i ? (i + 1 == allowed.size() ? " or " : ", ") : "") + allowed[i];
+    throw std::invalid_argument("a " + type + " mission plans with " + list + ", not '" + *asked + "'");
+  }
+  if (sc.mission.type == MissionType::route)
+    for (const PlannerInfo& p : planner_catalog())
+      if (p.name == *asked && !p.via_points) {
+        std::string list;
+        for (const PlannerInfo& q : planner_catalog())
+          if (q.via_points) list += (list.empty() ? "" : ", ") + q.name;
+        throw std::invalid_argument("'" + *asked + "' does not plan through via points; a route mission plans with " + list);
+      }
+  return *asked;
 }
 
 }  // namespace uavplan

@@ -28,13 +28,21 @@ struct MissionOptions {
 // Why a UAV has no plan when the stop condition ended the run first.
 inline constexpr const char* kStoppedMessage = "stopped (time limit or interrupt) before it was planned";
 
-// What a mission plans with: the options, the planner chosen for it with its parameters, and
-// the parameters the mission reads itself (Mission::parameters()).
+// Per UAV of a scenario that stands on the ground at its start or goal: the point on the ground
+// it lifts off from (its scenario start) and the one it lands on (under its touch-down point).
+// The scenario a mission plans has the UAV lifted off and touching down (planning_view.h).
+struct GroundPoints {
+  std::vector<std::optional<Vec3>> start, goal;
+};
+
+// What a mission plans with: the options, the planner chosen for it with its parameters, the
+// parameters the mission reads itself (Mission::parameters()) and the ground legs' ends.
 struct MissionContext {
   const MissionOptions& options;
   std::string algorithm;
   Params params;
   Params mission_params;
+  GroundPoints ground;
 };
 
 class Mission {
@@ -44,6 +52,9 @@ class Mission {
   virtual std::vector<std::string> algorithms() const { return {}; }
   // Keys of planner.params (and --set) that the mission reads itself, not its planner.
   virtual std::vector<std::string> parameters() const { return {}; }
+  // Whether the mission flies UAVs' take-off and landing legs within its own timing (from
+  // MissionContext::ground); otherwise they are added around its plan.
+  virtual bool times_ground_legs() const { return false; }
   // Appends one UavPlan per scenario UAV, in scenario order. Throws std::invalid_argument for
   // bad parameters or a malformed problem.
   virtual void plan(const Scenario& scenario, const MissionContext& context, Plan& plan) const = 0;
@@ -51,5 +62,10 @@ class Mission {
 
 // The mission registered for a type, or nullptr when none is.
 const Mission* find_mission(MissionType type);
+
+// The planner a mission plans with: the one asked for (--algorithm, else the scenario's when it
+// names one), else the mission's default. Throws std::invalid_argument when the one asked for
+// cannot plan this mission, naming those that can.
+std::string mission_algorithm(const Scenario& scenario, const std::optional<std::string>& asked);
 
 }  // namespace uavplan

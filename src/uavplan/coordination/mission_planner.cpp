@@ -3,36 +3,65 @@
 #include <algorithm>
 #include <chrono>
 
+#include "uavplan/coordination/planning_view.h"
 #include "uavplan/planning/registry.h"
 
 namespace uavplan {
+
+namespace {
+
+// Parameters the chosen planner does not take but another registered one does are dropped with a
+// note (so one file can compare planners); the mission's own ones go to it. Others stay, and the
+// planner refuses them (a typo is bad input).
+void sort_params(const Mission* mission, MissionContext& ctx, std::vector<std::string>& notes) {
+  const std::vector<std::string> own = mission ? mission->parameters() : std::vector<std::string>{};
+  Params kept;
+  for (const auto& [key, value] : ctx.params) {
+    if (std::find(own.begin(), own.end(), key) != own.end()) {
+      ctx.mission_params[key] = value;
+      continue;
+    }
+    if (planner_accepts(ctx.algorithm, key, value)) {
+      kept[key] = value;
+      continue;
+    }
+    std::string others;
+    for (const PlannerInfo& p : planner_catalog())
+      if (p.name != ctx.algorithm && planner_accepts(p.name, key, value)) others += (others.empty() ? "" : ", ") + p.name;
+    if (others.empty()) {
+      kept[key] = value;  // nobody's: the planner names it as unknown
+      continue;
+    }
+    notes.push_back("planner.params." + key + " is not a parameter of " + ctx.algorithm + " (it is one of " + others +
+                    "): ignored");
+  }
+  ctx.params = std::move(kept);
+}
+
+}  // namespace
 
 Plan plan_mission(const Scenario& sc, const MissionOptions& opt) {
   const auto t0 = std::chrono::steady_clock::now();
   Plan plan;
   plan.scenario = sc.name;
   plan.seed = opt.seed;
-  const std::string requested = opt.algorithm.value_or(sc.planner.algorithm);
   Params params = sc.planner.params;
   for (const auto& [k, v] : opt.params) params[k] = v;
   const Mission* mission = find_mission(sc.mission.type);
-  MissionContext ctx{opt, requested, params, {}};
-  if (mission)
-    for (const std::string& key : mission->parameters())
-      if (const auto it = ctx.params.find(key); it != ctx.params.end()) {
-        ctx.mission_params.insert(*it);
-        ctx.params.erase(it);
-      }
-  const std::vector<std::string> allowed = mission ? mission->algorithms() : std::vector<std::string>{};
-  if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), requested) == allowed.end()) {
-    // The mission plans with its own method: other planners' parameters do not apply.
-    ctx.algorithm = allowed.front();
-    ctx.params.clear();
-  }
+  MissionContext ctx{opt, mission_algorithm(sc, opt.algorithm), params, {}, {}};
+  sort_params(mission, ctx, plan.notes);
   plan.algorithm = ctx.algorithm;
   make_planner(ctx.algorithm, ctx.params);  // unknown names and parameters are errors for every mission
+  const PlanningView view = planning_view(sc, !(mission && mission->times_ground_legs()));
+  ctx.ground = view.ground;
   if (mission) {
-    mission->plan(sc, ctx, plan);
+    mission->plan(view.identity ? sc : view.scenario, ctx, plan);
+    to_scenario(view, sc, plan, opt.max_sample_dt_s);
+    for (std::size_t i = 0; i < plan.uavs.size() && i < view.arrival_problem.size(); ++i)
+      if (!view.arrival_problem[i].empty() && plan.uavs[i].status == Status::solved) {
+        plan.uavs[i].status = Status::failed;
+        plan.uavs[i].message = view.arrival_problem[i];
+      }
   } else {
     for (const auto& u : sc.uavs) {
       UavPlan up;

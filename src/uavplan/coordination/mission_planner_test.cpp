@@ -49,5 +49,26 @@ TEST(MissionPlanner, UnknownAlgorithmIsMisuse) {
   EXPECT_THROW(plan_mission(crossing(1.0), opt), std::invalid_argument);
 }
 
+// A gap the body fits through but not with the clearance asked for.
+TEST(MissionPlanner, ClearanceNarrowsWhatFits) {
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(100, 100, 0)};
+  ws.obstacles = {Box{Vec3(48, 0, -1), Vec3(52, 48.5, 1)}, Box{Vec3(48, 51.5, -1), Vec3(52, 100, 1)}};
+  Scenario sc;
+  sc.world = World(std::move(ws));
+  UavSpec u;
+  u.id = "u1";
+  u.start = Vec3(10, 50, 0);
+  u.goal = Vec3(90, 50, 0);
+  sc.uavs.push_back(u);
+  MissionOptions opt;
+  opt.params = {{"cell_m", "0.5"}};
+  EXPECT_EQ(plan_mission(sc, opt).status, Status::solved);
+  sc.uavs[0].clearance_m = 1.2;  // needs 2 x 1.7 m of the 3 m gap
+  const Plan p = plan_mission(sc, opt);
+  EXPECT_EQ(p.status, Status::failed);
+  EXPECT_FALSE(p.uavs[0].message.empty());
+}
+
 }  // namespace
 }  // namespace uavplan

@@ -33,6 +33,7 @@ struct Plan {
   std::vector<UavPlan> uavs;
   std::map<std::string, double> metrics;  // filled by evaluation
   double plan_ms = 0.0;                   // wall time; kept out of the plan file by default
+  std::vector<std::string> notes;         // for the user, not the file (parameters ignored, ...)
 
   const UavPlan* find_uav(std::string_view id) const {
     for (const auto& u : uavs)

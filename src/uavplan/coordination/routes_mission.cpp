@@ -17,7 +17,8 @@ bool senses(const UavSpec& u) { return u.sensor_range_m.has_value(); }
 // flights so far). UAVs without sensors also keep clear of the moving obstacles (known in advance
 // to them); UAVs with sensors only plan to (they meet the moving obstacles in the loop). Planning
 // and timing go UAV by UAV, so a stop leaves the UAVs done so far complete.
-Committed plan_and_time(const Scenario& sc, const Planner& planner, const MissionOptions& opt, Plan& plan) {
+Committed plan_and_time(const Scenario& sc, const Planner& planner, const MissionOptions& opt, const GroundPoints& ground,
+                        Plan& plan) {
   plan.uavs.reserve(sc.uavs.size());  // `committed` points into it
   Committed committed;
   double horizon_s = 60.0;
@@ -44,6 +45,9 @@ Committed plan_and_time(const Scenario& sc, const Planner& planner, const Missio
     up.waypoints = r.route.waypoints;
     up.length_m = r.route.length_m();
     if (up.status != Status::solved) continue;
+    if (i < ground.start.size() && ground.start[i]) up.waypoints.insert(up.waypoints.begin(), *ground.start[i]);
+    if (i < ground.goal.size() && ground.goal[i]) up.waypoints.push_back(*ground.goal[i]);
+    up.length_m = Route{up.waypoints}.length_m();
     horizon_s += 2.0 * up.length_m / u.speed.cruise_mps;
     Departure d = earliest_departure(sc, u, up.waypoints, horizon_s, committed, opt.delay_step_s, opt.max_sample_dt_s,
                                      opt.stop, !senses(u));
@@ -126,7 +130,15 @@ void fly_sensing(const Scenario& sc, const MissionContext& ctx, const Committed&
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
     const UavSpec& u = sc.uavs[i];
     if (!senses(u) || plan.uavs[i].status != Status::solved) continue;
-    loop.push_back({&u, plan.uavs[i].waypoints, *u.sensor_range_m, departure_s(plan.uavs[i].trajectory)});
+    // In the loop from its lift-off point to its touch-down point, once it has climbed.
+    std::vector<Vec3> route = plan.uavs[i].waypoints;
+    double depart_s = departure_s(plan.uavs[i].trajectory);
+    if (i < ctx.ground.start.size() && ctx.ground.start[i]) {
+      route.erase(route.begin());
+      depart_s += (route.front() - *ctx.ground.start[i]).norm() / u.speed.cruise_mps;
+    }
+    if (i < ctx.ground.goal.size() && ctx.ground.goal[i]) route.pop_back();
+    loop.push_back({&u, std::move(route), *u.sensor_range_m, depart_s});
     index.push_back(i);
     windows.push_back(layer.window_m > 0.0 ? layer.window_m : *u.sensor_range_m);
     horizon_s = std::max(horizon_s, 120.0 + 3.0 * plan.uavs[i].trajectory.back().t_s);
@@ -188,7 +200,7 @@ void fly_sensing(const Scenario& sc, const MissionContext& ctx, const Committed&
 
 void RoutesMission::plan(const Scenario& sc, const MissionContext& ctx, Plan& plan) const {
   const auto planner = make_planner(ctx.algorithm, ctx.params);
-  const Committed committed = plan_and_time(sc, *planner, ctx.options, plan);
+  const Committed committed = plan_and_time(sc, *planner, ctx.options, ctx.ground, plan);
   fly_sensing(sc, ctx, committed, plan);
 }
 

@@ -6,7 +6,9 @@
 // closed loop with P1's rolling-window replanning (rolling_window.h), after the UAVs without
 // sensors are timed (those fly as planned, and the sensing ones see them as moving objects).
 // Mission parameters: `local` (improved_rrt, default, or rrt: the local replanner) and
-// `window_m` (route ahead checked; default the sensor range).
+// `window_m` (route ahead checked; default the sensor range). Take-off and landing legs are part
+// of the timed routes; a sensing UAV departs into the loop from its lift-off point once it has
+// climbed there.
 #pragma once
 
 #include "uavplan/coordination/mission.h"
@@ -16,6 +18,7 @@ namespace uavplan {
 class RoutesMission final : public Mission {
  public:
   std::vector<std::string> parameters() const override { return {"local", "window_m"}; }
+  bool times_ground_legs() const override { return true; }
   void plan(const Scenario& scenario, const MissionContext& context, Plan& plan) const override;
 };
 

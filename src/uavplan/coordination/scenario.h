@@ -23,10 +23,14 @@ struct MissionSpec {
   std::vector<Vec3> waypoints;                // route: via points, in order
   std::optional<double> arrival_tolerance_m;  // rendezvous: max spread of route lengths
   double step_s = 1.0;                        // sensing / control period T of flights in the loop
+  // UAVs whose goals lie closer than this arrive at distinct points this far apart (0: they
+  // meet at the goal); default the separation. Not for rendezvous (one goal by design).
+  std::optional<double> goal_spacing_m;
 };
 
 struct PlannerSpec {
   std::string algorithm = "astar";
+  bool algorithm_given = false;  // the scenario names it (else the mission's own default applies)
   Params params;
 };
 

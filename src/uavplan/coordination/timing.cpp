@@ -23,7 +23,7 @@ Conflict find_conflict(const Scenario& sc, const UavSpec& uav, const Trajectory&
   if (m.distance_m < uav.radius_m + kTimingMargin_m)
     return {true, "moving obstacle '" + sc.world.moving()[idx].id + "' at " + at(m)};
   for (const auto& [spec, other] : committed) {
-    const Encounter e = closest_approach(tr, other->trajectory, separation_horizon_s(sc, uav, tr, *spec, other->trajectory));
+    const Encounter e = closest_approach(tr, other->trajectory);
     if (e.distance_m < required_separation_m(sc, uav, *spec) + kTimingMargin_m)
       return {true, "UAV '" + other->id + "' at " + at(e)};
   }

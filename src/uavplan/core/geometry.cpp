@@ -106,6 +106,16 @@ bool segments_intersect_2d(const Vec2& a, const Vec2& b, const Vec2& c, const Ve
   return false;
 }
 
+std::optional<std::pair<std::size_t, std::size_t>> polygon_self_intersection(std::span<const Vec2> poly) {
+  const std::size_t n = poly.size();
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 2; j < n; ++j) {
+      if (i == 0 && j == n - 1) continue;  // adjacent through the closing vertex
+      if (segments_intersect_2d(poly[i], poly[(i + 1) % n], poly[j], poly[(j + 1) % n])) return std::make_pair(i, j);
+    }
+  return std::nullopt;
+}
+
 double polygon_signed_area(std::span<const Vec2> poly) {
   double a = 0.0;
   const std::size_t n = poly.size();

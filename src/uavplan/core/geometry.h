@@ -2,7 +2,9 @@
 #pragma once
 
 #include <algorithm>
+#include <optional>
 #include <span>
+#include <utility>
 
 #include "uavplan/core/vec.h"
 
@@ -51,6 +53,10 @@ double point_polygon_boundary_distance(const Vec2& p, std::span<const Vec2> poly
 
 // Whether 2-D segments [a, b] and [c, d] intersect (touching counts).
 bool segments_intersect_2d(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d);
+
+// The first two non-adjacent edges of a closed polygon that touch or cross (edge k runs from
+// vertex k to vertex k + 1), or nullopt for a simple polygon. O(n^2): scenario polygons are small.
+std::optional<std::pair<std::size_t, std::size_t>> polygon_self_intersection(std::span<const Vec2> polygon);
 
 // Signed area (positive when counter-clockwise).
 double polygon_signed_area(std::span<const Vec2> polygon);

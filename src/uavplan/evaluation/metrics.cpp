@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "uavplan/core/units.h"
+#include "uavplan/evaluation/ground_legs.h"
 
 namespace uavplan {
 
@@ -50,17 +51,27 @@ UavMetrics uav_metrics(const Scenario& sc, const UavSpec& spec, const UavPlan& p
       last = i;
     }
   if (last > 0) m.flight_time_s = tr[last].t_s - tr[first - 1].t_s;
+  // Turn, climb, clearance and height as the verifier sees them: on the take-off and landing
+  // legs only the distance to obstacles counts (not to the ground the UAV stands on).
+  const GroundLegs legs = ground_legs(sc.world, tr);
   std::optional<Vec3> prev;
-  if (spec.heading_rad) prev = heading_vector(*spec.heading_rad);
+  if (spec.heading_rad && !legs.takeoff) prev = heading_vector(*spec.heading_rad);
   const double cap = sc.world.bounds().extent().norm() + 1.0;
+  const bool has_ground = sc.world.bounds().extent().z() > 0.0;
   m.min_clearance_m = pts.size() == 1 ? sc.world.clearance(pts[0], cap) : World::kInf;
+  m.min_agl_m = World::kInf;
   for (std::size_t i = 1; i < pts.size(); ++i) {
     const Vec3 seg = pts[i] - pts[i - 1];
     if (seg.norm() <= 0.0) continue;
+    if (legs.covers(i)) {
+      m.min_clearance_m = std::min(m.min_clearance_m, sc.world.segment_obstacle_clearance(pts[i - 1], pts[i], cap));
+      continue;
+    }
     m.max_climb_deg = std::max(m.max_climb_deg, rad_to_deg(std::abs(pitch_rad(seg))));
     if (prev) m.max_turn_deg = std::max(m.max_turn_deg, rad_to_deg(turn_rad(*prev, seg)));
     prev = seg;
     m.min_clearance_m = std::min(m.min_clearance_m, sc.world.segment_clearance(pts[i - 1], pts[i], cap));
+    if (has_ground) m.min_agl_m = std::min(m.min_agl_m, sc.world.lowest_height_above_ground(pts[i - 1], pts[i]));
   }
   m.p1_cost = p1_route_cost(plan.waypoints, sc.world);
   m.p3 = p3_score(plan.waypoints, sc.world);
@@ -85,6 +96,7 @@ void compute_metrics(const Scenario& sc, Plan& plan) {
                   {"p3_y2", m.p3.y2},
                   {"p3_y3", m.p3.y3}};
     if (std::isfinite(m.min_clearance_m)) up.metrics["min_clearance_m"] = m.min_clearance_m;
+    if (std::isfinite(m.min_agl_m)) up.metrics["min_agl_m"] = m.min_agl_m;
     total += m.length_m;
     p3_total += m.p3.sc;
     t_min = std::min(t_min, up.trajectory.back().t_s);

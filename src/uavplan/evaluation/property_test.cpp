@@ -69,6 +69,25 @@ TEST_P(PlannerProperties, RandomWorldsClaimsHoldAndRepeat) {
   EXPECT_GT(solved, uavs / 3) << name << ": " << solved << " of " << uavs;
 }
 
+// Starts and goals on the ground (take-off and landing legs), clearance and min_agl: every
+// planner honours them through the mission layer, and the verifier checks them.
+TEST_P(PlannerProperties, GroundStartsClearanceAndMinAglHold) {
+  const std::string name = GetParam();
+  const std::uint64_t worlds = name == "cellular_aco" ? 25 : 60;
+  RandomWorldOptions o;
+  o.ground_and_margins = true;
+  int solved = 0, uavs = 0, grounded = 0;
+  for (std::uint64_t seed = 1; seed <= worlds; ++seed) {
+    const Scenario sc = random_world(seed * 104729 + name.size(), o);
+    for (const UavSpec& u : sc.uavs) grounded += sc.world.on_ground(u.start) + (u.goal && sc.world.on_ground(*u.goal));
+    const Plan plan = plan_mission(sc, options(name, seed));
+    expect_claims_hold(sc, plan, name + " margins seed " + std::to_string(seed));
+    for (const UavPlan& u : plan.uavs) solved += u.status == Status::solved, ++uavs;
+  }
+  EXPECT_GT(grounded, 10);
+  EXPECT_GT(solved, uavs / 3) << name << ": " << solved << " of " << uavs;
+}
+
 TEST_P(PlannerProperties, EnclosedGoalFailsWithinTheStop) {
   const std::string name = GetParam();
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {

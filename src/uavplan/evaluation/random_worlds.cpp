@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <optional>
 
+#include "uavplan/coordination/planning_view.h"
 #include "uavplan/core/rng.h"
 #include "uavplan/core/units.h"
 
@@ -36,6 +37,21 @@ std::optional<Vec3> free_point(Rng& r, const World& w, double margin) {
   return std::nullopt;
 }
 
+// Half the time, p put down on the ground when the UAV can take off or land there; else p raised
+// to min_agl when it is below it. False when p cannot be either.
+bool place_for_margins(Rng& r, const Scenario& sc, const UavSpec& u, Vec3& p) {
+  const World& w = sc.world;
+  const double keep = keep_off_m(u), ground = w.ground_z(p.x(), p.y());
+  if (r.uniform01() < 0.5) {
+    const Vec3 down(p.x(), p.y(), ground);
+    if (!ground_column_problem(sc, u, down).empty()) return false;
+    p = down;
+    return true;
+  }
+  p.z() = std::max(p.z(), ground + u.min_agl_m + keep + 0.1);
+  return w.in_bounds(p) && w.clearance(p, keep) >= keep;
+}
+
 }  // namespace
 
 Scenario random_world(std::uint64_t seed, const RandomWorldOptions& opt) {
@@ -58,6 +74,8 @@ Scenario random_world(std::uint64_t seed, const RandomWorldOptions& opt) {
   sc.mission.separation_m = r.uniform(1, 4);
   const int n = static_cast<int>(r.uniform_int(1, opt.max_uavs));
   const std::optional<Vec3> common_goal = free_point(r, sc.world, 5);
+  // One min_agl for the world's UAVs: planners keep the largest of a scenario's for all of them.
+  const double min_agl_m = opt.ground_and_margins && !flat ? r.uniform(0.0, 0.15 * height) : 0.0;
   for (int i = 0; i < n; ++i) {
     UavSpec u;
     u.id = "u" + std::to_string(i + 1);
@@ -72,11 +90,26 @@ Scenario random_world(std::uint64_t seed, const RandomWorldOptions& opt) {
     if (!start || !goal) continue;  // a crowded world: fewer UAVs
     u.start = *start;
     u.goal = *goal;
+    if (opt.ground_and_margins && !flat) {
+      u.clearance_m = r.uniform(0.0, 1.5);
+      u.min_agl_m = min_agl_m;
+      if (!place_for_margins(r, sc, u, u.start) || !place_for_margins(r, sc, u, *u.goal)) continue;
+      bool apart = true;
+      for (const UavSpec& o : sc.uavs) apart = apart && (o.start - u.start).norm() >= 3 * sc.mission.separation_m + o.radius_m + u.radius_m;
+      if (!apart) continue;
+    }
     const double v = r.uniform(2, 10);
     u.speed = {0, v, v};
     if (opt.limits && r.uniform01() < 0.4) u.max_turn_rad = deg_to_rad(r.uniform(45, 120));
     if (opt.limits && !flat && r.uniform01() < 0.4) u.max_climb_rad = deg_to_rad(r.uniform(25, 60));
     sc.uavs.push_back(u);
+  }
+  if (opt.ground_and_margins) {  // as the scenario loader does: UAVs the planners cannot place go
+    const auto problems = placement_problems(sc);
+    std::vector<UavSpec> kept;
+    for (std::size_t i = 0; i < sc.uavs.size(); ++i)
+      if (problems[i].start.empty() && problems[i].goal.empty()) kept.push_back(sc.uavs[i]);
+    sc.uavs = std::move(kept);
   }
   if (sc.uavs.empty()) return random_world(seed + 1000003, opt);
   if (opt.mission == MissionType::rendezvous) sc.mission.arrival_tolerance_m = r.uniform(5, 30);

@@ -71,11 +71,10 @@ TEST(RendezvousRandom, SolvedUavsHoldAndMostWorldsAreSolved) {
     solved_only.uavs.clear();
     for (const auto& u : plan.uavs)
       if (u.status == Status::solved) solved_only.uavs.push_back(u);
-    Scenario flown = sc;
-    flown.uavs.clear();
-    for (std::size_t i = 0; i < sc.uavs.size(); ++i)
-      if (plan.uavs[i].status == Status::solved) flown.uavs.push_back(sc.uavs[i]);
-    EXPECT_TRUE(verify_plan(flown, solved_only).empty()) << "seed " << seed;
+    // Checked in the whole scenario (the arrival points at a shared goal are the whole group's):
+    // the UAVs left out are only missing.
+    for (const Violation& v : verify_plan(sc, solved_only))
+      if (v.kind != ViolationKind::not_planned) ADD_FAILURE() << "seed " << seed << ": " << describe(v);
     solved += plan.status == Status::solved;
     if (plan.status != Status::solved)
       for (const auto& u : plan.uavs) std::printf("seed %d %s: %s\n", static_cast<int>(seed), u.id.c_str(), u.message.c_str());

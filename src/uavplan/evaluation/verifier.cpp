@@ -4,9 +4,12 @@
 #include <cmath>
 #include <cstdio>
 
+#include "uavplan/core/text.h"
+#include "uavplan/coordination/arrival_points.h"
 #include "uavplan/coordination/separation.h"
 #include "uavplan/core/geometry.h"
 #include "uavplan/core/units.h"
+#include "uavplan/evaluation/ground_legs.h"
 #include "uavplan/evaluation/metrics.h"
 
 namespace uavplan {
@@ -21,6 +24,7 @@ std::string_view to_string(ViolationKind k) {
     case ViolationKind::bounds: return "bounds";
     case ViolationKind::ceiling: return "ceiling";
     case ViolationKind::obstacle: return "obstacle";
+    case ViolationKind::low_altitude: return "low_altitude";
     case ViolationKind::moving_obstacle: return "moving_obstacle";
     case ViolationKind::separation: return "separation";
     case ViolationKind::turn: return "turn";
@@ -50,11 +54,7 @@ std::string describe(const Violation& v) {
 
 namespace {
 
-std::string num(double x) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.6g", x);
-  return buf;
-}
+std::string num(double x) { return num_text(x); }
 
 using Out = std::vector<Violation>;
 
@@ -77,7 +77,7 @@ double worst_param(const World& w, const Vec3& a, const Vec3& b) {
   return best_t;
 }
 
-void check_uav(const Scenario& sc, const UavSpec& u, const UavPlan& up, Out& out) {
+void check_uav(const Scenario& sc, const UavSpec& u, const UavPlan& up, double arrival_tolerance_m, Out& out) {
   const auto& tr = up.trajectory;
   const std::string& id = u.id;
   for (const auto& s : tr)
@@ -88,8 +88,10 @@ void check_uav(const Scenario& sc, const UavSpec& u, const UavPlan& up, Out& out
   // Start and goal.
   if ((tr.front().p - u.start).norm() > kPositionTolerance_m)
     add(out, ViolationKind::start, id, tr.front().t_s, tr.front().p, "trajectory does not begin at the start");
-  if (u.goal && (tr.back().p - *u.goal).norm() > kPositionTolerance_m)
-    add(out, ViolationKind::goal, id, tr.back().t_s, tr.back().p, "trajectory does not end at the goal");
+  if (u.goal && (tr.back().p - *u.goal).norm() > arrival_tolerance_m + kPositionTolerance_m)
+    add(out, ViolationKind::goal, id, tr.back().t_s, tr.back().p,
+        arrival_tolerance_m > 0.0 ? "trajectory does not end within " + num(arrival_tolerance_m) + " m of its shared goal"
+                                  : "trajectory does not end at the goal");
   const double ceiling = u.ceiling_m ? std::min(*u.ceiling_m, sc.world.bounds().max.z()) : sc.world.bounds().max.z();
   const Aabb bounds = sc.world.bounds().inflated(kDistanceTolerance_m);
   bool reported_bounds = false, reported_ceiling = false;
@@ -103,8 +105,11 @@ void check_uav(const Scenario& sc, const UavSpec& u, const UavPlan& up, Out& out
       reported_ceiling = true;
     }
   }
-  // Segment by segment: timing, speed, static and moving obstacles.
-  const double r = u.radius_m;
+  // Segment by segment: timing, speed, static and moving obstacles, height above the ground.
+  const GroundLegs legs = ground_legs(sc.world, tr);
+  const double keep = keep_off_m(u);
+  const std::string keep_text =
+      u.clearance_m > 0.0 ? "the UAV radius plus clearance " + num(keep) + " m" : "the UAV radius " + num(keep) + " m";
   for (std::size_t i = 1; i < tr.size(); ++i) {
     const auto &a = tr[i - 1], &b = tr[i];
     const double dt = b.t_s - a.t_s, len = (b.p - a.p).norm();
@@ -115,25 +120,35 @@ void check_uav(const Scenario& sc, const UavSpec& u, const UavPlan& up, Out& out
     if (dt > 0.0 && len / dt > u.speed.max_mps * (1.0 + 1e-6) + 1e-9)
       add(out, ViolationKind::speed, id, a.t_s, a.p,
           "speed " + num(len / dt) + " m/s above the maximum " + num(u.speed.max_mps) + " m/s");
-    const double c = sc.world.segment_clearance(a.p, b.p, r);
-    if (c < r - kDistanceTolerance_m) {
+    const bool on_leg = legs.covers(i);
+    const double leg_ground = i <= legs.takeoff_end && legs.takeoff ? tr.front().p.z() : tr.back().p.z();
+    const double c = on_leg ? sc.world.ground_leg_clearance(a.p, b.p, keep, leg_ground) : sc.world.segment_clearance(a.p, b.p, keep);
+    if (c < keep - kDistanceTolerance_m) {
       const double f = worst_param(sc.world, a.p, b.p);
       add(out, ViolationKind::obstacle, id, a.t_s + f * dt, Vec3(a.p + f * (b.p - a.p)),
-          "clearance " + num(c) + " m to an obstacle or the terrain, below the UAV radius " + num(r) + " m");
+          "clearance " + num(c) + " m to an obstacle or the terrain, below " + keep_text);
+    }
+    if (u.min_agl_m > 0.0 && !on_leg) {
+      const double h = sc.world.lowest_height_above_ground(a.p, b.p);
+      if (h < u.min_agl_m - kDistanceTolerance_m)
+        add(out, ViolationKind::low_altitude, id, a.t_s, a.p,
+            "height " + num(h) + " m above the ground, below min_agl " + num(u.min_agl_m) + " m");
     }
   }
   int idx = -1;
   const Encounter m = closest_moving_approach(sc.world, tr, &idx);
-  if (m.distance_m < r - kDistanceTolerance_m)
+  if (m.distance_m < keep - kDistanceTolerance_m)
     add(out, ViolationKind::moving_obstacle, id, m.t_s, m.where,
-        "gap " + num(m.distance_m) + " m to moving obstacle '" + sc.world.moving()[idx].id +
-            "', below the UAV radius " + num(r) + " m");
-  // Turn and climb on the flown polyline (samples between waypoints are collinear).
+        "gap " + num(m.distance_m) + " m to moving obstacle '" + sc.world.moving()[idx].id + "', below " + keep_text);
+  // Turn and climb on the flown polyline (samples between waypoints are collinear), off the
+  // ground legs (a vertical take-off neither climbs within a limit nor keeps a start heading).
   std::vector<Vec3> pts;
-  for (const auto& s : tr) pts.push_back(s.p);
-  for (const auto& lv : check_route_limits(pts, u)) {
+  for (std::size_t k = legs.airborne_begin(); k <= legs.airborne_end(tr.size()); ++k) pts.push_back(tr[k].p);
+  UavSpec limits = u;
+  if (legs.takeoff) limits.heading_rad.reset();
+  for (const auto& lv : check_route_limits(pts, limits)) {
     const bool turn = lv.kind == LimitViolation::Kind::turn;
-    const auto& s = tr[lv.index];
+    const auto& s = tr[legs.airborne_begin() + lv.index];
     add(out, turn ? ViolationKind::turn : ViolationKind::climb, id, s.t_s, s.p,
         std::string(turn ? "turn " : "climb ") + num(rad_to_deg(lv.value_rad)) + " deg above the limit " +
             num(rad_to_deg(turn ? u.max_turn_rad : u.max_climb_rad)) + " deg" +
@@ -141,7 +156,7 @@ void check_uav(const Scenario& sc, const UavSpec& u, const UavPlan& up, Out& out
   }
   // Via points, in order.
   if (sc.mission.type == MissionType::route) {
-    const double tol = std::max(r, kPositionTolerance_m);
+    const double tol = std::max(u.radius_m, kPositionTolerance_m);
     std::size_t seg = 0;
     double from = 0.0;  // progress so far: segment `seg`, this fraction along it
     for (std::size_t v = 0; v < sc.mission.waypoints.size(); ++v) {
@@ -173,7 +188,9 @@ std::vector<Violation> verify_plan(const Scenario& sc, const Plan& plan) {
     if (!sc.find_uav(up.id))
       add(out, ViolationKind::unknown_uav, up.id, std::nullopt, std::nullopt, "the scenario has no UAV with this id");
   std::vector<std::pair<const UavSpec*, const UavPlan*>> flown;
-  for (const auto& u : sc.uavs) {
+  const std::vector<Arrival> arrivals = arrival_points(sc);
+  for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
+    const UavSpec& u = sc.uavs[i];
     const UavPlan* up = plan.find_uav(u.id);
     if (!up) {
       add(out, ViolationKind::not_planned, u.id, std::nullopt, std::nullopt, "missing from the plan");
@@ -184,7 +201,7 @@ std::vector<Violation> verify_plan(const Scenario& sc, const Plan& plan) {
           "no trajectory" + (up->message.empty() ? std::string() : " (" + up->message + ")"));
       continue;
     }
-    check_uav(sc, u, *up, out);
+    check_uav(sc, u, *up, arrivals[i].tolerance_m, out);
     flown.emplace_back(&u, up);
   }
   const bool rendezvous = sc.mission.type == MissionType::rendezvous;
@@ -197,9 +214,7 @@ std::vector<Violation> verify_plan(const Scenario& sc, const Plan& plan) {
       const auto& [ub, pb] = flown[j];
       const double need = required_separation_m(sc, *ua, *ub);
       if (boxes.lower_bound_m(i, j) >= need) continue;
-      // UAVs sent to one goal meet there by design (separation_horizon_s).
-      const double t_max = separation_horizon_s(sc, *ua, pa->trajectory, *ub, pb->trajectory);
-      const Encounter e = closest_approach(pa->trajectory, pb->trajectory, t_max);
+      const Encounter e = closest_approach(pa->trajectory, pb->trajectory);
       if (e.distance_m < need - kDistanceTolerance_m)
         add(out, ViolationKind::separation, ua->id, e.t_s, e.where,
             "distance " + num(e.distance_m) + " m to '" + ub->id + "', below the separation " + num(need) + " m");

@@ -1,5 +1,9 @@
 // The verifier: checks a plan against its scenario and reports every violation with the UAV,
 // the time and the place. A plan that is not verified is never `solved` (finalize_plan).
+// A UAV may start and end on the ground (z = the terrain there, or the bottom of the bounds):
+// its legs from and to the ground (up to the first row off the ground, from the last one) keep
+// their distance from obstacles, but not from the ground they leave or reach within the UAV's
+// radius and clearance, and the climb and turn limits and min_agl do not hold on them.
 #pragma once
 
 #include <optional>
@@ -19,7 +23,8 @@ enum class ViolationKind {
   goal,             // does not end at the UAV's goal
   bounds,
   ceiling,
-  obstacle,         // static obstacles and terrain, after inflation by the UAV radius
+  obstacle,         // static obstacles and terrain, after inflation by the UAV radius and clearance
+  low_altitude,     // below the UAV's min_agl above the ground (but taking off and landing)
   moving_obstacle,
   separation,       // two UAVs closer than the mission's separation (or their radii)
   turn,

@@ -4,6 +4,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "uavplan/coordination/arrival_points.h"
+
 namespace uavplan {
 namespace {
 
@@ -190,6 +192,59 @@ TEST(Verifier, FinalizeFailsViolatingUavs) {
   EXPECT_EQ(p.uavs[1].status, Status::solved);
   EXPECT_EQ(p.status, Status::partial);
   EXPECT_NE(p.uavs[0].message.find("obstacle"), std::string::npos);
+}
+
+// A UAV standing on the ground takes off and lands vertically: the climb limit, min_agl and the
+// ground under it do not count on those legs; obstacles and the terrain beside the column do.
+TEST(Verifier, TakeOffAndLandingLegs) {
+  Scenario sc = base_scenario();
+  sc.uavs.resize(1);
+  UavSpec& u = sc.uavs[0];
+  u.start = Vec3(10, 10, 0);
+  u.goal = Vec3(30, 10, 0);
+  u.min_agl_m = 5;
+  Plan p = base_plan(sc);
+  fly(p, 0, {{10, 10, 0}, {10, 10, 2}, {10, 10, 20}, {30, 10, 20}, {30, 10, 0}});
+  EXPECT_TRUE(verify_plan(sc, p).empty()) << describe(verify_plan(sc, p).front());
+  // Airborne, the same height is low: a hop at 2 m between two columns.
+  fly(p, 0, {{10, 10, 0}, {10, 10, 20}, {20, 10, 2}, {30, 10, 20}, {30, 10, 0}});
+  EXPECT_THAT(kinds(sc, p), ::testing::Contains(K::low_altitude));
+  // A column beside the 10 m plateau (x >= 50, y < 50) scrapes it above the UAV's radius.
+  u.goal = Vec3(49.8, 10, 0);
+  fly(p, 0, {{10, 10, 0}, {10, 10, 20}, {49.8, 10, 20}, {49.8, 10, 0}});
+  EXPECT_THAT(kinds(sc, p), ::testing::Contains(K::obstacle));
+}
+
+TEST(Verifier, ClearanceAndMinAgl) {
+  Scenario sc = base_scenario();
+  sc.uavs.resize(1);
+  sc.uavs[0].max_turn_rad = kPi;
+  Plan p = base_plan(sc);
+  fly(p, 0, {{10, 10, 20}, {38.5, 45, 20}, {30, 10, 20}});  // 1.5 m from the box (x >= 40)
+  for (const auto& v : verify_plan(sc, p)) ADD_FAILURE() << describe(v);
+  sc.uavs[0].clearance_m = 2;
+  const auto v = verify_plan(sc, p);
+  ASSERT_FALSE(v.empty());
+  EXPECT_EQ(v[0].kind, K::obstacle);
+  EXPECT_NE(v[0].message.find("radius plus clearance 2.5 m"), std::string::npos) << v[0].message;
+  sc.uavs[0].clearance_m = 0;
+  sc.uavs[0].min_agl_m = 25;  // flies at 20 m
+  EXPECT_THAT(kinds(sc, base_plan(sc), "a"), ::testing::Contains(K::low_altitude));
+}
+
+// UAVs sent to one goal keep their separation there too; each may end anywhere within its
+// arrival point's distance of the goal (arrival_points.h), not further.
+TEST(Verifier, SharedGoalsAreNoExemption) {
+  Scenario sc = base_scenario();
+  sc.uavs[1].goal = sc.uavs[0].goal;
+  Plan p = base_plan(sc);
+  EXPECT_THAT(kinds(sc, p), ::testing::Contains(K::separation));
+  const std::vector<Arrival> at = arrival_points(sc);
+  ASSERT_GT(at[0].tolerance_m, 0.0);
+  for (int i = 0; i < 2; ++i) fly(p, i, {sc.uavs[i].start, at[i].point});
+  EXPECT_TRUE(verify_plan(sc, p).empty()) << describe(verify_plan(sc, p).front());
+  fly(p, 1, {sc.uavs[1].start, *sc.uavs[1].goal + Vec3(0, 3 * at[1].tolerance_m, 0)});
+  EXPECT_THAT(kinds(sc, p, "b"), ::testing::Contains(K::goal));
 }
 
 }  // namespace

@@ -49,6 +49,9 @@ void remove_stale_temporaries(const std::filesystem::path& target) {
 void write_file_atomic(const std::string& path, const std::string& content) {
   namespace fs = std::filesystem;
   const fs::path target(path);
+  std::error_code probe;
+  if (fs::is_directory(target, probe))
+    throw InputError(path, 0, "", "is a folder: give a file name (" + (target / "NAME").string() + ")");
   if (target.has_parent_path()) fs::create_directories(target.parent_path());
   remove_stale_temporaries(target);
   const fs::path tmp = target.string() + ".tmp." + std::to_string(::getpid());
@@ -66,8 +69,9 @@ void write_file_atomic(const std::string& path, const std::string& content) {
   std::error_code ec;
   fs::rename(tmp, target, ec);
   if (ec) {
+    const std::string why = ec.message();
     fs::remove(tmp, ec);
-    throw std::runtime_error("cannot move " + tmp.string() + " to " + path + ": " + ec.message());
+    throw std::runtime_error("cannot move " + tmp.string() + " to " + path + ": " + why);
   }
 }
 

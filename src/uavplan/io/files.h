@@ -11,7 +11,8 @@ std::string read_text_file(const std::string& path);
 // Writes through a temporary file in the same directory and renames it into place, so a
 // reader never sees a half-written file; creates missing parent directories; removes temporary
 // files of the same target that a killed run left (their process is gone). Throws
-// std::runtime_error on failure (the temporary file is removed).
+// InputError when `path` is a folder, std::runtime_error on other failures (the temporary file
+// is removed).
 void write_file_atomic(const std::string& path, const std::string& content);
 
 }  // namespace uavplan

@@ -18,6 +18,9 @@
 #include "uavplan/io/osm_buildings.h"
 #include "uavplan/io/text_input.h"
 #include "uavplan/io/tree_check.h"
+#include "uavplan/coordination/mission.h"
+#include "uavplan/coordination/planning_view.h"
+#include "uavplan/planning/registry.h"
 
 namespace uavplan {
 namespace {
@@ -163,6 +166,9 @@ Obstacle read_obstacle(const At& o) {
     if (p.polygon.size() >= 2 && p.polygon.front() == p.polygon.back()) p.polygon.pop_back();  // closed ring
     if (p.polygon.size() < 3) poly.fail("a prism needs at least 3 distinct vertices");
     if (polygon_signed_area(p.polygon) == 0.0) poly.fail("polygon has zero area");
+    if (const auto x = polygon_self_intersection(p.polygon))
+      poly.fail("self-intersecting polygon: the edge from vertex " + std::to_string(x->first) + " crosses the edge from vertex " +
+                std::to_string(x->second) + " (list the vertices in order around the footprint)");
     p.z_min_m = o.req("z_min").coordinate();
     p.z_max_m = o.req("z_max").coordinate();
     if (!(p.z_min_m < p.z_max_m)) o["z_max"].fail("must be above z_min");
@@ -257,14 +263,20 @@ std::vector<TimedPoint> read_timed_path(const At& list) {
   return rows;
 }
 
+// Inside the bounds and free; a point on the ground (the terrain there, or the bottom of the
+// bounds) is a UAV standing on it: only obstacles count.
 void check_placed(const At& at, const Vec3& p, const World& world, const std::string& what) {
   if (!world.in_bounds(p)) at.fail(what + " is outside the world bounds");
-  if (world.clearance(p, 1e-9) <= 0.0) at.fail(what + " is inside an obstacle or below the terrain");
+  if (world.on_ground(p)) {
+    if (world.segment_obstacle_clearance(p, p, 1e-9) <= 0.0) at.fail(what + " is inside an obstacle");
+  } else if (world.clearance(p, 1e-9) <= 0.0) {
+    at.fail(what + " is inside an obstacle or below the terrain");
+  }
 }
 
 UavSpec read_uav(const At& u) {
   u.keys({"id", "start", "heading_deg", "goal", "radius", "speed", "max_turn_deg", "max_climb_deg", "ceiling",
-          "sensor_range"});
+          "sensor_range", "clearance", "min_agl"});
   UavSpec s;
   s.id = u.req("id").text();
   if (s.id.empty()) u["id"].fail("must not be empty");
@@ -272,6 +284,8 @@ UavSpec read_uav(const At& u) {
   if (u.has("goal")) s.goal = u["goal"].vec3();
   if (u.has("heading_deg")) s.heading_rad = deg_to_rad(u["heading_deg"].number());
   if (u.has("radius")) s.radius_m = u["radius"].non_negative();
+  if (u.has("clearance")) s.clearance_m = u["clearance"].non_negative();
+  if (u.has("min_agl")) s.min_agl_m = u["min_agl"].non_negative();
   if (u.has("speed")) {
     const At sp = u["speed"];
     if (sp.node.IsMap()) {
@@ -320,6 +334,41 @@ void check_single_document(const std::string& text, const std::string& file) {
         throw InputError(file, line + 1, "", "content after the document's end ('...'): a scenario file holds one document");
       content = true;
     }
+  }
+}
+
+// What planning would find out too late: UAVs that cannot be where the scenario puts them, a
+// mission without the goals it needs, an obstacle that leaves no world.
+// An obstacle whose box holds the whole world leaves no room to fly.
+void check_room(const At& obstacles, const World& w) {
+  for (std::size_t k = 0; k < w.obstacles().size() && k < obstacles.size(); ++k) {
+    const Aabb b = bounding_box(w.obstacles()[k]).inflated(1e-9);
+    if (std::holds_alternative<Box>(w.obstacles()[k]) && b.contains(w.bounds().min) && b.contains(w.bounds().max))
+      obstacles.item(k).fail("covers the whole world: nothing can fly there");
+  }
+}
+
+void check_uavs_fit(const At& uavs, const Scenario& sc) {
+  const World& w = sc.world;
+  const bool goals_needed = sc.mission.type != MissionType::formation;
+  for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
+    const UavSpec& u = sc.uavs[i];
+    const At ui = uavs.item(i);
+    if (goals_needed && !u.goal)
+      ui.fail("missing required key 'goal' (a " + std::string(to_string(sc.mission.type)) + " mission needs every UAV's goal)");
+    for (const MovingObstacle& m : w.moving())
+      if ((m.position_at(0.0) - u.start).norm() < m.radius_m + u.radius_m)
+        ui["start"].fail("inside moving obstacle '" + m.id + "' at t = 0");
+    for (std::size_t j = 0; j < i; ++j)
+      if ((sc.uavs[j].start - u.start).norm() < sc.uavs[j].radius_m + u.radius_m)
+        ui["start"].fail("closer to " + sc.uavs[j].id + "'s start than their radii: two UAVs cannot start there");
+    if (u.min_agl_m > 0.0 && w.bounds().extent().z() <= 0.0)
+      ui["min_agl"].fail("a flat world (no height) has no room above its ground");
+  }
+  const std::vector<PlacementProblem> placed = placement_problems(sc);
+  for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
+    if (!placed[i].start.empty()) uavs.item(i)["start"].fail("cannot be planned from: " + placed[i].start);
+    if (!placed[i].goal.empty()) uavs.item(i)["goal"].fail("cannot be planned to: " + placed[i].goal);
   }
 }
 
@@ -433,7 +482,10 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
   if (w.has("obstacles")) {
     const At list = w["obstacles"];
     list.expect_seq();
-    for (std::size_t i = 0; i < list.size(); ++i) ws.obstacles.push_back(read_obstacle(list.item(i)));
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      ws.obstacles.push_back(read_obstacle(list.item(i)));
+      ws.obstacle_ids.push_back(list.item(i).has("id") ? list.item(i)["id"].text() : std::string());
+    }
   }
   if (w.has("buildings")) read_buildings(w["buildings"], sc.origin, ws.bounds, ws.obstacles);
   if (w.has("threats")) {
@@ -445,6 +497,7 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
       const std::string type = t.req("type").text();
       if (type != "radar") t["type"].fail("unknown threat type '" + type + "' (expected radar)");
       ws.radars.push_back(Radar{t.req("position").vec3(), t.has("weight") ? t["weight"].non_negative() : 1.0});
+      ws.radar_ids.push_back(t.has("id") ? t["id"].text() : std::string());
     }
   }
   if (w.has("terrain")) ws.terrain = read_terrain(w["terrain"]);
@@ -473,6 +526,7 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
   }
   try {
     sc.world = World(std::move(ws));
+    if (w.has("obstacles")) check_room(w["obstacles"], sc.world);
   } catch (const std::invalid_argument& e) {
     w.fail(e.what());
   }
@@ -493,7 +547,7 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
   // Mission.
   if (top.has("mission")) {
     const At m = top["mission"];
-    m.keys({"type", "separation", "waypoints", "arrival_tolerance", "step_s"});
+    m.keys({"type", "separation", "waypoints", "arrival_tolerance", "step_s", "goal_spacing"});
     if (m.has("type")) {
       const auto t = mission_type_from_string(m["type"].text());
       if (!t) m["type"].fail("unknown mission type '" + m["type"].text() + "' (expected independent, route, group, rendezvous or formation)");
@@ -511,6 +565,7 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
     }
     if (m.has("arrival_tolerance")) sc.mission.arrival_tolerance_m = m["arrival_tolerance"].positive();
     if (m.has("step_s")) sc.mission.step_s = m["step_s"].in_range(kMinStep_s, 3600.0);
+    if (m.has("goal_spacing")) sc.mission.goal_spacing_m = m["goal_spacing"].non_negative();
     if (sc.mission.type == MissionType::route && sc.mission.waypoints.empty())
       m.req("waypoints").fail("a route mission needs at least one waypoint");
   }
@@ -535,11 +590,22 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
               At::fmt(length / u.speed.cruise_mps) + " s; a plan may last at most " + At::fmt(kMaxFlight_s) + " s");
   }
 
+  check_uavs_fit(uavs, sc);
+
   // Planner.
   if (top.has("planner")) {
     const At p = top["planner"];
     p.keys({"algorithm", "params"});
-    if (p.has("algorithm")) sc.planner.algorithm = p["algorithm"].text();
+    if (p.has("algorithm")) {
+      sc.planner.algorithm = p["algorithm"].text();
+      sc.planner.algorithm_given = true;
+      try {
+        make_planner(sc.planner.algorithm, {});
+        mission_algorithm(sc, std::nullopt);
+      } catch (const std::invalid_argument& e) {
+        p["algorithm"].fail(e.what());
+      }
+    }
     if (p.has("params")) {
       const At params = p["params"];
       params.expect_map();

@@ -247,5 +247,46 @@ TEST(ScenarioIo, SetErrorsNameTheArgument) {
   expect_error(kGood, {"--set uavs[0].radius=x", "expected a number"}, "s.yaml", {{"uavs[0].radius", "x"}});
 }
 
+// Margins, the ground and shared goals (issue: outputs a user can trust, items 11, 12, 15, 16).
+TEST(ScenarioIo, ClearanceMinAglGroundStartsAndGoalSpacing) {
+  const std::string climb = "    max_climb_deg: 30\n";
+  const Scenario sc = parse_scenario(replace(replace(replace(kGood, climb, climb + "    clearance: 1.5\n    min_agl: 4\n"),
+                                                     "start: [5, 5, 10]", "start: [5, 5, 0]"),
+                                             "  separation: 2\n", "  separation: 2\n  goal_spacing: 6\n"),
+                                     "s.yaml");
+  EXPECT_DOUBLE_EQ(sc.uavs[0].clearance_m, 1.5);
+  EXPECT_DOUBLE_EQ(sc.uavs[0].min_agl_m, 4);
+  EXPECT_DOUBLE_EQ(*sc.mission.goal_spacing_m, 6);
+  EXPECT_TRUE(sc.world.on_ground(sc.uavs[0].start));  // standing on the terrain (0 there)
+  // On the terrain of another cell (3 m there) too; under it is still an error.
+  EXPECT_NO_THROW(parse_scenario(replace(kGood, "start: [5, 5, 10]", "start: [60, 60, 3]"), "s.yaml"));
+  expect_error(replace(kGood, "start: [5, 5, 10]", "start: [60, 60, 2]"), {"uavs[0].start", "below the terrain"});
+  expect_error(replace(kGood, "start: [5, 5, 10]", "start: [20, 70, 0]"), {"uavs[0].start", "inside an obstacle"});
+  expect_error(replace(kGood, "start: [5, 5, 10]", "start: [69.8, 15, 1]"), {"uavs[0].start", "vertical column", "0.5 m"});
+  expect_error(replace(kGood, climb, climb + "    min_agl: 12\n"), {"uavs[0].start", "10 m above the ground, below min_agl"});
+  expect_error(replace(kGood, climb, climb + "    clearance: -1\n"), {"uavs[0].clearance", "negative"});
+  expect_error(replace(kGood, "  separation: 2\n", "  separation: 2\n  goal_spacing: -1\n"), {"mission.goal_spacing", "negative"});
+  const std::string flat = replace(replace(kGood, "max: [100, 100, 50]", "max: [100, 100, 0]"),
+                                   "  terrain: {type: grid, origin: [0, 0], cell: 50, heights: [[0, 1], [2, 3]]}\n", "");
+  expect_error(replace(replace(replace(replace(flat, climb, climb + "    min_agl: 3\n"), "[5, 5, 10]", "[5, 5, 0]"), "[95, 95, 10]", "[95, 95, 0]"),
+                       "[[50, 10, 10]]", "[[50, 10, 0]]"),
+               {"uavs[0].min_agl", "flat world"});
+}
+
+// What planning would find out too late is an error at load (item 12).
+TEST(ScenarioIo, ProblemsPlanningWouldMeetAreLoadErrors) {
+  const std::string second = "uavs:\n  - id: u2\n    start: [5.3, 5, 10]\n    goal: [90, 90, 10]\n";
+  expect_error(replace(kGood, "uavs:\n", second), {"uavs[1].start", "closer to u2's start", "radii"});
+  expect_error(replace(kGood, "start: [5, 5, 10]", "start: [0.5, 50, 10]"), {"uavs[0].start", "moving obstacle 'm1' at t = 0"});
+  expect_error(replace(replace(kGood, "    goal: [95, 95, 10]\n", ""), "type: route", "type: independent"),
+               {"uavs[0]", "missing required key 'goal'", "independent"});
+  expect_error(replace(kGood, "    - {type: sphere, center: [50, 50, 20], radius: 5}\n",
+                       "    - {type: box, min: [-5, -5, -5], max: [105, 105, 60]}\n"),
+               {"world.obstacles[0]", "covers the whole world"});
+  expect_error(replace(kGood, "type: route", "type: group"), {"planner.algorithm", "apf"});
+  expect_error(replace(kGood, "polygon: [[10, 40], [20, 40], [15, 50]]", "polygon: [[10, 40], [20, 50], [20, 40], [10, 52]]"),
+               {"world.obstacles[3].polygon", "self-intersecting", "vertex 0", "vertex 2"});
+}
+
 }  // namespace
 }  // namespace uavplan

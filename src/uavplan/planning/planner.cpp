@@ -5,14 +5,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "uavplan/core/text.h"
+
 namespace uavplan {
 namespace {
 
-std::string fmt(const Vec3& p) {
-  char buf[96];
-  std::snprintf(buf, sizeof buf, "(%.6g, %.6g, %.6g)", p.x(), p.y(), p.z());
-  return buf;
-}
+std::string fmt(const Vec3& p) { return point_text(p); }
 
 void check_point(const std::string& what, const Vec3& p, const World& world) {
   if (!p.allFinite()) throw std::invalid_argument(what + " is not finite");

@@ -22,7 +22,8 @@ const std::vector<Entry>& entries() {
   static const std::vector<Entry> list = {
       {{"astar", "grid A* on a voxelised world, 26 neighbours, shortcut and turn shaping"},
        [](const Params& p) { return std::make_unique<AStarPlanner>(AStarOptions::from_params(p)); }},
-      {{"directional_astar", "P4 directional A*: a cone of M yaw x M pitch directions at step L, turn and climb limits held"},
+      {{"directional_astar", "P4 directional A*: a cone of M yaw x M pitch directions at step L, turn and climb limits held",
+        true, false},
        [](const Params& p) { return std::make_unique<DirectionalAStarPlanner>(DirectionalAStarOptions::from_params(p)); }},
       {{"cellular_aco", "P2 cellular ant colony on the digital cell map: around or over buildings by the penalty J", false},
        [](const Params& p) { return std::make_unique<CellularAcoPlanner>(CellularAcoOptions::from_params(p)); }},
@@ -48,6 +49,15 @@ std::unique_ptr<Planner> make_planner(std::string_view name, const Params& param
   std::string known;
   for (const Entry& e : entries()) known += (known.empty() ? "" : ", ") + e.info.name;
   throw std::invalid_argument("unknown planner '" + std::string(name) + "' (known: " + known + ")");
+}
+
+bool planner_accepts(std::string_view name, const std::string& key, const std::string& value) {
+  try {
+    make_planner(name, {{key, value}});
+    return true;
+  } catch (const std::invalid_argument&) {
+    return false;
+  }
 }
 
 std::vector<PlannerInfo> planner_catalog() {

@@ -19,7 +19,11 @@ struct PlannerInfo {
   std::string name;
   std::string description;
   bool complete = true;  // finds a route whenever the grid it searches has one; local methods do not
+  bool via_points = true;  // plans through via points (route missions)
 };
 std::vector<PlannerInfo> planner_catalog();
+
+// Whether the planner takes this parameter (the value checked too).
+bool planner_accepts(std::string_view name, const std::string& key, const std::string& value);
 
 }  // namespace uavplan

@@ -23,6 +23,8 @@ struct UavSpec {
   std::optional<Vec3> goal;
   std::optional<double> heading_rad;   // initial yaw, 0 = east, pi/2 = north
   double radius_m = 0.5;               // obstacles are inflated by it
+  double clearance_m = 0.0;            // extra distance kept from obstacles and terrain
+  double min_agl_m = 0.0;              // least height above the ground (but taking off and landing)
   SpeedLimits speed;
   double max_turn_rad = kPi;           // heading change between consecutive segments
   double max_climb_rad = kPi / 2;      // |pitch| of any segment
@@ -31,6 +33,9 @@ struct UavSpec {
   // mission step; absent: moving obstacles are known in advance.
   std::optional<double> sensor_range_m;
 };
+
+// The distance a UAV keeps from obstacles and terrain: its radius and the clearance asked for.
+inline double keep_off_m(const UavSpec& u) { return u.radius_m + u.clearance_m; }
 
 // Tolerance of every angle check: routes are built to the limit, floating error must not fail them.
 inline constexpr double kAngleTolerance_rad = 1e-7;

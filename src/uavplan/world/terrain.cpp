@@ -87,4 +87,31 @@ double TerrainGrid::segment_distance(const Vec3& a, const Vec3& b, double cap) c
   return best;
 }
 
+double TerrainGrid::lowest_height_above(const Vec3& a, const Vec3& b) const {
+  // Walk the cells the horizontal projection crosses; in each, the lowest point of the segment
+  // is at one of the two ends of the piece inside it.
+  const Vec2 d = b.head<2>() - a.head<2>();
+  std::vector<double> cuts{0.0, 1.0};
+  for (int axis = 0; axis < 2; ++axis) {
+    if (std::abs(d[axis]) < 1e-300) continue;
+    const double o = origin_[axis];
+    const double lo = std::min(a[axis], b[axis]), hi = std::max(a[axis], b[axis]);
+    for (double k = std::ceil((lo - o) / cell_m_); o + k * cell_m_ < hi; ++k) {
+      const double t = (o + k * cell_m_ - a[axis]) / d[axis];
+      if (t > 0.0 && t < 1.0) cuts.push_back(t);
+      if (cuts.size() > 1'000'000) break;  // a segment across a million cells: enough
+    }
+  }
+  std::sort(cuts.begin(), cuts.end());
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+    const double tm = 0.5 * (cuts[k] + cuts[k + 1]);
+    const Vec3 m = a + tm * (b - a);
+    const double h = height_at(m.x(), m.y());
+    if (!std::isfinite(h)) continue;
+    best = std::min({best, a.z() + cuts[k] * (b.z() - a.z()) - h, a.z() + cuts[k + 1] * (b.z() - a.z()) - h});
+  }
+  return best;
+}
+
 }  // namespace uavplan

@@ -28,6 +28,9 @@ class TerrainGrid {
   double point_distance(const Vec3& p, double cap) const;
   // Exact distance from segment [a, b] to the nearest column, or `cap` when none is closer.
   double segment_distance(const Vec3& a, const Vec3& b, double cap) const;
+  // Smallest height of segment [a, b] above the cells under it (exact: z is linear along the
+  // segment and the cells are flat); +inf where the segment is outside the grid.
+  double lowest_height_above(const Vec3& a, const Vec3& b) const;
 
  private:
   Vec2 origin_;

@@ -77,6 +77,43 @@ double World::segment_clearance(const Vec3& a, const Vec3& b, double cap) const 
   return best;
 }
 
+double World::segment_obstacle_clearance(const Vec3& a, const Vec3& b, double cap) const {
+  double best = cap;
+  bvh_.visit_segment(a, b, best, [&](std::int32_t i, double& radius) {
+    radius = std::min(radius, segment_distance(spec_.obstacles[i], a, b));
+    return radius <= 0.0;
+  });
+  return best;
+}
+
+double World::ground_z(double x, double y) const {
+  const double floor = spec_.bounds.min.z();
+  if (!spec_.terrain) return floor;
+  const double h = spec_.terrain->height_at(x, y);
+  return std::isfinite(h) ? std::max(h, floor) : floor;
+}
+
+double World::ground_leg_clearance(const Vec3& a, const Vec3& b, double keep, double ground_z) const {
+  double c = segment_obstacle_clearance(a, b, keep);
+  const double above = ground_z + keep;
+  double s0 = 0.0, s1 = 1.0;
+  if (b.z() != a.z()) {
+    const double s = (above - a.z()) / (b.z() - a.z());
+    if (b.z() > a.z()) s0 = std::max(s0, s);
+    else s1 = std::min(s1, s);
+  } else if (a.z() < above) {
+    return c;
+  }
+  if (s0 < s1) c = std::min(c, segment_clearance(a + s0 * (b - a), a + s1 * (b - a), keep));
+  return c;
+}
+
+double World::lowest_height_above_ground(const Vec3& a, const Vec3& b) const {
+  const double floor = std::min(a.z(), b.z()) - spec_.bounds.min.z();
+  if (!spec_.terrain) return floor;
+  return std::min(floor, spec_.terrain->lowest_height_above(a, b));
+}
+
 double World::moving_clearance(const Vec3& a, double t_a_s, const Vec3& b, double t_b_s, int* index_out) const {
   double best = kInf;
   const double span = t_b_s - t_a_s;

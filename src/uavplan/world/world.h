@@ -4,6 +4,7 @@
 
 #include <limits>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "uavplan/core/vec.h"
@@ -21,13 +22,16 @@ struct WorldSpec {
   std::vector<Radar> radars;
   std::optional<TerrainGrid> terrain;
   std::vector<MovingObstacle> moving;
+  // Names the scenario gives obstacles and radars (`id`), by index; shorter or empty: unnamed.
+  std::vector<std::string> obstacle_ids;
+  std::vector<std::string> radar_ids;
 };
 
 class World {
  public:
   static constexpr double kInf = std::numeric_limits<double>::infinity();
 
-  World() : World(WorldSpec{Aabb{Vec3::Zero(), Vec3::Zero()}, {}, {}, {}, {}}) {}
+  World() : World(WorldSpec{Aabb{Vec3::Zero(), Vec3::Zero()}, {}, {}, {}, {}, {}, {}}) {}
   // Throws std::invalid_argument on an inconsistent world (empty bounds, bad shapes).
   explicit World(WorldSpec spec);
 
@@ -44,6 +48,21 @@ class World {
   double clearance(const Vec3& p, double cap = kInf) const;
   // Exact distance from segment [a, b] to the nearest static obstacle or terrain, capped.
   double segment_clearance(const Vec3& a, const Vec3& b, double cap = kInf) const;
+  // The same, obstacles only (a UAV standing on the ground is not colliding with it).
+  double segment_obstacle_clearance(const Vec3& a, const Vec3& b, double cap = kInf) const;
+
+  // The ground under (x, y): the terrain there, else the bottom of the bounds (never below it).
+  double ground_z(double x, double y) const;
+  // On the ground: at most 1 mm above it (and not below it by more than that). A flat world
+  // (no height) is a plane to fly in: nothing stands on a ground there.
+  bool on_ground(const Vec3& p) const {
+    return spec_.bounds.max.z() > spec_.bounds.min.z() && std::abs(p.z() - ground_z(p.x(), p.y())) <= 1e-3;
+  }
+  // A piece of a leg to or from the ground at height ground_z: its distance to obstacles all
+  // along, and to the terrain where it is more than `keep_m` above ground_z, capped at keep_m.
+  double ground_leg_clearance(const Vec3& a, const Vec3& b, double keep_m, double ground_z) const;
+  // Smallest height of segment [a, b] above the ground under it (exact).
+  double lowest_height_above_ground(const Vec3& a, const Vec3& b) const;
 
   // Collision after inflating every static obstacle by `inflation_m`.
   bool point_collides(const Vec3& p, double inflation_m) const { return clearance(p, inflation_m) < inflation_m; }

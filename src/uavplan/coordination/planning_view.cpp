@@ -1,0 +1,196 @@
+#include "uavplan/coordination/planning_view.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "uavplan/coordination/arrival_points.h"
+#include "uavplan/core/text.h"
+
+namespace uavplan {
+namespace {
+
+// The world with its ground raised by `by_m`: terrain heights plus it, and a floor over the
+// bottom of the bounds.
+World raised(const World& w, double by_m) {
+  WorldSpec s = w.spec();
+  const Aabb& b = s.bounds;
+  if (s.terrain) {
+    std::vector<double> h;
+    for (int j = 0; j < s.terrain->ny(); ++j)
+      for (int i = 0; i < s.terrain->nx(); ++i) h.push_back(s.terrain->height(i, j) + by_m);
+    s.terrain = TerrainGrid(s.terrain->origin(), s.terrain->cell_m(), s.terrain->nx(), s.terrain->ny(), std::move(h));
+  }
+  s.obstacles.push_back(Box{Vec3(b.min.x() - 1, b.min.y() - 1, b.min.z() - 1), Vec3(b.max.x() + 1, b.max.y() + 1, b.min.z() + by_m)});
+  return World(std::move(s));
+}
+
+// Moving obstacles as seen from a clock `shift_s` later.
+void shift_moving(WorldSpec& s, double shift_s) {
+  for (MovingObstacle& m : s.moving) {
+    if (m.path.empty()) {
+      m.position += shift_s * m.velocity_mps;
+    } else {
+      for (TimedPoint& r : m.path) r.t_s -= shift_s;
+      m.position = m.path.front().p;
+    }
+  }
+}
+
+}  // namespace
+
+double planning_min_agl_m(const Scenario& sc) {
+  double agl = 0.0;
+  for (const UavSpec& u : sc.uavs) agl = std::max(agl, u.min_agl_m);
+  return agl;
+}
+
+double lift_height_m(const Scenario& sc, const UavSpec& u) { return planning_min_agl_m(sc) + keep_off_m(u) + 0.05; }
+
+std::string ground_column_problem(const Scenario& sc, const UavSpec& u, const Vec3& p) {
+  const double keep = keep_off_m(u), ground = sc.world.ground_z(p.x(), p.y());
+  const Vec3 foot(p.x(), p.y(), ground), top(p.x(), p.y(), ground + lift_height_m(sc, u));
+  if (!sc.world.in_bounds(top)) return "the world is not high enough to lift off there (" + num_text(top.z() - ground) + " m needed)";
+  const double c = sc.world.ground_leg_clearance(foot, top, keep, ground);
+  if (c >= keep - 1e-6) return {};  // touching the ground it stands on at exactly keep_m above it
+  return "its vertical column up to " + num_text(top.z() - ground) + " m above the ground comes within " + num_text(c) +
+         " m of an obstacle or the terrain beside it (radius plus clearance " + num_text(keep) + " m)";
+}
+
+std::vector<PlacementProblem> placement_problems(const Scenario& sc) {
+  std::vector<PlacementProblem> out(sc.uavs.size());
+  const PlanningView v = planning_view(sc);
+  const Scenario& planned = v.identity ? sc : v.scenario;
+  const double agl = planning_min_agl_m(sc);
+  auto check = [&](const UavSpec& u, const UavSpec& pu, const Vec3& p, const Vec3& pp) -> std::string {
+    if (sc.world.on_ground(p)) return ground_column_problem(sc, u, Vec3(pp.x(), pp.y(), sc.world.ground_z(pp.x(), pp.y())));
+    const double keep = keep_off_m(u);
+    const double h = sc.world.lowest_height_above_ground(p, p);
+    if (agl > 0.0 && h < agl + keep)
+      return num_text(h) + " m above the ground, below min_agl plus radius and clearance " + num_text(agl + keep) +
+             " m (planners keep the largest min_agl of the scenario, " + num_text(agl) + " m, for every UAV)";
+    if (planned.world.clearance(pp, pu.radius_m) < pu.radius_m)
+      return "within " + num_text(keep) + " m (radius plus clearance) of an obstacle or the terrain" +
+             (agl > 0.0 ? " raised by min_agl " + num_text(agl) + " m" : std::string());
+    return {};
+  };
+  for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
+    const UavSpec& u = sc.uavs[i];
+    const UavSpec& pu = planned.uavs[i];
+    out[i].start = check(u, pu, u.start, pu.start);
+    if (u.goal && pu.goal) out[i].goal = check(u, pu, *u.goal, *pu.goal);
+  }
+  return out;
+}
+
+PlanningView planning_view(const Scenario& sc, bool shift_for_takeoff) {
+  PlanningView v;
+  const std::size_t n = sc.uavs.size();
+  v.lift_off.assign(n, std::nullopt);
+  v.touch_down.assign(n, std::nullopt);
+  v.ground.start.assign(n, std::nullopt);
+  v.ground.goal.assign(n, std::nullopt);
+  const double agl = planning_min_agl_m(sc);
+  bool bodies = false;
+  for (const UavSpec& u : sc.uavs) bodies = bodies || u.clearance_m > 0.0;
+  const World& w = sc.world;
+  const std::vector<Arrival> arrivals = arrival_points(sc);
+  std::vector<std::optional<Vec3>> goal(n);
+  bool moved = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    v.arrival_problem.push_back(arrivals[i].problem);
+    if (sc.uavs[i].goal) goal[i] = arrivals[i].tolerance_m > 0.0 ? arrivals[i].point : *sc.uavs[i].goal;
+    moved = moved || arrivals[i].tolerance_m > 0.0;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const UavSpec& u = sc.uavs[i];
+    const double lift = lift_height_m(sc, u);
+    if (w.on_ground(u.start)) {
+      v.lift_off[i] = Vec3(u.start.x(), u.start.y(), w.ground_z(u.start.x(), u.start.y()) + lift);
+      v.ground.start[i] = u.start;
+      if (shift_for_takeoff) v.takeoff_s = std::max(v.takeoff_s, lift / u.speed.cruise_mps);
+    }
+    if (goal[i] && w.on_ground(*goal[i])) {
+      const double g = w.ground_z(goal[i]->x(), goal[i]->y());
+      v.touch_down[i] = Vec3(goal[i]->x(), goal[i]->y(), g + lift);
+      v.ground.goal[i] = Vec3(goal[i]->x(), goal[i]->y(), g);
+    }
+  }
+  const bool lifted = std::any_of(v.lift_off.begin(), v.lift_off.end(), [](const auto& p) { return p.has_value(); }) ||
+                      std::any_of(v.touch_down.begin(), v.touch_down.end(), [](const auto& p) { return p.has_value(); });
+  if (agl <= 0.0 && !bodies && !lifted && !moved) return v;
+  v.identity = false;
+  v.scenario = sc;
+  WorldSpec spec = (agl > 0.0 ? raised(w, agl) : w).spec();
+  shift_moving(spec, v.takeoff_s);
+  v.scenario.world = World(std::move(spec));
+  for (std::size_t i = 0; i < n; ++i) {
+    UavSpec& u = v.scenario.uavs[i];
+    u.radius_m = keep_off_m(u);
+    u.clearance_m = 0.0;
+    u.min_agl_m = 0.0;
+    if (v.lift_off[i]) {
+      u.start = *v.lift_off[i];
+      u.heading_rad.reset();  // a vertical take-off can leave in any direction
+    }
+    u.goal = v.touch_down[i] ? v.touch_down[i] : goal[i];
+  }
+  return v;
+}
+
+namespace {
+
+// Straight from the last row to `to` at speed v_mps, rows at most max_dt_s apart.
+void fly_to(Trajectory& tr, const Vec3& to, double v_mps, double max_dt_s) {
+  const Vec3 from = tr.back().p;
+  const double t0 = tr.back().t_s, dur = (to - from).norm() / v_mps;
+  const int pieces = std::max(1, static_cast<int>(std::ceil(dur / max_dt_s - 1e-9)));
+  for (int k = 1; k <= pieces; ++k) tr.push_back({t0 + dur * k / pieces, k == pieces ? to : Vec3(from + (to - from) * k / pieces)});
+}
+
+// The take-off of a trajectory that begins at its lift-off point: a wait there long enough is
+// the climb (on the ground until it), else the climb comes first and the rest `shift_s` later.
+Trajectory with_takeoff(const Trajectory& flown, const Vec3& ground, double v_mps, double shift_s, double max_dt_s) {
+  const Vec3 lift = flown.front().p;
+  const double climb_s = (lift - ground).norm() / v_mps;
+  std::size_t held = 0;
+  while (held + 1 < flown.size() && flown[held + 1].p == lift) ++held;
+  const double hold_s = flown[held].t_s - flown.front().t_s;
+  const bool in_wait = hold_s >= climb_s - 1e-9;
+  const double shift = in_wait ? 0.0 : (shift_s > 0.0 ? shift_s : climb_s);
+  const double lift_s = in_wait ? flown[held].t_s : shift;
+  Trajectory tr{{0.0, ground}};
+  if (lift_s - climb_s > 1e-12) tr.push_back({lift_s - climb_s, ground});
+  fly_to(tr, lift, v_mps, max_dt_s);
+  tr.back().t_s = lift_s;  // the same instant, without rounding
+  for (std::size_t k = in_wait ? held + 1 : 1; k < flown.size(); ++k) tr.push_back({flown[k].t_s + shift, flown[k].p});
+  return tr;
+}
+
+}  // namespace
+
+void to_scenario(const PlanningView& v, const Scenario& sc, Plan& plan, double max_dt_s) {
+  if (v.identity) return;
+  for (std::size_t i = 0; i < plan.uavs.size() && i < sc.uavs.size(); ++i) {
+    UavPlan& up = plan.uavs[i];
+    if (up.trajectory.empty()) continue;
+    const double v_mps = sc.uavs[i].speed.cruise_mps;
+    bool changed = false;
+    if (v.lift_off[i] && (up.trajectory.front().p - *v.lift_off[i]).norm() <= 1e-9) {
+      up.trajectory = with_takeoff(up.trajectory, *v.ground.start[i], v_mps, v.takeoff_s, max_dt_s);
+      up.waypoints.insert(up.waypoints.begin(), *v.ground.start[i]);
+      changed = true;
+    } else if (v.takeoff_s > 0.0 && !v.lift_off[i]) {
+      for (TrajectorySample& s : up.trajectory) s.t_s += v.takeoff_s;
+      up.trajectory.insert(up.trajectory.begin(), {0.0, up.trajectory.front().p});
+    }
+    if (v.touch_down[i] && (up.trajectory.back().p - *v.touch_down[i]).norm() <= 1e-6) {
+      fly_to(up.trajectory, *v.ground.goal[i], v_mps, max_dt_s);
+      up.waypoints.push_back(*v.ground.goal[i]);
+      changed = true;
+    }
+    if (changed) up.length_m = Route{up.waypoints}.length_m();
+    up.arrival_s = up.trajectory.back().t_s;
+  }
+}
+
+}  // namespace uavplan

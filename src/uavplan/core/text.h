@@ -1,0 +1,23 @@
+// Numbers and points in messages: six significant digits, no trailing zeros ("2.5", "1e+06").
+#pragma once
+
+#include <cstdio>
+#include <string>
+
+#include "uavplan/core/vec.h"
+
+namespace uavplan {
+
+inline std::string num_text(double x) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.6g", x);
+  return buf;
+}
+
+inline std::string point_text(const Vec3& p) {
+  char buf[112];
+  std::snprintf(buf, sizeof buf, "(%.6g, %.6g, %.6g)", p.x(), p.y(), p.z());
+  return buf;
+}
+
+}  // namespace uavplan
