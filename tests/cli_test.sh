@@ -236,5 +236,60 @@ const ok = a[0][3] === 0 && a[1][1] === a[0][1] && a[1][2] === a[0][2] && a[a.le
 process.exit(ok ? 0 : 1);' "$TMP/ground/plan.json"; check ground.legs.and.spacing 0 $?
 expect_bad ground.below.min_agl "$(sed 's/start: \[20, 90, 0\]/start: [20, 90, 5]/' "$TMP/ground.yaml" >"$TMP/g2.yaml"; echo "$TMP/g2.yaml")" "below min_agl"
 
+
+# Exports leave only what holds: a tampered plan is refused (exit 1, nothing written) unless
+# --force, which writes the UAVs that hold and names the others; a re-plan or re-export removes
+# the files of the last export, never other files; every --end is flown and verified.
+node -e '
+const fs = require("fs"); const p = JSON.parse(fs.readFileSync(process.argv[1]));
+p.uavs[1].trajectory[2] = [p.uavs[1].trajectory[2][0], 230, 230, 30];  // inside tower_a
+fs.writeFileSync(process.argv[2], JSON.stringify(p));' "$TMP/a/plan.json" "$TMP/tampered.json"
+"$BIN" export "$good" "$TMP/tampered.json" --format qgc -o "$TMP/tx" >/dev/null 2>"$TMP/stderr"; check export.tampered 1 $?
+grep -q "export refused: 1 of 3 UAVs do not hold; nothing written" "$TMP/stderr" && grep -q "u2: does not hold" "$TMP/stderr" ||
+  { echo "FAIL export.tampered message: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
+[ -e "$TMP/tx" ] && { echo "FAIL export.tampered wrote files"; fails=$((fails + 1)); }
+"$BIN" export "$good" "$TMP/tampered.json" --format qgc --force -o "$TMP/tx" >/dev/null 2>"$TMP/stderr"; check export.force 0 $?
+[ -e "$TMP/tx/u1.plan" ] && [ -e "$TMP/tx/u3.plan" ] && [ ! -e "$TMP/tx/u2.plan" ] && grep -q "left out of the export: u2" "$TMP/stderr" ||
+  { echo "FAIL export.force files: $(ls "$TMP/tx") $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
+echo keep >"$TMP/tx/notes.txt"
+"$BIN" export "$good" "$TMP/a/plan.json" --format csv -o "$TMP/tx" >/dev/null 2>&1; check export.again 0 $?
+[ ! -e "$TMP/tx/u1.plan" ] && [ -e "$TMP/tx/u2.csv" ] && [ -e "$TMP/tx/notes.txt" ] ||
+  { echo "FAIL export.stale: $(ls "$TMP/tx")"; fails=$((fails + 1)); }
+"$BIN" plan "$good" -o "$TMP/tx" >/dev/null 2>&1; check export.replan 0 $?
+[ ! -e "$TMP/tx/u2.csv" ] && [ -e "$TMP/tx/notes.txt" ] || { echo "FAIL export.replan stale: $(ls "$TMP/tx")"; fails=$((fails + 1)); }
+for end in land loiter none; do
+  "$BIN" export "$good" "$TMP/a/plan.json" --format qgc,wpl,csv --end "$end" -o "$TMP/end_$end" >/dev/null 2>&1; check "export.end.$end" 0 $?
+  node "$SRC/tests/qgc_plan_check.mjs" "$TMP/end_$end" u1 u2 u3 >/dev/null || { echo "FAIL export.end.$end check"; fails=$((fails + 1)); }
+done
+node -e 'const p = JSON.parse(require("fs").readFileSync(process.argv[1])); const it = p.mission.items; process.exit(it[it.length - 1].command === 17 ? 0 : 1)' \
+  "$TMP/end_loiter/u1.plan"; check export.end.loiter.item 0 $?
+"$BIN" export "$good" "$TMP/a/plan.json" --format qgc --end rtl -o "$TMP/rtl" >/dev/null 2>"$TMP/stderr"; check export.rtl.blocked 1 $?
+grep -q "rtl" "$TMP/stderr" || { echo "FAIL export.rtl message: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
+# A fixed wing in open country: climb-out, glide and landing pattern; and from the ground.
+cat >"$TMP/open.yaml" <<'YAML'
+version: 1
+name: open
+origin: {lat: -33.95, lon: 151.18, alt: 6}
+world:
+  bounds: {min: [-800, -800, 0], max: [1800, 800, 150]}
+  obstacles:
+    - {type: cylinder, id: mast, center: [500, 0], radius: 30, z_min: 0, z_max: 150}
+uavs:
+  - {id: fw1, start: [0, -40, 60], heading_deg: 0, goal: [1000, -40, 60], speed: 14, max_turn_deg: 30, max_climb_deg: 15}
+  - {id: fw2, start: [0, 40, 60], heading_deg: 0, goal: [1000, 40, 60], speed: 14, max_turn_deg: 30, max_climb_deg: 15}
+mission: {type: independent, separation: 20}
+planner: {algorithm: astar, params: {cell_m: 10}}
+YAML
+"$BIN" plan "$TMP/open.yaml" -o "$TMP/open" --export qgc,wpl,csv --vehicle fixedwing --fence all >/dev/null 2>"$TMP/stderr"; check export.fixedwing 0 $?
+node "$SRC/tests/qgc_plan_check.mjs" "$TMP/open" fw1 fw2 >/dev/null || { echo "FAIL export.fixedwing check"; fails=$((fails + 1)); }
+node -e 'const p = JSON.parse(require("fs").readFileSync(process.argv[1])); const c = p.mission.items.map(i => i.command);
+process.exit(p.mission.vehicleType === 1 && c.includes(189) && c[c.length - 1] === 21 && p.geoFence.circles.length === 1 ? 0 : 1)' \
+  "$TMP/open/fw1.plan"; check export.fixedwing.pattern 0 $?
+sed 's/^name: ground/name: ground\norigin: {lat: 52.5, lon: 13.4, alt: 34}/' "$TMP/ground.yaml" >"$TMP/ground_geo.yaml"
+"$BIN" plan "$TMP/ground_geo.yaml" -o "$TMP/ground_geo" --export qgc,wpl,csv >/dev/null 2>&1; check export.ground 0 $?
+node "$SRC/tests/qgc_plan_check.mjs" "$TMP/ground_geo" a b >/dev/null || { echo "FAIL export.ground check"; fails=$((fails + 1)); }
+"$BIN" plan "$TMP/ground_geo.yaml" -o "$TMP/ground_fw" --export qgc --vehicle fixedwing >/dev/null 2>"$TMP/stderr"; check export.ground.fixedwing 1 $?
+grep -q "cannot fly its planned vertical take-off" "$TMP/stderr" || { echo "FAIL export.ground.fixedwing message: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
+
 echo "$pass passed, $fails failed"
 [ "$fails" = 0 ]

@@ -12,7 +12,10 @@ const isNum = (v) => typeof v === 'number' && Number.isFinite(v);
 const isInt = (v) => Number.isInteger(v);
 const latOk = (v) => isNum(v) && v >= -90 && v <= 90;
 const lonOk = (v) => isNum(v) && v >= -180 && v <= 180;
-const NAV_WITH_POSITION = new Set([16, 17, 18, 19, 21, 22]);
+// NAV_WAYPOINT, LOITER_UNLIM, LOITER_TIME, LAND, TAKEOFF; RETURN_TO_LAUNCH, DO_CHANGE_SPEED,
+// DO_LAND_START have no position.
+const NAV_WITH_POSITION = new Set([16, 17, 19, 21, 22]);
+const NO_POSITION = new Set([20, 178, 189]);
 
 function checkPlan(file) {
   let j;
@@ -38,16 +41,24 @@ function checkPlan(file) {
     if (it.doJumpId !== k + 1) fail(file, `${at}.doJumpId is ${it.doJumpId}, expected ${k + 1}`);
     if (!Array.isArray(it.params) || it.params.length !== 7 || !it.params.every(isNum))
       fail(file, `${at}.params is not exactly 7 numbers`);
+    if (NO_POSITION.has(it.command)) {
+      // QGroundControl writes these in the mission frame (2) without altitude keys.
+      if (it.frame !== 2) fail(file, `${at}: command ${it.command} in frame ${it.frame}, expected 2 (mission)`);
+      if ('Altitude' in it) fail(file, `${at}: command ${it.command} has no position but an Altitude`);
+      return;
+    }
+    if (!NAV_WITH_POSITION.has(it.command)) { fail(file, `${at}: command ${it.command} is not one this tool writes`); return; }
     for (const key of ['AMSLAltAboveTerrain', 'Altitude', 'AltitudeMode'])
       if (!isNum(it[key])) fail(file, `${at}.${key} is not a number (QGroundControl rejects null)`);
     if (it.frame !== 3) fail(file, `${at}.frame is ${it.frame}, expected 3 (relative to home)`);
-    if (NAV_WITH_POSITION.has(it.command) && it.command !== 21 && (!latOk(it.params[4]) || !lonOk(it.params[5])))
+    if (!latOk(it.params[4]) || !lonOk(it.params[5]))
       fail(file, `${at} has no valid latitude/longitude`);
-    if (NAV_WITH_POSITION.has(it.command) && isNum(it.params[6]) && Math.abs(it.params[6] - it.Altitude) > 1e-6)
+    if (isNum(it.params[6]) && Math.abs(it.params[6] - it.Altitude) > 1e-6)
       fail(file, `${at}.Altitude differs from params[6]`);
   });
   if (m.items[0].command !== 22) fail(file, 'the first item is not a takeoff (22)');
-  if (![20, 21, 16].includes(m.items[m.items.length - 1].command)) fail(file, 'the mission does not end in land, return or a waypoint');
+  if (![20, 21, 16, 17].includes(m.items[m.items.length - 1].command))
+    fail(file, 'the mission does not end in land, return, loiter or a waypoint');
   const fence = j.geoFence;
   if (!fence || fence.version !== 2 || !Array.isArray(fence.polygons) || !Array.isArray(fence.circles))
     fail(file, 'geoFence is not {version 2, polygons, circles} (MAVSDK requires it)');

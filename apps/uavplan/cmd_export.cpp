@@ -1,15 +1,15 @@
-// uavplan export SCENARIO PLAN --format F -o DIR: mission and GIS files of a plan.
+// uavplan export SCENARIO PLAN --format F -o DIR: mission and GIS files of a plan, only of what
+// holds under the verifier.
 #include <iostream>
 
 #include "commands.h"
 #include "uavplan/io/export.h"
-#include "uavplan/io/files.h"
 
 namespace uavplan::cli {
 
 std::optional<std::string> export_request_problem(const Scenario& sc, const ExportArgs& a) {
   if (a.formats.empty()) {
-    if (a.options_given) return std::string("--firmware, --vehicle and --end apply to --export: give the formats too");
+    if (a.options_given) return std::string("--firmware, --vehicle, --end, --fence and --force apply to --export: give the formats too");
     return std::nullopt;
   }
   for (const std::string& f : a.formats)
@@ -33,8 +33,16 @@ void add_export_options(CLI::App& cmd, ExportArgs& a, bool formats_required) {
   cmd.add_option("--vehicle", a.vehicle, "Vehicle type of the .plan: multirotor or fixedwing")
       ->check(CLI::IsMember({"multirotor", "fixedwing"}))
       ->each(given);
-  cmd.add_option("--end", a.end, "How missions end: land (21), rtl (return, 20) or none")
-      ->check(CLI::IsMember({"land", "rtl", "none"}))
+  cmd.add_option("--end", a.end,
+                 "How missions end: land (multirotor: straight down; fixed wing: 5-degree glide and landing pattern), "
+                 "rtl (back to home, verified), loiter (at the goal) or none")
+      ->check(CLI::IsMember({"land", "rtl", "loiter", "none"}))
+      ->each(given);
+  cmd.add_option("--fence", a.fence,
+                 "Geofence of the .plan: none, bounds (the world's bounds and the 16 largest exclusions; default) or all")
+      ->check(CLI::IsMember({"none", "bounds", "all"}))
+      ->each(given);
+  cmd.add_flag("--force", a.force, "Write the UAVs that hold even when others do not (those are named on stderr)")
       ->each(given);
 }
 
@@ -43,22 +51,37 @@ int write_exports(const std::string& scenario_path, const Scenario& sc, const Pl
   ExportOptions opt;
   opt.firmware = a.firmware == "ardupilot" ? Firmware::ardupilot : Firmware::px4;
   opt.vehicle = a.vehicle == "fixedwing" ? VehicleKind::fixed_wing : VehicleKind::multirotor;
-  opt.end = a.end == "rtl" ? MissionEnd::rtl : a.end == "none" ? MissionEnd::none : MissionEnd::land;
-  // Everything is built before anything is written, so an error leaves no partial export.
+  opt.end = a.end == "rtl" ? MissionEnd::rtl : a.end == "loiter" ? MissionEnd::loiter : a.end == "none" ? MissionEnd::none : MissionEnd::land;
+  opt.fence = a.fence == "none" ? FenceMode::none : a.fence == "all" ? FenceMode::all : FenceMode::bounds;
+  // Everything is verified and built before anything is written: a refusal or an error leaves
+  // the folder as it was.
   std::vector<ExportFile> files;
+  std::vector<std::string> notes;
+  VerifiedExport flights;
   try {
+    flights = verified_export(sc, plan, opt);
+    if (flights.uavs.empty() || (!flights.holds() && !a.force)) {
+      const std::size_t bad = plan.uavs.size() - flights.uavs.size();
+      std::cerr << scenario_path << ": export refused: "
+                << (bad ? std::to_string(bad) + " of " + std::to_string(plan.uavs.size()) + " UAVs do not hold" : "the plan does not hold")
+                << "; nothing written\n";
+      for (const std::string& why : flights.left_out) std::cerr << "  " << why << "\n";
+      if (!flights.uavs.empty())
+        std::cerr << "  (--force writes the " << flights.uavs.size() << " UAVs that hold)\n";
+      return kExitNotSolved;
+    }
     for (const std::string& name : a.formats) {
-      auto more = export_plan(sc, plan, *export_format_from_string(name), opt);
+      auto more = export_files(sc, flights, *export_format_from_string(name), opt, &notes);
       files.insert(files.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
     }
   } catch (const ExportError& e) {
     std::cerr << scenario_path << ": export: " << e.what() << "\n";
     return kExitBadInput;
   }
-  for (const ExportFile& f : files) {
-    write_file_atomic(dir + "/" + f.name, f.content);
-    std::cout << "wrote " << dir << "/" << f.name << "\n";
-  }
+  write_export(dir, files);
+  for (const ExportFile& f : files) std::cout << "wrote " << dir << "/" << f.name << "\n";
+  for (const std::string& n : notes) std::cerr << "note: " << n << "\n";
+  for (const std::string& why : flights.left_out) std::cerr << "left out of the export: " << why << "\n";
   return kExitOk;
 }
 
@@ -84,10 +107,11 @@ int run_export(const Args& a) {
 
 void add_export_command(CLI::App& app, std::function<int()>& run) {
   auto args = std::make_shared<Args>();
-  CLI::App* cmd = app.add_subcommand("export", "Export a plan for QGroundControl / PX4 / ArduPilot, GIS tools or spreadsheets");
-  cmd->add_option("scenario", args->scenario, "Scenario file (needs an origin)")->required();
+  CLI::App* cmd = app.add_subcommand(
+      "export", "Export a verified plan for QGroundControl / PX4 / ArduPilot, GIS tools or spreadsheets");
+  cmd->add_option("scenario", args->scenario, "Scenario file (needs an origin except for csv)")->required();
   cmd->add_option("plan", args->plan, "Plan file (plan.json)")->required();
-  cmd->add_option("-o,--out", args->out_dir, "Output directory (default: out)");
+  cmd->add_option("-o,--out", args->out_dir, "Output directory (default: out); its last export is replaced");
   add_export_options(*cmd, args->exp, true);
   cmd->footer("Example: uavplan export scenarios/demo.yaml out/plan.json --format qgc,geojson -o out");
   cmd->callback([args, &run] { run = [args] { return run_export(*args); }; });

@@ -6,6 +6,7 @@
 #include "commands.h"
 #include "uavplan/coordination/mission_planner.h"
 #include "uavplan/evaluation/verifier.h"
+#include "uavplan/io/export.h"
 #include "uavplan/io/files.h"
 #include "uavplan/io/input_error.h"
 #include "uavplan/io/plan_io.h"
@@ -96,6 +97,7 @@ int run_plan(const PlanArgs& a) {
   }
   finalize_plan(sc, plan);
   const std::string path = a.out_dir + "/plan.json";
+  clear_export(a.out_dir);  // the files of an export of the last plan in this folder are stale now
   write_file_atomic(path, plan_to_json(plan, {a.timing}));
   print_summary(plan, path);
   if (!a.exp.formats.empty()) {

@@ -36,12 +36,17 @@ struct ExportArgs {
   std::string firmware = "px4";
   std::string vehicle = "multirotor";
   std::string end = "land";
-  bool options_given = false;  // --firmware, --vehicle or --end on the command line
+  std::string fence = "bounds";
+  bool force = false;          // write the UAVs that hold when others do not
+  bool options_given = false;  // --firmware, --vehicle, --end, --fence or --force on the command line
 };
 void add_export_options(CLI::App& cmd, ExportArgs& a, bool formats_required);
 // Why the export asked for cannot be made (checked before anything is planned or written).
 std::optional<std::string> export_request_problem(const Scenario& sc, const ExportArgs& a);
-// Writes every file of every format into dir; prints what it wrote. Returns an exit code.
+// Verifies the plan with the legs the mission files add (flight_export.h); when every UAV holds
+// (or --force and some do) writes every file of every format into dir, replacing the folder's
+// last export, and prints what it wrote and what it left out; else prints why and writes
+// nothing. Returns an exit code (1: refused).
 int write_exports(const std::string& scenario_path, const Scenario& sc, const Plan& plan, const ExportArgs& a,
                   const std::string& dir);
 

@@ -1,17 +1,16 @@
 // Exports of a plan for the tools operators fly and look at: QGroundControl .plan, QGC WPL 110
-// (MAVLink mission text), GeoJSON (RFC 7946), KML and CSV. Local ENU coordinates go to WGS84
-// through the scenario's `origin` (GeoFrame); without one only CSV (local coordinates) exports.
+// (MAVLink mission text), GeoJSON (RFC 7946), KML and CSV. Only what holds leaves the tool:
+// verified_export() (flight_export.h) picks the UAVs that hold and adds the legs their mission
+// files fly; the files are written from that. Local ENU coordinates go to WGS84 through the
+// scenario's `origin` (geo.h); without one only CSV (local coordinates) exports.
 #pragma once
 
-#include <array>
 #include <optional>
-#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "uavplan/coordination/plan.h"
-#include "uavplan/coordination/scenario.h"
+#include "uavplan/io/flight_export.h"
 
 namespace uavplan {
 
@@ -21,59 +20,26 @@ std::string_view to_string(ExportFormat f);
 // Whether the format is in WGS84 (needs the scenario's origin); CSV is local without one.
 bool needs_origin(ExportFormat f);
 
-enum class Firmware { px4, ardupilot };             // QGC firmwareType 12 / 3
-enum class VehicleKind { multirotor, fixed_wing };  // MAV_TYPE 2 / 1
-enum class MissionEnd { land, rtl, none };          // MAV_CMD_NAV_LAND (21) / RETURN_TO_LAUNCH (20)
-
-struct ExportOptions {
-  Firmware firmware = Firmware::px4;
-  VehicleKind vehicle = VehicleKind::multirotor;
-  MissionEnd end = MissionEnd::land;
-  // Trajectory legs whose speeds differ by less than this fraction fly at one speed (no 178 item).
-  double speed_change_fraction = 0.01;
-};
-
-// Thrown when a plan cannot be exported (no origin, a plan UAV unknown to the scenario).
-class ExportError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
-// MAVLink commands the missions use.
-inline constexpr int kCmdWaypoint = 16, kCmdLoiterTurns = 18, kCmdLoiterTime = 19, kCmdReturn = 20,
-                     kCmdLand = 21, kCmdTakeoff = 22, kCmdChangeSpeed = 178;
-inline constexpr int kFrameGlobal = 0, kFrameGlobalRelativeAlt = 3;
-
-// One mission item as MAVLink carries it: params 5-7 are lat, lon (degrees) and altitude.
-struct MissionItem {
-  int command = kCmdWaypoint;
-  int frame = kFrameGlobalRelativeAlt;
-  std::array<double, 7> params{};
-};
-
-// The mission a UAV flies, read off its verified trajectory: takeoff at the start, a loiter
-// where the trajectory holds still (MAV_CMD_NAV_LOITER_TIME, the hold's seconds), a waypoint at
-// every change of direction, a speed change (178) before a leg whose speed differs, then land
-// or return. Altitudes are relative to home (the start, on the origin's datum).
-std::vector<MissionItem> mission_items(const Scenario& sc, const UavPlan& uav, const ExportOptions& opt);
-
 struct ExportFile {
   std::string name;  // file name inside the output directory
   std::string content;
 };
 
-// Every file of one format: qgc, wpl and csv give one file per UAV with a trajectory (named by
-// its id), geojson and kml one file for the whole plan. Throws ExportError.
-std::vector<ExportFile> export_plan(const Scenario& sc, const Plan& plan, ExportFormat format,
-                                    const ExportOptions& opt = {});
-
-std::string qgc_plan_json(const Scenario& sc, const UavPlan& uav, const ExportOptions& opt);
-std::string qgc_wpl(const Scenario& sc, const UavPlan& uav, const ExportOptions& opt);
-std::string plan_geojson(const Scenario& sc, const Plan& plan);
-std::string plan_kml(const Scenario& sc, const Plan& plan);
-std::string trajectory_csv(const Scenario& sc, const UavPlan& uav);
+// Every file of one format: qgc, wpl and csv one per exported UAV (named by its id, made safe
+// and distinct), geojson and kml one for the whole plan. `notes` receives what the user should
+// know (fence zones dropped). Throws ExportError without an origin for a WGS84 format.
+std::vector<ExportFile> export_files(const Scenario& scenario, const VerifiedExport& flights, ExportFormat format,
+                                     const ExportOptions& options = {}, std::vector<std::string>* notes = nullptr);
 
 // A UAV id made safe as a file name ([A-Za-z0-9_.-], others become '_').
 std::string file_stem(std::string_view id);
+
+// The export folder keeps a manifest (.uavplan-export) of the files the last export wrote:
+// writing a new export removes those of the last one it does not write again (a UAV left out
+// this time, a format not asked for), so a folder never mixes two plans. Each file is written
+// atomically. clear_export() removes the last export's files (a new plan makes them stale).
+inline constexpr const char* kExportManifest = ".uavplan-export";
+void write_export(const std::string& dir, const std::vector<ExportFile>& files);
+void clear_export(const std::string& dir);
 
 }  // namespace uavplan

@@ -4,7 +4,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
+#include <fstream>
+
 #include "uavplan/io/geo.h"
+#include "uavplan/io/gis_export.h"
+#include "uavplan/io/mission_items.h"
+#include "uavplan/io/qgc_export.h"
 #include "uavplan/io/report.h"
 
 namespace uavplan {
@@ -21,7 +27,7 @@ Scenario scenario_with(std::vector<Obstacle> obstacles = {}) {
   UavSpec u;
   u.id = "a/1";
   u.start = Vec3(0, 0, 10);
-  u.speed.cruise_mps = 5.0;
+  u.speed = {0.0, 5.0, 10.0};
   sc.uavs.push_back(u);
   return sc;
 }
@@ -35,6 +41,27 @@ UavPlan sample_uav() {
   u.trajectory = {{0.0, Vec3(0, 0, 10)},   {4.0, Vec3(0, 0, 10)},    {14.0, Vec3(50, 0, 10)},
                   {24.0, Vec3(100, 0, 10)}, {34.0, Vec3(100, 100, 10)}};
   return u;
+}
+
+Plan plan_of(std::vector<UavPlan> uavs) {
+  Plan p;
+  p.status = Status::solved;
+  p.uavs = std::move(uavs);
+  return p;
+}
+
+// The one UAV of the sample plan as exported, which must hold.
+ExportedUav exported(const Scenario& sc, const ExportOptions& opt = {}, UavPlan u = sample_uav()) {
+  const VerifiedExport v = verified_export(sc, plan_of({std::move(u)}), opt);
+  EXPECT_TRUE(v.holds()) << (v.left_out.empty() ? "" : v.left_out.front());
+  if (v.uavs.size() != 1) throw std::runtime_error("not exported");
+  return v.uavs.front();
+}
+
+std::vector<int> commands(const std::vector<MissionItem>& items) {
+  std::vector<int> c;
+  for (const auto& it : items) c.push_back(it.command);
+  return c;
 }
 
 TEST(GeoFrame, RoundTripAndKnownScale) {
@@ -70,30 +97,105 @@ TEST(GeoFrame, AltitudeIsOriginPlusLocalHeightEvenFarAway) {
 
 TEST(Export, MissionFollowsTheTrajectory) {
   const Scenario sc = scenario_with();
-  const auto items = mission_items(sc, sample_uav(), {});
-  std::vector<int> commands;
-  for (const auto& it : items) commands.push_back(it.command);
+  const auto items = mission_items(sc, exported(sc), {});
   // takeoff, the 4 s hold, one waypoint for the collinear east legs, the speed change, north, land.
-  EXPECT_EQ(commands, (std::vector<int>{kCmdTakeoff, kCmdLoiterTime, kCmdWaypoint, kCmdChangeSpeed, kCmdWaypoint, kCmdLand}));
+  EXPECT_EQ(commands(items), (std::vector<int>{kCmdTakeoff, kCmdLoiterTime, kCmdWaypoint, kCmdChangeSpeed, kCmdWaypoint, kCmdLand}));
   EXPECT_DOUBLE_EQ(items[1].params[0], 4.0);
   EXPECT_DOUBLE_EQ(items[3].params[1], 10.0);
   EXPECT_NEAR(items[0].params[6], 10.0, 1e-3);  // takeoff to the start's height above home
   EXPECT_NEAR(items[2].params[3], 90.0, 1e-6);  // east is compass yaw 90
   EXPECT_NEAR(items[4].params[3], 0.0, 1e-6);   // north is 0
+  EXPECT_NEAR(items[5].params[6], 0.0, 1e-9);   // lands on the ground under its goal
   const GeoFrame f(*sc.origin);
   const LatLonAlt end = f.to_wgs84(Vec3(100, 100, 10));
   EXPECT_NEAR(items[4].params[4], end.lat_deg, 1e-9);
   EXPECT_NEAR(items[4].params[5], end.lon_deg, 1e-9);
-  for (const auto& it : items) EXPECT_EQ(it.frame, kFrameGlobalRelativeAlt);
+  EXPECT_EQ(items[3].frame, kFrameMission);  // DO commands carry no position
+  for (const auto& it : items)
+    if (it.command != kCmdChangeSpeed) EXPECT_EQ(it.frame, kFrameGlobalRelativeAlt);
 }
 
-TEST(Export, ReturnOrNothingAtTheEnd) {
+TEST(Export, SpeedChangesBelowTenPercentMerge) {
+  const Scenario sc = scenario_with();
+  UavPlan u = sample_uav();  // east at 5, 5.4 and 4.7 m/s, then north at 5.2 m/s
+  u.trajectory = {{0.0, Vec3(0, 0, 10)}, {10.0, Vec3(50, 0, 10)}, {20.0, Vec3(104, 0, 10)}, {30.0, Vec3(151, 0, 10)},
+                  {40.0, Vec3(151, 52, 10)}};
+  EXPECT_EQ(commands(mission_items(sc, exported(sc, {}, u), {})), (std::vector<int>{kCmdTakeoff, kCmdWaypoint, kCmdWaypoint, kCmdLand}));
+  u.trajectory.back() = {40.0, Vec3(151, 60, 10)};  // 6 m/s: 20 % faster
+  EXPECT_EQ(commands(mission_items(sc, exported(sc, {}, u), {})),
+            (std::vector<int>{kCmdTakeoff, kCmdWaypoint, kCmdChangeSpeed, kCmdWaypoint, kCmdLand}));
+}
+
+TEST(Export, EveryEndIsFlownAndVerified) {
   const Scenario sc = scenario_with();
   ExportOptions opt;
   opt.end = MissionEnd::rtl;
-  EXPECT_EQ(mission_items(sc, sample_uav(), opt).back().command, kCmdReturn);
+  ExportedUav e = exported(sc, opt);
+  auto items = mission_items(sc, e, opt);
+  EXPECT_EQ(items.back().command, kCmdReturn);
+  EXPECT_EQ(items.back().frame, kFrameMission);
+  EXPECT_EQ(items[items.size() - 2].command, kCmdWaypoint);  // above home, at the goal's height
+  EXPECT_NEAR(items[items.size() - 2].params[6], 10.0, 1e-3);
+  EXPECT_EQ(e.plan.trajectory.back().p, Vec3(0, 0, 0));  // the return and the descent are in the flight
+  opt.end = MissionEnd::loiter;
+  items = mission_items(sc, exported(sc, opt), opt);
+  EXPECT_EQ(items.back().command, kCmdLoiterUnlimited);
+  EXPECT_EQ(items.back().params[2], 0.0);
   opt.end = MissionEnd::none;
-  EXPECT_EQ(mission_items(sc, sample_uav(), opt).back().command, kCmdWaypoint);
+  EXPECT_EQ(mission_items(sc, exported(sc, opt), opt).back().command, kCmdWaypoint);
+  // A return that would cross a tall wall is refused, naming the leg.
+  const Scenario walled = scenario_with({Box{Vec3(40, 20, 0), Vec3(60, 80, 100)}});
+  opt.end = MissionEnd::rtl;
+  const VerifiedExport v = verified_export(walled, plan_of({sample_uav()}), opt);
+  ASSERT_EQ(v.left_out.size(), 1u);
+  EXPECT_NE(v.left_out[0].find("rtl legs"), std::string::npos) << v.left_out[0];
+  EXPECT_NE(v.left_out[0].find("obstacle"), std::string::npos) << v.left_out[0];
+  EXPECT_TRUE(v.uavs.empty());
+}
+
+TEST(Export, FixedWingLandsOnAGlideOrCircles) {
+  Scenario sc = scenario_with();
+  sc.world = World(WorldSpec{Aabb{Vec3(-1000, -1000, 0), Vec3(1000, 1000, 100)}, {}, {}, {}, {}, {}, {}});
+  ExportOptions opt;
+  opt.vehicle = VehicleKind::fixed_wing;
+  ExportedUav e = exported(sc, opt);
+  const auto items = mission_items(sc, e, opt);
+  EXPECT_EQ(commands(items), (std::vector<int>{kCmdTakeoff, kCmdLoiterTime, kCmdWaypoint, kCmdChangeSpeed, kCmdLandStart,
+                                               kCmdWaypoint, kCmdLand}));
+  ASSERT_TRUE(e.touchdown && e.approach);
+  EXPECT_EQ(*e.approach, Vec3(100, 100, 10));
+  EXPECT_NEAR(e.touchdown->y() - 100, 10.0 / std::tan(deg_to_rad(5.0)), 1e-6);  // straight on, 5 degrees
+  EXPECT_NEAR(e.home.x(), -10.0 / std::tan(deg_to_rad(10.0)), 1e-6);             // climb-out behind the start
+  EXPECT_NEAR(e.home.y(), 0.0, 1e-9);
+  opt.end = MissionEnd::loiter;
+  EXPECT_EQ(mission_items(sc, exported(sc, opt), opt).back().params[2], 80.0);
+  opt.firmware = Firmware::ardupilot;
+  EXPECT_EQ(mission_items(sc, exported(sc, opt), opt).back().params[2], 60.0);
+  // A fixed wing cannot fly a vertical take-off from the ground.
+  UavPlan ground = sample_uav();
+  sc.uavs[0].start = Vec3(0, 0, 0);
+  ground.trajectory.insert(ground.trajectory.begin(), {0.0, Vec3(0, 0, 0)});
+  for (std::size_t k = 1; k < ground.trajectory.size(); ++k) ground.trajectory[k].t_s += 2.0;
+  const VerifiedExport v = verified_export(sc, plan_of({ground}), opt);
+  ASSERT_EQ(v.left_out.size(), 1u);
+  EXPECT_NE(v.left_out[0].find("cannot fly its planned vertical take-off"), std::string::npos) << v.left_out[0];
+}
+
+TEST(Export, OnlyWhatHoldsLeavesTheTool) {
+  const Scenario sc = scenario_with({Box{Vec3(40, -20, 0), Vec3(60, 20, 50)}});  // across the east leg
+  VerifiedExport v = verified_export(sc, plan_of({sample_uav()}), {});
+  EXPECT_FALSE(v.holds());
+  ASSERT_EQ(v.left_out.size(), 1u);
+  EXPECT_NE(v.left_out[0].find("a/1: does not hold: a/1 obstacle"), std::string::npos) << v.left_out[0];
+  UavPlan failed = sample_uav();
+  failed.status = Status::failed;
+  failed.message = "no route";
+  v = verified_export(scenario_with(), plan_of({failed}), {});
+  ASSERT_EQ(v.left_out.size(), 1u);
+  EXPECT_EQ(v.left_out[0], "a/1: failed (no route)");
+  Plan ghost = plan_of({sample_uav()});
+  ghost.uavs[0].id = "ghost";
+  EXPECT_THROW(verified_export(scenario_with(), ghost, {}), ExportError);
 }
 
 TEST(Export, QgcPlanFollowsTheLoaderRules) {
@@ -103,19 +205,26 @@ TEST(Export, QgcPlanFollowsTheLoaderRules) {
                                      Box{Vec3(300, 300, 0), Vec3(320, 320, 60)}});
   ExportOptions opt;
   opt.firmware = Firmware::ardupilot;
-  const auto j = nlohmann::json::parse(qgc_plan_json(sc, sample_uav(), opt));
+  const auto j = nlohmann::json::parse(qgc_plan_json(sc, exported(sc, opt), opt));
   EXPECT_EQ(j["fileType"], "Plan");
   EXPECT_EQ(j["version"], 1);
   EXPECT_EQ(j["mission"]["version"], 2);
   EXPECT_EQ(j["mission"]["firmwareType"], 3);
   EXPECT_EQ(j["mission"]["plannedHomePosition"].size(), 3u);
+  int do_items = 0;
   for (const auto& it : j["mission"]["items"]) {
     ASSERT_EQ(it["params"].size(), 7u);
     for (const auto& p : it["params"]) EXPECT_TRUE(p.is_number());
+    if (it["frame"] == kFrameMission) {  // as QGroundControl writes DO commands: no altitude keys
+      ++do_items;
+      EXPECT_FALSE(it.contains("Altitude") || it.contains("AltitudeMode") || it.contains("AMSLAltAboveTerrain"));
+      continue;
+    }
     EXPECT_TRUE(it["AMSLAltAboveTerrain"].is_number());
     EXPECT_TRUE(it["Altitude"].is_number());
     EXPECT_TRUE(it["AltitudeMode"].is_number());
   }
+  EXPECT_EQ(do_items, 1);  // the speed change
   EXPECT_EQ(j["geoFence"]["version"], 2);
   EXPECT_EQ(j["geoFence"]["circles"].size(), 1u);
   ASSERT_EQ(j["geoFence"]["polygons"].size(), 2u);  // bounds (inclusion) and the tall box
@@ -124,26 +233,54 @@ TEST(Export, QgcPlanFollowsTheLoaderRules) {
   EXPECT_EQ(j["rallyPoints"]["version"], 2);
 }
 
+TEST(Export, FenceKeepsTheLargestExclusionsAndSaysWhatItDropped) {
+  std::vector<Obstacle> towers;
+  for (int k = 0; k < 20; ++k) towers.push_back(Box{Vec3(200 + 30 * k, 500, 0), Vec3(210 + 30 * k + k, 510 + k, 80)});
+  const Scenario sc = scenario_with(towers);
+  ExportOptions opt;
+  std::vector<std::string> notes;
+  auto j = nlohmann::json::parse(qgc_plan_json(sc, exported(sc, opt), opt, &notes));
+  ASSERT_EQ(j["geoFence"]["polygons"].size(), 17u);  // bounds and the 16 largest
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("16 largest of 20"), std::string::npos) << notes[0];
+  const GeoFrame f(*sc.origin);  // the smallest kept is tower 4 (footprint 14 x 14)
+  EXPECT_NEAR(j["geoFence"]["polygons"][16]["polygon"][0][1].get<double>(), f.to_wgs84(Vec3(320, 500, 0)).lon_deg, 1e-9);
+  opt.fence = FenceMode::all;
+  notes.clear();
+  j = nlohmann::json::parse(qgc_plan_json(sc, exported(sc, opt), opt, &notes));
+  EXPECT_EQ(j["geoFence"]["polygons"].size(), 21u);
+  EXPECT_TRUE(notes.empty());
+  opt.fence = FenceMode::none;
+  j = nlohmann::json::parse(qgc_plan_json(sc, exported(sc, opt), opt, &notes));
+  EXPECT_TRUE(j["geoFence"]["polygons"].empty());
+}
+
 TEST(Export, WplRowsMatchTheMission) {
   const Scenario sc = scenario_with();
-  const std::string text = qgc_wpl(sc, sample_uav(), {});
+  const ExportedUav e = exported(sc);
+  const std::string text = qgc_wpl(sc, e, {});
   EXPECT_EQ(text.rfind("QGC WPL 110\n0\t1\t0\t16\t", 0), 0u);
   EXPECT_EQ(text.find('\r'), std::string::npos);
   std::size_t rows = 0;
   for (char c : text) rows += c == '\n';
-  EXPECT_EQ(rows, 1u + 1u + mission_items(sc, sample_uav(), {}).size());  // header, home, items
+  EXPECT_EQ(rows, 1u + 1u + mission_items(sc, e, {}).size());  // header, home, items
 }
 
-TEST(Export, GeoJsonIsLonLatAlt) {
-  Scenario sc = scenario_with({Prism{{{0, 0}, {0, 10}, {10, 10}, {10, 0}}, 0, 5}});  // clockwise
-  Plan plan;
-  plan.uavs = {sample_uav()};
-  const auto j = nlohmann::json::parse(plan_geojson(sc, plan));
+TEST(Export, GeoJsonIsLonLatAltWithIds) {
+  Scenario sc = scenario_with({Prism{{{0, 500}, {0, 510}, {10, 510}, {10, 500}}, 0, 5}, Box{Vec3(300, 300, 0), Vec3(320, 320, 60)}});
+  WorldSpec ws = sc.world.spec();
+  ws.obstacle_ids = {"", "tower"};
+  sc.world = World(std::move(ws));
+  const VerifiedExport v = verified_export(sc, plan_of({sample_uav()}), {});
+  const auto j = nlohmann::json::parse(plan_geojson(sc, v));
   const auto& route = j["features"][0];
   EXPECT_EQ(route["geometry"]["type"], "LineString");
-  EXPECT_EQ(route["geometry"]["coordinates"].size(), 4u);  // the hold collapses
+  // The hold collapses, the straight legs keep their ends, the landing is added.
+  EXPECT_EQ(route["geometry"]["coordinates"].size(), 4u) << route.dump();
   EXPECT_NEAR(route["geometry"]["coordinates"][0][0].get<double>(), 8.5456, 1e-9);  // lon first
   EXPECT_NEAR(route["geometry"]["coordinates"][0][1].get<double>(), 47.3977, 1e-9);
+  EXPECT_EQ(j["features"][1]["properties"]["id"], "obstacle 0");
+  EXPECT_EQ(j["features"][2]["properties"]["id"], "tower");
   const auto& ring = j["features"][1]["geometry"]["coordinates"][0];
   ASSERT_EQ(ring.size(), 5u);
   EXPECT_EQ(ring.front(), ring.back());
@@ -151,17 +288,17 @@ TEST(Export, GeoJsonIsLonLatAlt) {
   for (std::size_t i = 0; i + 1 < ring.size(); ++i)
     area2 += ring[i][0].get<double>() * ring[i + 1][1].get<double>() - ring[i + 1][0].get<double>() * ring[i][1].get<double>();
   EXPECT_GT(area2, 0.0);  // counter-clockwise although given clockwise
+  EXPECT_NE(plan_kml(sc, v).find("<name>tower (box"), std::string::npos);
 }
 
-TEST(Export, ClearErrors) {
+TEST(Export, ClearErrorsAndCsvWithoutOrigin) {
   Scenario sc = scenario_with();
-  Plan plan;
-  plan.uavs = {sample_uav()};
   sc.origin.reset();
-  EXPECT_THROW(export_plan(sc, plan, ExportFormat::qgc), ExportError);
-  sc = scenario_with();
-  plan.uavs[0].id = "ghost";
-  EXPECT_THROW(export_plan(sc, plan, ExportFormat::qgc), ExportError);
+  const VerifiedExport v = verified_export(sc, plan_of({sample_uav()}), {});
+  EXPECT_THROW(export_files(sc, v, ExportFormat::qgc), ExportError);
+  const auto csv = export_files(sc, v, ExportFormat::csv);
+  ASSERT_EQ(csv.size(), 1u);
+  EXPECT_EQ(csv[0].content.rfind("t,x,y,z\n0,0,0,10\n", 0), 0u);
 }
 
 TEST(Export, FileNamesAreSafeAndDistinct) {
@@ -170,19 +307,41 @@ TEST(Export, FileNamesAreSafeAndDistinct) {
   Scenario sc = scenario_with();
   UavSpec other = sc.uavs[0];
   other.id = "a?1";
+  other.start = Vec3(0, 500, 10);
   sc.uavs.push_back(other);
-  Plan plan;
-  plan.uavs = {sample_uav(), sample_uav()};
-  plan.uavs[1].id = "a?1";
-  const auto files = export_plan(sc, plan, ExportFormat::csv);
+  UavPlan second = sample_uav();
+  second.id = "a?1";
+  for (auto& s : second.trajectory) s.p.y() += 500;
+  const auto files = export_files(sc, verified_export(sc, plan_of({sample_uav(), second}), {}), ExportFormat::csv);
   ASSERT_EQ(files.size(), 2u);
   EXPECT_NE(files[0].name, files[1].name);
 }
 
+// A folder holds one export: the next removes what the last wrote and it does not.
+TEST(Export, FolderManifestRemovesStaleFilesOnly) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("uavplan_manifest_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "sub");
+  std::ofstream(dir / "mine.txt") << "user file";
+  std::ofstream(dir / "sub" / "keep.plan") << "x";
+  write_export(dir.string(), {{"q1.plan", "1"}, {"q5.plan", "5"}});
+  EXPECT_TRUE(fs::exists(dir / "q5.plan"));
+  std::ofstream(dir / kExportManifest, std::ios::app) << "../sub/keep.plan\nmine.txt.nope\n";
+  write_export(dir.string(), {{"q1.plan", "1b"}});
+  EXPECT_FALSE(fs::exists(dir / "q5.plan"));
+  EXPECT_TRUE(fs::exists(dir / "q1.plan"));
+  EXPECT_TRUE(fs::exists(dir / "sub" / "keep.plan"));
+  clear_export(dir.string());
+  EXPECT_FALSE(fs::exists(dir / "q1.plan"));
+  EXPECT_FALSE(fs::exists(dir / kExportManifest));
+  EXPECT_TRUE(fs::exists(dir / "mine.txt"));
+  fs::remove_all(dir);
+}
+
 TEST(Report, PageCarriesDataAndViewer) {
   const Scenario sc = scenario_with({Box{Vec3(300, 300, 0), Vec3(320, 320, 60)}});
-  Plan plan;
-  plan.uavs = {sample_uav()};
+  Plan plan = plan_of({sample_uav()});
   plan.uavs[0].message = "</script><b>";
   const auto data = nlohmann::json::parse(report_data_json(sc, plan, {}));
   EXPECT_EQ(data["uavs"][0]["trajectory"].size(), 5u);

@@ -158,7 +158,10 @@ std::vector<MovingAiProblem> read_movingai_3dscen(const std::string& path) {
       p.goal[k] = parse_num<int>(f[3 + k], path, lineno, "goal");
     }
     p.optimal = parse_num<double>(f[6], path, lineno, "optimal");
-    p.bucket = static_cast<int>(std::floor(p.optimal / 10.0));
+    // The 3-D files carry no bucket; group by tens of the optimal cost as the 2-D ones do.
+    // An unsolvable ('inf') or absurd cost has no bucket.
+    const double bucket = std::floor(p.optimal / 10.0);
+    p.bucket = std::isfinite(bucket) && bucket >= 0.0 && bucket < 1e6 ? static_cast<int>(bucket) : -1;
     out.push_back(p);
   }
   return out;

@@ -23,7 +23,8 @@ inline constexpr double kMaxMovingAiVoxels = 1073741824.0;
 
 BitGrid read_movingai_map(const std::string& path);
 BitGrid read_movingai_3dmap(const std::string& path);
-// 2-D: the bucket is the file's; 3-D files have none: bucket = floor(optimal / 10).
+// 2-D: the bucket is the file's; 3-D files have none: bucket = floor(optimal / 10), -1 when
+// the optimal cost is not finite (or beyond 1e7).
 std::vector<MovingAiProblem> read_movingai_scen(const std::string& path);
 std::vector<MovingAiProblem> read_movingai_3dscen(const std::string& path);
 

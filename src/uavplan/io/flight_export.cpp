@@ -1,0 +1,307 @@
+#include "uavplan/io/flight_export.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "uavplan/core/geometry.h"
+#include "uavplan/core/text.h"
+#include "uavplan/core/units.h"
+#include "uavplan/evaluation/ground_legs.h"
+#include "uavplan/coordination/separation.h"
+
+namespace uavplan {
+namespace {
+
+constexpr double kSampleDt_s = 1.0;     // rows of the added legs, at most this far apart
+constexpr double kTurnStep_s = 2.0;     // a turn back flies legs this long (at cruise speed)
+constexpr double kClearTolerance_m = 1e-6;
+
+// `pts` flown at v_mps from the last row.
+void append_flight(Trajectory& tr, const std::vector<Vec3>& pts, double v_mps) {
+  std::vector<Vec3> w{tr.back().p};
+  w.insert(w.end(), pts.begin(), pts.end());
+  const Trajectory t = time_route(w, v_mps, tr.back().t_s, kSampleDt_s);
+  tr.insert(tr.end(), t.begin() + 1, t.end());
+}
+
+// Horizontal unit direction of the last leg that moves horizontally, else of the heading, else east.
+Vec3 final_heading(const Trajectory& tr, std::size_t last, const UavSpec& u) {
+  for (std::size_t k = last; k > 0; --k) {
+    const Vec3 d(tr[k].p.x() - tr[k - 1].p.x(), tr[k].p.y() - tr[k - 1].p.y(), 0.0);
+    if (d.norm() > 1e-9) return d.normalized();
+  }
+  return u.heading_rad ? heading_vector(*u.heading_rad) : Vec3::UnitX();
+}
+
+Vec3 first_heading(const Trajectory& tr, const UavSpec& u) {
+  if (u.heading_rad) return heading_vector(*u.heading_rad);
+  for (std::size_t k = 1; k < tr.size(); ++k) {
+    const Vec3 d(tr[k].p.x() - tr[0].p.x(), tr[k].p.y() - tr[0].p.y(), 0.0);
+    if (d.norm() > 1e-9) return d.normalized();
+  }
+  return Vec3::UnitX();
+}
+
+Vec3 rotated(const Vec3& d, double a) {
+  return Vec3(std::cos(a) * d.x() - std::sin(a) * d.y(), std::sin(a) * d.x() + std::cos(a) * d.y(), 0.0);
+}
+
+double signed_angle(const Vec3& from, const Vec3& to) {
+  return std::atan2(from.x() * to.y() - from.y() * to.x(), from.x() * to.x() + from.y() * to.y());
+}
+
+// A straight leg to or from the ground at height ground_z: why it is not clear, or empty.
+std::string leg_problem(const World& w, const Vec3& a, const Vec3& b, double keep, double ground_z, const std::string& what) {
+  if (!w.in_bounds(a) || !w.in_bounds(b)) return what + " leaves the world bounds";
+  const double c = w.ground_leg_clearance(a, b, keep, ground_z);
+  if (c >= keep - kClearTolerance_m) return {};
+  return what + " comes within " + num_text(c) + " m of an obstacle or the terrain (radius plus clearance " +
+         num_text(keep) + " m)";
+}
+
+// Where a straight glide (or climb) at `angle_rad` from `air` along `dir` meets the ground.
+Vec3 ground_along(const World& w, const Vec3& air, const Vec3& dir, double angle_rad) {
+  double g = w.ground_z(air.x(), air.y()), d = 0.0;
+  for (int k = 0; k < 4; ++k) {  // the ground under the far end decides the length
+    d = std::max(0.0, air.z() - g) / std::tan(angle_rad);
+    g = w.ground_z(air.x() + d * dir.x(), air.y() + d * dir.y());
+  }
+  return Vec3(air.x() + d * dir.x(), air.y() + d * dir.y(), g);
+}
+
+class Builder {
+ public:
+  Builder(const Scenario& sc, const ExportOptions& opt) : sc_(sc), w_(sc.world), opt_(opt) {}
+
+  // The UAV's exported flight, or why it cannot be.
+  std::string build(const UavSpec& u, const UavPlan& up, ExportedUav& e) const {
+    e.spec = &u;
+    e.plan = up;
+    const GroundLegs legs = ground_legs(w_, up.trajectory);
+    if (std::string why = takeoff(u, legs, e); !why.empty()) return why;
+    return ending(u, legs, e);
+  }
+
+ private:
+  bool fixed_wing() const { return opt_.vehicle == VehicleKind::fixed_wing; }
+
+  std::string takeoff(const UavSpec& u, const GroundLegs& legs, ExportedUav& e) const {
+    const Trajectory& tr = e.plan.trajectory;
+    const Vec3 s = tr.front().p;
+    const double keep = keep_off_m(u);
+    if (legs.takeoff) {
+      if (fixed_wing())
+        return "a fixed-wing UAV cannot fly its planned vertical take-off: give it an airborne start (its climb-out is "
+               "checked) or export it as a multirotor";
+      e.home = s;
+      e.body_begin = legs.takeoff_end;
+      e.takeoff_to = tr[legs.takeoff_end].p;
+      return {};
+    }
+    e.takeoff_to = s;
+    if (!fixed_wing()) {
+      e.home = Vec3(s.x(), s.y(), w_.ground_z(s.x(), s.y()));
+      return leg_problem(w_, e.home, s, keep, e.home.z(), "its take-off straight up to its start");
+    }
+    const double climb = std::min(u.max_climb_rad, deg_to_rad(kFixedWingClimbOut_deg));
+    e.home = ground_along(w_, s, -first_heading(tr, u), climb);
+    return leg_problem(w_, e.home, s, keep, e.home.z(), "its climb-out to its start (" + num_text(rad_to_deg(climb)) + " deg)");
+  }
+
+  std::string ending(const UavSpec& u, const GroundLegs& legs, ExportedUav& e) const {
+    Trajectory& tr = e.plan.trajectory;
+    e.body_end = tr.size() - 1;
+    if (legs.landing) {  // the plan lands at its goal: that is its end, whatever --end says
+      if (fixed_wing())
+        return "a fixed-wing UAV cannot fly its planned vertical landing: give it a goal in the air (the landing pattern "
+               "follows it) or export it as a multirotor";
+      e.end = MissionEnd::land;
+      e.body_end = legs.landing_begin;
+      e.touchdown = tr.back().p;
+      return {};
+    }
+    e.end = opt_.end;
+    const Vec3 f = tr.back().p;
+    const double v = u.speed.cruise_mps;
+    switch (opt_.end) {
+      case MissionEnd::none: return {};
+      case MissionEnd::land:
+        if (fixed_wing()) return glide(u, e);
+        e.touchdown = Vec3(f.x(), f.y(), w_.ground_z(f.x(), f.y()));
+        append_flight(tr, {*e.touchdown}, v);
+        return {};
+      case MissionEnd::loiter:
+        if (!fixed_wing()) return {};
+        e.loiter_radius_m = fixed_wing_loiter_radius_m(opt_.firmware);
+        return circle_problem(u, f, e.loiter_radius_m, "its loiter circle");
+      case MissionEnd::rtl: return return_home(u, e);
+    }
+    return {};
+  }
+
+  // Fixed wing: a 5-degree glide straight on from the goal, else turned by up to the turn limit.
+  std::string glide(const UavSpec& u, ExportedUav& e) const {
+    Trajectory& tr = e.plan.trajectory;
+    const Vec3 f = tr.back().p, dir = final_heading(tr, tr.size() - 1, u);
+    const double turn = std::min(u.max_turn_rad, kPi / 2);
+    std::string first;
+    for (const double a : {0.0, 0.5 * turn, -0.5 * turn, turn, -turn}) {
+      const Vec3 d = rotated(dir, a);
+      const Vec3 t = ground_along(w_, f, d, deg_to_rad(kFixedWingGlide_deg));
+      const std::string why = leg_problem(w_, f, t, keep_off_m(u), t.z(), "the glide");
+      if (why.empty()) {
+        e.approach = f;
+        e.touchdown = t;
+        append_flight(tr, {t}, u.speed.cruise_mps);
+        return {};
+      }
+      if (first.empty()) first = why;
+    }
+    return "no clear " + num_text(kFixedWingGlide_deg) + "-degree landing glide from its goal within its turn limit (" + first +
+           "): use --end loiter or --end rtl, or a goal with room ahead of it";
+  }
+
+  // Back within the turn limit, straight to above home at the goal's height, then down
+  // (multirotor) or circling there (fixed wing).
+  std::string return_home(const UavSpec& u, ExportedUav& e) const {
+    Trajectory& tr = e.plan.trajectory;
+    const Vec3 f = tr.back().p;
+    const Vec3 above(e.home.x(), e.home.y(), f.z());
+    const double v = u.speed.cruise_mps, turn = std::max(u.max_turn_rad, deg_to_rad(1.0));
+    const double step = std::max(v * kTurnStep_s, 2.0 * keep_off_m(u));
+    Vec3 p = f, dir = final_heading(tr, tr.size() - 1, u);
+    for (int k = 0; k < 400; ++k) {  // turn towards home in steps of at most the turn limit
+      const Vec3 to(above.x() - p.x(), above.y() - p.y(), 0.0);
+      if (to.norm() <= step) break;
+      const double a = signed_angle(dir, to.normalized());
+      if (std::abs(a) <= turn) break;
+      dir = rotated(dir, std::copysign(turn, a));
+      p += step * dir;
+      e.return_points.push_back(p);
+    }
+    e.return_points.push_back(above);
+    append_flight(tr, e.return_points, v);
+    if (!fixed_wing()) {
+      append_flight(tr, {e.home}, v);
+      return {};
+    }
+    e.loiter_radius_m = fixed_wing_loiter_radius_m(opt_.firmware);
+    return circle_problem(u, above, e.loiter_radius_m, "its loiter circle above home");
+  }
+
+  // A fixed-wing circle of radius r around c: the ball of radius r plus its keep-off is clear.
+  std::string circle_problem(const UavSpec& u, const Vec3& c, double r, const std::string& what) const {
+    const double need = r + keep_off_m(u);
+    if (!w_.bounds().contains(c + Vec3(need, need, 0)) || !w_.bounds().contains(c - Vec3(need, need, 0)))
+      return what + " (" + num_text(r) + " m) leaves the world bounds";
+    const double clear = w_.clearance(c, need);
+    if (clear >= need - kClearTolerance_m) return {};
+    return what + " (" + num_text(r) + " m) comes within " + num_text(clear - r) + " m of an obstacle or the terrain";
+  }
+
+  const Scenario& sc_;
+  const World& w_;
+  const ExportOptions& opt_;
+};
+
+// Fixed-wing circles against the other UAVs: while one circles (from its arrival on), every
+// other keeps its separation from the whole circle.
+std::string circle_meets(const Scenario& sc, const ExportedUav& e, const std::vector<ExportedUav>& all) {
+  if (e.loiter_radius_m <= 0.0) return {};
+  const Vec3 c = e.plan.trajectory.back().p;
+  const double t0 = e.plan.trajectory.back().t_s;
+  for (const ExportedUav& o : all) {
+    if (&o == &e) continue;
+    const double need = required_separation_m(sc, *e.spec, *o.spec) + e.loiter_radius_m;
+    const Trajectory& tr = o.plan.trajectory;
+    for (std::size_t k = 0; k < tr.size(); ++k) {
+      if (k + 1 < tr.size() && tr[k + 1].t_s < t0) continue;
+      const Vec3& a = tr[k].p;
+      const Vec3& b = k + 1 < tr.size() ? tr[k + 1].p : a;
+      if (point_segment_distance(c, a, b) < need)
+        return "its loiter circle (" + num_text(e.loiter_radius_m) + " m) is within the separation of " + o.spec->id +
+               " at t=" + num_text(std::max(t0, tr[k].t_s)) + " s";
+    }
+  }
+  return {};
+}
+
+// The exported UAVs' whole flights verified together: goals moved to where they now end.
+std::vector<Violation> verify_flights(const Scenario& sc, const std::vector<ExportedUav>& uavs) {
+  Scenario ext = sc;
+  ext.mission.type = MissionType::independent;  // via points and lengths are the plan's, verified
+  ext.mission.waypoints.clear();
+  Plan p;
+  for (const ExportedUav& e : uavs) {
+    for (UavSpec& s : ext.uavs)
+      if (s.id == e.spec->id) s.goal = e.plan.trajectory.back().p;
+    p.uavs.push_back(e.plan);
+  }
+  std::vector<Violation> out;
+  for (Violation& v : verify_plan(ext, p))
+    if (v.kind != ViolationKind::not_planned) out.push_back(std::move(v));
+  return out;
+}
+
+}  // namespace
+
+std::string_view to_string(MissionEnd e) {
+  switch (e) {
+    case MissionEnd::land: return "land";
+    case MissionEnd::rtl: return "rtl";
+    case MissionEnd::loiter: return "loiter";
+    case MissionEnd::none: return "none";
+  }
+  return "?";
+}
+
+double fixed_wing_loiter_radius_m(Firmware f) { return f == Firmware::px4 ? 80.0 : 60.0; }
+
+VerifiedExport verified_export(const Scenario& sc, const Plan& plan, const ExportOptions& opt) {
+  VerifiedExport out;
+  for (const UavPlan& u : plan.uavs)
+    if (!sc.find_uav(u.id)) throw ExportError("plan UAV '" + u.id + "' is not in scenario '" + sc.name + "'");
+  out.violations = verify_plan(sc, plan);
+  auto first_violation = [&](const std::string& id) -> const Violation* {
+    for (const Violation& v : out.violations)
+      if (v.uav == id) return &v;
+    return nullptr;
+  };
+  const Builder builder(sc, opt);
+  for (const UavPlan& up : plan.uavs) {
+    if (up.status != Status::solved || up.trajectory.size() < 2) {
+      out.left_out.push_back(up.id + ": " + std::string(to_string(up.status)) +
+                             (up.message.empty() ? std::string() : " (" + up.message + ")"));
+      continue;
+    }
+    if (const Violation* v = first_violation(up.id)) {
+      out.left_out.push_back(up.id + ": does not hold: " + describe(*v));
+      continue;
+    }
+    ExportedUav e;
+    if (const std::string why = builder.build(*sc.find_uav(up.id), up, e); !why.empty()) {
+      out.left_out.push_back(up.id + ": " + why);
+      continue;
+    }
+    out.uavs.push_back(std::move(e));
+  }
+  for (const Violation& v : out.violations)
+    if (v.uav.empty()) out.left_out.push_back("the plan: " + describe(v));
+  // The added legs, with everything else that flies: a UAV whose legs do not hold goes.
+  std::set<std::string> failed;
+  for (Violation& v : verify_flights(sc, out.uavs)) {
+    if (failed.insert(v.uav).second) out.left_out.push_back(v.uav + ": with its " + std::string(to_string(opt.end)) + " legs: " + describe(v));
+    out.violations.push_back(std::move(v));
+  }
+  for (const ExportedUav& e : out.uavs)
+    if (!failed.count(e.spec->id))
+      if (const std::string why = circle_meets(sc, e, out.uavs); !why.empty()) {
+        failed.insert(e.spec->id);
+        out.left_out.push_back(e.spec->id + ": " + why);
+      }
+  std::erase_if(out.uavs, [&](const ExportedUav& e) { return failed.count(e.spec->id) > 0; });
+  return out;
+}
+
+}  // namespace uavplan

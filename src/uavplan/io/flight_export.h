@@ -1,0 +1,85 @@
+// What leaves the tool: the UAVs of a plan that hold under the verifier, each with the legs its
+// mission file adds to the plan, and those legs verified like the rest.
+//  - The take-off: a plan that starts on the ground has its vertical take-off in the trajectory;
+//    an airborne start implies one from the ground below it (multirotor: vertical; fixed wing:
+//    a straight climb-out at min(max_climb, 10 deg) along the start heading ending at the start).
+//    It happens before t = 0, so it is checked against obstacles, terrain and the bounds, not in
+//    time.
+//  - The end (--end): `land` descends vertically from the goal (multirotor; a plan that lands
+//    at its goal already has it) or glides at 5 degrees straight on, or turned by at most the
+//    turn limit, to a touch-down point (fixed wing: DO_LAND_START, approach, NAV_LAND); `rtl`
+//    turns back within the turn limit, flies straight to above home at the goal's height and
+//    comes down (multirotor) or circles there (fixed wing); `loiter` holds at the goal
+//    (multirotor) or circles it at the autopilot's loiter radius (fixed wing: 80 m PX4, 60 m
+//    ArduPilot); `none` adds nothing. End legs are flown at cruise speed from the arrival and
+//    verified with every other exported UAV's trajectory (separation, obstacles, terrain,
+//    moving obstacles, bounds, limits).
+// A UAV is left out, with the reason, when it is not solved, has a violation, or an added leg
+// does not hold. A fixed-wing UAV cannot fly a vertical take-off or landing: such plans are left
+// out with what to change.
+#pragma once
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "uavplan/coordination/plan.h"
+#include "uavplan/coordination/scenario.h"
+#include "uavplan/evaluation/verifier.h"
+
+namespace uavplan {
+
+enum class Firmware { px4, ardupilot };             // QGC firmwareType 12 / 3
+enum class VehicleKind { multirotor, fixed_wing };  // MAV_TYPE 2 / 1
+enum class MissionEnd { land, rtl, loiter, none };
+enum class FenceMode { none, bounds, all };          // bounds: plus the largest exclusions
+std::string_view to_string(MissionEnd e);
+
+// Thrown when a plan cannot be exported (no origin, a plan UAV unknown to the scenario).
+class ExportError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct ExportOptions {
+  Firmware firmware = Firmware::px4;
+  VehicleKind vehicle = VehicleKind::multirotor;
+  MissionEnd end = MissionEnd::land;
+  // Legs whose speeds differ by less than this fraction of the current mission speed fly at it
+  // (no DO_CHANGE_SPEED item): a group plan's speeds wobble by a few percent leg to leg.
+  double speed_change_fraction = 0.10;
+  FenceMode fence = FenceMode::bounds;
+  int max_fence_exclusions = 16;  // FenceMode::bounds: autopilots store few fence points
+};
+
+inline constexpr double kFixedWingGlide_deg = 5.0;     // PX4 FW_LND_ANG default
+inline constexpr double kFixedWingClimbOut_deg = 10.0;  // PX4 FW_TKO_PITCH_MIN default
+double fixed_wing_loiter_radius_m(Firmware f);          // NAV_LOITER_RAD 80 m / WP_LOITER_RAD 60 m
+
+struct ExportedUav {
+  const UavSpec* spec = nullptr;
+  UavPlan plan;                // the trajectory it flies: the plan's, and its end legs
+  std::size_t body_begin = 0;  // first row after a vertical take-off in the plan (0: none)
+  std::size_t body_end = 0;    // last row before the end legs (and before a landing in the plan)
+  Vec3 home = Vec3::Zero();    // on the ground: where it takes off
+  Vec3 takeoff_to = Vec3::Zero();  // the top of its take-off
+  MissionEnd end = MissionEnd::none;
+  std::optional<Vec3> approach;      // fixed-wing landing: where the glide begins
+  std::optional<Vec3> touchdown;     // land: where it touches down
+  std::vector<Vec3> return_points;   // rtl: the turn back and the point above home
+  double loiter_radius_m = 0.0;      // loiter (and fixed-wing rtl at home)
+};
+
+struct VerifiedExport {
+  std::vector<ExportedUav> uavs;      // what may be written, in plan order
+  std::vector<std::string> left_out;  // "ID: why" (and "the plan: why" for mission-level ones)
+  std::vector<Violation> violations;  // the verifier's findings behind them
+  bool holds() const { return left_out.empty(); }
+};
+
+// Throws ExportError for a plan UAV the scenario lacks.
+VerifiedExport verified_export(const Scenario& scenario, const Plan& plan, const ExportOptions& options);
+
+}  // namespace uavplan

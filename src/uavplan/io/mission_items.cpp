@@ -1,0 +1,134 @@
+#include "uavplan/io/mission_items.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "uavplan/io/export_common.h"
+#include "uavplan/io/geo.h"
+
+namespace uavplan {
+namespace {
+
+constexpr double kHoldMove_m = 1e-6;          // a leg shorter than this is the UAV holding still
+constexpr double kCollinearCos = 1.0 - 1e-9;  // legs this parallel are one straight leg
+
+// Compass yaw (0 = north, clockwise) of a horizontal direction, degrees in [0, 360).
+double compass_yaw_deg(const Vec3& d) {
+  if (std::hypot(d.x(), d.y()) < 1e-12) return 0.0;
+  double yaw = std::atan2(d.x(), d.y()) * 180.0 / std::numbers::pi;
+  if (yaw < 0.0) yaw += 360.0;
+  return yaw;
+}
+
+class Items {
+ public:
+  Items(const GeoFrame& frame, double home_amsl_m, double cruise_mps, const ExportOptions& opt)
+      : frame_(frame), home_amsl_m_(home_amsl_m), speed_mps_(cruise_mps), opt_(opt) {}
+
+  void at(int command, const Vec3& p, std::array<double, 4> head) {
+    const LatLonAlt g = frame_.to_wgs84(p);
+    MissionItem it;
+    it.command = command;
+    it.params = {round_m(head[0]), round_m(head[1]), round_m(head[2]), round_m(head[3]),
+                 round_deg(g.lat_deg), round_deg(g.lon_deg), round_m(g.alt_m - home_amsl_m_)};
+    items_.push_back(it);
+  }
+  void command(int command, std::array<double, 4> head = {}) {
+    MissionItem it;
+    it.command = command;
+    it.frame = kFrameMission;
+    it.params = {round_m(head[0]), round_m(head[1]), round_m(head[2]), round_m(head[3]), 0, 0, 0};
+    items_.push_back(it);
+  }
+  // A DO_CHANGE_SPEED when the leg's speed differs from the current one by the fraction or more.
+  void speed(double mps) {
+    if (std::abs(mps - speed_mps_) < opt_.speed_change_fraction * speed_mps_) return;
+    command(kCmdChangeSpeed, {1.0, mps, -1.0, 0});  // ground speed, m/s, throttle unchanged
+    speed_mps_ = mps;
+  }
+  // Rows [from, to] of the trajectory: holds, straight legs, speed changes.
+  void body(const Trajectory& tr, std::size_t from, std::size_t to) {
+    std::size_t i = from;
+    while (i < to) {
+      const Vec3 a = tr[i].p;
+      if ((tr[i + 1].p - a).norm() <= kHoldMove_m) {
+        double hold_s = 0.0;  // consecutive holds are one loiter
+        while (i < to && (tr[i + 1].p - tr[i].p).norm() <= kHoldMove_m) {
+          hold_s += tr[i + 1].t_s - tr[i].t_s;
+          ++i;
+        }
+        if (hold_s > 0.0) at(kCmdLoiterTime, a, {hold_s, 0, 0, 0});
+        continue;
+      }
+      // One straight leg at one speed, as long as the following legs keep direction and speed.
+      const Vec3 dir = (tr[i + 1].p - a).normalized();
+      const double v = (tr[i + 1].p - a).norm() / std::max(tr[i + 1].t_s - tr[i].t_s, 1e-12);
+      std::size_t j = i + 1;
+      while (j < to) {
+        const Vec3 d = tr[j + 1].p - tr[j].p;
+        const double len = d.norm();
+        if (len <= kHoldMove_m) break;
+        const double vj = len / std::max(tr[j + 1].t_s - tr[j].t_s, 1e-12);
+        if (d.dot(dir) / len < kCollinearCos || std::abs(vj - v) > opt_.speed_change_fraction * v) break;
+        ++j;
+      }
+      speed(v);
+      at(kCmdWaypoint, tr[j].p, {0, 0, 0, compass_yaw_deg(dir)});
+      i = j;
+    }
+  }
+  std::vector<MissionItem>& items() { return items_; }
+
+ private:
+  const GeoFrame& frame_;
+  double home_amsl_m_;
+  double speed_mps_;
+  const ExportOptions& opt_;
+  std::vector<MissionItem> items_;
+};
+
+}  // namespace
+
+std::vector<MissionItem> mission_items(const Scenario& sc, const ExportedUav& e, const ExportOptions& opt) {
+  if (!sc.origin) throw ExportError("scenario '" + sc.name + "' has no origin: add origin: {lat, lon, alt} to export to WGS84");
+  const GeoFrame frame(*sc.origin);
+  const Trajectory& tr = e.plan.trajectory;
+  const double cruise = e.spec->speed.cruise_mps;
+  Items m(frame, frame.to_wgs84(e.home).alt_m, cruise, opt);
+  const Vec3 first = tr[std::min(e.body_begin + 1, tr.size() - 1)].p - tr[e.body_begin].p;
+  m.at(kCmdTakeoff, e.takeoff_to, {0, 0, 0, compass_yaw_deg(first)});
+  m.body(tr, e.body_begin, e.body_end);
+  switch (e.end) {
+    case MissionEnd::land:
+      if (e.approach) {  // PX4's landing pattern: the marker, the approach waypoint, the touch-down
+        auto& items = m.items();
+        for (auto it = items.rbegin(); it != items.rend(); ++it)
+          if (it->command == kCmdWaypoint) {
+            MissionItem start;
+            start.command = kCmdLandStart;
+            start.frame = kFrameMission;
+            items.insert(it.base() - 1, start);
+            break;
+          }
+      }
+      m.at(kCmdLand, *e.touchdown, {0, 0, 0, 0});
+      break;
+    case MissionEnd::rtl: {
+      m.speed(cruise);
+      Vec3 from = tr[e.body_end].p;
+      for (const Vec3& p : e.return_points) {
+        m.at(kCmdWaypoint, p, {0, 0, 0, compass_yaw_deg(p - from)});
+        from = p;
+      }
+      m.command(kCmdReturn);
+      break;
+    }
+    case MissionEnd::loiter:
+      m.at(kCmdLoiterUnlimited, tr[e.body_end].p, {0, 0, e.loiter_radius_m, 0});
+      break;
+    case MissionEnd::none: break;
+  }
+  return std::move(m.items());
+}
+
+}  // namespace uavplan

@@ -1,0 +1,134 @@
+#include "uavplan/io/qgc_export.h"
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "uavplan/core/geometry.h"
+#include "uavplan/core/text.h"
+#include "uavplan/io/geo.h"
+#include "uavplan/io/export_common.h"
+#include "uavplan/io/mission_items.h"
+
+namespace uavplan {
+namespace {
+
+using ojson = nlohmann::ordered_json;
+
+ojson mission_json(const std::vector<MissionItem>& items, double home_amsl_m) {
+  ojson out = ojson::array();
+  int jump_id = 1;
+  for (const MissionItem& it : items) {
+    ojson j;
+    if (it.positioned()) {
+      j["AMSLAltAboveTerrain"] = round_m(home_amsl_m + it.params[6]);  // a number: QGC's loader rejects null here
+      j["Altitude"] = it.params[6];
+      j["AltitudeMode"] = 1;  // relative to home
+    }
+    j["autoContinue"] = true;
+    j["command"] = it.command;
+    j["doJumpId"] = jump_id++;
+    j["frame"] = it.frame;
+    j["params"] = ojson::array();
+    for (double p : it.params) j["params"].push_back(p);
+    j["type"] = "SimpleItem";
+    out.push_back(std::move(j));
+  }
+  return out;
+}
+
+// Exclusions: the obstacles this UAV can neither over- nor under-fly at the heights its route
+// flies (a fence is 2-D: an obstacle the route passes over must not become one; the take-off and
+// landing legs reach the ground and do not count), largest first.
+ojson fence_json(const Scenario& sc, const ExportedUav& e, const GeoFrame& frame, const ExportOptions& opt,
+                 std::vector<std::string>* notes) {
+  ojson polygons = ojson::array(), circles = ojson::array();
+  if (opt.fence == FenceMode::none) return {{"circles", circles}, {"polygons", polygons}, {"version", 2}};
+  const double keep = keep_off_m(*e.spec);
+  double z_lo = World::kInf, z_hi = -World::kInf;
+  const auto& tr = e.plan.trajectory;
+  for (std::size_t k = e.body_begin; k <= e.body_end && k < tr.size(); ++k) {
+    z_lo = std::min(z_lo, tr[k].p.z() - keep);
+    z_hi = std::max(z_hi, tr[k].p.z() + keep);
+  }
+  auto latlon = [&](double x, double y) {
+    const LatLonAlt g = rounded(frame.to_wgs84(Vec3(x, y, 0.0)));
+    return ojson::array({g.lat_deg, g.lon_deg});
+  };
+  const Aabb& b = sc.world.bounds();
+  polygons.push_back(ojson{{"inclusion", true},
+                           {"polygon", ojson::array({latlon(b.min.x(), b.min.y()), latlon(b.max.x(), b.min.y()),
+                                                     latlon(b.max.x(), b.max.y()), latlon(b.min.x(), b.max.y())})},
+                           {"version", 1}});
+  std::vector<std::pair<double, std::size_t>> walls;  // (footprint area, obstacle)
+  const auto& obstacles = sc.world.obstacles();
+  for (std::size_t k = 0; k < obstacles.size(); ++k) {
+    if (std::holds_alternative<Sphere>(obstacles[k])) continue;
+    const Aabb ob = bounding_box(obstacles[k]);
+    if (ob.min.z() > z_lo || ob.max.z() < z_hi) continue;
+    walls.emplace_back(std::abs(polygon_signed_area(footprint(obstacles[k]))), k);
+  }
+  std::stable_sort(walls.begin(), walls.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+  const std::size_t keep_n =
+      opt.fence == FenceMode::all ? walls.size() : std::min(walls.size(), static_cast<std::size_t>(std::max(0, opt.max_fence_exclusions)));
+  if (notes && keep_n < walls.size())
+    notes->push_back("geofence: the " + std::to_string(keep_n) + " largest of " + std::to_string(walls.size()) +
+                     " exclusion zones (" + std::to_string(walls.size() - keep_n) +
+                     " smaller ones left out: autopilots cap stored fence points; --fence all keeps them)");
+  for (std::size_t n = 0; n < keep_n; ++n) {
+    const Obstacle& o = obstacles[walls[n].second];
+    if (const auto* c = std::get_if<Cylinder>(&o)) {
+      circles.push_back(ojson{{"circle", {{"center", latlon(c->center.x(), c->center.y())}, {"radius", c->radius_m}}},
+                              {"inclusion", false},
+                              {"version", 1}});
+      continue;
+    }
+    ojson poly = ojson::array();
+    for (const Vec2& v : footprint(o)) poly.push_back(latlon(v.x(), v.y()));
+    polygons.push_back(ojson{{"inclusion", false}, {"polygon", std::move(poly)}, {"version", 1}});
+  }
+  return {{"circles", std::move(circles)}, {"polygons", std::move(polygons)}, {"version", 2}};
+}
+
+}  // namespace
+
+std::string qgc_plan_json(const Scenario& sc, const ExportedUav& e, const ExportOptions& opt, std::vector<std::string>* notes) {
+  const std::vector<MissionItem> items = mission_items(sc, e, opt);
+  const GeoFrame frame(*sc.origin);
+  const LatLonAlt home = rounded(frame.to_wgs84(e.home));
+  const LatLonAlt rally = rounded(frame.to_wgs84(e.takeoff_to));
+  ojson j;
+  j["fileType"] = "Plan";
+  j["geoFence"] = fence_json(sc, e, frame, opt, notes);
+  j["groundStation"] = "uavplan";
+  j["mission"] = {{"cruiseSpeed", e.spec->speed.cruise_mps},
+                  {"firmwareType", opt.firmware == Firmware::px4 ? 12 : 3},
+                  {"globalPlanAltitudeMode", 1},
+                  {"hoverSpeed", e.spec->speed.cruise_mps},
+                  {"items", mission_json(items, home.alt_m)},
+                  {"plannedHomePosition", ojson::array({home.lat_deg, home.lon_deg, home.alt_m})},
+                  {"vehicleType", opt.vehicle == VehicleKind::multirotor ? 2 : 1},
+                  {"version", 2}};
+  j["rallyPoints"] = {{"points", ojson::array({ojson::array({rally.lat_deg, rally.lon_deg, round_m(rally.alt_m - home.alt_m)})})},
+                      {"version", 2}};
+  j["version"] = 1;
+  return j.dump(4) + "\n";
+}
+
+std::string qgc_wpl(const Scenario& sc, const ExportedUav& e, const ExportOptions& opt) {
+  const std::vector<MissionItem> items = mission_items(sc, e, opt);
+  const GeoFrame frame(*sc.origin);
+  const LatLonAlt home = rounded(frame.to_wgs84(e.home));
+  std::string out = "QGC WPL 110\n";
+  // Row 0 is home, absolute altitude (frame 0), as QGroundControl and ArduPilot write it.
+  out += "0\t1\t0\t16\t0\t0\t0\t0\t" + short_num(home.lat_deg) + "\t" + short_num(home.lon_deg) + "\t" + short_num(home.alt_m) + "\t1\n";
+  int index = 1;
+  for (const MissionItem& it : items) {
+    out += std::to_string(index++) + "\t0\t" + std::to_string(it.frame) + "\t" + std::to_string(it.command);
+    for (double p : it.params) out += "\t" + short_num(p);
+    out += "\t1\n";
+  }
+  return out;
+}
+
+}  // namespace uavplan
