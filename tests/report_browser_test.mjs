@@ -1,7 +1,13 @@
-// Opens an HTML report in headless Chromium (Debian's, driven by playwright-core), fails on any
-// console error or page error, and checks a screenshot of the 3-D view for the routes: pixels
-// of the UAVs' colours must be there with the routes shown and (nearly) gone with them hidden,
-// so a blank or broken canvas fails.
+// Opens an HTML report in headless Chromium (Debian's, driven by playwright-core) in a 1400 px
+// window, fails on any console error or page error, and checks what a pilot looks for:
+//  - a screenshot of the 3-D view shows the routes: pixels of the UAVs' colours are there with
+//    the routes shown and (nearly) gone with them hidden, so a blank or broken canvas fails;
+//  - every metric cell holds a value or says why it has none (never "-", empty, NaN);
+//  - a legend entry per UAV in its colour, axes labelled in metres, a north arrow, a scale bar,
+//    the altitude / speed / separation (log) charts and the height-above-ground profile;
+//  - radar shells and moving-obstacle tracks when the scenario has them;
+//  - the page is no wider than the window.
+// The screenshot written is of the whole page.
 //   node report_browser_test.mjs REPORT.html NODE_MODULES_DIR SCREENSHOT.png
 import { createRequire } from 'node:module';
 import fs from 'node:fs';
@@ -64,7 +70,6 @@ try {
   if (colours.length === 0) fail('the report has no route to show');
   const canvas = page.locator('#view canvas');
   const shown = await canvas.screenshot();
-  fs.writeFileSync(shotPath, shown);
   await page.evaluate(() => window.uavplanReport.setRoutesVisible(false));
   await page.waitForTimeout(200);
   const hidden = await canvas.screenshot();
@@ -85,11 +90,44 @@ try {
   if (withRoutes < 300) fail(`too few route-coloured pixels (${withRoutes}): the routes are not drawn`);
   if (withRoutes < 5 * Math.max(without, 20)) fail('hiding the routes hardly changes the picture: the colours are not the routes');
   const charts = await page.locator('.uplot').count();
-  if (charts < 2) fail(`expected the altitude and speed charts, found ${charts}`);
-  const rows = await page.locator('main table').first().locator('tr').count();
-  if (rows < 2) fail('the metrics table is empty');
+  const info = await page.evaluate(() => {
+    const d = JSON.parse(document.getElementById('uavplan-data').textContent);
+    const cells = [...document.querySelectorAll('#uav-metrics td, #plan-metrics td')].map((c) => c.textContent.trim());
+    const legend = [...document.querySelectorAll('#legend span.uav')].map((s) => [s.textContent, getComputedStyle(s, '::before').backgroundColor]);
+    const r = window.uavplanReport;
+    return {
+      cells, legend, uavs: d.uavs.map((u) => [u.id, u.colour]), radars: d.threats.length, moving: d.moving.length,
+      profiled: d.uavs.filter((u) => u.profile).length, shells: r.radarShells, tracks: r.movingTracks, axisLabels: r.axisLabels,
+      north: !!document.querySelector('#north svg'), scale: document.querySelector('#scalebar span').textContent,
+      scaleWidth: document.querySelector('#scalebar .bar').getBoundingClientRect().width,
+      logScale: [...document.querySelectorAll('.uplot .u-title')].some((t) => /log scale/.test(t.textContent)),
+      profile: document.querySelectorAll('#profile .uplot').length,
+      pageWidth: document.documentElement.scrollWidth, rows: document.querySelectorAll('#uav-metrics tr').length,
+    };
+  });
+  const expectedCharts = 2 + (info.uavs.length > 1 ? 1 : 0) + (info.profiled ? 1 : 0);
+  if (charts < expectedCharts) fail(`expected ${expectedCharts} charts (altitude, speed, separation, height profile), found ${charts}`);
+  if (info.rows < 2) fail('the metrics table is empty');
+  const bad = info.cells.filter((c) => c === '' || c === '-' || /NaN|undefined|null|not computed/.test(c));
+  if (bad.length) fail(`metric cells without a value: ${JSON.stringify(bad)}`);
+  const rgb = (h) => `rgb(${hex(h).join(', ')})`;
+  for (const [id, colour] of info.uavs) {
+    const entry = info.legend.find(([t]) => t.startsWith(`${id} `));
+    if (!entry) fail(`no legend entry for ${id}`);
+    else if (entry[1] !== rgb(colour)) fail(`legend entry of ${id} is ${entry[1]}, its route is ${rgb(colour)}`);
+  }
+  if (info.axisLabels < 6) fail(`the 3-D view has ${info.axisLabels} axis labels in metres`);
+  if (!info.north) fail('no north arrow');
+  if (!/^\d+(\.\d)? m$/.test(info.scale) || !(info.scaleWidth > 20)) fail(`the scale bar says '${info.scale}' over ${info.scaleWidth} px`);
+  if (info.uavs.length > 1 && !info.logScale) fail('the separation chart is not on a log scale');
+  if (info.profiled && info.profile !== 1) fail('no height-above-ground profile');
+  if (info.radars && info.shells < info.radars) fail(`${info.radars} radars but ${info.shells} range shells`);
+  if (info.tracks !== info.moving) fail(`${info.moving} moving obstacles but ${info.tracks} tracks`);
+  if (info.pageWidth > 1400) fail(`the page is ${info.pageWidth} px wide in a 1400 px window`);
+  await page.screenshot({ path: shotPath, fullPage: true });
   for (const e of errors) fail(e);
-  if (!process.exitCode) console.log(`report_browser_test: ok (${colours.length} routes, ${charts} charts)`);
+  if (!process.exitCode)
+    console.log(`report_browser_test: ok (${colours.length} routes, ${charts} charts, ${info.shells} radar shells, ${info.tracks} tracks)`);
 } finally {
   await browser.close();
 }

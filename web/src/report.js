@@ -14,7 +14,7 @@ const data = JSON.parse(document.getElementById('uavplan-data').textContent);
 function el(tag, attrs = {}, ...children) {
   const e = document.createElement(tag);
   for (const [k, v] of Object.entries(attrs)) {
-    if (k === 'style') Object.assign(e.style, v);
+    if (k === 'style') for (const [name, value] of Object.entries(v)) e.style.setProperty(name, value);
     else if (k.startsWith('on')) e.addEventListener(k.slice(2), v);
     else e.setAttribute(k, v);
   }
@@ -22,7 +22,17 @@ function el(tag, attrs = {}, ...children) {
   return e;
 }
 
-const fmt = (v, d = 3) => (typeof v === 'number' ? (Number.isInteger(v) ? String(v) : v.toFixed(d)) : v ?? '-');
+const fmt = (v, d = 3) => (Number.isInteger(v) ? String(v) : v.toFixed(d));
+// A metric cell says why a value is missing instead of showing a dash.
+function metricText(u, key) {
+  const v = u.metrics[key];
+  if (typeof v === 'number') return fmt(v);
+  if (u.trajectory.length < 2) return `not flown (${u.status})`;
+  if (key === 'min_clearance_m') return 'no obstacle';
+  if (key === 'min_agl_m') return 'flat world';
+  return 'not computed';
+}
+const terrainBrown = '#8c7b5e';
 
 // ---- page layout ----
 const app = document.getElementById('app');
@@ -49,8 +59,13 @@ const routesToggle = el('input', { type: 'checkbox', checked: '', id: 'routes' }
 left.append(view,
   el('div', { class: 'controls' }, play, slider, timeLabel,
     el('label', {}, routesToggle, ' routes')));
-const legend = el('div', { class: 'legend' });
-for (const u of data.uavs) legend.append(el('span', { style: { '--c': u.colour } }, `${u.id} (${u.status})`));
+const legend = el('div', { class: 'legend', id: 'legend' });
+for (const u of data.uavs) legend.append(el('span', { class: 'uav', style: { '--c': u.colour } }, `${u.id} (${u.status})`));
+if (data.obstacles.length) legend.append(el('span', { class: 'key', style: { '--c': '#a4abb5' } }, 'obstacle'));
+if (data.terrain) legend.append(el('span', { class: 'key', style: { '--c': terrainBrown } }, 'terrain'));
+if (data.threats.length)
+  legend.append(el('span', { class: 'key ring', style: { '--c': '#c2410c' } }, 'radar: threat cost = 1, 0.1, 0.01 x distance'));
+if (data.moving.length) legend.append(el('span', { class: 'key dashed', style: { '--c': '#6b7280' } }, 'moving obstacle and its track'));
 left.append(legend);
 
 // ---- 3-D view (z up, the scenario's frame) ----
@@ -64,6 +79,12 @@ const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffe
 renderer.setPixelRatio(window.devicePixelRatio || 1);
 renderer.setClearColor(0xf4f6f8);
 view.append(renderer.domElement);
+// North arrow and scale bar over the view, updated every frame from the camera.
+const north = el('div', { class: 'overlay north', id: 'north', title: 'north (+y)' });
+north.innerHTML = '<svg viewBox="-20 -24 40 48" width="40" height="48"><polygon points="0,-18 8,6 0,1 -8,6" fill="#1d232b"/>' +
+  '<text x="0" y="20" text-anchor="middle" font-size="11" font-weight="700" fill="#1d232b">N</text></svg>';
+const scaleBar = el('div', { class: 'overlay scalebar', id: 'scalebar' }, el('div', { class: 'bar' }), el('span', {}, ''));
+view.append(north, scaleBar);
 const scene = new THREE.Scene();
 const camera = new THREE.PerspectiveCamera(45, 1, diag / 1000, diag * 20);
 camera.up.set(0, 0, 1);
@@ -82,22 +103,85 @@ const boundsBox = new THREE.LineSegments(
 boundsBox.position.copy(centre);
 scene.add(boundsBox);
 
+// Axes in metres along the bounds' edges: x (east) along the south edge, y (north) along the
+// west edge, z up the north-west corner; labels are sprites that always face the camera.
+function niceStep(span, count) {
+  const raw = span / Math.max(1, count);
+  const p = 10 ** Math.floor(Math.log10(raw));
+  return [1, 2, 5, 10].map((m) => m * p).find((v) => v >= raw) || raw;
+}
+const fmtM = (v) => `${Number.isInteger(v) ? v : v.toFixed(1)} m`;
+function label(text, position, scale) {
+  const c = document.createElement('canvas');
+  c.width = 512; c.height = 128;
+  const g = c.getContext('2d');
+  g.font = '600 64px system-ui, "DejaVu Sans", sans-serif';
+  g.fillStyle = '#3b4450';
+  g.textAlign = 'center';
+  g.textBaseline = 'middle';
+  g.fillText(text, 256, 64);
+  const sprite = new THREE.Sprite(new THREE.SpriteMaterial({ map: new THREE.CanvasTexture(c), depthTest: false, transparent: true }));
+  sprite.scale.set(scale * 4, scale, 1);
+  sprite.position.copy(position);
+  sprite.renderOrder = 2;
+  scene.add(sprite);
+  return sprite;
+}
+const axisLabels = [];
+{
+  const tick = diag * 0.012, textSize = diag * 0.03, ticks = [];
+  const along = (axis, from, to, at) => {
+    const step = niceStep(to - from, 5);
+    for (let v = Math.ceil(from / step) * step; v <= to + 1e-9; v += step) at(v, step);
+  };
+  along('x', bmin.x, bmax.x, (v) => {
+    ticks.push(v, bmin.y, bmin.z, v, bmin.y - tick, bmin.z);
+    axisLabels.push(label(fmtM(v), new THREE.Vector3(v, bmin.y - 3 * tick, bmin.z), textSize));
+  });
+  along('y', bmin.y, bmax.y, (v) => {
+    ticks.push(bmin.x, v, bmin.z, bmin.x - tick, v, bmin.z);
+    axisLabels.push(label(fmtM(v), new THREE.Vector3(bmin.x - 4 * tick, v, bmin.z), textSize));
+  });
+  if (size.z > 0)
+    along('z', bmin.z, bmax.z, (v) => {
+      if (v === bmin.z) return;  // the y axis labels the corner
+      ticks.push(bmin.x, bmax.y, v, bmin.x - tick, bmax.y, v);
+      axisLabels.push(label(fmtM(v), new THREE.Vector3(bmin.x - 5 * tick, bmax.y, v), textSize));
+    });
+  axisLabels.push(label('x, east', new THREE.Vector3(centre.x, bmin.y - 7 * tick, bmin.z), textSize * 1.1));
+  axisLabels.push(label('y, north', new THREE.Vector3(bmin.x - 9 * tick, centre.y, bmin.z), textSize * 1.1));
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.Float32BufferAttribute(ticks, 3));
+  scene.add(new THREE.LineSegments(g, new THREE.LineBasicMaterial({ color: 0x59626d })));
+}
+
 if (data.terrain) {
+  // Each cell is a flat column (the world's model): its top, and the walls down to its lower
+  // neighbours and to the floor at the edges, so no gap shows between cells of other heights.
   const t = data.terrain;
   const positions = [];
   const colours = [];
   const hmax = Math.max(1e-9, ...t.heights);
   const lo = new THREE.Color(0xc9bfa6);
-  const hi = new THREE.Color(0x8c7b5e);
+  const hi = new THREE.Color(terrainBrown);
+  const wall = new THREE.Color(0x9c8b6c);
+  const floor = bmin.z;
+  const height = (i, j) => (i < 0 || j < 0 || i >= t.nx || j >= t.ny ? floor : Math.max(floor, t.heights[j * t.nx + i]));
+  const quad = (a, b, c, d, col) => {
+    positions.push(...a, ...b, ...c, ...a, ...c, ...d);
+    for (let k = 0; k < 6; k++) colours.push(col.r, col.g, col.b);
+  };
   for (let j = 0; j < t.ny; j++) {
     for (let i = 0; i < t.nx; i++) {
-      const h = t.heights[j * t.nx + i];
-      if (!(h > -1e300)) continue;
+      const h = height(i, j);
       const x0 = t.origin[0] + i * t.cell, y0 = t.origin[1] + j * t.cell;
       const x1 = x0 + t.cell, y1 = y0 + t.cell;
-      positions.push(x0, y0, h, x1, y0, h, x1, y1, h, x0, y0, h, x1, y1, h, x0, y1, h);
-      const c = lo.clone().lerp(hi, Math.max(0, h) / hmax);
-      for (let k = 0; k < 6; k++) colours.push(c.r, c.g, c.b);
+      quad([x0, y0, h], [x1, y0, h], [x1, y1, h], [x0, y1, h], lo.clone().lerp(hi, Math.max(0, h - floor) / hmax));
+      const e = height(i + 1, j), w = height(i - 1, j), n = height(i, j + 1), s = height(i, j - 1);
+      if (e < h) quad([x1, y0, e], [x1, y1, e], [x1, y1, h], [x1, y0, h], wall);
+      if (w < h) quad([x0, y1, w], [x0, y0, w], [x0, y0, h], [x0, y1, h], wall);
+      if (n < h) quad([x1, y1, n], [x0, y1, n], [x0, y1, h], [x1, y1, h], wall);
+      if (s < h) quad([x0, y0, s], [x1, y0, s], [x1, y0, h], [x0, y0, h], wall);
     }
   }
   const g = new THREE.BufferGeometry();
@@ -105,6 +189,11 @@ if (data.terrain) {
   g.setAttribute('color', new THREE.Float32BufferAttribute(colours, 3));
   g.computeVertexNormals();
   scene.add(new THREE.Mesh(g, new THREE.MeshLambertMaterial({ vertexColors: true, side: THREE.DoubleSide })));
+  // The floor beyond the grid.
+  const ground = new THREE.Mesh(new THREE.PlaneGeometry(size.x, size.y),
+    new THREE.MeshLambertMaterial({ color: 0xe2e0d8, side: THREE.DoubleSide }));
+  ground.position.set(centre.x, centre.y, bmin.z - 1e-3 * diag);
+  scene.add(ground);
 } else {
   const ground = new THREE.Mesh(new THREE.PlaneGeometry(size.x, size.y),
     new THREE.MeshLambertMaterial({ color: 0xe2e0d8, side: THREE.DoubleSide }));
@@ -139,16 +228,44 @@ for (const o of data.obstacles) {
   }
 }
 const marker = diag * 0.006;
+const shellMaterials = [0.22, 0.12, 0.06].map((opacity) =>
+  new THREE.MeshBasicMaterial({ color: 0xc2410c, transparent: true, opacity, depthWrite: false, side: THREE.DoubleSide }));
+let shellCount = 0;
 for (const r of data.threats) {
   const m = new THREE.Mesh(new THREE.OctahedronGeometry(marker * 1.5),
     new THREE.MeshLambertMaterial({ color: 0x7a4a00 }));
   m.position.set(...r.position);
   scene.add(m);
+  r.shells_m.forEach((radius, k) => {
+    if (!(radius > 0) || radius > 2 * diag) return;
+    const shell = new THREE.Mesh(new THREE.SphereGeometry(radius, 40, 20), shellMaterials[k]);
+    shell.position.set(...r.position);
+    scene.add(shell);
+    // The shell's equator, drawn so its reach reads from above too.
+    const circle = Array.from({ length: 97 }, (_, a) =>
+      new THREE.Vector3(radius * Math.cos(Math.PI * a / 48), radius * Math.sin(Math.PI * a / 48), 0));
+    const ring = new THREE.Line(new THREE.BufferGeometry().setFromPoints(circle), new THREE.LineBasicMaterial({ color: 0xc2410c }));
+    ring.position.set(...r.position);
+    scene.add(ring);
+    shellCount++;
+  });
 }
+function movingAt(m, t) {
+  return m.trajectory ? positionAt(m.trajectory, t) : [0, 1, 2].map((k) => m.position[k] + t * m.velocity[k]);
+}
+const trackMaterial = new THREE.LineDashedMaterial({ color: 0x6b7280, dashSize: diag * 0.01, gapSize: diag * 0.006 });
 const movers = data.moving.map((m) => {
   const mesh = new THREE.Mesh(new THREE.SphereGeometry(Math.max(m.radius, marker), 24, 12),
     new THREE.MeshLambertMaterial({ color: 0x6b7280, transparent: true, opacity: 0.6 }));
   scene.add(mesh);
+  // Its track over the plan's time span: the trajectory's rows, or the straight constant-velocity line.
+  const span = data.t_end_s || 0;
+  const pts = m.trajectory ? m.trajectory.filter(([t]) => t <= span).map(([, x, y, z]) => new THREE.Vector3(x, y, z)) : [];
+  if (!m.trajectory || pts.length === 0 || m.trajectory[0][0] > 0) pts.unshift(new THREE.Vector3(...movingAt(m, 0)));
+  pts.push(new THREE.Vector3(...movingAt(m, span)));
+  const track = new THREE.Line(new THREE.BufferGeometry().setFromPoints(pts), trackMaterial);
+  track.computeLineDistances();
+  scene.add(track);
   return { m, mesh };
 });
 
@@ -192,9 +309,7 @@ function setTime(t) {
   slider.value = String(currentTime);
   timeLabel.textContent = `t = ${currentTime.toFixed(1)} s`;
   for (const { u, dot } of uavMarkers) dot.position.set(...positionAt(u.trajectory, currentTime));
-  for (const { m, mesh } of movers)
-    mesh.position.set(...(m.trajectory ? positionAt(m.trajectory, currentTime)
-                                        : [0, 1, 2].map((k) => m.position[k] + currentTime * m.velocity[k])));
+  for (const { m, mesh } of movers) mesh.position.set(...movingAt(m, currentTime));
   for (const c of charts) c.setCursor({ left: c.valToPos(currentTime, 'x'), top: 10 }, false);
 }
 
@@ -204,6 +319,7 @@ function resize() {
   camera.aspect = w / Math.max(1, h);
   camera.updateProjectionMatrix();
   for (const m of lineMaterials) m.resolution.set(w, h);
+  for (const c of [...charts, ...profileCharts]) c.setSize({ width: chartWidth(), height: c.height });
 }
 
 let playing = false;
@@ -219,47 +335,104 @@ routesToggle.addEventListener('change', () => { routeGroup.visible = routesToggl
 
 // ---- charts ----
 const charts = [];
+const chartWidth = () => Math.max(280, Math.floor(right.clientWidth || 400));
 right.append(el('h2', {}, 'Altitude, speed and separation over time'));
 const series = data.series;
-function addChart(title, key, unit, extra) {
+const colourOf = Object.fromEntries(data.uavs.map((u) => [u.id, u.colour]));
+function addChart(title, key, unit, extra, opts = {}) {
   const host = el('div', { class: 'chart' });
   right.append(host);
-  const cols = [series.t_s, ...series.uavs.map((s) => s[key])];
-  const colourOf = Object.fromEntries(data.uavs.map((u) => [u.id, u.colour]));
+  const map = opts.map || ((v) => v);
+  const cols = [series.t_s, ...series.uavs.map((s) => s[key].map((v) => (v == null ? null : map(v))))];
   const sers = [{ label: 't (s)' }, ...series.uavs.map((s) => ({ label: s.id, stroke: colourOf[s.id], width: 1.5 }))];
   if (extra) { cols.push(series.t_s.map(() => extra.value)); sers.push(extra.series); }
-  const width = Math.max(300, right.clientWidth || 400);
-  charts.push(new uPlot({
-    title: `${title} (${unit})`, width, height: 170, series: sers,
-    scales: { x: { time: false } }, axes: [{ label: 't (s)' }, {}], legend: { show: series.uavs.length <= 12 },
-  }, cols, host));
+  const chart = new uPlot({
+    title: `${title} (${unit})`, width: chartWidth(), height: 170, series: sers,
+    scales: { x: { time: false }, ...(opts.scales || {}) }, axes: [{ label: 't (s)' }, {}],
+    legend: { show: series.uavs.length <= 12 },
+  }, cols, host);
+  charts.push(chart);
+  return chart;
 }
 if (series.t_s.length > 0) {
   addChart('Altitude', 'altitude_m', 'm');
   addChart('Speed', 'speed_mps', 'm/s');
   if (series.uavs.length > 1) {
-    addChart('Distance to the nearest UAV', 'nearest_m', 'm',
-      data.separation_m > 0 ? { value: data.separation_m, series: { label: 'separation', stroke: '#000', dash: [6, 4], width: 1 } } : null);
+    // A log scale shows close approaches next to the separation; distances under 1 cm are drawn at 1 cm.
+    addChart('Distance to the nearest UAV', 'nearest_m', 'm, log scale',
+      data.separation_m > 0 ? { value: data.separation_m, series: { label: 'separation', stroke: '#000', dash: [6, 4], width: 1 } } : null,
+      { map: (v) => Math.max(v, 0.01), scales: { y: { distr: 3, log: 10 } } });
   }
 } else {
   right.append(el('p', { class: 'muted' }, 'No trajectory to chart.'));
 }
 
+// Height above ground along the route of the UAV chosen: its altitude, the ground under it
+// (filled) and the difference.
+const profiled = data.uavs.filter((u) => u.profile);
+const profileCharts = [];
+if (profiled.length) {
+  const pick = el('select', { id: 'profile-uav' }, ...profiled.map((u) => el('option', { value: u.id }, u.id)));
+  right.append(el('h2', {}, 'Height above ground along the route of ', pick));
+  const host = el('div', { class: 'chart', id: 'profile' });
+  right.append(host);
+  const draw = () => {
+    const u = profiled.find((x) => x.id === pick.value);
+    const p = u.profile;
+    const agl = p.z_m.map((z, k) => z - p.ground_m[k]);
+    const sers = [{ label: 'distance (m)' },
+      { label: 'ground', stroke: terrainBrown, fill: 'rgba(140, 123, 94, 0.35)', width: 1 },
+      { label: `${u.id} altitude`, stroke: u.colour, width: 2 },
+      { label: 'height above ground', stroke: u.colour, dash: [5, 4], width: 1 }];
+    const cols = [p.s_m, p.ground_m, p.z_m, agl];
+    if (u.min_agl > 0) { sers.push({ label: 'min_agl', stroke: '#8a1420', dash: [2, 3], width: 1 }); cols.push(p.s_m.map(() => u.min_agl)); }
+    for (const c of profileCharts.splice(0)) c.destroy();
+    profileCharts.push(new uPlot({
+      title: `${u.id}: altitude and ground (m) over distance flown (m)`, width: chartWidth(), height: 190, series: sers,
+      scales: { x: { time: false } }, axes: [{ label: 'distance flown (m)' }, {}],
+    }, cols, host));
+  };
+  pick.addEventListener('change', draw);
+  draw();
+}
+
 // ---- metrics and verification ----
-right.append(el('h2', {}, 'Metrics per UAV'));
-const cols = ['length_m', 'flight_time_s', 'max_turn_deg', 'max_climb_deg', 'min_clearance_m'];
-const table = el('table', {}, el('tr', {}, el('th', {}, 'uav'), el('th', {}, 'status'), ...cols.map((c) => el('th', {}, c))));
+left.append(el('h2', {}, 'Metrics per UAV'));
+const cols = [['length_m', 'length (m)'], ['flight_time_s', 'flight time (s)'], ['max_turn_deg', 'max turn (deg)'],
+  ['max_climb_deg', 'max climb (deg)'], ['min_clearance_m', 'min clearance (m)'], ['min_agl_m', 'min AGL (m)']];
+const table = el('table', { id: 'uav-metrics' },
+  el('tr', {}, el('th', {}, 'uav'), el('th', {}, 'status'), ...cols.map(([, h]) => el('th', {}, h))));
 for (const u of data.uavs)
-  table.append(el('tr', {}, el('td', {}, u.id), el('td', {}, u.status), ...cols.map((c) => el('td', {}, fmt(u.metrics[c])))));
-right.append(table);
-right.append(el('h2', {}, 'Plan metrics'));
-const planTable = el('table');
+  table.append(el('tr', {}, el('td', {}, u.id), el('td', {}, u.status), ...cols.map(([c]) => el('td', {}, metricText(u, c)))));
+left.append(el('div', { class: 'scroll' }, table));
+left.append(el('h2', {}, 'Plan metrics'));
+const planTable = el('table', { id: 'plan-metrics' });
 for (const [k, v] of Object.entries(data.metrics)) planTable.append(el('tr', {}, el('td', {}, k), el('td', {}, fmt(v, 4))));
-right.append(planTable);
-right.append(el('h2', {}, 'Verification'));
-if (holds) right.append(el('p', {}, 'Every check holds: bounds, obstacles, terrain, moving obstacles, separation, turn and climb limits, speed, via points.'));
-else right.append(el('ul', { class: 'violations' }, ...data.violations.map((v) => el('li', {}, v))));
-for (const u of data.uavs) if (u.message) right.append(el('p', { class: 'muted' }, `${u.id}: ${u.message}`));
+left.append(planTable);
+left.append(el('h2', {}, 'Verification'));
+if (holds) left.append(el('p', {}, 'Every check holds: bounds, obstacles, terrain, moving obstacles, separation, turn and climb limits, speed, via points.'));
+else left.append(el('ul', { class: 'violations' }, ...data.violations.map((v) => el('li', {}, v))));
+for (const u of data.uavs) if (u.message) left.append(el('p', { class: 'muted' }, `${u.id}: ${u.message}`));
+
+// North: the screen direction of +y at the view's centre. Scale: metres per pixel there, a round
+// length drawn as a bar of about 120 px.
+function toScreen(v) {
+  const p = v.clone().project(camera);
+  return [(p.x + 1) * 0.5 * view.clientWidth, (1 - p.y) * 0.5 * view.clientHeight];
+}
+function updateOverlays() {
+  const t = controls.target;
+  const [ax, ay] = toScreen(t);
+  const [nx, ny] = toScreen(t.clone().add(new THREE.Vector3(0, 0.05 * diag, 0)));
+  north.style.transform = `rotate(${Math.atan2(nx - ax, ay - ny)}rad)`;
+  const side = new THREE.Vector3().setFromMatrixColumn(camera.matrixWorld, 0).normalize();
+  const [rx, ry] = toScreen(t.clone().addScaledVector(side, 0.05 * diag));
+  const pxPerM = Math.hypot(rx - ax, ry - ay) / (0.05 * diag);
+  if (!(pxPerM > 0)) return;
+  const metres = niceStep(120 / pxPerM, 1);
+  scaleBar.firstChild.style.width = `${Math.round(metres * pxPerM)}px`;
+  scaleBar.lastChild.textContent = fmtM(metres);
+}
 
 // ---- run ----
 resize();
@@ -273,6 +446,7 @@ function frame(now) {
   }
   lastFrame = now;
   controls.update();
+  updateOverlays();
   renderer.render(scene, camera);
   requestAnimationFrame(frame);
 }
@@ -282,6 +456,9 @@ requestAnimationFrame(frame);
 window.uavplanReport = {
   ready: true,
   uavs: data.uavs.length,
+  radarShells: shellCount,
+  movingTracks: movers.length,
+  axisLabels: axisLabels.length,
   setTime,
   setRoutesVisible(v) { routesToggle.checked = v; routeGroup.visible = v; renderer.render(scene, camera); },
 };

@@ -11,7 +11,6 @@
 #include "uavplan/io/gis_export.h"
 #include "uavplan/io/mission_items.h"
 #include "uavplan/io/qgc_export.h"
-#include "uavplan/io/report.h"
 
 namespace uavplan {
 namespace {
@@ -337,29 +336,6 @@ TEST(Export, FolderManifestRemovesStaleFilesOnly) {
   EXPECT_FALSE(fs::exists(dir / kExportManifest));
   EXPECT_TRUE(fs::exists(dir / "mine.txt"));
   fs::remove_all(dir);
-}
-
-TEST(Report, PageCarriesDataAndViewer) {
-  const Scenario sc = scenario_with({Box{Vec3(300, 300, 0), Vec3(320, 320, 60)}});
-  Plan plan = plan_of({sample_uav()});
-  plan.uavs[0].message = "</script><b>";
-  const auto data = nlohmann::json::parse(report_data_json(sc, plan, {}));
-  EXPECT_EQ(data["uavs"][0]["trajectory"].size(), 5u);
-  EXPECT_DOUBLE_EQ(data["t_end_s"].get<double>(), 34.0);
-  ASSERT_GT(data["series"]["t_s"].size(), 2u);
-  // Speed: 0 while holding, 5 m/s east, 10 m/s north.
-  const auto& t = data["series"]["t_s"];
-  const auto& v = data["series"]["uavs"][0]["speed_mps"];
-  for (std::size_t i = 0; i < t.size(); ++i) {
-    const double ti = t[i].get<double>();
-    const double vi = v[i].get<double>();
-    const double expected = ti < 3.9 ? 0.0 : ti > 4.1 && ti < 23.9 ? 5.0 : ti > 24.1 && ti < 33.9 ? 10.0 : vi;
-    EXPECT_NEAR(vi, expected, 1e-9) << "t = " << ti;
-  }
-  const std::string html = report_html(sc, plan, {});
-  EXPECT_EQ(html.find("</script><b>"), std::string::npos);  // data cannot close its element
-  EXPECT_NE(html.find("uavplan-data"), std::string::npos);
-  EXPECT_GT(html.size(), 100'000u);  // the bundled viewer is inline
 }
 
 }  // namespace

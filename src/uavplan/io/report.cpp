@@ -4,6 +4,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "uavplan/evaluation/metrics.h"
 #include "uavplan/io/palette.h"
 #include "uavplan/io/report_assets.h"
 #include "uavplan/simulation/trajectory.h"
@@ -63,10 +64,46 @@ double speed_at(const Trajectory& tr, double t) {
 
 double round6(double v) { return std::round(v * 1e6) / 1e6; }
 
+// Radar shells: the distances at which the threat cost per metre, w / d^4 (P1's J_threat per
+// sample point), falls to 1, 0.1 and 0.01 of the fuel cost per metre (J_fuel = L).
+ojson radar_json(const Radar& r) {
+  ojson shells = ojson::array();
+  for (const double level : {1.0, 0.1, 0.01}) shells.push_back(round6(std::pow(r.weight / level, 0.25)));
+  return {{"position", vec(r.position)}, {"weight", r.weight}, {"shells_m", std::move(shells)}};
+}
+
+// Height profile along the route: distance flown, altitude and the ground under the UAV at
+// `samples` evenly spaced distances (and every corner, so steps in the route are not cut).
+ojson profile_json(const World& w, const Trajectory& tr, int samples) {
+  double total = 0.0;
+  for (std::size_t i = 1; i < tr.size(); ++i) total += (tr[i].p - tr[i - 1].p).norm();
+  ojson s_m = ojson::array(), z_m = ojson::array(), ground_m = ojson::array();
+  auto add = [&](double s, const Vec3& p) {
+    s_m.push_back(round6(s));
+    z_m.push_back(round6(p.z()));
+    ground_m.push_back(round6(w.ground_z(p.x(), p.y())));
+  };
+  const double step = total / std::max(1, samples - 1);
+  double s0 = 0.0, next = step;
+  add(0.0, tr.front().p);
+  for (std::size_t i = 1; i < tr.size(); ++i) {
+    const Vec3 a = tr[i - 1].p, b = tr[i].p;
+    const double len = (b - a).norm();
+    if (len <= 0.0) continue;  // holding
+    for (; step > 0.0 && next < s0 + len; next += step) add(next, a + (next - s0) / len * (b - a));
+    s0 += len;
+    add(s0, b);
+  }
+  return {{"s_m", std::move(s_m)}, {"z_m", std::move(z_m)}, {"ground_m", std::move(ground_m)}};
+}
+
 }  // namespace
 
-std::string report_data_json(const Scenario& sc, const Plan& plan, const std::vector<Violation>& violations,
+std::string report_data_json(const Scenario& sc, const Plan& plan_in, const std::vector<Violation>& violations,
                              const ReportOptions& opt) {
+  // The metrics shown are those of the trajectories shown, whatever the plan file says.
+  Plan plan = plan_in;
+  compute_metrics(sc, plan);
   ojson j;
   j["name"] = sc.name;
   j["algorithm"] = plan.algorithm;
@@ -80,7 +117,7 @@ std::string report_data_json(const Scenario& sc, const Plan& plan, const std::ve
   j["obstacles"] = ojson::array();
   for (const Obstacle& o : w.obstacles()) j["obstacles"].push_back(obstacle_json(o));
   j["threats"] = ojson::array();
-  for (const Radar& r : w.radars()) j["threats"].push_back({{"position", vec(r.position)}, {"weight", r.weight}});
+  for (const Radar& r : w.radars()) j["threats"].push_back(radar_json(r));
   j["moving"] = ojson::array();
   for (const MovingObstacle& m : w.moving()) {
     ojson jm = {{"id", m.id}, {"radius", m.radius_m}, {"position", vec(m.position)}, {"velocity", vec(m.velocity_mps)}};
@@ -103,9 +140,13 @@ std::string report_data_json(const Scenario& sc, const Plan& plan, const std::ve
     for (const auto& s : u.trajectory) traj.push_back({s.t_s, s.p.x(), s.p.y(), s.p.z()});
     ojson metrics = ojson::object();
     for (const auto& [key, v] : u.metrics) metrics[key] = round6(v);
+    const bool has_height = w.bounds().extent().z() > 0.0;
     j["uavs"].push_back({{"id", u.id}, {"status", to_string(u.status)}, {"message", u.message}, {"colour", uav_colour(k)},
-                         {"radius", spec ? spec->radius_m : 0.0}, {"length_m", u.length_m}, {"arrival_s", u.arrival_s},
-                         {"trajectory", std::move(traj)}, {"metrics", std::move(metrics)}});
+                         {"radius", spec ? spec->radius_m : 0.0}, {"min_agl", spec ? spec->min_agl_m : 0.0},
+                         {"length_m", u.length_m}, {"arrival_s", u.arrival_s}, {"trajectory", std::move(traj)},
+                         {"metrics", std::move(metrics)},
+                         {"profile", has_height && u.trajectory.size() >= 2 ? profile_json(w, u.trajectory, opt.profile_samples)
+                                                                            : ojson(nullptr)}});
     if (u.trajectory.size() >= 2) {
       flown.push_back(&u);
       t_end = std::max(t_end, u.trajectory.back().t_s);

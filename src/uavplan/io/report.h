@@ -1,6 +1,8 @@
 // The HTML report: one self-contained offline page with a 3-D view of the world and the routes
-// (three.js, a time slider that moves the UAVs), charts of altitude, speed and separation to the
-// nearest UAV over time (uPlot), the metrics table and the verifier's verdict.
+// (three.js: axes in metres, a north arrow and a scale bar, radar shells, moving obstacles and
+// their tracks, a time slider that moves the UAVs), charts of altitude, speed and separation to
+// the nearest UAV over time and each UAV's height above ground along its route (uPlot), the
+// metrics tables and the verifier's verdict.
 #pragma once
 
 #include <string>
@@ -14,10 +16,12 @@ namespace uavplan {
 
 struct ReportOptions {
   int series_samples = 600;          // time samples of the charts
+  int profile_samples = 400;         // distance samples of each UAV's height profile
   int max_terrain_cells = 250'000;   // larger terrains are shown block-wise (each block's highest cell)
 };
 
-// The data the page draws, as JSON: world, trajectories, time series, metrics, verification.
+// The data the page draws, as JSON: world, trajectories, time series, height profiles, metrics
+// (computed from the trajectories, not read from the plan), verification.
 std::string report_data_json(const Scenario& sc, const Plan& plan, const std::vector<Violation>& violations,
                              const ReportOptions& opt = {});
 

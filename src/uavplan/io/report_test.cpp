@@ -1,0 +1,114 @@
+#include "uavplan/io/report.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+namespace uavplan {
+namespace {
+
+Scenario scenario_with(std::vector<Obstacle> obstacles = {}) {
+  Scenario sc;
+  sc.name = "t";
+  WorldSpec w;
+  w.bounds = Aabb{Vec3(0, 0, 0), Vec3(1000, 1000, 100)};
+  w.obstacles = std::move(obstacles);
+  sc.world = World(std::move(w));
+  UavSpec u;
+  u.id = "a/1";
+  u.start = Vec3(0, 0, 10);
+  u.speed = {0.0, 5.0, 10.0};
+  sc.uavs.push_back(u);
+  return sc;
+}
+
+// Holds 4 s at the start, flies east 100 m at 5 m/s, turns north and flies 100 m at 10 m/s.
+Plan sample_plan() {
+  UavPlan u;
+  u.id = "a/1";
+  u.status = Status::solved;
+  u.trajectory = {{0.0, Vec3(0, 0, 10)}, {4.0, Vec3(0, 0, 10)}, {14.0, Vec3(50, 0, 10)},
+                  {24.0, Vec3(100, 0, 10)}, {34.0, Vec3(100, 100, 10)}};
+  Plan p;
+  p.status = Status::solved;
+  p.uavs = {u};
+  return p;
+}
+
+TEST(Report, PageCarriesDataAndViewer) {
+  const Scenario sc = scenario_with({Box{Vec3(300, 300, 0), Vec3(320, 320, 60)}});
+  Plan plan = sample_plan();
+  plan.uavs[0].message = "</script><b>";
+  const auto data = nlohmann::json::parse(report_data_json(sc, plan, {}));
+  EXPECT_EQ(data["uavs"][0]["trajectory"].size(), 5u);
+  EXPECT_DOUBLE_EQ(data["t_end_s"].get<double>(), 34.0);
+  ASSERT_GT(data["series"]["t_s"].size(), 2u);
+  // Speed: 0 while holding, 5 m/s east, 10 m/s north.
+  const auto& t = data["series"]["t_s"];
+  const auto& v = data["series"]["uavs"][0]["speed_mps"];
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const double ti = t[i].get<double>();
+    const double vi = v[i].get<double>();
+    const double expected = ti < 3.9 ? 0.0 : ti > 4.1 && ti < 23.9 ? 5.0 : ti > 24.1 && ti < 33.9 ? 10.0 : vi;
+    EXPECT_NEAR(vi, expected, 1e-9) << "t = " << ti;
+  }
+  const std::string html = report_html(sc, plan, {});
+  EXPECT_EQ(html.find("</script><b>"), std::string::npos);  // data cannot close its element
+  EXPECT_NE(html.find("uavplan-data"), std::string::npos);
+  EXPECT_GT(html.size(), 100'000u);  // the bundled viewer is inline
+}
+
+
+TEST(Report, MetricsAreThoseOfTheTrajectoriesShown) {
+  const Scenario sc = scenario_with({Box{Vec3(300, 300, 0), Vec3(320, 320, 60)}});
+  Plan plan = sample_plan();
+  plan.uavs[0].metrics = {{"length_m", 1.0}};  // a plan file saying something else
+  const auto data = nlohmann::json::parse(report_data_json(sc, plan, {}));
+  const auto& m = data["uavs"][0]["metrics"];
+  EXPECT_DOUBLE_EQ(m["length_m"].get<double>(), 200.0);
+  EXPECT_DOUBLE_EQ(m["max_turn_deg"].get<double>(), 90.0);
+  EXPECT_DOUBLE_EQ(m["min_agl_m"].get<double>(), 10.0);
+  EXPECT_TRUE(m.contains("min_clearance_m"));
+  EXPECT_TRUE(data["metrics"].contains("total_length_m"));
+}
+
+TEST(Report, HeightProfileFollowsTheGroundUnderTheRoute) {
+  Scenario sc = scenario_with();
+  WorldSpec w = sc.world.spec();
+  // Terrain 4 m high for x in [50, 100), 0 elsewhere (cells of 50 m).
+  w.terrain = TerrainGrid(Vec2(0, 0), 50.0, 3, 3, {0, 4, 0, 0, 4, 0, 0, 4, 0});
+  sc.world = World(std::move(w));
+  const auto data = nlohmann::json::parse(report_data_json(sc, sample_plan(), {}));
+  const auto& p = data["uavs"][0]["profile"];
+  const auto& s = p["s_m"];
+  ASSERT_GE(s.size(), 400u);
+  EXPECT_DOUBLE_EQ(s.back().get<double>(), 200.0);
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    const double d = s[k].get<double>();
+    if (k) EXPECT_GE(d, s[k - 1].get<double>());
+    EXPECT_DOUBLE_EQ(p["z_m"][k].get<double>(), 10.0);
+    const double x = d <= 100.0 ? d : 100.0;  // east, then north along x = 100
+    if (std::abs(x - 50.0) > 0.6 && std::abs(x - 100.0) > 0.6)
+      EXPECT_DOUBLE_EQ(p["ground_m"][k].get<double>(), x > 50.0 && x < 100.0 ? 4.0 : 0.0) << "s = " << d;
+  }
+  // A flat world has no height profile.
+  Scenario flat = scenario_with();
+  flat.world = World(WorldSpec{Aabb{Vec3(0, 0, 10), Vec3(1000, 1000, 10)}, {}, {}, {}, {}, {}, {}});
+  EXPECT_TRUE(nlohmann::json::parse(report_data_json(flat, sample_plan(), {}))["uavs"][0]["profile"].is_null());
+}
+
+TEST(Report, RadarShellsWhereTheThreatCostFallsToTheFuelCost) {
+  Scenario sc = scenario_with();
+  WorldSpec w = sc.world.spec();
+  w.radars = {Radar{Vec3(500, 500, 0), 1e4}};
+  sc.world = World(std::move(w));
+  const auto data = nlohmann::json::parse(report_data_json(sc, sample_plan(), {}));
+  const auto& shells = data["threats"][0]["shells_m"];
+  ASSERT_EQ(shells.size(), 3u);
+  EXPECT_NEAR(shells[0].get<double>(), 10.0, 1e-6);  // 1e4 / d^4 = 1
+  EXPECT_NEAR(shells[2].get<double>(), std::pow(1e6, 0.25), 1e-6);
+}
+
+}  // namespace
+}  // namespace uavplan
