@@ -291,5 +291,33 @@ node "$SRC/tests/qgc_plan_check.mjs" "$TMP/ground_geo" a b >/dev/null || { echo 
 "$BIN" plan "$TMP/ground_geo.yaml" -o "$TMP/ground_fw" --export qgc --vehicle fixedwing >/dev/null 2>"$TMP/stderr"; check export.ground.fixedwing 1 $?
 grep -q "cannot fly its planned vertical take-off" "$TMP/stderr" || { echo "FAIL export.ground.fixedwing message: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
 
+# Failures name the UAV, the leg and why, and suggest the setting that fixes them: a climb limit
+# of 5 degrees over a wall, on a cell map whose levels are too tall to climb at all; the
+# suggested level_m then solves it.
+cat >"$TMP/climb.yaml" <<'YAML'
+version: 1
+name: climb
+world:
+  bounds: {min: [0, 0, 0], max: [600, 200, 120]}
+  obstacles:
+    - {type: box, min: [150, 0, 0], max: [180, 200, 80]}
+uavs:
+  - {id: a, start: [20, 100, 10], goal: [580, 100, 10], speed: 5, max_climb_deg: 5, max_turn_deg: 45}
+mission: {type: independent}
+planner: {algorithm: cellular_aco, params: {cell_m: 10}}
+YAML
+"$BIN" plan "$TMP/climb.yaml" -o "$TMP/climb" >"$TMP/stdout" 2>&1; check climb.cells.fails 1 $?
+level=$(sed -n 's/^a: leg 1 (start to goal): no route on the cell map; .*climb limit of 5.0 deg.*level_m <= \([0-9.]*\)$/\1/p' "$TMP/stdout" | head -1)
+if [ -z "$level" ]; then echo "FAIL climb.cells.hint: $(cat "$TMP/stdout")"; fails=$((fails + 1)); else
+  "$BIN" plan "$TMP/climb.yaml" -o "$TMP/climb" --set "level_m=$level" >/dev/null 2>&1; check climb.cells.hint.solves 0 $?
+  "$BIN" verify "$TMP/climb.yaml" "$TMP/climb/plan.json" >/dev/null 2>&1; check climb.cells.hint.verifies 0 $?
+fi
+"$BIN" plan "$TMP/climb.yaml" -o "$TMP/climb" --algorithm directional_astar >"$TMP/stdout" 2>&1; check climb.lattice.fails 1 $?
+grep -q "a: leg 1 (start to goal): no route within the turn and climb limits.*planner.params.step_cells >= 11.5" "$TMP/stdout" ||
+  { echo "FAIL climb.lattice.hint: $(cat "$TMP/stdout")"; fails=$((fails + 1)); }
+"$BIN" plan "$TMP/climb.yaml" -o "$TMP/climb" --algorithm rrt --set max_nodes=50 >"$TMP/stdout" 2>&1; check climb.rrt.fails 1 $?
+grep -q "a: rrt: leg 1 (start to goal) from .*raise planner.params.max_nodes (now 50)" "$TMP/stdout" ||
+  { echo "FAIL climb.rrt.hint: $(cat "$TMP/stdout")"; fails=$((fails + 1)); }
+
 echo "$pass passed, $fails failed"
 [ "$fails" = 0 ]

@@ -246,7 +246,7 @@ GroupResult plan_group(const Scenario& sc, const ApfOptions& options, const Stop
   res.frames = frame;
   for (std::size_t i = 0; i < n; ++i)
     if (!res.uavs[i].reached && res.uavs[i].message.empty())
-      res.uavs[i].message = "goal not reached within " + std::to_string(max_frames) + " frames";
+      res.uavs[i].message = "goal not reached within " + std::to_string(max_frames) + " frames; raise planner.params.max_frames";
 
   // Smoothing, UAV by UAV, against the current paths of the peers that can matter: a smoothed
   // point stays within kDrift_steps steps of its raw place, so two UAVs that never come within

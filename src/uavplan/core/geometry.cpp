@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include <boost/geometry/algorithms/intersects.hpp>
+#include <boost/geometry/geometries/point_xy.hpp>
+#include <boost/geometry/geometries/ring.hpp>
+
 namespace uavplan {
 
 double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b, double* t_out) {
@@ -107,13 +111,19 @@ bool segments_intersect_2d(const Vec2& a, const Vec2& b, const Vec2& c, const Ve
 }
 
 std::optional<std::pair<std::size_t, std::size_t>> polygon_self_intersection(std::span<const Vec2> poly) {
+  namespace bg = boost::geometry;
+  using Point = bg::model::d2::point_xy<double>;
+  bg::model::ring<Point, true, false> ring;  // either orientation; open (the last vertex joins the first)
+  for (const Vec2& v : poly) ring.push_back(Point(v.x(), v.y()));
+  if (!bg::intersects(ring)) return std::nullopt;
   const std::size_t n = poly.size();
+  if (n > kLocatedPolygonVertices) return std::make_pair(std::size_t{0}, std::size_t{0});
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i + 2; j < n; ++j) {
       if (i == 0 && j == n - 1) continue;  // adjacent through the closing vertex
       if (segments_intersect_2d(poly[i], poly[(i + 1) % n], poly[j], poly[(j + 1) % n])) return std::make_pair(i, j);
     }
-  return std::nullopt;
+  return std::make_pair(std::size_t{0}, std::size_t{0});  // adjacent edges folding back (a spike)
 }
 
 double polygon_signed_area(std::span<const Vec2> poly) {

@@ -54,8 +54,11 @@ double point_polygon_boundary_distance(const Vec2& p, std::span<const Vec2> poly
 // Whether 2-D segments [a, b] and [c, d] intersect (touching counts).
 bool segments_intersect_2d(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d);
 
-// The first two non-adjacent edges of a closed polygon that touch or cross (edge k runs from
-// vertex k to vertex k + 1), or nullopt for a simple polygon. O(n^2): scenario polygons are small.
+// Whether a closed polygon's boundary touches or crosses itself (Boost.Geometry's sectioned
+// self-turn search), and if so the first two non-adjacent edges that do (edge k runs from vertex
+// k to vertex k + 1; located by a pairwise scan up to kLocatedPolygonVertices vertices; edges 0
+// and 0 when not located: a larger polygon, or adjacent edges folding back over each other).
+inline constexpr std::size_t kLocatedPolygonVertices = 4096;
 std::optional<std::pair<std::size_t, std::size_t>> polygon_self_intersection(std::span<const Vec2> polygon);
 
 // Signed area (positive when counter-clockwise).

@@ -1,4 +1,5 @@
 #include "uavplan/core/geometry.h"
+#include "uavplan/core/units.h"
 
 #include <gtest/gtest.h>
 
@@ -65,6 +66,25 @@ TEST(Geometry, ClipSegmentToBox) {
 TEST(Geometry, GoldenSectionFindsConvexMinimum) {
   EXPECT_NEAR(golden_section_min([](double t) { return (t - 0.3) * (t - 0.3) + 2.0; }, 0.0, 1.0), 2.0, 1e-12);
   EXPECT_DOUBLE_EQ(golden_section_min([](double t) { return std::max(0.0, std::abs(t - 0.5) - 0.1); }, 0.0, 1.0), 0.0);
+}
+
+TEST(Geometry, PolygonSelfIntersection) {
+  const std::vector<Vec2> square{{0, 0}, {10, 0}, {10, 10}, {0, 10}};
+  EXPECT_FALSE(polygon_self_intersection(square));
+  EXPECT_FALSE(polygon_self_intersection(std::vector<Vec2>(square.rbegin(), square.rend())));  // clockwise
+  const std::vector<Vec2> ell{{0, 0}, {20, 0}, {20, 5}, {5, 5}, {5, 20}, {0, 20}};             // concave
+  EXPECT_FALSE(polygon_self_intersection(ell));
+  const auto bowtie = polygon_self_intersection(std::vector<Vec2>{{200, 200}, {260, 260}, {260, 200}, {200, 262}});
+  ASSERT_TRUE(bowtie);
+  EXPECT_EQ(*bowtie, std::make_pair(std::size_t{0}, std::size_t{2}));
+  const auto spike = polygon_self_intersection(std::vector<Vec2>{{0, 0}, {10, 0}, {10, 10}, {10, 20}, {10, 5}, {0, 10}});
+  ASSERT_TRUE(spike);
+  // A large simple polygon (a 20,000-gon) is accepted quickly; the same with two vertices swapped is not.
+  std::vector<Vec2> round;
+  for (int k = 0; k < 20000; ++k) round.emplace_back(100 * std::cos(2 * kPi * k / 20000), 100 * std::sin(2 * kPi * k / 20000));
+  EXPECT_FALSE(polygon_self_intersection(round));
+  std::swap(round[10], round[5000]);
+  EXPECT_TRUE(polygon_self_intersection(round));
 }
 
 }  // namespace

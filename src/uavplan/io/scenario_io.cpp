@@ -167,8 +167,11 @@ Obstacle read_obstacle(const At& o) {
     if (p.polygon.size() < 3) poly.fail("a prism needs at least 3 distinct vertices");
     if (polygon_signed_area(p.polygon) == 0.0) poly.fail("polygon has zero area");
     if (const auto x = polygon_self_intersection(p.polygon))
-      poly.fail("self-intersecting polygon: the edge from vertex " + std::to_string(x->first) + " crosses the edge from vertex " +
-                std::to_string(x->second) + " (list the vertices in order around the footprint)");
+      poly.fail(x->first == x->second ? std::string("self-intersecting polygon: its boundary touches or folds over itself (list "
+                                                   "the vertices in order around the footprint)")
+                                     : "self-intersecting polygon: the edge from vertex " + std::to_string(x->first) +
+                                           " crosses the edge from vertex " + std::to_string(x->second) +
+                                           " (list the vertices in order around the footprint)");
     p.z_min_m = o.req("z_min").coordinate();
     p.z_max_m = o.req("z_max").coordinate();
     if (!(p.z_min_m < p.z_max_m)) o["z_max"].fail("must be above z_min");

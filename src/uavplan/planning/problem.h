@@ -18,6 +18,11 @@ struct Problem {
   std::uint64_t seed = 1;   // for randomised planners: the same seed gives the same route
 };
 
+// Names for failure messages, one-based as a user counts: stop s of n (start, via point k, goal)
+// and leg l of the route through n stops ("leg 2 of 3 (via point 1 to via point 2)").
+std::string stop_name(std::size_t s, std::size_t stops);
+std::string leg_name(std::size_t leg, std::size_t stops);
+
 struct Route {
   std::vector<Vec3> waypoints;
   double length_m() const;

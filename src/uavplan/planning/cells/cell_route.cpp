@@ -49,6 +49,25 @@ std::int64_t attach(const CellMap& map, const Vec3& p, const SegmentRule& rule) 
   return -1;
 }
 
+// What to change when the cell map has no route. A move climbs at least one level over one
+// diagonal cell: a map whose least climb is steeper than the climb limit cannot change height.
+std::string cells_hint(const CellMap& map, double max_climb_rad) {
+  char buf[320];
+  const double least_climb = std::atan2(map.level_m(), std::sqrt(2.0) * map.cell_m());
+  if (map.levels() > 1 && least_climb > max_climb_rad + 1e-12) {
+    const double most = std::sqrt(2.0) * map.cell_m() * std::tan(max_climb_rad);
+    const double unit = std::pow(10.0, std::floor(std::log10(most)) - 2);  // three digits, rounded down
+    std::snprintf(buf, sizeof buf,
+                  "the cell map's least climb (one level of %g m over a diagonal cell of %g m) is %.1f deg, steeper than the "
+                  "climb limit of %.1f deg, so it cannot change height: give planner.params.level_m <= %g",
+                  map.level_m(), map.cell_m(), rad_to_deg(least_climb), rad_to_deg(max_climb_rad),
+                  std::floor(most / unit) * unit);
+    return buf;
+  }
+  std::snprintf(buf, sizeof buf, "a smaller planner.params.cell_m (now %g m) finds narrower streets", map.cell_m());
+  return buf;
+}
+
 }  // namespace
 
 CellWorld::CellWorld(const Problem& p, const World& w, const CellPlanOptions& o, const StopCondition& stop)
@@ -82,8 +101,8 @@ PlanResult plan_once(const Problem& problem, const World& world, const CellPlanO
   for (std::size_t s = 0; s < stops.size(); ++s) {
     nodes.push_back(attach(map, stops[s], rule));
     if (nodes.back() < 0) {
-      res.message = (s == 0 ? std::string("start") : s + 1 == stops.size() ? std::string("goal") : "via point " + std::to_string(s)) +
-                    " cannot reach a free cell of the cell map (cell " + std::to_string(map.cell_m()) + " m)";
+      res.message = stop_name(s, stops.size()) + " cannot reach a free cell of the cell map straight within its limits; " +
+                    cells_hint(map, problem.uav.max_climb_rad);
       finer_may_help = true;
       return res;
     }
@@ -99,8 +118,7 @@ PlanResult plan_once(const Problem& problem, const World& world, const CellPlanO
     }
     const auto path = search(cw.graph, nodes[leg], nodes[leg + 1], static_cast<int>(leg), res.stats);
     if (!path) {
-      res.message = "no route on the cell map for leg " + std::to_string(leg + 1) + " (cell " +
-                    std::to_string(map.cell_m()) + " m)";
+      res.message = leg_name(leg, stops.size()) + ": no route on the cell map; " + cells_hint(map, problem.uav.max_climb_rad);
       finer_may_help = true;
       return res;
     }

@@ -109,7 +109,7 @@ TEST(CellPlanners, DefaultCellRefinesForNarrowStreets) {
   }
   const PlanResult fixed = make_planner("cell_astar", {{"cell_m", "9.375"}})->plan(p, w, StopCondition{});
   EXPECT_EQ(fixed.status, Status::failed);
-  EXPECT_NE(fixed.message.find("cell 9.375"), std::string::npos) << fixed.message;
+  EXPECT_NE(fixed.message.find("smaller planner.params.cell_m (now 9.375 m)"), std::string::npos) << fixed.message;
 }
 
 // P2's claim: the altitude weight decides between going around and going over.

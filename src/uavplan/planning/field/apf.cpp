@@ -243,7 +243,8 @@ ApfRun run_apf(const PotentialField& field, const Vec3& start, const Vec3& goal,
     run.points.push_back(flight.position());
   }
   run.reached = start == goal || flight.arrived();
-  if (!run.reached) run.message = "goal not reached within " + std::to_string(max_frames) + " frames";
+  if (!run.reached)
+    run.message = "not there within " + std::to_string(max_frames) + " frames; raise planner.params.max_frames";
   return run;
 }
 
@@ -260,11 +261,12 @@ PlanResult ApfPlanner::do_plan(const Problem& pb, const World& world, const Stop
   stops.push_back(pb.goal);
   Vec3 from = pb.uav.start;
   res.route.waypoints.push_back(from);
-  for (const Vec3& target : stops) {
+  for (std::size_t leg = 0; leg < stops.size(); ++leg) {
+    const Vec3& target = stops[leg];
     const ApfRun run = run_apf(field, from, target, guide, stop);
     res.route.waypoints.insert(res.route.waypoints.end(), run.points.begin() + 1, run.points.end());
     if (!run.reached) {
-      res.message = run.message;
+      res.message = leg_name(leg, stops.size() + 1) + ": " + run.message;
       res.route.waypoints.clear();
       return res;
     }
@@ -286,7 +288,7 @@ PlanResult ApfPlanner::do_plan(const Problem& pb, const World& world, const Stop
   const SegmentRule rule(world, pb.uav);
   const TurnShaping shaped = enforce_turn_limits(pts, pinned, pb.uav.heading_rad, {pb.uav.max_turn_rad, pb.uav.max_climb_rad}, rule);
   if (!shaped.ok) {
-    res.message = shaped.message;
+    res.message = "turn limits: " + shaped.message;
     pts.clear();
     return res;
   }

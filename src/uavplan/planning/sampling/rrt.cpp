@@ -192,7 +192,9 @@ RrtResult rrt_search(const SegmentRule& rule, double max_turn, const RrtQuery& q
     }
     // A start every move from which is refused (boxed in by keep-outs) is given up early.
     if (tree.size() >= opt.max_nodes || res.iterations >= max_iterations || (tree.size() == 1 && res.iterations >= 2000)) {
-      res.message = "no route within " + std::to_string(tree.size()) + " nodes of " + std::to_string(step).substr(0, 5) + " m";
+      res.message = "no route within " + std::to_string(tree.size()) + " nodes of " + std::to_string(step).substr(0, 5) +
+                    " m; raise planner.params.max_nodes (now " + std::to_string(opt.max_nodes) +
+                    ") or give a shorter step_m for narrow gaps";
       break;
     }
     ++res.iterations;
@@ -276,7 +278,7 @@ PlanResult RrtPlanner::do_plan(const Problem& pb, const World& world, const Stop
     out.stats.nodes_expanded += static_cast<std::uint64_t>(r.nodes);
     if (!r.ok) {
       out.route.waypoints.clear();
-      out.message = name_ + ": leg " + std::to_string(leg) + " from " + fmt(q.start) + " to " + fmt(q.goal) + ": " +
+      out.message = name_ + ": " + leg_name(leg, stops.size()) + " from " + fmt(q.start) + " to " + fmt(q.goal) + ": " +
                     r.message;
       return out;
     }

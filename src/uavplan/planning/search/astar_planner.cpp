@@ -94,8 +94,7 @@ PlanResult AStarPlanner::do_plan(const Problem& pb, const World& world, const St
   stops.push_back(pb.goal);
   for (std::size_t s = 0; s < stops.size(); ++s)
     if (!rule.point_ok(stops[s])) {
-      res.message = (s == 0 ? std::string("start") : s + 1 == stops.size() ? std::string("goal") : "via point " + std::to_string(s - 1)) +
-                    " is closer to an obstacle than the UAV radius, or above the ceiling";
+      res.message = stop_name(s, stops.size()) + " is closer to an obstacle than the UAV radius, or above the ceiling";
       return res;
     }
 
@@ -130,8 +129,8 @@ PlanResult AStarPlanner::do_plan(const Problem& pb, const World& world, const St
       const std::int64_t ga = attach(grid, a, rule), gb = attach(grid, b, rule);
       if (ga < 0 || gb < 0) {
         found = false;
-        res.message = "no free grid cell can be reached straight from the " +
-                      std::string(ga < 0 ? "start of leg " : "end of leg ") + std::to_string(s);
+        res.message = leg_name(s, stops.size()) + ": no free cell of the " + fmt_m(cs.x()) + " grid can be reached straight from its " +
+                      (ga < 0 ? "start" : "end") + "; a smaller planner.params.cell_m gives cells in narrower room";
         break;
       }
       const GridSearchResult vp = search.search(ga, gb, stop);
@@ -143,8 +142,10 @@ PlanResult AStarPlanner::do_plan(const Problem& pb, const World& world, const St
       }
       if (!vp.found) {
         found = false;
-        res.message = "no route on a " + std::to_string(grid.nx()) + "x" + std::to_string(grid.ny()) + "x" +
-                      std::to_string(grid.nz()) + " grid for leg " + std::to_string(s);
+        res.message = leg_name(s, stops.size()) + ": no route on a " + std::to_string(grid.nx()) + "x" + std::to_string(grid.ny()) +
+                      "x" + std::to_string(grid.nz()) + " grid of " + fmt_m(cs.x()) +
+                      " cells; a smaller planner.params.cell_m finds narrower gaps" +
+                      (derived ? " (the derived cell was halved while the grid stayed under planner.params.max_cells)" : "");
         break;
       }
       for (const std::int64_t c : vp.cells) {

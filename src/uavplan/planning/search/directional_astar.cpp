@@ -247,6 +247,26 @@ DirectionalCones::Cone build_cone(const DirectionalCones::Key& key, int dx, int 
   return c;
 }
 
+// What to change when the lattice finds no route within the limits. A move L cells away climbs
+// at least one cell: atan(1 / L) above the climb limit means it cannot climb or descend at all.
+std::string limits_hint(const DirectionalQuery& q, bool flat) {
+  char buf[320];
+  const double least_climb = std::atan(1.0 / q.step_cells);
+  if (!flat && least_climb > q.max_pitch_rad + 1e-12) {
+    std::snprintf(buf, sizeof buf,
+                  "the lattice's least climb, atan(1 / step_cells) = %.1f deg, is steeper than the climb limit of %.1f deg, "
+                  "so it cannot change height: give planner.params.step_cells >= %.1f (and a smaller cell_m to keep "
+                  "its turns tight)",
+                  rad_to_deg(least_climb), rad_to_deg(q.max_pitch_rad), std::ceil(10.0 / std::tan(q.max_pitch_rad)) / 10.0);
+    return buf;
+  }
+  std::snprintf(buf, sizeof buf,
+                "a longer planner.params.step_cells (now %.2f) gives finer turns and climbs, a smaller cell_m (now %g m) "
+                "more room to turn",
+                q.step_cells, q.cell_m);
+  return buf;
+}
+
 }  // namespace
 
 struct DirectionalCones::Table {
@@ -459,7 +479,9 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
     if (e.id == kGoal) break;
     if (static_cast<std::int64_t>(++out.expanded) > q.max_expansions || ((out.expanded & 255) == 0 && stop.should_stop(out.expanded))) {
       out.stopped = static_cast<std::int64_t>(out.expanded) <= q.max_expansions;
-      out.message = out.stopped ? "stopped before a route was found" : "expansion limit reached";
+      out.message = out.stopped ? "stopped before a route was found"
+                                : "expansion limit reached (planner.params.max_expansions = " + std::to_string(q.max_expansions) +
+                                      "; raise it, or give a larger cell_m)";
       return out;
     }
     int i = 0, j = 0, k = 0;  // the lattice coordinates of a lattice node
@@ -573,7 +595,8 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
   SearchBuffers::Node& goal = buf_.at(kGoal);
   if (!SearchBuffers::closed(goal)) {
     out.message = beyond_bound ? "no route within the length bound"
-                               : "no route within the turn and climb limits (" + std::to_string(out.dead_zones) + " dead zones)";
+                               : "no route within the turn and climb limits (" + std::to_string(out.dead_zones) + " dead zones); " +
+                                     limits_hint(q, flat);
     return out;
   }
   out.found = true;
@@ -605,10 +628,11 @@ PlanResult DirectionalAStarPlanner::do_plan(const Problem& pb, const World& worl
     return res;
   }
   const SegmentRule rule(world, pb.uav);
-  if (!rule.point_ok(pb.uav.start) || !rule.point_ok(pb.goal)) {
-    res.message = "start or goal is closer to an obstacle than the UAV radius, or above the ceiling";
-    return res;
-  }
+  for (const auto& [name, p] : {std::pair{"start", pb.uav.start}, std::pair{"goal", pb.goal}})
+    if (!rule.point_ok(p)) {
+      res.message = std::string(name) + " is closer to an obstacle than the UAV radius, or above the ceiling";
+      return res;
+    }
   DirectionalSearch search;
   const DirectionalQuery q = query_for(pb, world);
   require_lattice(world, q, 1, stop);
@@ -617,7 +641,7 @@ PlanResult DirectionalAStarPlanner::do_plan(const Problem& pb, const World& worl
   res.stats.open_max = r.generated;
   res.stats.cell_m = q.cell_m;
   if (!r.found) {
-    res.message = r.message;
+    res.message = r.stopped ? r.message : leg_name(0, 2) + ": " + r.message;
     return res;
   }
   res.route.waypoints = r.waypoints;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "uavplan/core/text.h"
 #include "uavplan/core/units.h"
 #include "uavplan/vehicle/uav.h"
 
@@ -134,7 +135,8 @@ TurnShaping enforce_turn_limits(std::span<const Vec3> pts, std::span<const char>
     }
     if (done) continue;
     if (!pursue(r.waypoints, *dir, p[i + 1], lim, ok)) {
-      r.message = "cannot meet the turn limit near waypoint " + std::to_string(i);
+      r.message = "no room to turn within " + num_text(rad_to_deg(lim.max_turn_rad)) + " deg at the corner near " +
+                  point_text(p[i]) + " (directional_astar keeps the turn limit while it searches)";
       return r;
     }
     dir = r.waypoints.back() - r.waypoints[r.waypoints.size() - 2];
