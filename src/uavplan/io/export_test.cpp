@@ -111,7 +111,9 @@ TEST(Export, MissionFollowsTheTrajectory) {
   EXPECT_NEAR(items[4].params[5], end.lon_deg, 1e-9);
   EXPECT_EQ(items[3].frame, kFrameMission);  // DO commands carry no position
   for (const auto& it : items)
-    if (it.command != kCmdChangeSpeed) EXPECT_EQ(it.frame, kFrameGlobalRelativeAlt);
+    if (it.command != kCmdChangeSpeed) {
+      EXPECT_EQ(it.frame, kFrameGlobalRelativeAlt);
+    }
 }
 
 TEST(Export, SpeedChangesBelowTenPercentMerge) {

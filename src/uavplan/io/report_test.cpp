@@ -86,11 +86,14 @@ TEST(Report, HeightProfileFollowsTheGroundUnderTheRoute) {
   EXPECT_DOUBLE_EQ(s.back().get<double>(), 200.0);
   for (std::size_t k = 0; k < s.size(); ++k) {
     const double d = s[k].get<double>();
-    if (k) EXPECT_GE(d, s[k - 1].get<double>());
+    if (k) {
+      EXPECT_GE(d, s[k - 1].get<double>());
+    }
     EXPECT_DOUBLE_EQ(p["z_m"][k].get<double>(), 10.0);
     const double x = d <= 100.0 ? d : 100.0;  // east, then north along x = 100
-    if (std::abs(x - 50.0) > 0.6 && std::abs(x - 100.0) > 0.6)
+    if (std::abs(x - 50.0) > 0.6 && std::abs(x - 100.0) > 0.6) {
       EXPECT_DOUBLE_EQ(p["ground_m"][k].get<double>(), x > 50.0 && x < 100.0 ? 4.0 : 0.0) << "s = " << d;
+    }
   }
   // A flat world has no height profile.
   Scenario flat = scenario_with();
