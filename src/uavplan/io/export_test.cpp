@@ -9,45 +9,16 @@
 
 #include "uavplan/io/geo.h"
 #include "uavplan/io/gis_export.h"
+#include "uavplan/io/io_test_fixtures.h"
 #include "uavplan/io/mission_items.h"
 #include "uavplan/io/qgc_export.h"
 
 namespace uavplan {
 namespace {
 
-Scenario scenario_with(std::vector<Obstacle> obstacles = {}) {
-  Scenario sc;
-  sc.name = "t";
-  sc.origin = GeoOrigin{47.3977, 8.5456, 488.0};
-  WorldSpec w;
-  w.bounds = Aabb{Vec3(0, 0, 0), Vec3(1000, 1000, 100)};
-  w.obstacles = std::move(obstacles);
-  sc.world = World(std::move(w));
-  UavSpec u;
-  u.id = "a/1";
-  u.start = Vec3(0, 0, 10);
-  u.speed = {0.0, 5.0, 10.0};
-  sc.uavs.push_back(u);
-  return sc;
-}
-
-// Holds 4 s at the start, flies east 100 m in two collinear samples at 5 m/s, turns north and
-// flies 100 m at 10 m/s.
-UavPlan sample_uav() {
-  UavPlan u;
-  u.id = "a/1";
-  u.status = Status::solved;
-  u.trajectory = {{0.0, Vec3(0, 0, 10)},   {4.0, Vec3(0, 0, 10)},    {14.0, Vec3(50, 0, 10)},
-                  {24.0, Vec3(100, 0, 10)}, {34.0, Vec3(100, 100, 10)}};
-  return u;
-}
-
-Plan plan_of(std::vector<UavPlan> uavs) {
-  Plan p;
-  p.status = Status::solved;
-  p.uavs = std::move(uavs);
-  return p;
-}
+using test::plan_of;
+using test::sample_uav;
+using test::scenario_with;
 
 // The one UAV of the sample plan as exported, which must hold.
 ExportedUav exported(const Scenario& sc, const ExportOptions& opt = {}, UavPlan u = sample_uav()) {

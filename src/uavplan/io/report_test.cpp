@@ -5,36 +5,14 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "uavplan/io/io_test_fixtures.h"
+
 namespace uavplan {
 namespace {
 
-Scenario scenario_with(std::vector<Obstacle> obstacles = {}) {
-  Scenario sc;
-  sc.name = "t";
-  WorldSpec w;
-  w.bounds = Aabb{Vec3(0, 0, 0), Vec3(1000, 1000, 100)};
-  w.obstacles = std::move(obstacles);
-  sc.world = World(std::move(w));
-  UavSpec u;
-  u.id = "a/1";
-  u.start = Vec3(0, 0, 10);
-  u.speed = {0.0, 5.0, 10.0};
-  sc.uavs.push_back(u);
-  return sc;
-}
+using test::scenario_with;
 
-// Holds 4 s at the start, flies east 100 m at 5 m/s, turns north and flies 100 m at 10 m/s.
-Plan sample_plan() {
-  UavPlan u;
-  u.id = "a/1";
-  u.status = Status::solved;
-  u.trajectory = {{0.0, Vec3(0, 0, 10)}, {4.0, Vec3(0, 0, 10)}, {14.0, Vec3(50, 0, 10)},
-                  {24.0, Vec3(100, 0, 10)}, {34.0, Vec3(100, 100, 10)}};
-  Plan p;
-  p.status = Status::solved;
-  p.uavs = {u};
-  return p;
-}
+Plan sample_plan() { return test::plan_of({test::sample_uav()}); }
 
 TEST(Report, PageCarriesDataAndViewer) {
   const Scenario sc = scenario_with({Box{Vec3(300, 300, 0), Vec3(320, 320, 60)}});
