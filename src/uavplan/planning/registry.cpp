@@ -6,6 +6,7 @@
 #include "uavplan/planning/cells/cell_astar.h"
 #include "uavplan/planning/cells/cellular_aco.h"
 #include "uavplan/planning/field/apf.h"
+#include "uavplan/planning/graph/aco_voronoi.h"
 #include "uavplan/planning/sampling/rrt.h"
 #include "uavplan/planning/search/astar_planner.h"
 #include "uavplan/planning/search/directional_astar.h"
@@ -33,6 +34,10 @@ const std::vector<Entry>& entries() {
        [](const Params& p) { return std::make_unique<RrtPlanner>("rrt", RrtOptions::from_params(p, false)); }},
       {{"improved_rrt", "P1's improved RRT: chaotic samples, obstacle-velocity growth bias, 5-look-ahead pruning, shortcut", false},
        [](const Params& p) { return std::make_unique<RrtPlanner>("improved_rrt", RrtOptions::from_params(p, true)); }},
+      {{"aco_voronoi", "P1 ant colony on the threat Voronoi roadmap: tabu lists, tau^alpha eta^beta, Q / L_k deposits", false},
+       [](const Params& p) { return std::make_unique<AcoVoronoiPlanner>(AcoVoronoiOptions::from_params(p, true), true); }},
+      {{"voronoi_dijkstra", "Dijkstra on P1's threat Voronoi roadmap with the same cost (optimal on it; the colony's baseline)", false},
+       [](const Params& p) { return std::make_unique<AcoVoronoiPlanner>(AcoVoronoiOptions::from_params(p, false), false); }},
       {{"apf", "P3 improved potential field: capped attraction, sqrt(R)-faded repulsion, 15-degree sector rule", false},
        [](const Params& p) { return std::make_unique<ApfPlanner>(ApfOptions::from_params(p, true)); }},
       {{"apf_traditional", "the traditional potential field (P3's baseline): no cap, no sqrt(R), no sector rule", false},

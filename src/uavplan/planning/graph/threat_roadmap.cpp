@@ -1,0 +1,155 @@
+#include "uavplan/planning/graph/threat_roadmap.h"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+#include <boost/polygon/voronoi.hpp>
+
+#include "uavplan/core/geometry.h"
+#include "uavplan/world/threat.h"
+
+namespace uavplan {
+namespace {
+
+struct Site {
+  std::int32_t x, y;
+};
+
+}  // namespace
+}  // namespace uavplan
+
+template <>
+struct boost::polygon::geometry_concept<uavplan::Site> {
+  using type = point_concept;
+};
+template <>
+struct boost::polygon::point_traits<uavplan::Site> {
+  using coordinate_type = std::int32_t;
+  static coordinate_type get(const uavplan::Site& s, orientation_2d o) { return o == HORIZONTAL ? s.x : s.y; }
+};
+
+namespace uavplan {
+namespace {
+
+// Boost.Polygon's Voronoi takes integer sites: the bounds map onto [0, 2^28] (a resolution of
+// 4e-9 of the world's size), and back.
+struct IntFrame {
+  Vec2 origin;
+  double scale;
+  explicit IntFrame(const Aabb& b)
+      : origin(b.min.x(), b.min.y()), scale(268'435'456.0 / std::max({b.extent().x(), b.extent().y(), 1e-9})) {}
+  Site to_int(const Vec2& p) const {
+    return {static_cast<std::int32_t>(std::lround((p.x() - origin.x()) * scale)),
+            static_cast<std::int32_t>(std::lround((p.y() - origin.y()) * scale))};
+  }
+  Vec2 from(double x, double y) const { return origin + Vec2(x, y) / scale; }
+};
+
+std::vector<Vec2> site_points(const World& world, bool& from_obstacles) {
+  std::vector<Vec2> pts;
+  for (const Radar& r : world.radars()) pts.emplace_back(r.position.x(), r.position.y());
+  from_obstacles = pts.empty();
+  if (from_obstacles)
+    for (const Obstacle& o : world.obstacles()) {
+      const Aabb b = bounding_box(o);
+      const Vec3 c = 0.5 * (b.min + b.max);
+      pts.emplace_back(c.x(), c.y());
+    }
+  if (pts.size() < 3) {
+    const Aabb& b = world.bounds();
+    for (const Vec2& c : {Vec2(b.min.x(), b.min.y()), Vec2(b.max.x(), b.min.y()), Vec2(b.max.x(), b.max.y()), Vec2(b.min.x(), b.max.y())})
+      pts.push_back(c);
+  }
+  return pts;
+}
+
+}  // namespace
+
+std::uint32_t Roadmap::add_vertex(const Vec3& p) {
+  vertices.push_back(p);
+  incident.emplace_back();
+  return static_cast<std::uint32_t>(vertices.size() - 1);
+}
+
+void Roadmap::add_edge(std::uint32_t a, std::uint32_t b, double length_m, double cost) {
+  edges.push_back({a, b, length_m, cost});
+  incident[a].push_back(static_cast<std::uint32_t>(edges.size() - 1));
+  incident[b].push_back(static_cast<std::uint32_t>(edges.size() - 1));
+}
+
+double p1_edge_cost(const Vec3& a, const Vec3& b, const World& world, const RoadmapOptions& o) {
+  return o.k1 * o.threat_prefactor * p1_threat_cost(a, b, world.radars()) + (1.0 - o.k1) * (b - a).norm();
+}
+
+Roadmap threat_roadmap(const World& world, const SegmentRule& rule, double plane_z, const RoadmapOptions& o) {
+  Roadmap map;
+  const Aabb& bounds = world.bounds();
+  const IntFrame frame(bounds);
+  std::vector<Vec2> pts = site_points(world, map.from_obstacles);
+  std::vector<Site> sites;
+  for (const Vec2& p : pts) sites.push_back(frame.to_int(p));
+  std::sort(sites.begin(), sites.end(), [](const Site& a, const Site& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+  sites.erase(std::unique(sites.begin(), sites.end(), [](const Site& a, const Site& b) { return a.x == b.x && a.y == b.y; }),
+              sites.end());
+  map.sites = sites.size();
+  boost::polygon::voronoi_diagram<double> vd;
+  boost::polygon::construct_voronoi(sites.begin(), sites.end(), &vd);
+
+  // Edges clipped to the bounds (a hair inside, so every vertex is in them), at plane_z.
+  const Vec3 inset = 1e-9 * bounds.extent() + Vec3::Constant(1e-9);
+  const Aabb box{Vec3(bounds.min.x() + inset.x(), bounds.min.y() + inset.y(), plane_z - 1.0),
+                 Vec3(bounds.max.x() - inset.x(), bounds.max.y() - inset.y(), plane_z + 1.0)};
+  const double far = 4.0 * std::max(bounds.extent().x(), bounds.extent().y()) + 1.0;
+  std::unordered_map<const void*, std::uint32_t> index;  // Voronoi vertex -> roadmap vertex
+  auto vertex_of = [&](const boost::polygon::voronoi_vertex<double>* v, const Vec3& p, bool clipped) {
+    if (clipped || !v) return map.add_vertex(p);
+    const auto [it, fresh] = index.try_emplace(v, 0u);
+    if (fresh) it->second = map.add_vertex(p);
+    return it->second;
+  };
+  for (const auto& e : vd.edges()) {
+    if (e.color() != 0) continue;  // its twin was taken
+    e.twin()->color(1);
+    if (!e.is_primary()) continue;
+    const Vec2 s0 = frame.from(sites[e.cell()->source_index()].x, sites[e.cell()->source_index()].y);
+    const Vec2 s1 = frame.from(sites[e.twin()->cell()->source_index()].x, sites[e.twin()->cell()->source_index()].y);
+    // An infinite edge runs along the bisector of its two sites, away from them on its open side.
+    const Vec2 dir = Vec2(s0.y() - s1.y(), s1.x() - s0.x()).normalized();
+    const Vec2 mid = 0.5 * (s0 + s1);
+    const Vec2 a2 = e.vertex0() ? frame.from(e.vertex0()->x(), e.vertex0()->y())
+                                : (e.vertex1() ? frame.from(e.vertex1()->x(), e.vertex1()->y()) : mid) - far * dir;
+    const Vec2 b2 = e.vertex1() ? frame.from(e.vertex1()->x(), e.vertex1()->y()) : (e.vertex0() ? a2 : mid) + far * dir;
+    const Vec3 a(a2.x(), a2.y(), plane_z), b(b2.x(), b2.y(), plane_z);
+    double t0 = 0.0, t1 = 1.0;
+    if ((b - a).norm() <= 0.0 || !clip_segment_to_box(a, b, box, t0, t1)) continue;
+    const Vec3 pa = a + t0 * (b - a), pb = a + t1 * (b - a);
+    if ((pb - pa).norm() <= 1e-9 || !rule(pa, pb)) continue;  // an edge through an obstacle is dropped
+    const std::uint32_t va = vertex_of(e.vertex0(), pa, t0 > 0.0);
+    const std::uint32_t vb = vertex_of(e.vertex1(), pb, t1 < 1.0);
+    map.add_edge(va, vb, (pb - pa).norm(), p1_edge_cost(pa, pb, world, o));
+  }
+  return map;
+}
+
+std::uint32_t join_stop(Roadmap& map, const Vec3& p, const SegmentRule& rule, const World& world, const RoadmapOptions& o,
+                        const std::vector<std::uint32_t>& also) {
+  std::vector<std::pair<double, std::uint32_t>> near;
+  for (std::uint32_t v = 0; v < map.vertices.size(); ++v)
+    if (!map.incident[v].empty()) near.emplace_back((map.vertices[v] - p).squaredNorm(), v);
+  std::sort(near.begin(), near.end());
+  const std::uint32_t s = map.add_vertex(p);
+  auto link = [&](std::uint32_t v) {
+    const Vec3& q = map.vertices[v];
+    if ((q - p).norm() <= 1e-9 || !rule(p, q)) return false;
+    map.add_edge(s, v, (q - p).norm(), p1_edge_cost(p, q, world, o));
+    return true;
+  };
+  int joined = 0;
+  for (std::size_t k = 0; k < near.size() && joined < o.join_nearest && k < 64u * static_cast<std::size_t>(o.join_nearest); ++k)
+    joined += link(near[k].second);
+  for (const std::uint32_t v : also) link(v);
+  return s;
+}
+
+}  // namespace uavplan
