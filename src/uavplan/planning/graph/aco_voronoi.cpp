@@ -20,6 +20,7 @@ AcoVoronoiOptions read_options(const Params& params, bool colony) {
   o.roadmap.k1 = r.number("k1", o.roadmap.k1, 0.0, 1.0);
   o.roadmap.threat_prefactor = r.number("threat_prefactor", o.roadmap.threat_prefactor, 0.0, 1e12);
   o.roadmap.join_nearest = r.integer("join_nearest", o.roadmap.join_nearest, 1, 1000);
+  o.roadmap.outline_spacing_m = r.number("outline_spacing_m", o.roadmap.outline_spacing_m, 0.0, 1e9);
   if (colony) {
     o.ants = r.integer("ants", o.ants, 1, 100000);
     o.iterations = r.integer("iterations", o.iterations, 1, 100000);
@@ -31,13 +32,18 @@ AcoVoronoiOptions read_options(const Params& params, bool colony) {
     if (d != "length" && d != "cost")
       throw std::invalid_argument("planner.params.deposit: expected 'length' (P1's Q / L_k) or 'cost' (Q / J_k), got '" + d + "'");
     o.deposit_by_cost = d == "cost";
+    o.tau0 = r.number("tau0", o.tau0, 1e-12, 1e12);
+    o.toward_goal = r.number("toward_goal", o.toward_goal, 0.0, 1.0);
+    o.elite = r.number("elite", o.elite, 0.0, 1e6);
+    o.max_min = r.boolean("max_min", o.max_min);
   }
   r.finish();
   return o;
 }
 
 // One ant's walk: tabu list by epoch stamps (no clearing per ant), roulette over the edges to
-// vertices not yet visited. False when it dies (every neighbour tabu) or wanders past every vertex.
+// vertices not yet visited; at a dead end it steps back. False when it is back at the start with
+// nowhere to go.
 class Walker {
  public:
   explicit Walker(const Roadmap& map) : map_(map), stamp_(map.vertices.size(), 0), weights_(16) {}
@@ -47,20 +53,29 @@ class Walker {
     ++epoch_;
     edges.clear();
     std::uint32_t v = from;
+    const Vec3 goal = map_.vertices[to];
     stamp_[v] = epoch_;
     while (v != to) {
       const auto& inc = map_.incident[v];
+      const double to_go = o.toward_goal * (1.0 - o.roadmap.k1);
+      auto cost_of = [&](std::uint32_t e) { return map_.edges[e].cost + to_go * (map_.vertices[map_.other(e, v)] - goal).norm(); };
       double least = World::kInf;
       for (const std::uint32_t e : inc)
-        if (stamp_[map_.other(e, v)] != epoch_) least = std::min(least, map_.edges[e].cost);
-      if (!std::isfinite(least)) return false;
+        if (stamp_[map_.other(e, v)] != epoch_) least = std::min(least, cost_of(e));
+      if (!std::isfinite(least)) {
+        // Every neighbour tabu: step back (this vertex stays tabu), die only back at the start.
+        if (edges.empty()) return false;
+        v = map_.other(edges.back(), v);
+        edges.pop_back();
+        continue;
+      }
       weights_.assign(inc.size(), 0.0);
       double total = 0.0;
       for (std::size_t k = 0; k < inc.size(); ++k) {
         const std::uint32_t e = inc[k];
         if (stamp_[map_.other(e, v)] == epoch_) continue;
         // eta = 1 / J, taken relative to the cheapest choice so that (J_min / J)^beta stays in range.
-        const double eta = least > 0.0 ? least / std::max(map_.edges[e].cost, 1e-300) : 1.0;
+        const double eta = least > 0.0 ? least / std::max(cost_of(e), 1e-300) : 1.0;
         weights_[k] = std::pow(tau[e], o.alpha) * std::pow(eta, o.beta);
         total += weights_[k];
       }
@@ -97,6 +112,12 @@ GraphRoute route_of(const Roadmap& map, std::uint32_t from, const std::vector<st
   return r;
 }
 
+std::uint32_t edge_between(const Roadmap& map, std::uint32_t a, std::uint32_t b) {
+  for (const std::uint32_t e : map.incident[a])
+    if (map.other(e, a) == b) return e;
+  return 0;  // unreachable: consecutive route vertices share an edge
+}
+
 }  // namespace
 
 AcoVoronoiOptions AcoVoronoiOptions::from_params(const Params& params, bool colony) { return read_options(params, colony); }
@@ -104,24 +125,38 @@ AcoVoronoiOptions AcoVoronoiOptions::from_params(const Params& params, bool colo
 std::optional<GraphRoute> aco_route(const Roadmap& map, std::uint32_t from, std::uint32_t to, const AcoVoronoiOptions& o,
                                     std::uint64_t seed, const StopCondition& stop, PlanStats& stats) {
   if (from == to) return GraphRoute{{from}, 0.0, 0.0};
-  std::vector<double> tau(map.edges.size(), 1.0), deposit(map.edges.size(), 0.0);
+  std::vector<double> tau(map.edges.size(), o.tau0), deposit(map.edges.size(), 0.0);
   std::optional<GraphRoute> best;
   Walker walker(map);
   std::vector<std::uint32_t> edges;
   const Rng base(seed);
+  auto amount = [&](const GraphRoute& r) { return o.q / std::max(o.deposit_by_cost ? r.cost : r.length_m, 1e-300); };
+  auto lay = [&](const GraphRoute& r, double d) {
+    for (std::size_t k = 1; k < r.vertices.size(); ++k) deposit[edge_between(map, r.vertices[k - 1], r.vertices[k])] += d;
+  };
   for (int it = 0; it < o.iterations; ++it) {
     if (stop.should_stop(static_cast<std::uint64_t>(it))) return std::nullopt;
     std::fill(deposit.begin(), deposit.end(), 0.0);
+    std::optional<GraphRoute> iteration_best;
     for (int ant = 0; ant < o.ants; ++ant) {
       Rng rng = base.split(static_cast<std::uint64_t>(it) * static_cast<std::uint64_t>(o.ants) + static_cast<std::uint64_t>(ant));
       if (!walker.walk(from, to, tau, o, rng, edges)) continue;
       stats.nodes_expanded += edges.size();
       GraphRoute r = route_of(map, from, edges);
-      const double d = o.q / std::max(o.deposit_by_cost ? r.cost : r.length_m, 1e-300);
-      for (const std::uint32_t e : edges) deposit[e] += d;
+      if (!o.max_min) lay(r, amount(r));  // P1 eq. 5-6: every ant deposits
+      if (!iteration_best || r.cost < iteration_best->cost) iteration_best = r;
       if (!best || r.cost < best->cost) best = std::move(r);
     }
-    for (std::size_t e = 0; e < tau.size(); ++e) tau[e] = std::max(kMinTau, (1.0 - o.rho) * tau[e] + deposit[e]);
+    if (best && o.elite > 0.0) lay(*best, o.elite * amount(*best));
+    if (o.max_min && iteration_best) lay(*iteration_best, amount(*iteration_best));
+    double hi = World::kInf, lo = kMinTau;
+    if (o.max_min && best) {
+      // MAX-MIN ant system (Stuetzle and Hoos 2000): tau in [tau_max / (2 n), 1 / (rho * L_best)].
+      hi = amount(*best) / std::max(o.rho, 1e-9);
+      lo = hi / (2.0 * static_cast<double>(map.vertices.size()));
+      if (it == 0) std::fill(tau.begin(), tau.end(), hi);
+    }
+    for (std::size_t e = 0; e < tau.size(); ++e) tau[e] = std::clamp((1.0 - o.rho) * tau[e] + deposit[e], lo, hi);
   }
   return best;
 }
@@ -168,6 +203,7 @@ PlanResult AcoVoronoiPlanner::do_plan(const Problem& pb, const World& world, con
       res.message = "stopped before the route was complete";
       return res;
     }
+    if ((stops[leg + 1] - stops[leg]).norm() <= 1e-9) continue;  // a stop repeated: nothing to fly
     const std::optional<GraphRoute> r =
         colony_ ? aco_route(map, at[leg], at[leg + 1], options_, Rng(pb.seed).split(leg).next_u64(), stop, res.stats)
                 : dijkstra_route(map, at[leg], at[leg + 1], res.stats);

@@ -1,6 +1,6 @@
 // P1's global layer: an ant colony on the threat Voronoi roadmap (threat_roadmap.h). Ants start
 // at the start, keep a tabu list of the vertices they visited, step along an edge with
-// P ~ tau^alpha eta^beta (eta = 1 / J of the edge), and die where every neighbour is tabu.
+// P ~ tau^alpha eta^beta (eq. 4; eta below), and step back from a dead end (P1 does not say).
 // After each of N_max iterations tau evaporates by rho and each arrived ant deposits Q / L_k on
 // its edges (P1's literal rule; Q / J_k as an option). The best route by cost J is kept.
 // Its baseline, `voronoi_dijkstra`: Dijkstra (Boost.Graph) on the same roadmap and cost, the
@@ -26,6 +26,13 @@ struct AcoVoronoiOptions {
   double rho = 0.2;
   double q = 1.0;
   bool deposit_by_cost = false;  // Q / J_k instead of P1's Q / L_k
+  double tau0 = 1.0;             // initial pheromone (P1 gives none)
+  // eta = 1 / (J_edge + toward_goal * (1 - k1) * |next - goal|): 0 is P1's 1 / J; 1 (default)
+  // adds a lower bound of the cost still to go, so an ant heads for the goal as A* does. With
+  // P1's 1 / J alone ants wander a roadmap of hundreds of vertices (bench p1 shows both).
+  double toward_goal = 1.0;
+  bool max_min = false;          // MAX-MIN ant system: only the iteration's best deposits, tau bounded
+  double elite = 0.0;            // the best route so far gets elite * Q / L_best more each iteration
   // The colony's keys, and the roadmap's (k1, threat_prefactor, join_nearest) that both read.
   static AcoVoronoiOptions from_params(const Params& params, bool colony = true);
 };

@@ -46,22 +46,68 @@ struct IntFrame {
   Vec2 from(double x, double y) const { return origin + Vec2(x, y) / scale; }
 };
 
-std::vector<Vec2> site_points(const World& world, bool& from_obstacles) {
-  std::vector<Vec2> pts;
-  for (const Radar& r : world.radars()) pts.emplace_back(r.position.x(), r.position.y());
-  from_obstacles = pts.empty();
-  if (from_obstacles)
-    for (const Obstacle& o : world.obstacles()) {
-      const Aabb b = bounding_box(o);
-      const Vec3 c = 0.5 * (b.min + b.max);
-      pts.emplace_back(c.x(), c.y());
+struct GroupedSite {
+  Vec2 p;
+  std::uint32_t group;  // sites of one group (one obstacle's outline) bound no edge between them
+};
+
+// The footprint outline of every obstacle the plane at plane_z cuts, inflated by the rule's
+// margin and a little more, sampled every `spacing_m` (corners always): the diagram of these
+// samples with the edges inside one outline removed is the generalized Voronoi diagram's
+// approximation, running midway between obstacles as P1's runs midway between threats.
+void outline_sites(const World& world, double plane_z, double inflate_m, double spacing_m, std::vector<GroupedSite>& out,
+                   std::uint32_t& group) {
+  for (const Obstacle& o : world.obstacles()) {
+    const Aabb b = bounding_box(o);
+    if (b.min.z() - inflate_m > plane_z || b.max.z() + inflate_m < plane_z) continue;
+    const Vec2 lo = Vec2(b.min.x(), b.min.y()) - Vec2::Constant(inflate_m);
+    const Vec2 hi = Vec2(b.max.x(), b.max.y()) + Vec2::Constant(inflate_m);
+    const Vec2 corners[4] = {lo, Vec2(hi.x(), lo.y()), hi, Vec2(lo.x(), hi.y())};
+    for (int side = 0; side < 4; ++side) {
+      const Vec2 a = corners[side], c = corners[(side + 1) % 4];
+      const int pieces = std::clamp(static_cast<int>(std::ceil((c - a).norm() / spacing_m)), 1, 64);
+      for (int k = 0; k < pieces; ++k) out.push_back({a + (c - a) * (static_cast<double>(k) / pieces), group});
     }
-  if (pts.size() < 3) {
-    const Aabb& b = world.bounds();
-    for (const Vec2& c : {Vec2(b.min.x(), b.min.y()), Vec2(b.max.x(), b.min.y()), Vec2(b.max.x(), b.max.y()), Vec2(b.min.x(), b.max.y())})
-      pts.push_back(c);
+    ++group;
   }
+}
+
+std::vector<GroupedSite> site_points(const World& world, double plane_z, double inflate_m, const RoadmapOptions& o) {
+  std::vector<GroupedSite> pts;
+  std::uint32_t group = 0;
+  for (const Radar& r : world.radars()) pts.push_back({Vec2(r.position.x(), r.position.y()), group++});
+  const Aabb& b = world.bounds();
+  const double spacing_m = o.outline_spacing_m > 0.0 ? o.outline_spacing_m : std::max(b.extent().x(), b.extent().y()) / 100.0;
+  const std::size_t radars = pts.size();
+  outline_sites(world, plane_z, inflate_m, spacing_m, pts, group);
+  if (pts.size() > radars) {
+    // With obstacles the bounds are an outline too: the diagram then also runs midway between an
+    // obstacle and the bounds' side.
+    const Vec2 lo = b.min.head<2>(), hi = b.max.head<2>();
+    const Vec2 corners[4] = {lo, Vec2(hi.x(), lo.y()), hi, Vec2(lo.x(), hi.y())};
+    for (int side = 0; side < 4; ++side) {
+      const Vec2 a = corners[side], c = corners[(side + 1) % 4];
+      const int pieces = std::clamp(static_cast<int>(std::ceil((c - a).norm() / spacing_m)), 1, 256);
+      for (int k = 0; k < pieces; ++k) pts.push_back({a + (c - a) * (static_cast<double>(k) / pieces), group});
+    }
+    ++group;
+  }
+  if (pts.size() < 3)
+    for (const Vec2& c : {Vec2(b.min.x(), b.min.y()), Vec2(b.max.x(), b.min.y()), Vec2(b.max.x(), b.max.y()), Vec2(b.min.x(), b.max.y())})
+      pts.push_back({c, group++});
   return pts;
+}
+
+// Position of a point on the box's outline, counter-clockwise from its (min, min) corner.
+double perimeter_position(const Vec2& p, const Aabb& box) {
+  const double w = box.extent().x(), h = box.extent().y();
+  const double dx = p.x() - box.min.x(), dy = p.y() - box.min.y();
+  const double to_left = std::abs(dx), to_bottom = std::abs(dy), to_right = std::abs(w - dx), to_top = std::abs(h - dy);
+  const double least = std::min({to_left, to_bottom, to_right, to_top});
+  if (least == to_bottom) return dx;
+  if (least == to_right) return w + dy;
+  if (least == to_top) return w + h + (w - dx);
+  return 2 * w + h + (h - dy);
 }
 
 }  // namespace
@@ -86,12 +132,17 @@ Roadmap threat_roadmap(const World& world, const SegmentRule& rule, double plane
   Roadmap map;
   const Aabb& bounds = world.bounds();
   const IntFrame frame(bounds);
-  std::vector<Vec2> pts = site_points(world, map.from_obstacles);
+  const std::vector<GroupedSite> pts = site_points(world, plane_z, rule.inflation_m() + 0.5, o);
+  // Integer sites, sorted and unique (the first group wins a shared point).
+  std::vector<std::pair<Site, std::uint32_t>> keyed;
+  for (const GroupedSite& p : pts) keyed.push_back({frame.to_int(p.p), p.group});
+  std::stable_sort(keyed.begin(), keyed.end(),
+                   [](const auto& a, const auto& b) { return a.first.x < b.first.x || (a.first.x == b.first.x && a.first.y < b.first.y); });
+  keyed.erase(std::unique(keyed.begin(), keyed.end(),
+                          [](const auto& a, const auto& b) { return a.first.x == b.first.x && a.first.y == b.first.y; }),
+              keyed.end());
   std::vector<Site> sites;
-  for (const Vec2& p : pts) sites.push_back(frame.to_int(p));
-  std::sort(sites.begin(), sites.end(), [](const Site& a, const Site& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
-  sites.erase(std::unique(sites.begin(), sites.end(), [](const Site& a, const Site& b) { return a.x == b.x && a.y == b.y; }),
-              sites.end());
+  for (const auto& k : keyed) sites.push_back(k.first);
   map.sites = sites.size();
   boost::polygon::voronoi_diagram<double> vd;
   boost::polygon::construct_voronoi(sites.begin(), sites.end(), &vd);
@@ -102,8 +153,13 @@ Roadmap threat_roadmap(const World& world, const SegmentRule& rule, double plane
                  Vec3(bounds.max.x() - inset.x(), bounds.max.y() - inset.y(), plane_z + 1.0)};
   const double far = 4.0 * std::max(bounds.extent().x(), bounds.extent().y()) + 1.0;
   std::unordered_map<const void*, std::uint32_t> index;  // Voronoi vertex -> roadmap vertex
+  std::vector<std::pair<double, std::uint32_t>> rim;     // vertices on the bounds, by perimeter position
   auto vertex_of = [&](const boost::polygon::voronoi_vertex<double>* v, const Vec3& p, bool clipped) {
-    if (clipped || !v) return map.add_vertex(p);
+    if (clipped || !v) {
+      const std::uint32_t id = map.add_vertex(p);
+      rim.emplace_back(perimeter_position(p.head<2>(), box), id);
+      return id;
+    }
     const auto [it, fresh] = index.try_emplace(v, 0u);
     if (fresh) it->second = map.add_vertex(p);
     return it->second;
@@ -111,9 +167,9 @@ Roadmap threat_roadmap(const World& world, const SegmentRule& rule, double plane
   for (const auto& e : vd.edges()) {
     if (e.color() != 0) continue;  // its twin was taken
     e.twin()->color(1);
-    if (!e.is_primary()) continue;
-    const Vec2 s0 = frame.from(sites[e.cell()->source_index()].x, sites[e.cell()->source_index()].y);
-    const Vec2 s1 = frame.from(sites[e.twin()->cell()->source_index()].x, sites[e.twin()->cell()->source_index()].y);
+    const std::size_t c0 = e.cell()->source_index(), c1 = e.twin()->cell()->source_index();
+    if (!e.is_primary() || keyed[c0].second == keyed[c1].second) continue;  // inside one obstacle's outline
+    const Vec2 s0 = frame.from(sites[c0].x, sites[c0].y), s1 = frame.from(sites[c1].x, sites[c1].y);
     // An infinite edge runs along the bisector of its two sites, away from them on its open side.
     const Vec2 dir = Vec2(s0.y() - s1.y(), s1.x() - s0.x()).normalized();
     const Vec2 mid = 0.5 * (s0 + s1);
@@ -128,6 +184,19 @@ Roadmap threat_roadmap(const World& world, const SegmentRule& rule, double plane
     const std::uint32_t va = vertex_of(e.vertex0(), pa, t0 > 0.0);
     const std::uint32_t vb = vertex_of(e.vertex1(), pb, t1 < 1.0);
     map.add_edge(va, vb, (pb - pa).norm(), p1_edge_cost(pa, pb, world, o));
+  }
+  // The diagram clipped to a box ends on the box: its outline joins those ends (and its corners),
+  // so regions the diagram leaves apart are still joined where the bounds' edge is free.
+  const Vec2 corners[4] = {box.min.head<2>(), Vec2(box.max.x(), box.min.y()), box.max.head<2>(), Vec2(box.min.x(), box.max.y())};
+  for (const Vec2& c : corners) {
+    const Vec3 p(c.x(), c.y(), plane_z);
+    if (rule.point_ok(p)) rim.emplace_back(perimeter_position(c, box), map.add_vertex(p));
+  }
+  std::sort(rim.begin(), rim.end());
+  for (std::size_t k = 0; k < rim.size() && rim.size() > 1; ++k) {
+    const std::uint32_t va = rim[k].second, vb = rim[(k + 1) % rim.size()].second;
+    const Vec3 &pa = map.vertices[va], &pb = map.vertices[vb];
+    if ((pb - pa).norm() > 1e-9 && rule(pa, pb)) map.add_edge(va, vb, (pb - pa).norm(), p1_edge_cost(pa, pb, world, o));
   }
   return map;
 }

@@ -17,6 +17,7 @@ struct RoadmapOptions {
   double k1 = 0.5;               // P1 eq. 3 weight of the threat cost
   double threat_prefactor = 1.0; // multiplies J_threat (1: P1's L_i; 1/3: the midpoint rule's L_i / 3)
   int join_nearest = 4;          // a stop is joined to this many nearest vertices it sees
+  double outline_spacing_m = 0;  // obstacle outlines sampled this often; 0: 1/100 of the bounds' larger side
 };
 
 struct Roadmap {
@@ -28,7 +29,6 @@ struct Roadmap {
   std::vector<Edge> edges;
   std::vector<std::vector<std::uint32_t>> incident;  // per vertex: its edges
   std::size_t sites = 0;                             // Voronoi sites it was built from
-  bool from_obstacles = false;                       // sites are obstacle centres (no threats)
 
   std::uint32_t add_vertex(const Vec3& p);
   void add_edge(std::uint32_t a, std::uint32_t b, double length_m, double cost);
@@ -38,8 +38,10 @@ struct Roadmap {
 // P1 eq. 3 on segment [a, b]: k1 * prefactor * J_threat (eq. 1) + (1 - k1) * L (eq. 2).
 double p1_edge_cost(const Vec3& a, const Vec3& b, const World& world, const RoadmapOptions& o);
 
-// The roadmap at height plane_z. Sites: the radars; without radars the obstacles' centres; with
-// fewer than three sites, the bounds' corners are added (a diagram needs them to have edges).
+// The roadmap at height plane_z. Sites: the radars (P1) and, for the hard obstacles the plane cuts,
+// samples of their inflated footprint outlines (edges between two samples of one outline are not
+// kept: what remains runs midway between obstacles); with fewer than three sites the bounds'
+// corners are added. The clipped diagram's ends on the bounds are joined along the bounds.
 Roadmap threat_roadmap(const World& world, const SegmentRule& rule, double plane_z, const RoadmapOptions& o);
 
 // Adds p as a vertex joined to the `join_nearest` nearest vertices it sees (and to each of
