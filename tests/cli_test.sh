@@ -204,6 +204,19 @@ grep -q '<script type="application/json" id="uavplan-data">' "$TMP/r.html" || { 
 "$BIN" plan "$good" -o "$TMP/note" --set ants=5 >/dev/null 2>"$TMP/stderr"; check other.planner.param 0 $?
 grep -q "note: planner.params.ants is not a parameter of astar (it is one of cellular_aco, aco_voronoi): ignored" "$TMP/stderr" ||
   { echo "FAIL other.planner.param note: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
+# P1 formation: bad shapes, goals and re-forming; the bundled scenario plans, verifies, arrives together.
+f1="$SRC/scenarios/p1_formation.yaml"
+mkf() { sed "$1" "$f1" >"$TMP/$2"; echo "$TMP/$2"; }
+expect_bad formation.shape.length "$(mkf 's/shape: \[\[0, 0, 0\], \[-5, 5, 0\], \[-5, -5, 0\]\]/shape: [[0, 0, 0], [-5, 5, 0]]/' f_len.yaml)" "2 slots for 3 UAVs"
+expect_bad formation.shape.close "$(mkf 's/\[-5, -5, 0\]\]/[-4, 4, 0]]/' f_close.yaml)" "slots must be at least"
+expect_bad formation.goal "$(mkf 's/, goal: \[515, 472, 0\]//' f_goal.yaml)" "missing required key 'goal'"
+expect_bad formation.reform "$(mkf 's/reform_after_steps: 5/reform_after_steps: 0/' f_reform.yaml)" "reform_after_steps"
+rm -rf "$TMP/f1"
+"$BIN" plan "$f1" -o "$TMP/f1" >/dev/null 2>&1; check formation.plan 0 $?
+"$BIN" verify "$f1" "$TMP/f1/plan.json" >/dev/null 2>&1; check formation.verify 0 $?
+grep -q '"formation": {' "$TMP/f1/plan.json" && grep -q '"eta_s"' "$TMP/f1/plan.json" && grep -q '"breaks": \[$' "$TMP/f1/plan.json" ||
+  { echo "FAIL formation.plan: no formation block with breaks"; fails=$((fails + 1)); }
+"$BIN" plan "$f1" -o "$TMP/f1rrt" --set local=rrt >/dev/null 2>&1; [ -s "$TMP/f1rrt/plan.json" ] || { echo "FAIL formation.local.rrt: no plan"; fails=$((fails + 1)); }
 expect_refused forced.planner "apf" "$SRC/scenarios/p3_group9.yaml" --algorithm astar
 expect_bad self.intersecting "$(mk 's/- {type: box, id: tower_a, min: \[200, 200, 0\], max: \[260, 260, 60\]}/- {type: prism, polygon: [[200, 200], [260, 260], [260, 200], [200, 262]], z_min: 0, z_max: 60}/' bowtie.yaml)" "self-intersecting"
 mkdir -p "$TMP/adir"

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "uavplan/coordination/formation_mission.h"
 #include "uavplan/coordination/group_mission.h"
 #include "uavplan/coordination/rendezvous_mission.h"
 #include "uavplan/coordination/routes_mission.h"
@@ -20,6 +21,7 @@ const std::vector<std::pair<MissionType, std::unique_ptr<Mission>>>& registry() 
     t.emplace_back(MissionType::route, std::make_unique<RoutesMission>());
     t.emplace_back(MissionType::group, std::make_unique<GroupMission>());
     t.emplace_back(MissionType::rendezvous, std::make_unique<RendezvousMission>());
+    t.emplace_back(MissionType::formation, std::make_unique<FormationMission>());
     return t;
   }();
   return table;
@@ -39,7 +41,7 @@ std::string mission_algorithm(const Scenario& sc, const std::optional<std::strin
   const std::optional<std::string> asked =
       asked_cli ? asked_cli : sc.planner.algorithm_given ? std::optional<std::string>(sc.planner.algorithm) : std::nullopt;
   const std::string type(to_string(sc.mission.type));
-  if (!asked) return allowed.empty() ? std::string("astar") : allowed.front();
+  if (!asked) return mission ? mission->default_algorithm() : std::string("astar");
   if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), *asked) == allowed.end()) {
     std::string list;
     for (std::size_t i = 0; i < allowed.size(); ++i) list += (i ? (i + 1 == allowed.size() ? " or " : ", ") : "") + allowed[i];

@@ -50,6 +50,8 @@ class Mission {
   virtual ~Mission() = default;
   // The planners this mission plans with, the default first; empty: any registered planner.
   virtual std::vector<std::string> algorithms() const { return {}; }
+  // The planner it plans with when none is asked for.
+  virtual std::string default_algorithm() const { return algorithms().empty() ? "astar" : algorithms().front(); }
   // Keys of planner.params (and --set) that the mission reads itself, not its planner.
   virtual std::vector<std::string> parameters() const { return {}; }
   // Whether the mission flies UAVs' take-off and landing legs within its own timing (from

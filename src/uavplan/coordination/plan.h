@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,21 @@ struct UavPlan {
   std::map<std::string, double> metrics;  // filled by evaluation
 };
 
+// A formation's flight (P1): one ETA, the phases' ends, and when each UAV left its slot (flag w).
+struct FormationLog {
+  struct Phase {
+    std::string name;
+    double end_s = 0.0;
+  };
+  struct Break {
+    std::string uav;
+    double from_s = 0.0, to_s = 0.0;
+  };
+  double eta_s = 0.0;
+  std::vector<Phase> phases;
+  std::vector<Break> breaks;
+};
+
 struct Plan {
   std::string scenario;
   std::string algorithm;
@@ -34,6 +50,7 @@ struct Plan {
   std::map<std::string, double> metrics;  // filled by evaluation
   double plan_ms = 0.0;                   // wall time; kept out of the plan file by default
   std::vector<std::string> notes;         // for the user, not the file (parameters ignored, ...)
+  std::optional<FormationLog> formation;  // formation missions
 
   const UavPlan* find_uav(std::string_view id) const {
     for (const auto& u : uavs)

@@ -124,13 +124,14 @@ RollingWindow::RollingWindow(const World& world, RollingWindowOptions options, s
 }
 
 void RollingWindow::control(double t, std::span<FlightState> uavs, std::span<const Sensor> sensors) {
-  for (std::size_t i = 0; i < uavs.size(); ++i) control_one(t, i, uavs[i], sensors[i].tracks);
+  for (std::size_t i = 0; i < uavs.size(); ++i) {
+    uavs[i].speed_mps = uavs[i].spec->speed.cruise_mps;  // a hold or an escape lasts one period
+    guard(t, i, uavs[i], sensors[i].tracks);
+  }
 }
 
-void RollingWindow::control_one(double t, std::size_t i, FlightState& s, const std::vector<Track>& tracks) {
-  const UavSpec& u = *s.spec;
-  RollingWindowLog& log = logs_[i];
-  s.speed_mps = u.speed.cruise_mps;  // a hold or an escape lasts one period
+std::vector<ThreatDisc> RollingWindow::discs_for(double t, std::size_t i, const FlightState& s,
+                                                 const std::vector<Track>& tracks) const {
   // Right of way: of two UAVs in the loop the later gives way, planning around the earlier's
   // disc; the earlier keeps only their bodies apart (both turning wide, each for the other, is
   // how they would meet).
@@ -139,20 +140,36 @@ void RollingWindow::control_one(double t, std::size_t i, FlightState& s, const s
     const auto it = priority_.find(tracks[k].id);
     gives_way[k] = tracks[k].is_uav && it != priority_.end() && it->second > i;
   }
-  const std::vector<ThreatDisc> threats = threat_discs(u, tracks, t, opt_.step_s, opt_.separation_m, gives_way);
+  return threat_discs(*s.spec, tracks, t, opt_.step_s, opt_.separation_m, gives_way);
+}
+
+bool RollingWindow::threatened(double t, std::size_t i, const FlightState& s, const std::vector<Track>& tracks) const {
+  const std::vector<ThreatDisc> threats = discs_for(t, i, s, tracks);
+  if (s.route.empty() || t + 1e-9 < s.depart_s) return !clear_to_stay(t, i, s, threats);
+  std::vector<MovingKeepOut> discs;
+  for (const ThreatDisc& d : threats) discs.push_back(d.disc);
+  return touches(ahead_of(s), discs, SegmentRule(world_, *s.spec), heading_of(s), s.spec->max_turn_rad, t,
+                 s.spec->speed.cruise_mps, window_m_[i])
+      .any;
+}
+
+bool RollingWindow::guard(double t, std::size_t i, FlightState& s, const std::vector<Track>& tracks) {
+  const UavSpec& u = *s.spec;
+  RollingWindowLog& log = logs_[i];
+  const std::vector<ThreatDisc> threats = discs_for(t, i, s, tracks);
   if (s.route.empty() || t + 1e-9 < s.depart_s) {  // at its goal, or waiting to depart: keep watch
-    if (clear_to_stay(t, i, s, threats)) return;
+    if (clear_to_stay(t, i, s, threats)) return false;
     s.route.insert(s.route.begin(), s.position);  // comes back here
     s.depart_s = t;
     if (escape(t, s, threats)) ++log.escapes;
     log.events.push_back({t, "", Vec3::Zero(), ReplanEvent::Outcome::escaped});
-    return;
+    return true;
   }
   std::vector<MovingKeepOut> discs;
   for (const ThreatDisc& d : threats) discs.push_back(d.disc);
   const Touch touch = touches(ahead_of(s), discs, SegmentRule(world_, u), heading_of(s), u.max_turn_rad, t,
                               u.speed.cruise_mps, window_m_[i]);
-  if (!touch.any) return;
+  if (!touch.any) return false;
   ReplanEvent ev{t, "", Vec3::Zero()};
   if (touch.keep_out) {
     ev.object = tracks[*touch.keep_out].id;
@@ -176,6 +193,7 @@ void RollingWindow::control_one(double t, std::size_t i, FlightState& s, const s
     }
   }
   log.events.push_back(ev);
+  return true;
 }
 
 // The local RRT from where the UAV is to the rejoin point: past the last touch plus one UAV

@@ -72,11 +72,17 @@ class RollingWindow final : public FlightController {
   // the UAVs in the loop in priority order (a UAV gives way to the ones before it).
   RollingWindow(const World& world, RollingWindowOptions options, std::vector<double> windows_m,
                 const std::vector<std::string>& ids);
+  // Every UAV at its cruise speed, guarded.
   void control(double t_s, std::span<FlightState> uavs, std::span<const Sensor> sensors) override;
+  // UAV i's route ahead against its tracks' discs, at the speed it was given: true when the route
+  // was touched (it replanned, held or escaped) or, at its goal, it had to escape.
+  bool guard(double t_s, std::size_t i, FlightState& s, const std::vector<Track>& tracks);
+  // Whether guard() would act (nothing changed).
+  bool threatened(double t_s, std::size_t i, const FlightState& s, const std::vector<Track>& tracks) const;
   const RollingWindowLog& log(std::size_t uav) const { return logs_[uav]; }
 
  private:
-  void control_one(double t_s, std::size_t i, FlightState& s, const std::vector<Track>& tracks);
+  std::vector<ThreatDisc> discs_for(double t_s, std::size_t i, const FlightState& s, const std::vector<Track>& tracks) const;
   bool replan(double t_s, std::size_t i, FlightState& s, const std::vector<ThreatDisc>& threats, const Vec3& bias_mps,
               std::string& why);
   bool clear_to_stay(double t_s, std::size_t i, const FlightState& s, const std::vector<ThreatDisc>& threats) const;

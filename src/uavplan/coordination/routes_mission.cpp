@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <cstdio>
 
+#include "uavplan/coordination/local_layer.h"
 #include "uavplan/coordination/rolling_window.h"
 #include "uavplan/coordination/timing.h"
 #include "uavplan/planning/registry.h"
@@ -79,40 +80,6 @@ double departure_s(const Trajectory& tr) {
   return tr.size() >= 2 && tr[1].p == tr[0].p ? tr[1].t_s : 0.0;
 }
 
-// The corners of a flown trajectory (rows on a straight line at constant speed dropped).
-std::vector<Vec3> corners(const Trajectory& tr) {
-  std::vector<Vec3> out;
-  for (std::size_t i = 0; i < tr.size(); ++i) {
-    if (!out.empty() && tr[i].p == out.back()) continue;
-    if (out.size() >= 2) {
-      const Vec3 a = out[out.size() - 1] - out[out.size() - 2], b = tr[i].p - out.back();
-      if (a.cross(b).norm() <= 1e-12 * a.norm() * b.norm() && a.dot(b) > 0.0) out.pop_back();
-    }
-    out.push_back(tr[i].p);
-  }
-  return out;
-}
-
-// The mission's own parameters: the local replanner and the window.
-struct LocalLayer {
-  RrtOptions rrt;
-  double window_m = 0.0;  // 0: each UAV's sensor range
-};
-LocalLayer local_layer(const MissionContext& ctx) {
-  ParamReader r(ctx.mission_params, ctx.algorithm);
-  const std::string local = r.text("local", "improved_rrt");
-  if (local != "improved_rrt" && local != "rrt")
-    throw std::invalid_argument("planner.params.local: expected improved_rrt or rrt, got '" + local + "'");
-  LocalLayer out;
-  out.window_m = r.number("window_m", 0.0, 0.0, 1e12);
-  r.finish();
-  // The global planner's own RRT parameters apply to the local one of the same kind.
-  out.rrt = local == ctx.algorithm ? RrtOptions::from_params(ctx.params, local == "improved_rrt")
-            : local == "rrt"       ? RrtOptions::common()
-                                   : RrtOptions::improved();
-  return out;
-}
-
 // The UAVs with sensors fly their routes in the loop, with the timed ones as objects to sense.
 void fly_sensing(const Scenario& sc, const MissionContext& ctx, const Committed& committed, Plan& plan) {
   const MissionOptions& opt = ctx.options;
@@ -172,7 +139,7 @@ void fly_sensing(const Scenario& sc, const MissionContext& ctx, const Committed&
       continue;
     }
     up.message = buf;
-    up.waypoints = corners(f.flown);
+    up.waypoints = trajectory_corners(f.flown);
     up.length_m = Route{up.waypoints}.length_m();
     up.arrival_s = f.flown.back().t_s;
   }

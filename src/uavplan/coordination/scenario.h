@@ -26,6 +26,12 @@ struct MissionSpec {
   // UAVs whose goals lie closer than this arrive at distinct points this far apart (0: they
   // meet at the goal); default the separation. Not for rendezvous (one goal by design).
   std::optional<double> goal_spacing_m;
+  // formation (P1): a slot per UAV in scenario order, forward / left / up (m) from the reference
+  // point in a frame turning with the reference's heading; clear periods before re-forming; the
+  // largest spread of the arrival times.
+  std::vector<Vec3> shape;
+  int reform_after_steps = 5;
+  double arrival_tolerance_s = 2.0;
 };
 
 struct PlannerSpec {

@@ -32,6 +32,7 @@ std::string_view to_string(ViolationKind k) {
     case ViolationKind::speed: return "speed";
     case ViolationKind::via_point: return "via_point";
     case ViolationKind::length_spread: return "length_spread";
+    case ViolationKind::arrival_spread: return "arrival_spread";
   }
   return "?";
 }
@@ -230,6 +231,13 @@ std::vector<Violation> verify_plan(const Scenario& sc, const Plan& plan) {
     if (hi - lo > *sc.mission.arrival_tolerance_m + kDistanceTolerance_m)
       add(out, ViolationKind::length_spread, "", std::nullopt, std::nullopt,
           "route lengths differ by " + num(hi - lo) + " m, above the tolerance " + num(*sc.mission.arrival_tolerance_m) + " m");
+  }
+  if (sc.mission.type == MissionType::formation && flown.size() > 1) {
+    double lo = World::kInf, hi = -World::kInf;
+    for (const auto& f : flown) lo = std::min(lo, f.second->trajectory.back().t_s), hi = std::max(hi, f.second->trajectory.back().t_s);
+    if (hi - lo > sc.mission.arrival_tolerance_s + 1e-6)
+      add(out, ViolationKind::arrival_spread, "", std::nullopt, std::nullopt,
+          "arrival times differ by " + num(hi - lo) + " s, above arrival_tolerance_s " + num(sc.mission.arrival_tolerance_s) + " s");
   }
   return out;
 }

@@ -32,6 +32,7 @@ enum class ViolationKind {
   speed,
   via_point,        // a via point missed or visited out of order
   length_spread,    // rendezvous: route lengths differ by more than the tolerance
+  arrival_spread,   // formation: arrival times differ by more than arrival_tolerance_s
 };
 
 std::string_view to_string(ViolationKind k);

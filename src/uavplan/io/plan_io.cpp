@@ -135,6 +135,12 @@ std::string plan_to_json(const Plan& plan, const PlanWriteOptions& options) {
     uavs.push_back(std::move(ju));
   }
   j["uavs"] = std::move(uavs);
+  if (plan.formation) {
+    Json phases = Json::array(), breaks = Json::array();
+    for (const auto& ph : plan.formation->phases) phases.push_back({{"name", ph.name}, {"end_s", r6(ph.end_s)}});
+    for (const auto& b : plan.formation->breaks) breaks.push_back({{"uav", b.uav}, {"from_s", r6(b.from_s)}, {"to_s", r6(b.to_s)}});
+    j["formation"] = {{"eta_s", r6(plan.formation->eta_s)}, {"phases", std::move(phases)}, {"breaks", std::move(breaks)}};
+  }
   j["metrics"] = metrics_json(plan.metrics);
   j["timing"] = Json::object();
   if (options.include_timing) {
@@ -236,6 +242,26 @@ Plan parse_plan(const std::string& raw, const std::string& file) {
     p.uavs.push_back(std::move(u));
   }
   if (j.contains("metrics")) p.metrics = r.metrics(j["metrics"], "metrics");
+  if (j.contains("formation")) {
+    const Json& f = j["formation"];
+    FormationLog log;
+    log.eta_s = r.number(r.req(f, "eta_s", "formation"), "formation.eta_s");
+    for (const char* key : {"phases", "breaks"}) {
+      if (!f.contains(key)) continue;
+      const std::string at = std::string("formation.") + key;
+      if (!f[key].is_array()) r.fail(at, "expected an array");
+      for (std::size_t k = 0; k < f[key].size(); ++k) {
+        const Json& e = f[key][k];
+        const std::string place = at + "[" + std::to_string(k) + "]";
+        if (std::string(key) == "phases")
+          log.phases.push_back({r.text(r.req(e, "name", place), place + ".name"), r.number(r.req(e, "end_s", place), place + ".end_s")});
+        else
+          log.breaks.push_back({r.text(r.req(e, "uav", place), place + ".uav"), r.number(r.req(e, "from_s", place), place + ".from_s"),
+                                r.number(r.req(e, "to_s", place), place + ".to_s")});
+      }
+    }
+    p.formation = std::move(log);
+  }
   return p;
 }
 

@@ -353,7 +353,7 @@ void check_room(const At& obstacles, const World& w) {
 
 void check_uavs_fit(const At& uavs, const Scenario& sc) {
   const World& w = sc.world;
-  const bool goals_needed = sc.mission.type != MissionType::formation;
+  const bool goals_needed = true;  // (a formation's goals are its slots at the end)
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
     const UavSpec& u = sc.uavs[i];
     const At ui = uavs.item(i);
@@ -373,6 +373,23 @@ void check_uavs_fit(const At& uavs, const Scenario& sc) {
     if (!placed[i].start.empty()) uavs.item(i)["start"].fail("cannot be planned from: " + placed[i].start);
     if (!placed[i].goal.empty()) uavs.item(i)["goal"].fail("cannot be planned to: " + placed[i].goal);
   }
+}
+
+// A formation's shape: one slot per UAV, every two slots at least the separation (and their
+// bodies) apart.
+void read_shape(const At& list, Scenario& sc) {
+  list.expect_seq();
+  if (list.size() != sc.uavs.size())
+    list.fail("has " + std::to_string(list.size()) + " slots for " + std::to_string(sc.uavs.size()) + " UAVs (one slot per UAV, in scenario order)");
+  for (std::size_t i = 0; i < list.size(); ++i) sc.mission.shape.push_back(list.item(i).vec3());
+  for (std::size_t i = 0; i < sc.mission.shape.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j) {
+      const double d = (sc.mission.shape[i] - sc.mission.shape[j]).norm();
+      const double need = std::max(sc.mission.separation_m, sc.uavs[i].radius_m + sc.uavs[j].radius_m);
+      if (d < need)
+        list.item(i).fail("is " + At::fmt(d) + " m from slot " + std::to_string(j) + " (" + sc.uavs[j].id + "); slots must be at least " +
+                          At::fmt(need) + " m apart (the separation, and the UAVs' bodies)");
+    }
 }
 
 YAML::Node parse_yaml(const std::string& raw, const std::string& file) {
@@ -550,7 +567,8 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
   // Mission.
   if (top.has("mission")) {
     const At m = top["mission"];
-    m.keys({"type", "separation", "waypoints", "arrival_tolerance", "step_s", "goal_spacing"});
+    m.keys({"type", "separation", "waypoints", "arrival_tolerance", "step_s", "goal_spacing", "shape", "reform_after_steps",
+            "arrival_tolerance_s"});
     if (m.has("type")) {
       const auto t = mission_type_from_string(m["type"].text());
       if (!t) m["type"].fail("unknown mission type '" + m["type"].text() + "' (expected independent, route, group, rendezvous or formation)");
@@ -571,6 +589,15 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
     if (m.has("goal_spacing")) sc.mission.goal_spacing_m = m["goal_spacing"].non_negative();
     if (sc.mission.type == MissionType::route && sc.mission.waypoints.empty())
       m.req("waypoints").fail("a route mission needs at least one waypoint");
+    if (m.has("reform_after_steps")) {
+      const std::int64_t n = m["reform_after_steps"].integer();
+      if (n < 1 || n > 1000000) m["reform_after_steps"].fail("expected at least 1 clear step before re-forming, got " + std::to_string(n));
+      sc.mission.reform_after_steps = static_cast<int>(n);
+    }
+    if (m.has("arrival_tolerance_s")) sc.mission.arrival_tolerance_s = m["arrival_tolerance_s"].non_negative();
+    if (m.has("shape")) read_shape(m["shape"], sc);
+    if (sc.mission.type == MissionType::formation && !m.has("shape"))
+      m.req("shape").fail("a formation mission needs a slot per UAV");
   }
 
   // Every plan's trajectory has a row at least every second: a route that would take longer than

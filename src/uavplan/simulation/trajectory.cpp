@@ -1,3 +1,4 @@
+#include <Eigen/Geometry>
 #include "uavplan/simulation/trajectory.h"
 
 #include <algorithm>
@@ -174,6 +175,19 @@ Encounter closest_moving_approach(const World& world, const Trajectory& tr, int*
   }
   if (t_far > last.t_s) consider(last, {t_far, last.p});
   return e;
+}
+
+std::vector<Vec3> trajectory_corners(const Trajectory& tr) {
+  std::vector<Vec3> out;
+  for (std::size_t i = 0; i < tr.size(); ++i) {
+    if (!out.empty() && tr[i].p == out.back()) continue;
+    if (out.size() >= 2) {
+      const Vec3 a = out[out.size() - 1] - out[out.size() - 2], b = tr[i].p - out.back();
+      if (a.cross(b).norm() <= 1e-12 * a.norm() * b.norm() && a.dot(b) > 0.0) out.pop_back();
+    }
+    out.push_back(tr[i].p);
+  }
+  return out;
 }
 
 }  // namespace uavplan

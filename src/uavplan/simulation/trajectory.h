@@ -53,4 +53,7 @@ class SweptBoxes {
 // `index_out` names the obstacle.
 Encounter closest_moving_approach(const World& world, const Trajectory& tr, int* index_out = nullptr);
 
+// The corners of a flown trajectory (rows on a straight line at constant speed dropped).
+std::vector<Vec3> trajectory_corners(const Trajectory& tr);
+
 }  // namespace uavplan

@@ -1,0 +1,148 @@
+#include "uavplan/coordination/formation_flight.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "uavplan/coordination/timing.h"
+
+namespace uavplan {
+
+FormationFlight::FormationFlight(const FormationSchedule& schedule, FormationFlightOptions options, RollingWindow& guard)
+    : sched_(schedule), opt_(options), guard_(guard), members_(schedule.slots.size()) {}
+
+// The tracks UAV i guards against: all but those of UAVs that, like it, are in their slots and
+// that the schedule keeps apart (more than the separation, with 5 % to spare: within a period a
+// UAV flies its path at the period's mean speed, a little off the schedule).
+std::vector<Track> FormationFlight::trusted_out(std::size_t i, const std::vector<Track>& tracks,
+                                                std::span<const FlightState> uavs) const {
+  if (members_[i].mode == Mode::broken) return tracks;
+  std::vector<Track> out;
+  const double room = 1.05 * opt_.separation_m + kTimingMargin_m;
+  for (const Track& k : tracks) {
+    std::size_t j = members_.size();
+    for (std::size_t m = 0; m < uavs.size(); ++m)
+      if (k.is_uav && k.id == uavs[m].spec->id) j = m;
+    if (j < members_.size() && members_[j].mode != Mode::broken) {
+      const std::size_t a = sched_.interval(members_[i].tau_s), b = sched_.interval(members_[j].tau_s);
+      bool apart = true;
+      for (std::size_t q = std::min(a, b); q <= std::max(a, b) + 1 && q + 1 < sched_.knots_s.size(); ++q)
+        apart = apart && schedule_gap_m(sched_, i, j, q) > room;
+      if (apart) continue;
+    }
+    out.push_back(k);
+  }
+  return out;
+}
+
+// One period along its nominal path at its clock rate (never past hold_s), the rest of the path
+// after it as the route ahead.
+void FormationFlight::fly_slot(double t, std::size_t i, FlightState& s, double hold_s) {
+  Member& m = members_[i];
+  const double next = std::min({m.tau_s + m.rate * opt_.step_s, sched_.end_s(), std::max(hold_s, m.tau_s)});
+  std::vector<Vec3> route = sched_.path(i, m.tau_s, sched_.end_s());
+  const double now_m = sched_.length(i, m.tau_s, next);
+  route.erase(route.begin());
+  s.route = std::move(route);
+  if (s.route.empty() || (s.position - sched_.slots[i].back()).norm() <= 1e-9) s.route.clear();
+  s.speed_mps = now_m / opt_.step_s;
+  s.depart_s = t;
+  s.done = s.route.empty();
+  m.tau_s = next;
+}
+
+// A broken UAV is back on its path when it flies a segment of it towards one of its knots.
+void FormationFlight::find_on_path(std::size_t i, const FlightState& s) {
+  Member& m = members_[i];
+  m.on_path = false;
+  const std::vector<Vec3>& p = sched_.slots[i];
+  if (s.route.empty()) {  // waiting at the end of what it was given: a knot
+    for (std::size_t k = m.knot; k < p.size(); ++k)
+      if ((p[k] - s.position).norm() <= 1e-6) {
+        m.on_path = true, m.knot = k, m.tau_s = sched_.knots_s[k];
+        return;
+      }
+    return;
+  }
+  for (std::size_t k = std::max<std::size_t>(m.knot, 1); k < p.size(); ++k) {
+    if (p[k] != s.route.front() || p[k] == p[k - 1]) continue;
+    const Vec3 seg = p[k] - p[k - 1], rel = s.position - p[k - 1];
+    const double f = rel.dot(seg) / seg.squaredNorm();
+    if (f < -1e-9 || f > 1.0 + 1e-9 || (rel - f * seg).norm() > 1e-6) continue;
+    m.on_path = true;
+    m.knot = k - 1;
+    m.tau_s = sched_.knots_s[k - 1] + std::clamp(f, 0.0, 1.0) * (sched_.knots_s[k] - sched_.knots_s[k - 1]);
+    return;
+  }
+}
+
+// P1 eq. 8-9, N UAVs, on the shared clock: x = max_i tau_i - tau_m (m the furthest behind),
+// t = x / (V_max / v) rounded up to whole periods; each UAV's clock runs at (tau_max - tau_i) / t.
+void FormationFlight::start_reform(double t) {
+  double lo = World::kInf, hi = -World::kInf;
+  for (const Member& m : members_) lo = std::min(lo, m.tau_s), hi = std::max(hi, m.tau_s);
+  const double catch_up = std::max(1.0, opt_.max_speed_mps / opt_.cruise_mps);
+  const double periods = std::max(1.0, std::ceil((hi - lo) / catch_up / opt_.step_s - 1e-9));
+  const double span_s = periods * opt_.step_s;
+  for (Member& m : members_) {
+    m.mode = Mode::reforming;
+    m.rate = (hi - m.tau_s) / span_s;
+    m.clear_steps = 0;
+  }
+  reform_end_s_ = t + span_s;
+  ++reforms_;
+}
+
+void FormationFlight::control(double t, std::span<FlightState> uavs, std::span<const Sensor> sensors) {
+  if (reform_end_s_ >= 0.0 && t + 1e-9 >= reform_end_s_) {  // re-formed: w = 0 again
+    for (Member& m : members_)
+      if (m.mode == Mode::reforming) m.mode = Mode::formed, m.rate = 1.0;
+    for (FormationBreak& b : breaks_)
+      if (b.to_s < 0.0 && members_[b.uav].mode == Mode::formed) b.to_s = t;
+    reform_end_s_ = -1.0;
+  }
+  // Re-form once every UAV out of its slot is back on its path and has been clear long enough.
+  bool any_broken = false, ready = reform_end_s_ < 0.0;
+  for (std::size_t i = 0; i < uavs.size(); ++i) {
+    if (members_[i].mode != Mode::broken) continue;
+    any_broken = true;
+    find_on_path(i, uavs[i]);
+    ready = ready && members_[i].on_path && members_[i].clear_steps >= opt_.reform_after_steps;
+  }
+  if (any_broken && ready) {
+    start_reform(t);
+    any_broken = false;
+  }
+  // In their slots they wait at the end leg's start while any UAV is out of its slot.
+  const double hold_s = any_broken ? sched_.knots_s[sched_.final_knot] : sched_.end_s();
+  for (std::size_t i = 0; i < uavs.size(); ++i) {
+    Member& m = members_[i];
+    FlightState& s = uavs[i];
+    const std::vector<Track> tracks = trusted_out(i, sensors[i].tracks, uavs);
+    if (m.mode == Mode::broken) {
+      s.speed_mps = s.spec->speed.cruise_mps;
+      m.clear_steps = guard_.guard(t, i, s, tracks) ? 0 : m.clear_steps + 1;
+      continue;
+    }
+    const double tau_before = m.tau_s;
+    fly_slot(t, i, s, hold_s);
+    if (formed_s_ < 0.0 && m.tau_s >= sched_.knots_s[sched_.form_up_knot]) formed_s_ = t + opt_.step_s;
+    if (!guard_.threatened(t, i, s, tracks)) continue;
+    // Leaves its slot (w = 1), flying its own way back onto its path at cruise speed, around
+    // every other UAV as well.
+    guard_.guard(t, i, s, sensors[i].tracks);
+    const bool open = std::any_of(breaks_.begin(), breaks_.end(), [&](const FormationBreak& b) { return b.uav == i && b.to_s < 0.0; });
+    if (!open) breaks_.push_back({i, t, -1.0});
+    m.mode = Mode::broken;
+    m.tau_s = tau_before;
+    m.knot = sched_.interval(tau_before);
+    m.clear_steps = 0;
+    if (s.speed_mps > 0.0) s.speed_mps = s.spec->speed.cruise_mps;
+    // Its path ends where the others wait for it (the end leg's start).
+    const Vec3 wait = sched_.slots[i][sched_.final_knot];
+    const auto it = std::find(s.route.begin(), s.route.end(), wait);
+    if (it != s.route.end()) s.route.erase(it + 1, s.route.end());
+    s.done = false;
+  }
+}
+
+}  // namespace uavplan

@@ -1,0 +1,24 @@
+// Mission `formation` (P1): the UAVs fly as one shape from their starts to their goals.
+// 1. The reference route: the chosen planner (P1's aco_voronoi by default, any registered one by
+//    --algorithm) from the starts' centroid to the goals' centroid, for a body as wide as the
+//    shape (so every slot's translate of it is clear), else, when that finds none, for one UAV.
+// 2. The schedule (formation_schedule.h): form up, fly the route in shape, turn into the goals.
+// 3. The flight in the closed loop (formation_flight.h): sensing, leaving a slot to avoid with the
+//    local RRT (`local`: improved_rrt or rrt), re-forming by P1 eq. 8-9 after
+//    `reform_after_steps` clear periods, one ETA.
+// Every flown trajectory is then checked against the truth (moving obstacles, the other UAVs,
+// the separation) and the arrival spread against `arrival_tolerance_s`.
+#pragma once
+
+#include "uavplan/coordination/mission.h"
+
+namespace uavplan {
+
+class FormationMission final : public Mission {
+ public:
+  std::string default_algorithm() const override { return "aco_voronoi"; }
+  std::vector<std::string> parameters() const override { return {"local", "window_m"}; }
+  void plan(const Scenario& scenario, const MissionContext& context, Plan& plan) const override;
+};
+
+}  // namespace uavplan
