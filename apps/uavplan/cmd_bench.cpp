@@ -4,6 +4,7 @@
 #include "commands.h"
 #include "movingai_runner.h"
 #include "p1_local_runner.h"
+#include "p1_runner.h"
 #include "p2_runner.h"
 #include "p3_runner.h"
 #include "p4_runner.h"
@@ -115,6 +116,26 @@ void add_p3(CLI::App* cmd, std::function<int()>& run) {
   });
 }
 
+void add_p1(CLI::App* cmd, std::function<int()>& run) {
+  auto dir = std::make_shared<std::string>("scenarios");
+  auto runs = std::make_shared<int>(20);
+  CLI::App* p1 = cmd->add_subcommand("p1", "P1 tables: global route, colony vs Dijkstra, Table 2 (whole formation mission, A-RRT vs common RRT)");
+  p1->add_option("--scenarios", *dir, "Folder holding p1_formation.yaml (default: scenarios)");
+  p1->add_option("--runs", *runs, "Seeded runs of the whole mission per method (default: 20)")->check(CLI::Range(1, 100000));
+  p1->callback([dir, runs, &run] {
+    run = [dir, runs] {
+      try {
+        bool ok = false;
+        std::cout << bench::run_p1(*dir, *runs, &ok);
+        return ok ? kExitOk : kExitNotSolved;
+      } catch (const InputError& e) {
+        std::cerr << e.what() << "\n";
+        return kExitBadInput;
+      }
+    };
+  });
+}
+
 void add_p2(CLI::App* cmd, std::function<int()>& run) {
   auto dir = std::make_shared<std::string>("scenarios");
   CLI::App* p2 = cmd->add_subcommand("p2", "P2 tables: times to the task points for 25-100 ants, ant colony vs the A* optimum");
@@ -172,6 +193,7 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
   add_world(cmd, run);
   add_movingai(cmd, run);
   add_p4(cmd, run);
+  add_p1(cmd, run);
   add_p3(cmd, run);
   add_p2(cmd, run);
   add_p1_local(cmd, run);
