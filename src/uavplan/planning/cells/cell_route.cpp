@@ -172,16 +172,12 @@ PlanResult plan_once(const Problem& problem, const World& world, const CellPlanO
     }
   // P2 treats the UAV as a point mass; a UAV with a turn limit or start heading gets its
   // corners shaped (fillets, every new segment checked).
-  if (problem.uav.max_turn_rad < kPi - 1e-9 || problem.uav.heading_rad) {
-    const TurnShaping shaped = enforce_turn_limits(wp, pins, problem.uav.heading_rad,
-                                                   {problem.uav.max_turn_rad, problem.uav.max_climb_rad}, rule);
-    if (!shaped.ok) {
-      res.message = "turn limits: " + shaped.message;
-      return res;
-    }
-    wp = shaped.waypoints;
+  TurnShaping shaped = shape_turns(wp, pins, problem.uav, rule);
+  if (!shaped.ok) {
+    res.message = "turn limits: " + shaped.message;
+    return res;
   }
-  res.route.waypoints = std::move(wp);
+  res.route.waypoints = std::move(shaped.waypoints);
   res.status = Status::solved;
   return res;
 }

@@ -240,16 +240,12 @@ PlanResult AcoVoronoiPlanner::do_plan(const Problem& pb, const World& world, con
       }
     }
   }
-  if (pb.uav.max_turn_rad < kPi - 1e-9 || pb.uav.heading_rad) {
-    const TurnShaping shaped =
-        enforce_turn_limits(wp, pinned, pb.uav.heading_rad, {pb.uav.max_turn_rad, pb.uav.max_climb_rad}, rule);
-    if (!shaped.ok) {
-      res.message = "turn limits: " + shaped.message;
-      return res;
-    }
-    wp = shaped.waypoints;
+  TurnShaping shaped = shape_turns(wp, pinned, pb.uav, rule);
+  if (!shaped.ok) {
+    res.message = "turn limits: " + shaped.message;
+    return res;
   }
-  res.route.waypoints = std::move(wp);
+  res.route.waypoints = std::move(shaped.waypoints);
   res.status = Status::solved;
   return res;
 }

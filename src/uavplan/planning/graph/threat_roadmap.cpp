@@ -51,6 +51,17 @@ struct GroupedSite {
   std::uint32_t group;  // sites of one group (one obstacle's outline) bound no edge between them
 };
 
+// A rectangle's outline sampled every spacing_m (at most max_pieces per side), corners included.
+void rectangle_sites(const Vec2& lo, const Vec2& hi, double spacing_m, int max_pieces, std::uint32_t group,
+                     std::vector<GroupedSite>& out) {
+  const Vec2 corners[4] = {lo, Vec2(hi.x(), lo.y()), hi, Vec2(lo.x(), hi.y())};
+  for (int side = 0; side < 4; ++side) {
+    const Vec2 a = corners[side], c = corners[(side + 1) % 4];
+    const int pieces = std::clamp(static_cast<int>(std::ceil((c - a).norm() / spacing_m)), 1, max_pieces);
+    for (int k = 0; k < pieces; ++k) out.push_back({a + (c - a) * (static_cast<double>(k) / pieces), group});
+  }
+}
+
 // The footprint outline of every obstacle the plane at plane_z cuts, inflated by the rule's
 // margin and a little more, sampled every `spacing_m` (corners always): the diagram of these
 // samples with the edges inside one outline removed is the generalized Voronoi diagram's
@@ -60,15 +71,8 @@ void outline_sites(const World& world, double plane_z, double inflate_m, double 
   for (const Obstacle& o : world.obstacles()) {
     const Aabb b = bounding_box(o);
     if (b.min.z() - inflate_m > plane_z || b.max.z() + inflate_m < plane_z) continue;
-    const Vec2 lo = Vec2(b.min.x(), b.min.y()) - Vec2::Constant(inflate_m);
-    const Vec2 hi = Vec2(b.max.x(), b.max.y()) + Vec2::Constant(inflate_m);
-    const Vec2 corners[4] = {lo, Vec2(hi.x(), lo.y()), hi, Vec2(lo.x(), hi.y())};
-    for (int side = 0; side < 4; ++side) {
-      const Vec2 a = corners[side], c = corners[(side + 1) % 4];
-      const int pieces = std::clamp(static_cast<int>(std::ceil((c - a).norm() / spacing_m)), 1, 64);
-      for (int k = 0; k < pieces; ++k) out.push_back({a + (c - a) * (static_cast<double>(k) / pieces), group});
-    }
-    ++group;
+    rectangle_sites(b.min.head<2>() - Vec2::Constant(inflate_m), b.max.head<2>() + Vec2::Constant(inflate_m), spacing_m, 64,
+                    group++, out);
   }
 }
 
@@ -83,14 +87,7 @@ std::vector<GroupedSite> site_points(const World& world, double plane_z, double 
   if (pts.size() > radars) {
     // With obstacles the bounds are an outline too: the diagram then also runs midway between an
     // obstacle and the bounds' side.
-    const Vec2 lo = b.min.head<2>(), hi = b.max.head<2>();
-    const Vec2 corners[4] = {lo, Vec2(hi.x(), lo.y()), hi, Vec2(lo.x(), hi.y())};
-    for (int side = 0; side < 4; ++side) {
-      const Vec2 a = corners[side], c = corners[(side + 1) % 4];
-      const int pieces = std::clamp(static_cast<int>(std::ceil((c - a).norm() / spacing_m)), 1, 256);
-      for (int k = 0; k < pieces; ++k) pts.push_back({a + (c - a) * (static_cast<double>(k) / pieces), group});
-    }
-    ++group;
+    rectangle_sites(b.min.head<2>(), b.max.head<2>(), spacing_m, 256, group++, pts);
   }
   if (pts.size() < 3)
     for (const Vec2& c : {Vec2(b.min.x(), b.min.y()), Vec2(b.max.x(), b.min.y()), Vec2(b.max.x(), b.max.y()), Vec2(b.min.x(), b.max.y())})

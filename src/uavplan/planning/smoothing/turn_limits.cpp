@@ -145,4 +145,10 @@ TurnShaping enforce_turn_limits(std::span<const Vec3> pts, std::span<const char>
   return r;
 }
 
+TurnShaping shape_turns(std::span<const Vec3> points, std::span<const char> pinned, const UavSpec& uav,
+                        const SegmentPredicate& ok) {
+  if (uav.max_turn_rad >= kPi - 1e-9 && !uav.heading_rad) return {true, {points.begin(), points.end()}, ""};
+  return enforce_turn_limits(points, pinned, uav.heading_rad, {uav.max_turn_rad, uav.max_climb_rad}, ok);
+}
+
 }  // namespace uavplan

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "uavplan/planning/smoothing/shortcut.h"
+#include "uavplan/vehicle/uav.h"
 
 namespace uavplan {
 
@@ -31,5 +32,9 @@ struct TurnShaping {
 TurnShaping enforce_turn_limits(std::span<const Vec3> points, std::span<const char> pinned,
                                 std::optional<double> start_heading_rad, const TurnLimits& limits,
                                 const SegmentPredicate& ok);
+
+// The same for a UAV's limits and start heading; the points unchanged when it has neither.
+TurnShaping shape_turns(std::span<const Vec3> points, std::span<const char> pinned, const UavSpec& uav,
+                        const SegmentPredicate& ok);
 
 }  // namespace uavplan
