@@ -1,11 +1,40 @@
 #include "uavplan/coordination/formation_flight.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 
 #include "uavplan/coordination/timing.h"
 
 namespace uavplan {
+namespace {
+
+// What a UAV is told to fly for the coming period: the straight line from where it is to where
+// its route takes it by the period's end, and how far the route strays from that line.
+Intent commanded(double t, const FlightState& s, double step_s) {
+  if (s.route.empty() || t + 1e-9 < s.depart_s || s.speed_mps <= 0.0) return {};
+  const double v = std::clamp(s.speed_mps, s.spec->speed.min_mps, s.spec->speed.max_mps);
+  std::vector<Vec3> pts{s.position};
+  double left = v * step_s;
+  for (const Vec3& q : s.route) {
+    const double len = (q - pts.back()).norm();
+    if (len >= left) {
+      pts.push_back(pts.back() + (q - pts.back()) * (left / len));
+      break;
+    }
+    left -= len;
+    pts.push_back(q);
+  }
+  const Vec3 end = pts.back(), chord = end - s.position;
+  double slack = 0.0;
+  for (const Vec3& q : pts) {
+    const double f = chord.squaredNorm() > 0.0 ? std::clamp((q - s.position).dot(chord) / chord.squaredNorm(), 0.0, 1.0) : 0.0;
+    slack = std::max(slack, (q - s.position - f * chord).norm());
+  }
+  return {Vec3(chord / step_s), slack};
+}
+
+}  // namespace
 
 FormationFlight::FormationFlight(const FormationSchedule& schedule, FormationFlightOptions options, RollingWindow& guard)
     : sched_(schedule), opt_(options), guard_(guard), members_(schedule.slots.size()) {}
@@ -13,8 +42,18 @@ FormationFlight::FormationFlight(const FormationSchedule& schedule, FormationFli
 // The tracks UAV i guards against: all but those of UAVs that, like it, are in their slots and
 // that the schedule keeps apart (more than the separation, with 5 % to spare: within a period a
 // UAV flies its path at the period's mean speed, a little off the schedule).
-std::vector<Track> FormationFlight::trusted_out(std::size_t i, const std::vector<Track>& tracks,
+std::vector<Track> FormationFlight::trusted_out(std::size_t i, std::vector<Track> tracks,
                                                 std::span<const FlightState> uavs) const {
+  // Mates share their commands: one that has already decided this period is seen flying what it
+  // was told to, not what it flew (a mate turning away from a threat would otherwise be predicted
+  // straight on, into the UAV that has not yet had its turn).
+  for (Track& k : tracks)
+    for (std::size_t m = 0; m < uavs.size(); ++m)
+      if (k.is_uav && k.id == uavs[m].spec->id && intent_[m]) {
+        k.velocity_mps = intent_[m]->velocity_mps;
+        k.commanded = true;
+        k.commanded_slack_m = intent_[m]->slack_m;
+      }
   if (members_[i].mode == Mode::broken) return tracks;
   std::vector<Track> out;
   const double room = 1.05 * opt_.separation_m + kTimingMargin_m;
@@ -22,7 +61,10 @@ std::vector<Track> FormationFlight::trusted_out(std::size_t i, const std::vector
     std::size_t j = members_.size();
     for (std::size_t m = 0; m < uavs.size(); ++m)
       if (k.is_uav && k.id == uavs[m].spec->id) j = m;
-    if (j < members_.size() && members_[j].mode != Mode::broken) {
+    // Trusted only when both fly the schedule in step (while re-forming their clocks differ: a
+    // laggard catching up may pass where a mate ahead waits).
+    if (j < members_.size() && members_[j].mode != Mode::broken &&
+        std::abs(period_tau_[j] - period_tau_[i]) <= 1e-6 && members_[j].rate == members_[i].rate) {
       const std::size_t a = sched_.interval(members_[i].tau_s), b = sched_.interval(members_[j].tau_s);
       bool apart = true;
       for (std::size_t q = std::min(a, b); q <= std::max(a, b) + 1 && q + 1 < sched_.knots_s.size(); ++q)
@@ -43,28 +85,25 @@ void FormationFlight::fly_slot(double t, std::size_t i, FlightState& s, double h
   const double now_m = sched_.length(i, m.tau_s, next);
   route.erase(route.begin());
   s.route = std::move(route);
-  if (s.route.empty() || (s.position - sched_.slots[i].back()).norm() <= 1e-9) s.route.clear();
+  // At its goal before the clock's end (its end leg has no length) it hovers there: it has not
+  // arrived before the others.
+  const bool at_goal = (s.position - sched_.slots[i].back()).norm() <= 1e-9;
+  if (s.route.empty() || at_goal) s.route.clear();
+  if (at_goal && next < sched_.end_s()) s.route.push_back(s.position);
   s.speed_mps = now_m / opt_.step_s;
   s.depart_s = t;
   s.done = s.route.empty();
   m.tau_s = next;
 }
 
-// A broken UAV is back on its path when it flies a segment of it towards one of its knots.
+// A broken UAV is back on its path when it is on a segment of it, flying towards that segment's
+// end or waiting at the end of what it was given.
 void FormationFlight::find_on_path(std::size_t i, const FlightState& s) {
   Member& m = members_[i];
   m.on_path = false;
   const std::vector<Vec3>& p = sched_.slots[i];
-  if (s.route.empty()) {  // waiting at the end of what it was given: a knot
-    for (std::size_t k = m.knot; k < p.size(); ++k)
-      if ((p[k] - s.position).norm() <= 1e-6) {
-        m.on_path = true, m.knot = k, m.tau_s = sched_.knots_s[k];
-        return;
-      }
-    return;
-  }
   for (std::size_t k = std::max<std::size_t>(m.knot, 1); k < p.size(); ++k) {
-    if (p[k] != s.route.front() || p[k] == p[k - 1]) continue;
+    if (p[k] == p[k - 1] || (!s.route.empty() && p[k] != s.route.front())) continue;
     const Vec3 seg = p[k] - p[k - 1], rel = s.position - p[k - 1];
     const double f = rel.dot(seg) / seg.squaredNorm();
     if (f < -1e-9 || f > 1.0 + 1e-9 || (rel - f * seg).norm() > 1e-6) continue;
@@ -73,6 +112,24 @@ void FormationFlight::find_on_path(std::size_t i, const FlightState& s) {
     m.tau_s = sched_.knots_s[k - 1] + std::clamp(f, 0.0, 1.0) * (sched_.knots_s[k] - sched_.knots_s[k - 1]);
     return;
   }
+}
+
+// A UAV out of its slot never finishes alone: its route ends where the others wait for it (the
+// end leg's start) or, on the end leg, where it rejoins its path short of its goal (where it left
+// its slot when it would rejoin at the goal itself).
+void FormationFlight::clip_route(std::size_t i, FlightState& s) const {
+  const Vec3 wait = sched_.slots[i][sched_.final_knot], goal = sched_.slots[i].back();
+  const auto it = std::find(s.route.begin(), s.route.end(), wait);
+  if (it != s.route.end()) {
+    s.route.erase(it + 1, s.route.end());
+  } else if (!s.route.empty() && s.route.back() == goal && wait != goal) {
+    s.route.pop_back();
+    const Vec3 left = sched_.at(i, members_[i].tau_s);
+    const Vec3 leg = goal - wait;
+    const bool rejoins = !s.route.empty() && Vec3(s.route.back() - wait).cross(leg).norm() <= 1e-6 * leg.norm();
+    if (!rejoins && (s.position - left).norm() > 1e-9) s.route.push_back(left);
+  }
+  s.done = s.route.empty();
 }
 
 // P1 eq. 8-9, N UAVs, on the shared clock: x = max_i tau_i - tau_m (m the furthest behind),
@@ -93,6 +150,9 @@ void FormationFlight::start_reform(double t) {
 }
 
 void FormationFlight::control(double t, std::span<FlightState> uavs, std::span<const Sensor> sensors) {
+  intent_.assign(uavs.size(), std::nullopt);
+  period_tau_.clear();
+  for (const Member& m : members_) period_tau_.push_back(m.tau_s);
   if (reform_end_s_ >= 0.0 && t + 1e-9 >= reform_end_s_) {  // re-formed: w = 0 again
     for (Member& m : members_)
       if (m.mode == Mode::reforming) m.mode = Mode::formed, m.rate = 1.0;
@@ -121,15 +181,21 @@ void FormationFlight::control(double t, std::span<FlightState> uavs, std::span<c
     if (m.mode == Mode::broken) {
       s.speed_mps = s.spec->speed.cruise_mps;
       m.clear_steps = guard_.guard(t, i, s, tracks) ? 0 : m.clear_steps + 1;
+      clip_route(i, s);
+      intent_[i] = commanded(t, s, opt_.step_s);
       continue;
     }
     const double tau_before = m.tau_s;
+    if (m.mode == Mode::formed && formed_s_ >= 0.0)
+      worst_slot_error_m_ = std::max(worst_slot_error_m_, (s.position - sched_.at(i, m.tau_s)).norm());
     fly_slot(t, i, s, hold_s);
     if (formed_s_ < 0.0 && m.tau_s >= sched_.knots_s[sched_.form_up_knot]) formed_s_ = t + opt_.step_s;
+    intent_[i] = commanded(t, s, opt_.step_s);
     if (!guard_.threatened(t, i, s, tracks)) continue;
     // Leaves its slot (w = 1), flying its own way back onto its path at cruise speed, around
     // every other UAV as well.
-    guard_.guard(t, i, s, sensors[i].tracks);
+    members_[i].mode = Mode::broken;
+    guard_.guard(t, i, s, trusted_out(i, sensors[i].tracks, uavs));
     const bool open = std::any_of(breaks_.begin(), breaks_.end(), [&](const FormationBreak& b) { return b.uav == i && b.to_s < 0.0; });
     if (!open) breaks_.push_back({i, t, -1.0});
     m.mode = Mode::broken;
@@ -137,11 +203,8 @@ void FormationFlight::control(double t, std::span<FlightState> uavs, std::span<c
     m.knot = sched_.interval(tau_before);
     m.clear_steps = 0;
     if (s.speed_mps > 0.0) s.speed_mps = s.spec->speed.cruise_mps;
-    // Its path ends where the others wait for it (the end leg's start).
-    const Vec3 wait = sched_.slots[i][sched_.final_knot];
-    const auto it = std::find(s.route.begin(), s.route.end(), wait);
-    if (it != s.route.end()) s.route.erase(it + 1, s.route.end());
-    s.done = false;
+    clip_route(i, s);
+    intent_[i] = commanded(t, s, opt_.step_s);
   }
 }
 

@@ -11,6 +11,7 @@
 // for any that are out of theirs, so all arrive together.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,13 @@ struct FormationFlightOptions {
   double cruise_mps = 0.0;      // the schedule's speed
 };
 
+// A UAV's command for the coming period as its mates hear it: a straight line at a velocity, and
+// how far its route strays from that line within the period.
+struct Intent {
+  Vec3 velocity_mps = Vec3::Zero();
+  double slack_m = 0.0;
+};
+
 struct FormationBreak {
   std::size_t uav = 0;
   double from_s = 0.0, to_s = -1.0;  // to_s < 0: not re-formed
@@ -38,7 +46,9 @@ class FormationFlight final : public FlightController {
   void control(double t_s, std::span<FlightState> uavs, std::span<const Sensor> sensors) override;
   const std::vector<FormationBreak>& breaks() const { return breaks_; }
   int reforms() const { return reforms_; }
-  double formed_s() const { return formed_s_; }  // when the formation was first formed (-1: never)
+  double formed_s() const { return formed_s_; }
+  // The farthest a UAV in its slot was from it at a period's start (after the form-up).
+  double worst_slot_error_m() const { return worst_slot_error_m_; }  // when the formation was first formed (-1: never)
 
  private:
   enum class Mode { formed, broken, reforming };
@@ -50,17 +60,21 @@ class FormationFlight final : public FlightController {
     bool on_path = false;     // a broken UAV back on its own path (tau_s then valid)
     std::size_t knot = 0;     // the knot its path position was last found before
   };
-  std::vector<Track> trusted_out(std::size_t i, const std::vector<Track>& tracks, std::span<const FlightState> uavs) const;
+  std::vector<Track> trusted_out(std::size_t i, std::vector<Track> tracks, std::span<const FlightState> uavs) const;
   void fly_slot(double t_s, std::size_t i, FlightState& s, double hold_s);
   void find_on_path(std::size_t i, const FlightState& s);
+  void clip_route(std::size_t i, FlightState& s) const;
   void start_reform(double t_s);
   const FormationSchedule& sched_;
   FormationFlightOptions opt_;
   RollingWindow& guard_;
   std::vector<Member> members_;
   std::vector<FormationBreak> breaks_;
+  std::vector<double> period_tau_;            // the clocks as the period began
+  std::vector<std::optional<Intent>> intent_;  // this period's commands of the UAVs that have had their turn
   double reform_end_s_ = -1.0;
   double formed_s_ = -1.0;
+  double worst_slot_error_m_ = 0.0;
   int reforms_ = 0;
 };
 

@@ -147,6 +147,7 @@ void FormationMission::plan(const Scenario& sc, const MissionContext& ctx, Plan&
   check_flown(sc, flight, plan);
   FormationLog out;
   out.eta_s = eta;
+  out.worst_slot_error_m = flight.worst_slot_error_m();
   out.phases = {{"form_up", std::max(0.0, flight.formed_s())}, {"formation", eta}};
   for (const FormationBreak& b : flight.breaks())
     out.breaks.push_back({sc.uavs[b.uav].id, b.from_s, b.to_s >= 0.0 ? b.to_s : eta});

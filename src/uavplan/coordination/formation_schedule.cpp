@@ -30,6 +30,23 @@ std::vector<double> headings(const std::vector<Vec3>& route) {
   return psi;
 }
 
+// The heading at which the shape (about its centroid) best matches `pts` (about theirs), in the
+// least-squares sense (2-D Procrustes); `fallback` when they say nothing about it.
+double fitted_heading(const std::vector<Vec3>& shape, const Vec3& centroid, const std::vector<Vec3>& pts, double fallback) {
+  Vec3 c = Vec3::Zero();
+  for (const Vec3& p : pts) c += p / static_cast<double>(pts.size());
+  double cross = 0.0, dot = 0.0;
+  for (std::size_t i = 0; i < shape.size(); ++i) {
+    const Vec3 a = shape[i] - centroid, b = pts[i] - c;
+    cross += a.x() * b.y() - a.y() * b.x();
+    dot += a.x() * b.x() + a.y() * b.y();
+  }
+  return std::hypot(cross, dot) > 1e-9 ? std::atan2(cross, dot) : fallback;
+}
+
+// Signed smallest turn from heading a to heading b.
+double turn_between(double a, double b) { return std::remainder(b - a, 2.0 * M_PI); }
+
 }  // namespace
 
 std::size_t FormationSchedule::interval(double tau) const {
@@ -83,14 +100,28 @@ FormationSchedule formation_schedule(const std::vector<Vec3>& route, const std::
     for (const Vec3& o : shape) out.push_back(p + turned(o - centroid, heading));
     return out;
   };
+  // The shape turning about p from one heading to another as a rigid body, in chords of at most
+  // 20 deg (mates come no closer than cos 10 deg of their distance): a column turning round
+  // never runs through itself.
+  auto turn_about = [&](const Vec3& p, double from, double to) {
+    const double turn = turn_between(from, to);
+    const int chords = std::max(1, static_cast<int>(std::ceil(std::abs(turn) / (M_PI / 9.0) - 1e-9)));
+    for (int c = 1; c <= chords; ++c) leg(slots_at(p, from + turn * c / chords));
+  };
   s.knots_s.push_back(0.0);
   for (std::size_t i = 0; i < n; ++i) s.slots[i].push_back(starts[i]);
-  leg(slots_at(route.front(), psi.front()));  // form-up
-  s.form_up_knot = 1;
+  // Form-up: into the shape as the starts lie, then turned to the route's first heading.
+  const double start_heading = fitted_heading(shape, centroid, starts, psi.front());
+  leg(slots_at(route.front(), start_heading));
+  if (std::abs(turn_between(start_heading, psi.front())) > 1e-9) turn_about(route.front(), start_heading, psi.front());
+  s.form_up_knot = s.knots_s.size() - 1;
   for (std::size_t k = 0; k + 1 < route.size(); ++k) {
-    if (k > 0) leg(slots_at(route[k], psi[k]));  // the corner's chord
-    leg(slots_at(route[k + 1], psi[k]));         // the segment
+    if (k > 0) turn_about(route[k], psi[k - 1], psi[k]);  // the corner
+    leg(slots_at(route[k + 1], psi[k]));                  // the segment
   }
+  // End: turned as the goals lie, then into them.
+  const double goal_heading = fitted_heading(shape, centroid, goals, psi.back());
+  if (std::abs(turn_between(psi.back(), goal_heading)) > 1e-9) turn_about(route.back(), psi.back(), goal_heading);
   s.final_knot = s.knots_s.size() - 1;
   leg(goals);
   return s;

@@ -1,6 +1,8 @@
 // P1's formation: the schedule's slots, leaving a slot to avoid, re-forming by eq. 8-9, one ETA.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "uavplan/coordination/formation_schedule.h"
 #include "uavplan/coordination/mission_planner.h"
 #include "uavplan/simulation/trajectory.h"
@@ -26,15 +28,37 @@ TEST(FormationSchedule, SlotsTurnWithTheRouteAndShareOneClock) {
   // First segment: every slot flies the route's translate at 5 m/s (20 s).
   EXPECT_NEAR(s.knots_s[2] - s.knots_s[1], 20.0, 1e-9);
   for (std::size_t i = 0; i < 3; ++i) EXPECT_NEAR((s.slots[i][2] - s.slots[i][1] - Vec3(100, 0, 0)).norm(), 0.0, 1e-9);
-  // The corner: slots turn about it; the widest chord sets the time.
-  double widest = 0.0;
-  for (std::size_t i = 0; i < 3; ++i) widest = std::max(widest, (s.slots[i][3] - s.slots[i][2]).norm());
-  EXPECT_NEAR(s.knots_s[3] - s.knots_s[2], widest / 5.0, 1e-9);
-  EXPECT_NEAR((s.slots[0][3] - Vec3(100, 0, 0) - Vec3(0, 10.0 / 3.0, 0)).norm(), 0.0, 1e-9);  // apex ahead, north
-  EXPECT_NEAR(s.end_s(), 20.0 + widest / 5.0 + 20.0, 1e-9);  // goals are the last slots: no end leg
+  // The corner: the shape turns about it as a rigid body in chords of at most 20 deg (90 deg: 5),
+  // the widest chord setting each one's time.
+  const std::size_t turned = 2 + 5;
+  ASSERT_EQ(s.knots_s.size(), turned + 3);  // then the second segment and the (empty) end leg
+  double corner_s = 0.0;
+  for (std::size_t k = 2; k < turned; ++k) {
+    double widest = 0.0;
+    for (std::size_t i = 0; i < 3; ++i) {
+      widest = std::max(widest, (s.slots[i][k + 1] - s.slots[i][k]).norm());
+      EXPECT_NEAR((s.slots[i][k + 1] - Vec3(100, 0, 0)).norm(), (s.slots[i][2] - Vec3(100, 0, 0)).norm(), 1e-9);
+    }
+    EXPECT_NEAR(s.knots_s[k + 1] - s.knots_s[k], widest / 5.0, 1e-9);
+    corner_s += widest / 5.0;
+  }
+  EXPECT_NEAR((s.slots[0][turned] - Vec3(100, 0, 0) - Vec3(0, 10.0 / 3.0, 0)).norm(), 0.0, 1e-9);  // apex ahead, north
+  EXPECT_NEAR(s.end_s(), 20.0 + corner_s + 20.0, 1e-9);  // goals are the last slots: no end leg
   for (std::size_t i = 0; i < 3; ++i) EXPECT_NEAR((s.at(i, s.end_s()) - goals[i]).norm(), 0.0, 1e-9);
-  // The shape keeps them apart all the way.
-  for (std::size_t k = 0; k + 1 < s.knots_s.size(); ++k) EXPECT_GT(schedule_gap_m(s, 1, 2, k), 2.0);
+  // The shape keeps them apart all the way (in a chord, at least cos 10 deg of their distance).
+  for (std::size_t k = 0; k + 1 < s.knots_s.size(); ++k) EXPECT_GE(schedule_gap_m(s, 1, 2, k), 10.0 * std::cos(M_PI / 18.0) - 1e-9);
+}
+
+TEST(FormationSchedule, AColumnTurningRoundNeverRunsThroughItself) {
+  // East, then back west: a column of three turns 180 deg about the corner.
+  const std::vector<Vec3> column{{0, 0, 0}, {-6, 0, 0}, {-12, 0, 0}};
+  const std::vector<Vec3> route{{0, 0, 0}, {100, 0, 0}, {100, 1e-9, 0}, {0, 1e-9, 0}};
+  std::vector<Vec3> starts, goals;
+  for (const Vec3& o : column) starts.push_back(Vec3(6, 0, 0) + o), goals.push_back(Vec3(-6, 0, 0) - o);
+  const FormationSchedule s = formation_schedule(route, column, starts, goals, 5.0);
+  for (std::size_t k = 0; k + 1 < s.knots_s.size(); ++k)
+    for (std::size_t i = 0; i < 3; ++i)
+      for (std::size_t j = i + 1; j < 3; ++j) EXPECT_GE(schedule_gap_m(s, i, j, k), 6.0 * std::cos(M_PI / 18.0) - 1e-9) << k;
 }
 
 Scenario crossing(bool with_obstacle) {

@@ -36,6 +36,9 @@ struct FormationLog {
     double from_s = 0.0, to_s = 0.0;
   };
   double eta_s = 0.0;
+  // The farthest any UAV was from its slot at a period's start while the shape was held (none:
+  // the mission does not keep a schedule).
+  std::optional<double> worst_slot_error_m;
   std::vector<Phase> phases;
   std::vector<Break> breaks;
 };

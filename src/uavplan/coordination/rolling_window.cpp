@@ -16,8 +16,10 @@ std::vector<ThreatDisc> threat_discs(const UavSpec& u, const std::vector<Track>&
   for (std::size_t i = 0; i < tracks.size(); ++i) {
     const Track& k = tracks[i];
     const double body = k.is_uav ? std::max(separation_m, k.radius_m + u.radius_m) : k.radius_m + u.radius_m;
-    if (i < bodies_only.size() && bodies_only[i]) {
-      out.push_back({{k.position(), k.velocity_mps.value_or(Vec3::Zero()), body + kPlanningMargin_m, t_s}, body + kPlanningMargin_m});
+    const bool gives_way = i < bodies_only.size() && bodies_only[i];
+    if (gives_way || k.commanded) {
+      const double r = body + kPlanningMargin_m + (k.commanded ? k.commanded_slack_m : 0.0);
+      out.push_back({{k.position(), k.velocity_mps.value_or(Vec3::Zero()), r, t_s}, r, gives_way});
       continue;
     }
     // Seen once: no V_b yet; taken to come straight at the UAV, at least as fast as the UAV can fly.
@@ -272,9 +274,12 @@ bool RollingWindow::replan(double t, std::size_t i, FlightState& s, const std::v
 // Whether the UAV's place stays clear of every disc for the window's time.
 bool RollingWindow::clear_to_stay(double t, std::size_t i, const FlightState& s,
                                   const std::vector<ThreatDisc>& threats) const {
+  // A UAV that gives way plans around this one's place; only what it does in the coming period
+  // could still touch it.
   const double window_s = window_m_[i] / s.spec->speed.cruise_mps;
   for (const ThreatDisc& d : threats)
-    if (keep_out_distance(d.disc, s.position, t, s.position, t + window_s) < d.disc.radius_m) return false;
+    if (keep_out_distance(d.disc, s.position, t, s.position, t + (d.gives_way ? opt_.step_s : window_s)) < d.disc.radius_m)
+      return false;
   return true;
 }
 

@@ -59,6 +59,7 @@ struct RollingWindowLog {
 struct ThreatDisc {
   MovingKeepOut disc;
   double body_m = 0.0;
+  bool gives_way = false;  // a UAV that plans around this one (a body only)
 };
 
 // The discs of a UAV's tracks at time t_s, one per track in order; those marked in bodies_only

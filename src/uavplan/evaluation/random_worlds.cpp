@@ -1,6 +1,7 @@
 #include "uavplan/evaluation/random_worlds.h"
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 
 #include "uavplan/coordination/planning_view.h"
@@ -113,6 +114,90 @@ Scenario random_world(std::uint64_t seed, const RandomWorldOptions& opt) {
   }
   if (sc.uavs.empty()) return random_world(seed + 1000003, opt);
   if (opt.mission == MissionType::rendezvous) sc.mission.arrival_tolerance_m = r.uniform(5, 30);
+  return sc;
+}
+
+namespace {
+
+// Slots (forward, left, up) of n UAVs `gap_m` apart: 0 a wedge, 1 a line abreast, 2 a column.
+std::vector<Vec3> formation_shape(int kind, int n, double gap_m) {
+  std::vector<Vec3> shape;
+  for (int k = 0; k < n; ++k) {
+    const double rank = std::ceil(k / 2.0), side = k % 2 == 1 ? 1.0 : -1.0;
+    if (kind == 0) shape.emplace_back(-gap_m * rank, side * gap_m * rank, 0.0);
+    else if (kind == 1) shape.emplace_back(0.0, side * gap_m * rank, 0.0);
+    else shape.emplace_back(-gap_m * k, 0.0, 0.0);
+  }
+  return shape;
+}
+
+// A moving obstacle that is at `meet` at `t_meet_s`, crossing (0), meeting head-on (1) or turning
+// there (2), relative to `dir`, the formation's direction of travel.
+MovingObstacle mover(Rng& r, int kind, const Vec3& meet, double t_meet_s, const Vec3& dir) {
+  MovingObstacle m;
+  m.id = "mover" + std::to_string(kind);
+  m.radius_m = r.uniform(1.0, 3.0);
+  const double speed = r.uniform(1.0, 3.0);
+  const Vec3 left(-dir.y(), dir.x(), 0.0);
+  const Vec3 v = speed * (kind == 0 ? (r.uniform01() < 0.5 ? left : Vec3(-left)) : Vec3(-dir));
+  if (kind < 2) {
+    m.position = meet - v * t_meet_s;
+    m.velocity_mps = v;
+    return m;
+  }
+  const double a = r.uniform(-2.0, 2.0);
+  const Vec3 in = std::cos(a) * left + std::sin(a) * dir, out = -dir;
+  m.path = {{0.0, meet - speed * t_meet_s * in}, {t_meet_s, meet}, {t_meet_s + 200.0, meet + speed * 200.0 * out}};
+  return m;
+}
+
+}  // namespace
+
+Scenario random_formation_world(std::uint64_t seed) {
+  Rng r(seed);
+  const double size = r.uniform(400, 1000);
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3::Zero(), Vec3(size, size, 0.0)};
+  const double margin = 0.12 * size;
+  const Vec3 from(r.uniform(margin, 0.35 * size), r.uniform(margin, 0.35 * size), 0.0);
+  const Vec3 to(r.uniform(0.65 * size, size - margin), r.uniform(0.65 * size, size - margin), 0.0);
+  const auto far_from_ends = [&](const Vec3& p, double d) { return (p - from).norm() > d && (p - to).norm() > d; };
+  for (int k = static_cast<int>(r.uniform_int(5, 30)); k > 0; --k) {
+    const Vec3 p(r.uniform(0, size), r.uniform(0, size), 0.0);
+    if (far_from_ends(p, 60.0)) ws.radars.push_back({p, std::pow(10.0, r.uniform(4.0, 6.0))});
+  }
+  for (int k = static_cast<int>(r.uniform_int(0, 4)); k > 0; --k) {
+    const double radius = r.uniform(15, 40);
+    const Vec2 c(r.uniform(margin, size - margin), r.uniform(margin, size - margin));
+    if (far_from_ends(Vec3(c.x(), c.y(), 0.0), radius + 60.0)) ws.obstacles.push_back(Cylinder{c, radius, -1.0, 1.0});
+  }
+  Scenario sc;
+  sc.name = "formation" + std::to_string(seed);
+  sc.mission.type = MissionType::formation;
+  sc.mission.separation_m = r.uniform(1.5, 4.0);
+  const int n = static_cast<int>(r.uniform_int(3, 7));
+  sc.mission.shape = formation_shape(static_cast<int>(r.uniform_int(0, 2)), n, r.uniform(2.5, 4.0) * sc.mission.separation_m);
+  const Vec3 dir = (to - from).normalized(), left(-dir.y(), dir.x(), 0.0);
+  const double v = r.uniform(3, 8), sensor = r.uniform(20, 100);
+  for (int i = 0; i < n; ++i) {
+    UavSpec u;
+    u.id = "uav" + std::to_string(i + 1);
+    const Vec3 slot = sc.mission.shape[static_cast<std::size_t>(i)];
+    const Vec3 offset = slot.x() * dir + slot.y() * left;
+    u.start = from + offset;
+    u.goal = to + offset;
+    u.radius_m = r.uniform(0.3, 0.6);
+    u.speed = {0, v, v};
+    u.sensor_range_m = sensor;
+    sc.uavs.push_back(u);
+  }
+  const double trip_m = (to - from).norm();
+  for (int k = static_cast<int>(r.uniform_int(1, 4)); k > 0; --k) {
+    const double f = r.uniform(0.25, 0.8);
+    ws.moving.push_back(mover(r, static_cast<int>(r.uniform_int(0, 2)), from + f * (to - from), f * trip_m / v, dir));
+    ws.moving.back().id += "_" + std::to_string(k);
+  }
+  sc.world = World(std::move(ws));
   return sc;
 }
 

@@ -19,6 +19,12 @@ struct RandomWorldOptions {
 
 Scenario random_world(std::uint64_t seed, const RandomWorldOptions& options = {});
 
+// P1's formation mission on a random flat field (the kind of world issue targets name): 400-1000 m,
+// 5-30 radars, 0-4 no-fly cylinders, 3-7 UAVs in a wedge, line abreast or column from one
+// take-off place to one landing place, sensors of 20-100 m, and 1-4 moving obstacles crossing,
+// meeting head-on or turning across the straight line between the two places.
+Scenario random_formation_world(std::uint64_t seed);
+
 // A world whose first UAV's goal sits in a closed hollow box: no route can reach it.
 Scenario enclosed_goal_world(std::uint64_t seed);
 

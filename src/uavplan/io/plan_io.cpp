@@ -140,6 +140,7 @@ std::string plan_to_json(const Plan& plan, const PlanWriteOptions& options) {
     for (const auto& ph : plan.formation->phases) phases.push_back({{"name", ph.name}, {"end_s", r6(ph.end_s)}});
     for (const auto& b : plan.formation->breaks) breaks.push_back({{"uav", b.uav}, {"from_s", r6(b.from_s)}, {"to_s", r6(b.to_s)}});
     j["formation"] = {{"eta_s", r6(plan.formation->eta_s)}, {"phases", std::move(phases)}, {"breaks", std::move(breaks)}};
+    if (plan.formation->worst_slot_error_m) j["formation"]["worst_slot_error_m"] = r6(*plan.formation->worst_slot_error_m);
   }
   j["metrics"] = metrics_json(plan.metrics);
   j["timing"] = Json::object();
@@ -246,6 +247,7 @@ Plan parse_plan(const std::string& raw, const std::string& file) {
     const Json& f = j["formation"];
     FormationLog log;
     log.eta_s = r.number(r.req(f, "eta_s", "formation"), "formation.eta_s");
+    if (f.contains("worst_slot_error_m")) log.worst_slot_error_m = r.number(f["worst_slot_error_m"], "formation.worst_slot_error_m");
     for (const char* key : {"phases", "breaks"}) {
       if (!f.contains(key)) continue;
       const std::string at = std::string("formation.") + key;

@@ -36,6 +36,10 @@ struct Track {
   // Seen for the first time: it was out of range at the previous refresh, so it moved at least
   // this fast since (range + its radius - its distance now from where the UAV was then) / dt.
   double entered_speed_mps = 0.0;
+  // velocity_mps is what the object, a UAV of the same team, was told to fly this period (shared
+  // over the team's link), not an estimate: no manoeuvre within the period is unknown.
+  bool commanded = false;
+  double commanded_slack_m = 0.0;  // how far its path this period strays from that straight line
 
   Vec3 position() const { return own_m + relative_m; }
 };
