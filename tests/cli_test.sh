@@ -98,6 +98,13 @@ expect_bad start.in.obstacle "$(mk 's/start: \[20, 20, 30\]/start: [230, 230, 30
 expect_bad goal.outside "$(mk 's/goal: \[580, 580, 40\]/goal: [580, 680, 40]/' gout.yaml)" "outside the world bounds"
 expect_bad terrain.rows "$(mk 's/- \[0, 2, 4, 4, 2, 0\]/- [0, 2, 4, 4, 2]/' rows.yaml)" "rows must be equal"
 expect_bad missing.file "$TMP/does-not-exist.yaml" "cannot open"
+# The vehicle's keys (P5): time constants, rate limits, the speed map.
+expect_bad model.tau "$(mk 's/start: \[20, 20, 30\]/start: [20, 20, 30], model: {type: autopilot, tau_heading: 0}/' tau.yaml)" "uavs[0].model.tau_heading"
+expect_bad model.type "$(mk 's/start: \[20, 20, 30\]/start: [20, 20, 30], model: {type: jet}/' mtype.yaml)" "uavs[0].model.type"
+expect_bad turn.rate "$(mk 's/start: \[20, 20, 30\]/start: [20, 20, 30], max_turn_rate_deg_s: 0/' rate.yaml)" "uavs[0].max_turn_rate_deg_s"
+expect_bad climb.rate "$(mk 's/start: \[20, 20, 30\]/start: [20, 20, 30], max_climb_rate: -3/' climb.yaml)" "uavs[0].max_climb_rate"
+expect_bad speed.map "$(mk 's/radius: 0.5, speed: 5,/radius: 0.5, speed: {min: 9, cruise: 8, max: 10},/' spd.yaml)" "uavs[0].speed.min"
+expect_bad speed.max "$(mk 's/radius: 0.5, speed: 5,/radius: 0.5, speed: {cruise: 8, max: 7},/' spdx.yaml)" "uavs[0].speed.max"
 printf '{"version": 1, "world": {"bounds": {"min": [0,0,0], "max": [1,1,1]}},}' >"$TMP/bad.json"; expect_bad json "$TMP/bad.json" "JSON"
 
 # Run control: --time-limit bounds the whole command; Ctrl-C ends with exit 130 and nothing

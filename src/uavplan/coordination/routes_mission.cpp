@@ -7,6 +7,7 @@
 #include "uavplan/coordination/rolling_window.h"
 #include "uavplan/coordination/timing.h"
 #include "uavplan/planning/registry.h"
+#include "uavplan/simulation/vehicle_flight.h"
 
 namespace uavplan {
 namespace {
@@ -49,6 +50,11 @@ Committed plan_and_time(const Scenario& sc, const Planner& planner, const Missio
     if (i < ground.start.size() && ground.start[i]) up.waypoints.insert(up.waypoints.begin(), *ground.start[i]);
     if (i < ground.goal.size() && ground.goal[i]) up.waypoints.push_back(*ground.goal[i]);
     up.length_m = Route{up.waypoints}.length_m();
+    if (u.model && fly_route(u, up.waypoints, 0.0, opt.max_sample_dt_s).empty()) {
+      up.status = Status::failed;
+      up.message = "its autopilot model cannot fly the route: it circles a waypoint (a turn tighter than its turn radius)";
+      continue;
+    }
     horizon_s += 2.0 * up.length_m / u.speed.cruise_mps;
     Departure d = earliest_departure(sc, u, up.waypoints, horizon_s, committed, opt.delay_step_s, opt.max_sample_dt_s,
                                      opt.stop, !senses(u));
@@ -59,7 +65,7 @@ Committed plan_and_time(const Scenario& sc, const Planner& planner, const Missio
     }
     if (!d.placed && senses(u)) {  // no clear departure planned: it departs at once and sees to it in the loop
       d.placed = true;
-      d.trajectory = time_route(up.waypoints, u.speed.cruise_mps, 0.0, opt.max_sample_dt_s);
+      d.trajectory = fly_route(u, up.waypoints, 0.0, opt.max_sample_dt_s);
     }
     if (!d.placed) {
       up.status = Status::failed;

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "uavplan/coordination/separation.h"
+#include "uavplan/simulation/vehicle_flight.h"
 
 namespace uavplan {
 namespace {
@@ -40,7 +41,8 @@ Departure earliest_departure(const Scenario& sc, const UavSpec& u, const std::ve
       break;
     }
     const double delay = k * delay_step_s;
-    Trajectory tr = time_route(waypoints, u.speed.cruise_mps, delay, max_sample_dt_s);
+    Trajectory tr = fly_route(u, waypoints, delay, max_sample_dt_s);
+    if (tr.empty()) break;  // its model cannot fly the route at all
     const Conflict c = find_conflict(sc, u, tr, committed, moving_obstacles);
     if (!d.first.any) d.first = c;
     if (c.any) continue;

@@ -277,9 +277,28 @@ void check_placed(const At& at, const Vec3& p, const World& world, const std::st
   }
 }
 
+// `model: {type: autopilot, tau_v, tau_heading, tau_zdot, tau_z}` (P5 eq. 1; defaults P5-notes
+// section 5) or `{type: point_mass}` (none).
+std::optional<AutopilotParams> read_model(const At& m) {
+  m.keys({"type", "tau_v", "tau_heading", "tau_zdot", "tau_z"});
+  const std::string type = m.req("type").text();
+  if (type == "point_mass") {
+    for (const char* k : {"tau_v", "tau_heading", "tau_zdot", "tau_z"})
+      if (m.has(k)) m[k].fail("a point mass has no time constants");
+    return std::nullopt;
+  }
+  if (type != "autopilot") m["type"].fail("must be 'autopilot' or 'point_mass'");
+  AutopilotParams p;
+  if (m.has("tau_v")) p.tau_v_s = m["tau_v"].positive();
+  if (m.has("tau_heading")) p.tau_heading_s = m["tau_heading"].positive();
+  if (m.has("tau_zdot")) p.tau_zdot_s = m["tau_zdot"].positive();
+  if (m.has("tau_z")) p.tau_z_s = m["tau_z"].positive();
+  return p;
+}
+
 UavSpec read_uav(const At& u) {
   u.keys({"id", "start", "heading_deg", "goal", "radius", "speed", "max_turn_deg", "max_climb_deg", "ceiling",
-          "sensor_range", "clearance", "min_agl"});
+          "sensor_range", "clearance", "min_agl", "max_turn_rate_deg_s", "max_climb_rate", "model"});
   UavSpec s;
   s.id = u.req("id").text();
   if (s.id.empty()) u["id"].fail("must not be empty");
@@ -307,6 +326,9 @@ UavSpec read_uav(const At& u) {
   if (u.has("max_climb_deg")) s.max_climb_rad = deg_to_rad(u["max_climb_deg"].in_range(1e-6, 90.0));
   if (u.has("ceiling")) s.ceiling_m = u["ceiling"].coordinate();
   if (u.has("sensor_range")) s.sensor_range_m = u["sensor_range"].positive();
+  if (u.has("max_turn_rate_deg_s")) s.max_turn_rate_rad_s = deg_to_rad(u["max_turn_rate_deg_s"].positive());
+  if (u.has("max_climb_rate")) s.max_climb_rate_mps = u["max_climb_rate"].positive();
+  if (u.has("model")) s.model = read_model(u["model"]);
   return s;
 }
 

@@ -8,6 +8,7 @@
 
 #include "uavplan/core/units.h"
 #include "uavplan/core/vec.h"
+#include "uavplan/vehicle/autopilot_params.h"
 
 namespace uavplan {
 
@@ -32,6 +33,11 @@ struct UavSpec {
   // Moving obstacles and other UAVs are known to it only within this range, sensed every
   // mission step; absent: moving obstacles are known in advance.
   std::optional<double> sensor_range_m;
+  // Rate limits of a vehicle flown through a model (contract: max_turn_rate_deg_s, max_climb_rate).
+  std::optional<double> max_turn_rate_rad_s;
+  std::optional<double> max_climb_rate_mps;
+  // P5 eq. 1's autopilot model (`model: {type: autopilot, ...}`); none: a point mass.
+  std::optional<AutopilotParams> model;
 };
 
 // The distance a UAV keeps from obstacles and terrain: its radius and the clearance asked for.

@@ -1,0 +1,110 @@
+#include "uavplan/vehicle/autopilot.h"
+
+#include <algorithm>
+#include <array>
+#include <boost/numeric/odeint/stepper/runge_kutta4.hpp>
+#include <cmath>
+#include <stdexcept>
+
+namespace uavplan {
+namespace {
+
+using State = std::array<double, 6>;  // x, y, z, z', v, phi
+
+double wrap_pi(double a) { return std::remainder(a, 2.0 * kPi); }
+
+State pack(const AutopilotState& s) {
+  return {s.position.x(), s.position.y(), s.position.z(), s.climb_rate_mps, s.speed_mps, s.heading_rad};
+}
+
+AutopilotState unpack(const State& x) { return {Vec3(x[0], x[1], x[2]), x[3], x[4], wrap_pi(x[5])}; }
+
+}  // namespace
+
+AutopilotModel::AutopilotModel(AutopilotParams params, AutopilotLimits limits, double step_s)
+    : p_(params), lim_(limits), step_s_(step_s) {
+  for (const double tau : {p_.tau_v_s, p_.tau_heading_s, p_.tau_zdot_s, p_.tau_z_s})
+    if (!(tau > 0.0)) throw std::invalid_argument("autopilot time constants must be > 0");
+  if (!(step_s_ > 0.0)) throw std::invalid_argument("autopilot integration step must be > 0");
+  if (!(lim_.max_turn_rate_rad_s > 0.0) || !(lim_.max_climb_rate_mps > 0.0))
+    throw std::invalid_argument("autopilot turn and climb rate limits must be > 0");
+}
+
+void AutopilotModel::advance(AutopilotState& state, const AutopilotCommand& c, double dt_s) const {
+  const double v_c = std::clamp(c.speed_mps, lim_.speed.min_mps, lim_.speed.max_mps);
+  const double climb = lim_.max_climb_rate_mps, turn = lim_.max_turn_rate_rad_s;
+  // Eq. 1 with the saturations: the turn rate clipped, the climb rate held at its limit.
+  const auto rhs = [&](const State& x, State& dx, double) {
+    dx[0] = x[4] * std::cos(x[5]);
+    dx[1] = x[4] * std::sin(x[5]);
+    dx[2] = x[3];
+    double zdd = -x[3] / p_.tau_zdot_s + (c.altitude_m - x[2]) / p_.tau_z_s;
+    if ((x[3] >= climb && zdd > 0.0) || (x[3] <= -climb && zdd < 0.0)) zdd = 0.0;
+    dx[3] = zdd;
+    dx[4] = (v_c - x[4]) / p_.tau_v_s;
+    dx[5] = std::clamp(wrap_pi(c.heading_rad - x[5]) / p_.tau_heading_s, -turn, turn);
+  };
+  boost::numeric::odeint::runge_kutta4<State> rk4;
+  State x = pack(state);
+  const int steps = std::max(1, static_cast<int>(std::ceil(dt_s / step_s_ - 1e-9)));
+  const double h = dt_s / steps;
+  for (int k = 0; k < steps; ++k) {
+    rk4.do_step(rhs, x, k * h, h);
+    x[3] = std::clamp(x[3], -climb, climb);
+  }
+  state = unpack(x);
+}
+
+double switch_radius_m(const AutopilotModel& model, double cruise_mps, const FollowOptions& o) {
+  if (o.switch_radius_m > 0.0) return o.switch_radius_m;
+  const double turn_radius = std::isfinite(model.limits().max_turn_rate_rad_s) ? cruise_mps / model.limits().max_turn_rate_rad_s : 0.0;
+  return std::max(turn_radius, 2.0 * cruise_mps * model.params().tau_heading_s);
+}
+
+FollowResult follow_waypoints(const AutopilotModel& model, AutopilotState s, const std::vector<Vec3>& waypoints,
+                              double cruise_mps, const FollowOptions& o) {
+  FollowResult r;
+  r.samples.push_back({0.0, s});
+  if (waypoints.empty()) {
+    r.reached = true;
+    return r;
+  }
+  const double h = model.step_s(), radius = switch_radius_m(model, cruise_mps, o);
+  // The last waypoint is caught within a heading time constant's flight (its remainder is flown
+  // straight onto it by the caller); missed, the heading hold brings the UAV round again.
+  const double capture = std::max(2.0 * cruise_mps * h, cruise_mps * model.params().tau_heading_s);
+  Vec3 from = s.position;
+  std::size_t k = 0;
+  double t = 0.0, next_sample = o.sample_s;
+  while (t < o.max_time_s) {
+    const Vec3& to = waypoints[k];
+    const bool last = k + 1 == waypoints.size();
+    const Vec3 rel = s.position - to;
+    const double d = rel.norm();
+    if (last) r.closest_to_goal_m = std::min(r.closest_to_goal_m, d);
+    // Passed: close enough, or beyond it along the leg into it (horizontally).
+    const Vec3 leg = to - from;
+    const bool beyond = leg.head<2>().squaredNorm() > 0.0 && rel.head<2>().dot(leg.head<2>()) > 0.0;
+    if ((!last && (d <= radius || beyond)) || (last && d <= capture)) {
+      if (last) {
+        r.reached = true;
+        break;
+      }
+      from = to;
+      ++k;
+      continue;
+    }
+    const Vec3 aim = to - s.position;
+    const double bearing = aim.head<2>().norm() > 1e-9 ? std::atan2(aim.y(), aim.x()) : s.heading_rad;
+    model.advance(s, {cruise_mps, to.z(), bearing}, h);
+    t += h;
+    if (t + 1e-9 >= next_sample) {
+      r.samples.push_back({t, s});
+      next_sample += o.sample_s;
+    }
+  }
+  if (r.samples.back().t_s < t) r.samples.push_back({t, s});
+  return r;
+}
+
+}  // namespace uavplan
