@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,9 @@ struct Problem {
   UavSpec uav;              // start, start heading and limits
   Vec3 goal = Vec3::Zero();
   std::vector<Vec3> via;    // visited in order between start and goal
+  // Required entry heading at each via point (0 = east, pi/2 = north), by index; shorter or
+  // empty: none. Planners that do not take entry headings ignore them (registry: entry_headings).
+  std::vector<std::optional<double>> via_entry_heading_rad = {};
   std::uint64_t seed = 1;   // for randomised planners: the same seed gives the same route
 };
 

@@ -7,6 +7,7 @@
 #include "uavplan/planning/cells/cellular_aco.h"
 #include "uavplan/planning/field/apf.h"
 #include "uavplan/planning/graph/aco_voronoi.h"
+#include "uavplan/planning/pso/pso_mpc.h"
 #include "uavplan/planning/sampling/rrt.h"
 #include "uavplan/planning/search/astar_planner.h"
 #include "uavplan/planning/search/directional_astar.h"
@@ -38,6 +39,8 @@ const std::vector<Entry>& entries() {
        [](const Params& p) { return std::make_unique<AcoVoronoiPlanner>(AcoVoronoiOptions::from_params(p, true), true); }},
       {{"voronoi_dijkstra", "Dijkstra on P1's threat Voronoi roadmap with the same cost (optimal on it; the colony's baseline)", false},
        [](const Params& p) { return std::make_unique<AcoVoronoiPlanner>(AcoVoronoiOptions::from_params(p, false), false); }},
+      {{"pso_mpc", "P5 multi-step PSO: one waypoint l on per step, (dphi, dh) within the limits, 11-step look-ahead, terminal and entry-heading terms", false},
+       [](const Params& p) { return std::make_unique<PsoMpcPlanner>(PsoMpcOptions::from_params(p)); }},
       {{"apf", "P3 improved potential field: capped attraction, sqrt(R)-faded repulsion, 15-degree sector rule", false},
        [](const Params& p) { return std::make_unique<ApfPlanner>(ApfOptions::from_params(p, true)); }},
       {{"apf_traditional", "the traditional potential field (P3's baseline): no cap, no sqrt(R), no sector rule", false},

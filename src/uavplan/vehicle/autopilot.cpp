@@ -55,10 +55,14 @@ void AutopilotModel::advance(AutopilotState& state, const AutopilotCommand& c, d
   state = unpack(x);
 }
 
-double switch_radius_m(const AutopilotModel& model, double cruise_mps, const FollowOptions& o) {
+double switch_radius_m(const AutopilotModel& model, double cruise_mps, double turn_rad, const FollowOptions& o) {
   if (o.switch_radius_m > 0.0) return o.switch_radius_m;
-  const double turn_radius = std::isfinite(model.limits().max_turn_rate_rad_s) ? cruise_mps / model.limits().max_turn_rate_rad_s : 0.0;
-  return std::max(turn_radius, 2.0 * cruise_mps * model.params().tau_heading_s);
+  const double lag = 2.0 * cruise_mps * model.params().tau_heading_s;
+  if (!std::isfinite(model.limits().max_turn_rate_rad_s)) return lag;
+  // The turn's tangent point: an arc of the turn radius R through the corner starts R tan(turn / 2)
+  // before it.
+  const double radius = cruise_mps / model.limits().max_turn_rate_rad_s;
+  return std::max(lag, radius * std::tan(0.5 * std::min(std::abs(turn_rad), 0.5 * kPi)));
 }
 
 FollowResult follow_waypoints(const AutopilotModel& model, AutopilotState s, const std::vector<Vec3>& waypoints,
@@ -69,7 +73,7 @@ FollowResult follow_waypoints(const AutopilotModel& model, AutopilotState s, con
     r.reached = true;
     return r;
   }
-  const double h = model.step_s(), radius = switch_radius_m(model, cruise_mps, o);
+  const double h = model.step_s();
   // The last waypoint is caught within a heading time constant's flight (its remainder is flown
   // straight onto it by the caller); missed, the heading hold brings the UAV round again.
   const double capture = std::max(2.0 * cruise_mps * h, cruise_mps * model.params().tau_heading_s);
@@ -80,6 +84,14 @@ FollowResult follow_waypoints(const AutopilotModel& model, AutopilotState s, con
     const Vec3& to = waypoints[k];
     const bool last = k + 1 == waypoints.size();
     const Vec3 rel = s.position - to;
+    double radius = 0.0;
+    if (!last) {
+      const Vec3 in = to - from, out = waypoints[k + 1] - to;
+      const double turn = in.head<2>().norm() > 0.0 && out.head<2>().norm() > 0.0
+                              ? std::remainder(std::atan2(out.y(), out.x()) - std::atan2(in.y(), in.x()), 2.0 * kPi)
+                              : 0.0;
+      radius = switch_radius_m(model, cruise_mps, turn, o);
+    }
     const double d = rel.norm();
     if (last) r.closest_to_goal_m = std::min(r.closest_to_goal_m, d);
     // Passed: close enough, or beyond it along the leg into it (horizontally).

@@ -57,7 +57,8 @@ struct FollowOptions {
   double sample_s = 1.0;   // one row of the flown path per this much time (and at the end)
   double max_time_s = 1e6;
   // A waypoint is passed when within this distance, or when the UAV is past it along the leg
-  // into it; 0: the larger of the turn radius at cruise and 2 v tau_heading.
+  // into it; 0: where an arc of the turn radius R at cruise through the corner begins,
+  // R tan(turn / 2) before it (turns above 90 deg as 90), at least 2 v tau_heading.
   double switch_radius_m = 0.0;
 };
 
@@ -78,7 +79,7 @@ struct FollowResult {
 FollowResult follow_waypoints(const AutopilotModel& model, AutopilotState start, const std::vector<Vec3>& waypoints,
                               double cruise_mps, const FollowOptions& options = {});
 
-// The switch radius that `options` gives for `model` at cruise speed.
-double switch_radius_m(const AutopilotModel& model, double cruise_mps, const FollowOptions& options);
+// The switch radius that `options` gives for `model` at cruise speed before a turn of turn_rad.
+double switch_radius_m(const AutopilotModel& model, double cruise_mps, double turn_rad, const FollowOptions& options);
 
 }  // namespace uavplan

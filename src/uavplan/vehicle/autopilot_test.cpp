@@ -64,13 +64,17 @@ TEST(Autopilot, FollowsARouteWithinItsLimits) {
   const FollowResult r = follow_waypoints(m, s, route, 150);
   ASSERT_TRUE(r.reached);
   EXPECT_LT(r.closest_to_goal_m, 150 * 0.75 + 1e-6);
-  // Every waypoint passed within the switch radius (the turn radius, ~3.9 km).
-  const double radius = switch_radius_m(m, 150, {});
-  EXPECT_NEAR(radius, 150 / deg_to_rad(2.2), 1e-6);
-  for (const Vec3& w : route) {
+  // The turns (45 deg, then 90) begin at their arcs' tangent points, R tan(turn / 2) before the
+  // corners (R = 150 / 2.2 deg/s, ~3.9 km), and pass within R (1 / cos(turn / 2) - 1) of them.
+  const double radius = 150 / deg_to_rad(2.2);
+  EXPECT_NEAR(switch_radius_m(m, 150, deg_to_rad(-45), {}), radius * std::tan(deg_to_rad(22.5)), 1e-6);
+  EXPECT_NEAR(switch_radius_m(m, 150, 0.0, {}), 2 * 150 * 0.75, 1e-9);  // straight on: the heading lag
+  const double turns[] = {45, 90};
+  for (int c = 0; c < 2; ++c) {
     double closest = 1e300;
-    for (const FollowSample& f : r.samples) closest = std::min(closest, (f.state.position - w).norm());
-    EXPECT_LT(closest, radius + 150.0);
+    for (const FollowSample& f : r.samples) closest = std::min(closest, (f.state.position - route[c]).norm());
+    const double half = deg_to_rad(turns[c] / 2);
+    EXPECT_LT(closest, radius * (1 / std::cos(half) - 1) + 300.0) << c;
   }
   for (std::size_t k = 1; k < r.samples.size(); ++k) {
     const double dt = r.samples[k].t_s - r.samples[k - 1].t_s;

@@ -1,0 +1,198 @@
+#include "uavplan/planning/pso/pso_mpc.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <optional>
+
+#include "uavplan/planning/segment_rule.h"
+
+namespace uavplan {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+double wrap(double a) { return std::remainder(a, 2.0 * kPi); }
+double bearing(const Vec3& from, const Vec3& to) { return std::atan2(to.y() - from.y(), to.x() - from.x()); }
+
+// What one leg's steps share.
+struct LegPlanner {
+  const World& world;
+  const SegmentRule& rule;
+  const UavSpec& uav;
+  const PsoMpcOptions& o;
+  double l, dphi_max, dh_max, turn_max;
+
+  // The prediction Q -> SP clear of the obstacles, cut where it leaves the bounds and kept within
+  // the airspace's heights (P5-notes: SP may lie outside; only the no-fly zones count).
+  bool prediction_clear(const Vec3& q, const Vec3& sp) const {
+    const Aabb& b = world.bounds();
+    double t = 1.0;
+    for (int k = 0; k < 2; ++k) {
+      const double d = sp[k] - q[k];
+      if (d > 0.0 && sp[k] > b.max[k]) t = std::min(t, (b.max[k] - q[k]) / d);
+      if (d < 0.0 && sp[k] < b.min[k]) t = std::min(t, (b.min[k] - q[k]) / d);
+    }
+    Vec3 end = q + std::max(t, 0.0) * (sp - q);
+    end.z() = std::clamp(end.z(), b.min.z() + rule.inflation_m(), std::max(b.min.z() + rule.inflation_m(), rule.ceiling_m() - rule.inflation_m()));
+    return !world.segment_collides(q, end, rule.inflation_m());
+  }
+
+  // The last segment from x into t (and, with an entry heading, onto the fixed segment) within
+  // the limits: eq. 6 and eq. 10.
+  bool closes(const Vec3& x, const std::optional<Vec3>& in, const Vec3& t, const std::optional<double>& entry) const {
+    const Vec3 last = t - x;
+    if (last.norm() <= 1e-9) return true;
+    if (in && in->norm() > 0.0 && turn_rad(*in, last) > turn_max + kAngleTolerance_rad) return false;
+    if (std::abs(t.z() - x.z()) > dh_max + 1e-9 || !rule(x, t)) return false;
+    return !entry || turn_rad(last, heading_vector(*entry)) <= turn_max + kAngleTolerance_rad;
+  }
+
+  // Eqs. 5-12 for the candidate U = (dphi, dh) from p (heading psi, arriving along `in`).
+  double cost(std::span<const double> u, const Vec3& p, double psi, const std::optional<Vec3>& in, const Vec3& t,
+              const std::optional<double>& entry) const {
+    const double psi_c = psi + u[0], d = (p - t).norm();
+    const Vec3 q = p + Vec3(l * std::cos(psi_c), l * std::sin(psi_c), u[1]);
+    const Vec3 seg = q - p;
+    if (!rule(p, q)) return kInf;
+    if (in && in->norm() > 0.0 && turn_rad(*in, seg) > turn_max + kAngleTolerance_rad) return kInf;
+    if (d < 3.0 * l && !closes(q, seg, t, entry)) return kInf;  // eq. 6 (and 10): hard near the end
+    Vec3 e = q;
+    if (o.prediction_steps > 0 && d > o.d_t_l * l) {
+      const Vec3 sp = p + (1.0 + o.prediction_steps) * seg;
+      if (!prediction_clear(q, sp)) return kInf;
+      e = sp;
+      e.z() = std::clamp(e.z(), world.bounds().min.z(), world.bounds().max.z());  // for the cost only
+    }
+    double j = (e - t).norm() + o.alpha * std::abs(e.z() - t.z());
+    if (d <= o.d_tar_l * l) {
+      const double term = entry ? std::abs(wrap(*entry - bearing(e, t))) : std::abs(wrap(bearing(e, t) - psi_c));
+      j += (entry ? o.gamma_per_l : o.beta_per_l) * l * rad_to_deg(term);
+    }
+    return j;
+  }
+};
+
+}  // namespace
+
+PsoMpcOptions PsoMpcOptions::from_params(const Params& params) {
+  ParamReader r(params, "pso_mpc");
+  PsoMpcOptions o;
+  o.step_m = r.number("step", 0.0, 0.0, 1e7);
+  o.max_turn_deg = r.number("max_turn_deg", o.max_turn_deg, 1.0, 90.0);
+  o.max_dh_m = r.number("max_dh", 0.0, 0.0, 1e6);
+  o.alpha = r.number("alpha", o.alpha, 0.0, 1e6);
+  o.beta_per_l = r.number("beta_per_l", o.beta_per_l, 0.0, 1e3);
+  o.gamma_per_l = r.number("gamma_per_l", o.gamma_per_l, 0.0, 1e3);
+  o.prediction_steps = r.integer("prediction", o.prediction_steps, 0, 100);
+  o.pso.particles = r.integer("particles", o.pso.particles, 2, 10000);
+  o.pso.iterations = r.integer("iterations", o.pso.iterations, 0, 100000);
+  o.pso.stall_iterations = r.integer("stall", 20, 0, 100000);
+  r.finish();
+  return o;
+}
+
+double pso_step_m(const PsoMpcOptions& o, const UavSpec& uav, const World& world) {
+  if (o.step_m > 0.0) return o.step_m;
+  const double side = std::max(world.bounds().extent().x(), world.bounds().extent().y());
+  double l = side >= 200000.0 ? 5000.0 : side / 40.0;
+  if (uav.max_turn_rate_rad_s) {  // long enough for the vehicle to turn dphi_max between waypoints
+    const double radius = uav.speed.cruise_mps / *uav.max_turn_rate_rad_s;
+    l = std::max(l, 2.0 * radius * std::sin(0.5 * deg_to_rad(std::min(o.max_turn_deg, rad_to_deg(uav.max_turn_rad)))));
+  }
+  return l;
+}
+
+PlanResult PsoMpcPlanner::do_plan(const Problem& pb, const World& world, const StopCondition& stop) const {
+  PlanResult res;
+  const double l = pso_step_m(options_, pb.uav, world);
+  // A UAV flown through its model turns on arcs of radius R that cut each corner by up to
+  // R (1 / cos(dphi_max / 2) - 1): the no-fly zones are kept that much further off.
+  UavSpec u = pb.uav;
+  if (u.model && u.max_turn_rate_rad_s) {
+    const double half = 0.5 * std::min(deg_to_rad(options_.max_turn_deg), u.max_turn_rad);
+    u.radius_m += u.speed.cruise_mps / *u.max_turn_rate_rad_s * (1.0 / std::cos(half) - 1.0);
+  }
+  const SegmentRule rule(world, u);
+  double climb = u.max_climb_rad < kPi / 2 - 1e-9 ? u.max_climb_rad : std::atan(300.0 / 5000.0);
+  if (u.max_climb_rate_mps) climb = std::min(climb, std::atan(*u.max_climb_rate_mps / u.speed.cruise_mps));
+  const double turn_max = std::min(deg_to_rad(options_.max_turn_deg), u.max_turn_rad);
+  const double dh_max = options_.max_dh_m > 0.0 ? options_.max_dh_m : l * std::tan(climb);
+  const LegPlanner leg_planner{world, rule, u, options_, l, turn_max, dh_max, turn_max};
+  std::vector<Vec3> route{u.start};
+  std::optional<Vec3> in;
+  if (u.heading_rad) in = heading_vector(*u.heading_rad);
+  std::vector<Vec3> stops = pb.via;
+  stops.push_back(pb.goal);
+  const Rng base(pb.seed);
+  for (std::size_t leg = 0; leg < stops.size(); ++leg) {
+    const Vec3 task = stops[leg];
+    const std::optional<double> entry =
+        leg < pb.via_entry_heading_rad.size() && leg < pb.via.size() ? pb.via_entry_heading_rad[leg] : std::nullopt;
+    Vec3 target = task;
+    if (entry) {  // eq. 10: the fixed final segment, one step l long at the task's height
+      target = task - l * heading_vector(*entry);
+      if (!rule.point_ok(target) || !rule(target, task)) {
+        res.message = leg_name(leg, stops.size() + 1) + ": the fixed segment into the entry heading is blocked";
+        return res;
+      }
+    }
+    Vec3 p = route.back();
+    double psi = in ? std::atan2(in->y(), in->x()) : bearing(p, target);
+    const int cap = static_cast<int>(10.0 * (p - target).norm() / l) + 20;
+    bool arrived = (p - target).norm() <= 1e-9;
+    for (int step = 0; step < cap && !arrived; ++step) {
+      if (stop.should_stop()) {
+        res.message = "stopped before the route was complete";
+        return res;
+      }
+      if ((p - target).norm() < 2.0 * l && leg_planner.closes(p, in, target, entry)) {  // the target is the last waypoint
+        in = target - p;
+        route.push_back(target);
+        arrived = true;
+        break;
+      }
+      const auto f = [&](std::span<const double> x) { return leg_planner.cost(x, p, psi, in, target, entry); };
+      const std::array<double, 2> lo{-turn_max, -dh_max}, hi{turn_max, dh_max};
+      const std::array<double, 4> seeds{0.0, 0.0, std::clamp(wrap(bearing(p, target) - psi), -turn_max, turn_max),
+                                        std::clamp(target.z() - p.z(), -dh_max, dh_max)};
+      Rng rng = base.split(leg * 1000003u + static_cast<std::uint64_t>(step));
+      PsoResult best = pso_minimize(f, lo, hi, options_.pso, rng, seeds);
+      if (best.f == kInf) {  // once more, with a swarm twice as large (P5-notes 4.1)
+        PsoOptions wider = options_.pso;
+        wider.particles *= 2;
+        wider.iterations *= 2;
+        const PsoResult again = pso_minimize(f, lo, hi, wider, rng, seeds);
+        best.evaluations += again.evaluations;
+        best.f = again.f, best.x = again.x;
+      }
+      res.stats.nodes_expanded += static_cast<std::uint64_t>(best.evaluations);
+      if (best.f == kInf) {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, ": no feasible waypoint %g m on from (%.1f, %.1f, %.1f)", l, p.x(), p.y(), p.z());
+        res.message = leg_name(leg, stops.size() + 1) + buf;
+        return res;
+      }
+      psi += best.x[0];
+      const Vec3 q = p + Vec3(l * std::cos(psi), l * std::sin(psi), best.x[1]);
+      in = q - p;
+      route.push_back(q);
+      p = q;
+    }
+    if (!arrived) {
+      res.message = leg_name(leg, stops.size() + 1) + ": not at its target within " + std::to_string(cap) + " steps of " +
+                    std::to_string(static_cast<int>(l)) + " m";
+      return res;
+    }
+    if (entry) {
+      in = task - target;
+      route.push_back(task);
+    }
+  }
+  res.status = Status::solved;
+  res.route.waypoints = std::move(route);
+  res.route.waypoints.erase(std::unique(res.route.waypoints.begin(), res.route.waypoints.end()), res.route.waypoints.end());
+  return res;
+}
+
+}  // namespace uavplan
