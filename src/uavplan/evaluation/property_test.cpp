@@ -52,8 +52,9 @@ class PlannerProperties : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(PlannerProperties, RandomWorldsClaimsHoldAndRepeat) {
   const std::string name = GetParam();
-  // 200 worlds a planner; the ant colony (100 ants by default) takes 80 to stay within a minute.
-  const std::uint64_t worlds = name == "cellular_aco" ? 80 : 200;
+  // 200 worlds a planner; the ant colony (100 ants by default) takes 80 to stay within a minute,
+  // the single-step swarm (100 particles x 500 iterations over every waypoint) 20.
+  const std::uint64_t worlds = name == "cellular_aco" ? 80 : name == "pso_single" ? 20 : 200;
   int solved = 0, uavs = 0;
   for (std::uint64_t seed = 1; seed <= worlds; ++seed) {
     const Scenario sc = random_world(seed * 7919 + name.size());
@@ -73,7 +74,7 @@ TEST_P(PlannerProperties, RandomWorldsClaimsHoldAndRepeat) {
 // planner honours them through the mission layer, and the verifier checks them.
 TEST_P(PlannerProperties, GroundStartsClearanceAndMinAglHold) {
   const std::string name = GetParam();
-  const std::uint64_t worlds = name == "cellular_aco" ? 25 : 60;
+  const std::uint64_t worlds = name == "cellular_aco" ? 25 : name == "pso_single" ? 16 : 60;
   RandomWorldOptions o;
   o.ground_and_margins = true;
   int solved = 0, uavs = 0, grounded = 0;

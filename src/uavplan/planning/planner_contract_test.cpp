@@ -64,6 +64,12 @@ bool complete(const std::string& name) {
   return true;
 }
 
+bool relaxed(const std::string& name) {
+  for (const auto& info : planner_catalog())
+    if (info.name == name) return info.relaxed;
+  return false;
+}
+
 TEST_P(PlannerContract, FindsTheGapAndKeepsTheLimits) {
   const Problem p = problem(Vec3(10, 10, 10), Vec3(90, 10, 10));
   const PlanResult r = planner->plan(p, world, {});
@@ -101,6 +107,11 @@ TEST_P(PlannerContract, HonoursACancelledStop) {
 TEST_P(PlannerContract, SameInputSameRoute) {
   const Problem p = problem(Vec3(10, 80, 10), Vec3(90, 85, 30));  // over the wall's end
   const PlanResult a = planner->plan(p, world, {}), b = planner->plan(p, world, {});
+  if (relaxed(GetParam()) && a.status != Status::solved) {  // fails the same way, saying why
+    EXPECT_FALSE(a.message.empty());
+    EXPECT_EQ(a.message, b.message);
+    return;
+  }
   ASSERT_EQ(a.status, Status::solved) << a.message;
   expect_valid_route(a, p, world);
   EXPECT_EQ(a.route.waypoints, b.route.waypoints);

@@ -8,6 +8,7 @@
 #include "uavplan/planning/field/apf.h"
 #include "uavplan/planning/graph/aco_voronoi.h"
 #include "uavplan/planning/pso/pso_mpc.h"
+#include "uavplan/planning/pso/pso_single.h"
 #include "uavplan/planning/sampling/rrt.h"
 #include "uavplan/planning/search/astar_planner.h"
 #include "uavplan/planning/search/directional_astar.h"
@@ -41,6 +42,8 @@ const std::vector<Entry>& entries() {
        [](const Params& p) { return std::make_unique<AcoVoronoiPlanner>(AcoVoronoiOptions::from_params(p, false), false); }},
       {{"pso_mpc", "P5 multi-step PSO: one waypoint l on per step, (dphi, dh) within the limits, 11-step look-ahead, terminal and entry-heading terms", false},
        [](const Params& p) { return std::make_unique<PsoMpcPlanner>(PsoMpcOptions::from_params(p)); }},
+      {{"pso_single", "P5's single-step PSO baseline: all waypoints in one swarm, the constraints relaxed into the cost", false, true, true},
+       [](const Params& p) { return std::make_unique<PsoSinglePlanner>(PsoSingleOptions::from_params(p)); }},
       {{"apf", "P3 improved potential field: capped attraction, sqrt(R)-faded repulsion, 15-degree sector rule", false},
        [](const Params& p) { return std::make_unique<ApfPlanner>(ApfOptions::from_params(p, true)); }},
       {{"apf_traditional", "the traditional potential field (P3's baseline): no cap, no sqrt(R), no sector rule", false},

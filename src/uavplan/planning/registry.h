@@ -20,6 +20,9 @@ struct PlannerInfo {
   std::string description;
   bool complete = true;  // finds a route whenever the grid it searches has one; local methods do not
   bool via_points = true;  // plans through via points (route missions)
+  // A baseline whose constraints are penalties in its cost (P5's single-step PSO): it may fail
+  // any problem, saying why, and never calls a route that breaks them solved.
+  bool relaxed = false;
 };
 std::vector<PlannerInfo> planner_catalog();
 
