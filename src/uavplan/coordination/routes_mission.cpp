@@ -38,7 +38,10 @@ Committed plan_and_time(const Scenario& sc, const Planner& planner, const Missio
       continue;
     }
     Problem pb{u, *u.goal, {}};
-    if (sc.mission.type == MissionType::route) pb.via = sc.mission.waypoints;
+    if (sc.mission.type == MissionType::route) {
+      pb.via = sc.mission.waypoints;
+      pb.via_entry_heading_rad = sc.mission.waypoint_entry_heading_rad;
+    }
     pb.seed = opt.seed + i;  // one stream per UAV
     const PlanResult r = planner.plan(pb, sc.world, opt.stop);
     up.status = r.status;
@@ -50,7 +53,7 @@ Committed plan_and_time(const Scenario& sc, const Planner& planner, const Missio
     if (i < ground.start.size() && ground.start[i]) up.waypoints.insert(up.waypoints.begin(), *ground.start[i]);
     if (i < ground.goal.size() && ground.goal[i]) up.waypoints.push_back(*ground.goal[i]);
     up.length_m = Route{up.waypoints}.length_m();
-    if (u.model && fly_route(u, up.waypoints, 0.0, opt.max_sample_dt_s).empty()) {
+    if (u.model && fly_route(u, up.waypoints, 0.0, opt.max_sample_dt_s, sc.mission.waypoints).empty()) {
       up.status = Status::failed;
       up.message = "its autopilot model cannot fly the route: it circles a waypoint (a turn tighter than its turn radius)";
       continue;
@@ -65,7 +68,7 @@ Committed plan_and_time(const Scenario& sc, const Planner& planner, const Missio
     }
     if (!d.placed && senses(u)) {  // no clear departure planned: it departs at once and sees to it in the loop
       d.placed = true;
-      d.trajectory = fly_route(u, up.waypoints, 0.0, opt.max_sample_dt_s);
+      d.trajectory = fly_route(u, up.waypoints, 0.0, opt.max_sample_dt_s, sc.mission.waypoints);
     }
     if (!d.placed) {
       up.status = Status::failed;

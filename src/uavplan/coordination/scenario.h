@@ -21,6 +21,9 @@ struct MissionSpec {
   MissionType type = MissionType::independent;
   double separation_m = 0.0;                  // between any two UAVs at any time
   std::vector<Vec3> waypoints;                // route: via points, in order
+  // The entry heading required at each via point (0 = east, pi/2 = north), by index; shorter or
+  // empty: none (pso_mpc plans them; the verifier checks them within kEntryHeadingTolerance_deg).
+  std::vector<std::optional<double>> waypoint_entry_heading_rad;
   std::optional<double> arrival_tolerance_m;  // rendezvous: max spread of route lengths
   double step_s = 1.0;                        // sensing / control period T of flights in the loop
   // UAVs whose goals lie closer than this arrive at distinct points this far apart (0: they

@@ -41,7 +41,7 @@ Departure earliest_departure(const Scenario& sc, const UavSpec& u, const std::ve
       break;
     }
     const double delay = k * delay_step_s;
-    Trajectory tr = fly_route(u, waypoints, delay, max_sample_dt_s);
+    Trajectory tr = fly_route(u, waypoints, delay, max_sample_dt_s, sc.mission.waypoints);
     if (tr.empty()) break;  // its model cannot fly the route at all
     const Conflict c = find_conflict(sc, u, tr, committed, moving_obstacles);
     if (!d.first.any) d.first = c;

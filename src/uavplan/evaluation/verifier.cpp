@@ -172,6 +172,17 @@ void check_uav(const Scenario& sc, const UavSpec& u, const UavPlan& up, double a
           break;
         }
       }
+      const std::optional<double> entry =
+          v < sc.mission.waypoint_entry_heading_rad.size() ? sc.mission.waypoint_entry_heading_rad[v] : std::nullopt;
+      if (hit && entry && tr.size() > 1) {  // the heading it arrives with: the row into the point
+        const std::size_t k = from <= 1e-9 && seg > 0 ? seg - 1 : seg;
+        const Vec3 d = tr[std::min(k + 1, tr.size() - 1)].p - tr[k].p;
+        const double off = d.head<2>().norm() > 0.0 ? std::abs(wrap_angle_rad(std::atan2(d.y(), d.x()) - *entry)) : kPi;
+        if (off > deg_to_rad(kEntryHeadingTolerance_deg))
+          add(out, ViolationKind::via_point, id, tr[k].t_s, via,
+              "via point " + std::to_string(v) + " entered at " + num(rad_to_deg(std::atan2(d.y(), d.x()))) + " deg, " +
+                  num(rad_to_deg(off)) + " deg off its entry heading " + num(rad_to_deg(*entry)) + " deg");
+      }
       if (!hit) {
         add(out, ViolationKind::via_point, id, std::nullopt, via,
             "via point " + std::to_string(v) + " is not visited in order (within " + num(tol) + " m)");

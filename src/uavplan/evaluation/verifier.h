@@ -15,6 +15,9 @@
 
 namespace uavplan {
 
+// How far a route mission's arrival at a via point may be off its entry heading.
+inline constexpr double kEntryHeadingTolerance_deg = 1.0;
+
 enum class ViolationKind {
   not_planned,      // a UAV has no trajectory, or the plan lacks a scenario UAV
   unknown_uav,      // the plan names a UAV the scenario lacks

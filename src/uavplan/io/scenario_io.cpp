@@ -600,10 +600,21 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
     if (m.has("waypoints")) {
       const At list = m["waypoints"];
       list.expect_seq();
+      // A row is [x, y, z], or {position: [x, y, z], entry_heading_deg: h} (P5's task points).
       for (std::size_t i = 0; i < list.size(); ++i) {
-        const Vec3 p = list.item(i).vec3();
-        check_placed(list.item(i), p, sc.world, "waypoint");
+        const At row = list.item(i);
+        std::optional<double> entry;
+        Vec3 p;
+        if (row.node.IsMap()) {
+          row.keys({"position", "entry_heading_deg"});
+          p = row.req("position").vec3();
+          if (row.has("entry_heading_deg")) entry = deg_to_rad(row["entry_heading_deg"].number());
+        } else {
+          p = row.vec3();
+        }
+        check_placed(row.node.IsMap() ? row["position"] : row, p, sc.world, "waypoint");
         sc.mission.waypoints.push_back(p);
+        sc.mission.waypoint_entry_heading_rad.push_back(entry);
       }
     }
     if (m.has("arrival_tolerance")) sc.mission.arrival_tolerance_m = m["arrival_tolerance"].positive();

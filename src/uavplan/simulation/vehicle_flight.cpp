@@ -14,7 +14,8 @@ AutopilotModel autopilot_of(const UavSpec& u) {
   return AutopilotModel(u.model.value_or(AutopilotParams{}), lim);
 }
 
-Trajectory fly_route(const UavSpec& u, std::span<const Vec3> waypoints, double depart_s, double max_dt_s) {
+Trajectory fly_route(const UavSpec& u, std::span<const Vec3> waypoints, double depart_s, double max_dt_s,
+                     std::span<const Vec3> fly_over) {
   if (!u.model || waypoints.size() < 2) return time_route(waypoints, u.speed.cruise_mps, depart_s, max_dt_s);
   const AutopilotModel model = autopilot_of(u);
   AutopilotState s;
@@ -28,6 +29,7 @@ Trajectory fly_route(const UavSpec& u, std::span<const Vec3> waypoints, double d
   fo.sample_s = max_dt_s > 0.0 ? std::min(max_dt_s, 1.0) : 1.0;
   fo.max_time_s = 3.0 * route_m / u.speed.cruise_mps + 600.0;
   const std::vector<Vec3> rest(waypoints.begin() + 1, waypoints.end());
+  for (const Vec3& w : rest) fo.fly_over.push_back(std::find(fly_over.begin(), fly_over.end(), w) != fly_over.end());
   const FollowResult r = follow_waypoints(model, s, rest, u.speed.cruise_mps, fo);
   if (!r.reached) return {};
   Trajectory tr;

@@ -20,6 +20,8 @@ AutopilotModel autopilot_of(const UavSpec& u);
 // Its flight of `waypoints` departing at depart_s (holding at the first before), samples at most
 // max_dt_s apart (1 s for the model when max_dt_s is 0). Empty when the model cannot reach the last
 // waypoint (it circles it: a turn radius wider than the route allows).
-Trajectory fly_route(const UavSpec& u, std::span<const Vec3> waypoints, double depart_s, double max_dt_s);
+// Waypoints equal to one of `fly_over` are flown over (via points), not turned short of.
+Trajectory fly_route(const UavSpec& u, std::span<const Vec3> waypoints, double depart_s, double max_dt_s,
+                     std::span<const Vec3> fly_over = {});
 
 }  // namespace uavplan

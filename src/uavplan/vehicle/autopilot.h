@@ -60,6 +60,9 @@ struct FollowOptions {
   // into it; 0: where an arc of the turn radius R at cruise through the corner begins,
   // R tan(turn / 2) before it (turns above 90 deg as 90), at least 2 v tau_heading.
   double switch_radius_m = 0.0;
+  // Waypoints (by index) to fly over, not turn short of: passed at the closest approach once within
+  // two integration steps' flight, with a row there (via points a plan must visit).
+  std::vector<char> fly_over;
 };
 
 struct FollowSample {
