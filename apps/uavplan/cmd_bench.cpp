@@ -8,6 +8,7 @@
 #include "p2_runner.h"
 #include "p3_runner.h"
 #include "p4_runner.h"
+#include "p5_coarse_runner.h"
 #include "soak_runner.h"
 #include "uavplan/evaluation/world_bench.h"
 #include "uavplan/io/input_error.h"
@@ -136,6 +137,26 @@ void add_p1(CLI::App* cmd, std::function<int()>& run) {
   });
 }
 
+void add_p5_coarse(CLI::App* cmd, std::function<int()>& run) {
+  auto dir = std::make_shared<std::string>("scenarios");
+  auto worlds = std::make_shared<int>(100);
+  CLI::App* sub = cmd->add_subcommand("p5-coarse", "P5 coarse planning: multi- vs single-step PSO (4.1), entry headings (4.2a), random large worlds");
+  sub->add_option("--scenarios", *dir, "Folder holding p5_coarse.yaml and p5_entry.yaml (default: scenarios)");
+  sub->add_option("--worlds", *worlds, "Random large worlds (default: 100)")->check(CLI::Range(0, 100000));
+  sub->callback([dir, worlds, &run] {
+    run = [dir, worlds] {
+      try {
+        bool ok = false;
+        std::cout << bench::run_p5_coarse(*dir, *worlds, &ok);
+        return ok ? kExitOk : kExitNotSolved;
+      } catch (const InputError& e) {
+        std::cerr << e.what() << "\n";
+        return kExitBadInput;
+      }
+    };
+  });
+}
+
 void add_p2(CLI::App* cmd, std::function<int()>& run) {
   auto dir = std::make_shared<std::string>("scenarios");
   CLI::App* p2 = cmd->add_subcommand("p2", "P2 tables: times to the task points for 25-100 ants, ant colony vs the A* optimum");
@@ -194,6 +215,7 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
   add_movingai(cmd, run);
   add_p4(cmd, run);
   add_p1(cmd, run);
+  add_p5_coarse(cmd, run);
   add_p3(cmd, run);
   add_p2(cmd, run);
   add_p1_local(cmd, run);

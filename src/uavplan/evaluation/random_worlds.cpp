@@ -201,6 +201,47 @@ Scenario random_formation_world(std::uint64_t seed) {
   return sc;
 }
 
+Scenario random_p5_world(std::uint64_t seed) {
+  Rng r(seed);
+  const double size = r.uniform(100000, 1000000), height = 10000;
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3::Zero(), Vec3(size, size, height)};
+  const Vec3 start(r.uniform(0.03, 0.1) * size, r.uniform(0.03, 0.1) * size, 5000);
+  std::vector<Vec3> keep{start};  // places no cylinder may come near
+  const int vias = static_cast<int>(r.uniform_int(1, 3));
+  for (int k = 0; k <= vias; ++k) keep.emplace_back(r.uniform(0.2, 0.9) * size, r.uniform(0.2, 0.9) * size, r.uniform(3000, 7000));
+  const double l = std::min(5000.0, size / 40.0);
+  for (int k = static_cast<int>(r.uniform_int(5, 20)); k > 0; --k) {
+    const double radius = std::min(r.uniform(10000, 60000), 0.08 * size);
+    const Vec2 c(r.uniform(0.1, 0.9) * size, r.uniform(0.1, 0.9) * size);
+    bool clear = true;
+    for (const Vec3& p : keep) clear = clear && (p.head<2>() - c).norm() > radius + 3.5 * l;
+    if (clear) ws.obstacles.push_back(Cylinder{c, radius, 0.0, height});
+  }
+  Scenario sc;
+  sc.name = "p5_random" + std::to_string(seed);
+  sc.world = World(std::move(ws));
+  sc.mission.type = MissionType::route;
+  for (int k = 1; k <= vias; ++k) {
+    sc.mission.waypoints.push_back(keep[static_cast<std::size_t>(k)]);
+    sc.mission.waypoint_entry_heading_rad.push_back(deg_to_rad(45.0 * static_cast<double>(r.uniform_int(-3, 4))));
+  }
+  UavSpec u;
+  u.id = "uav1";
+  u.start = start;
+  u.goal = keep.back();
+  u.heading_rad = deg_to_rad(r.uniform(0, 360));
+  u.radius_m = 120;
+  u.speed = {70, 150, 200};
+  u.max_turn_rad = deg_to_rad(30);
+  u.max_turn_rate_rad_s = deg_to_rad(2.2);
+  u.max_climb_rate_mps = 20;
+  u.model = AutopilotParams{};
+  sc.uavs.push_back(u);
+  sc.planner.algorithm = "pso_mpc";
+  return sc;
+}
+
 Scenario enclosed_goal_world(std::uint64_t seed) {
   Rng r(seed);
   WorldSpec ws;

@@ -25,6 +25,11 @@ Scenario random_world(std::uint64_t seed, const RandomWorldOptions& options = {}
 // meeting head-on or turning across the straight line between the two places.
 Scenario random_formation_world(std::uint64_t seed);
 
+// P5's coarse planning at scale (issue targets): 100-1000 km square, 10 km high, 5-20 no-fly
+// cylinders of 10-60 km, one fixed-wing UAV (70/150/200 m/s, 30 deg turns, P5's autopilot model)
+// from near one corner, 1-3 via points with random entry headings (multiples of 45 deg), a goal.
+Scenario random_p5_world(std::uint64_t seed);
+
 // A world whose first UAV's goal sits in a closed hollow box: no route can reach it.
 Scenario enclosed_goal_world(std::uint64_t seed);
 

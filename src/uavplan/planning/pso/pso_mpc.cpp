@@ -141,7 +141,22 @@ PlanResult PsoMpcPlanner::do_plan(const Problem& pb, const World& world, const S
     double psi = in ? std::atan2(in->y(), in->x()) : bearing(p, target);
     const int cap = static_cast<int>(10.0 * (p - target).norm() / l) + 20;
     bool arrived = (p - target).norm() <= 1e-9;
-    for (int step = 0; step < cap && !arrived; ++step) {
+    // The leg's states before each step, with the turns tried from each that led to dead ends:
+    // where no waypoint is feasible it backs up a step and turns another way (at most
+    // kMaxBacktracks times a leg; P5 re-runs the swarm, which cannot leave a dead end).
+    struct Before {
+      Vec3 p;
+      double psi;
+      std::optional<Vec3> in;
+      std::size_t route_size;
+      std::vector<double> dead;  // turns (dphi) that led to dead ends
+      double chosen = 0.0;
+    };
+    constexpr int kMaxBacktracks = 60;
+    std::vector<Before> history;
+    std::vector<double> dead_here;
+    int backtracks = 0;
+    for (int step = 0; step < cap + 2 * kMaxBacktracks && !arrived; ++step) {
       if (stop.should_stop()) {
         res.message = "stopped before the route was complete";
         return res;
@@ -152,7 +167,12 @@ PlanResult PsoMpcPlanner::do_plan(const Problem& pb, const World& world, const S
         arrived = true;
         break;
       }
-      const auto f = [&](std::span<const double> x) { return leg_planner.cost(x, p, psi, in, target, entry); };
+      const double near = 0.25 * turn_max;
+      const auto f = [&](std::span<const double> x) {
+        for (const double d : dead_here)
+          if (std::abs(x[0] - d) < near) return kInf;
+        return leg_planner.cost(x, p, psi, in, target, entry);
+      };
       const std::array<double, 2> lo{-turn_max, -dh_max}, hi{turn_max, dh_max};
       const std::array<double, 4> seeds{0.0, 0.0, std::clamp(wrap(bearing(p, target) - psi), -turn_max, turn_max),
                                         std::clamp(target.z() - p.z(), -dh_max, dh_max)};
@@ -168,11 +188,23 @@ PlanResult PsoMpcPlanner::do_plan(const Problem& pb, const World& world, const S
       }
       res.stats.nodes_expanded += static_cast<std::uint64_t>(best.evaluations);
       if (best.f == kInf) {
-        char buf[160];
-        std::snprintf(buf, sizeof buf, ": no feasible waypoint %g m on from (%.1f, %.1f, %.1f)", l, p.x(), p.y(), p.z());
-        res.message = leg_name(leg, stops.size() + 1) + buf;
-        return res;
+        if (history.empty() || backtracks >= kMaxBacktracks) {
+          char buf[160];
+          std::snprintf(buf, sizeof buf, ": no feasible waypoint %g m on from (%.1f, %.1f, %.1f)", l, p.x(), p.y(), p.z());
+          res.message = leg_name(leg, stops.size() + 1) + buf;
+          return res;
+        }
+        ++backtracks;
+        Before b = std::move(history.back());
+        history.pop_back();
+        b.dead.push_back(b.chosen);
+        p = b.p, psi = b.psi, in = b.in;
+        route.resize(b.route_size);
+        dead_here = std::move(b.dead);
+        continue;
       }
+      history.push_back({p, psi, in, route.size(), std::move(dead_here), best.x[0]});
+      dead_here.clear();
       psi += best.x[0];
       const Vec3 q = p + Vec3(l * std::cos(psi), l * std::sin(psi), best.x[1]);
       in = q - p;
