@@ -143,7 +143,8 @@ PlanResult PsoMpcPlanner::do_plan(const Problem& pb, const World& world, const S
     bool arrived = (p - target).norm() <= 1e-9;
     // The leg's states before each step, with the turns tried from each that led to dead ends:
     // where no waypoint is feasible it backs up a step and turns another way (at most
-    // kMaxBacktracks times a leg; P5 re-runs the swarm, which cannot leave a dead end).
+    // kMaxBacktracks times a leg; P5 re-runs the swarm, which cannot leave a dead end: that only
+    // where there is no step to back up).
     struct Before {
       Vec3 p;
       double psi;
@@ -152,7 +153,7 @@ PlanResult PsoMpcPlanner::do_plan(const Problem& pb, const World& world, const S
       std::vector<double> dead;  // turns (dphi) that led to dead ends
       double chosen = 0.0;
     };
-    constexpr int kMaxBacktracks = 60;
+    constexpr int kMaxBacktracks = 20;
     std::vector<Before> history;
     std::vector<double> dead_here;
     int backtracks = 0;
@@ -178,7 +179,7 @@ PlanResult PsoMpcPlanner::do_plan(const Problem& pb, const World& world, const S
                                         std::clamp(target.z() - p.z(), -dh_max, dh_max)};
       Rng rng = base.split(leg * 1000003u + static_cast<std::uint64_t>(step));
       PsoResult best = pso_minimize(f, lo, hi, options_.pso, rng, seeds);
-      if (best.f == kInf) {  // once more, with a swarm twice as large (P5-notes 4.1)
+      if (best.f == kInf && history.empty()) {  // once more, with a swarm twice as large (P5-notes 4.1)
         PsoOptions wider = options_.pso;
         wider.particles *= 2;
         wider.iterations *= 2;
