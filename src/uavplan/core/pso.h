@@ -26,6 +26,8 @@ struct PsoOptions {
   // for this many iterations; 0: run every iteration.
   int stall_iterations = 0;
   double stall_tolerance = 1e-9;
+  // Give up once this many iterations found no feasible point at all; 0: never.
+  int infeasible_iterations = 0;
 };
 
 struct PsoResult {
@@ -75,6 +77,7 @@ PsoResult pso_minimize(F&& f, std::span<const double> lo, std::span<const double
       if (fi < best_f[i]) best_f[i] = fi, std::copy(xi, xi + dims, &best[i * dims]);
       if (fi < g.f) g.f = fi, g.x.assign(xi, xi + dims);
     }
+    if (o.infeasible_iterations > 0 && g.f == kInf && it + 1 >= o.infeasible_iterations) break;
     if (o.stall_iterations > 0) {
       const bool improved = last_f == kInf ? g.f < kInf : g.f < last_f - o.stall_tolerance * (std::abs(last_f) + 1.0);
       stall = improved ? 0 : stall + 1;

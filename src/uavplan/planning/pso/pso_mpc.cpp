@@ -87,7 +87,8 @@ PsoMpcOptions PsoMpcOptions::from_params(const Params& params) {
   o.prediction_steps = r.integer("prediction", o.prediction_steps, 0, 100);
   o.pso.particles = r.integer("particles", o.pso.particles, 2, 10000);
   o.pso.iterations = r.integer("iterations", o.pso.iterations, 0, 100000);
-  o.pso.stall_iterations = r.integer("stall", 20, 0, 100000);
+  o.pso.stall_iterations = r.integer("stall", o.pso.stall_iterations, 0, 100000);
+  o.pso.infeasible_iterations = r.integer("give_up", o.pso.infeasible_iterations, 0, 100000);
   r.finish();
   return o;
 }

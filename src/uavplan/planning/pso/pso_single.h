@@ -23,7 +23,7 @@ struct PsoSingleOptions {
   double w_climb = 10.0;      // per metre over dh_max (P5's alpha)
   double w_len = 10.0;        // per metre a segment falls short of l
   double w_nfz_per_m = 100.0; // per metre inside a no-fly zone
-  PsoOptions pso{100, 500, 0.9, 0.4, 2.0, 2.0, 50, 1e-9};
+  PsoOptions pso{100, 500, 0.9, 0.4, 2.0, 2.0, 50, 1e-9, 0};
   static PsoSingleOptions from_params(const Params& params);
 };
 
