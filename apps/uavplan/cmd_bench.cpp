@@ -81,15 +81,18 @@ void add_movingai(CLI::App* cmd, std::function<int()>& run) {
   });
 }
 
-void add_p4(CLI::App* cmd, std::function<int()>& run) {
+// A paper's tables from scenarios in a folder (--scenarios): exit 0 when its targets are met,
+// 2 on a bad scenario file.
+CLI::App* add_tables(CLI::App* cmd, std::function<int()>& run, const std::string& name, const std::string& what,
+                     const std::string& files, std::function<std::string(const std::string&, bool*)> tables) {
   auto dir = std::make_shared<std::string>("scenarios");
-  CLI::App* p4 = cmd->add_subcommand("p4", "P4 tables: directional A* against grid A*, rendezvous, L x M lengths");
-  p4->add_option("--scenarios", *dir, "Folder holding p4_table3.yaml and p4_rendezvous.yaml (default: scenarios)");
-  p4->callback([dir, &run] {
-    run = [dir] {
+  CLI::App* sub = cmd->add_subcommand(name, what);
+  sub->add_option("--scenarios", *dir, "Folder holding " + files + " (default: scenarios)");
+  sub->callback([dir, tables, &run] {
+    run = [dir, tables] {
       try {
         bool ok = false;
-        std::cout << bench::run_p4(*dir, &ok);
+        std::cout << tables(*dir, &ok);
         return ok ? kExitOk : kExitNotSolved;
       } catch (const InputError& e) {
         std::cerr << e.what() << "\n";
@@ -97,82 +100,26 @@ void add_p4(CLI::App* cmd, std::function<int()>& run) {
       }
     };
   });
+  return sub;
 }
 
-void add_p3(CLI::App* cmd, std::function<int()>& run) {
-  auto dir = std::make_shared<std::string>("scenarios");
-  CLI::App* p3 = cmd->add_subcommand("p3", "P3 tables: group scores before/after smoothing, traditional baseline, scaling");
-  p3->add_option("--scenarios", *dir, "Folder holding p3_group9.yaml (default: scenarios)");
-  p3->callback([dir, &run] {
-    run = [dir] {
-      try {
-        bool ok = false;
-        std::cout << bench::run_p3(*dir, &ok);
-        return ok ? kExitOk : kExitNotSolved;
-      } catch (const InputError& e) {
-        std::cerr << e.what() << "\n";
-        return kExitBadInput;
-      }
-    };
-  });
-}
-
-void add_p1(CLI::App* cmd, std::function<int()>& run) {
-  auto dir = std::make_shared<std::string>("scenarios");
+void add_papers(CLI::App* cmd, std::function<int()>& run) {
+  add_tables(cmd, run, "p4", "P4 tables: directional A* against grid A*, rendezvous, L x M lengths",
+             "p4_table3.yaml and p4_rendezvous.yaml", [](const std::string& d, bool* ok) { return bench::run_p4(d, ok); });
   auto runs = std::make_shared<int>(20);
-  CLI::App* p1 = cmd->add_subcommand("p1", "P1 tables: global route, colony vs Dijkstra, Table 2 (whole formation mission, A-RRT vs common RRT)");
-  p1->add_option("--scenarios", *dir, "Folder holding p1_formation.yaml (default: scenarios)");
-  p1->add_option("--runs", *runs, "Seeded runs of the whole mission per method (default: 20)")->check(CLI::Range(1, 100000));
-  p1->callback([dir, runs, &run] {
-    run = [dir, runs] {
-      try {
-        bool ok = false;
-        std::cout << bench::run_p1(*dir, *runs, &ok);
-        return ok ? kExitOk : kExitNotSolved;
-      } catch (const InputError& e) {
-        std::cerr << e.what() << "\n";
-        return kExitBadInput;
-      }
-    };
-  });
-}
-
-void add_p5_coarse(CLI::App* cmd, std::function<int()>& run) {
-  auto dir = std::make_shared<std::string>("scenarios");
+  add_tables(cmd, run, "p1", "P1 tables: global route, colony vs Dijkstra, Table 2 (whole formation mission, A-RRT vs common RRT)",
+             "p1_formation.yaml", [runs](const std::string& d, bool* ok) { return bench::run_p1(d, *runs, ok); })
+      ->add_option("--runs", *runs, "Seeded runs of the whole mission per method (default: 20)")
+      ->check(CLI::Range(1, 100000));
   auto worlds = std::make_shared<int>(100);
-  CLI::App* sub = cmd->add_subcommand("p5-coarse", "P5 coarse planning: multi- vs single-step PSO (4.1), entry headings (4.2a), random large worlds");
-  sub->add_option("--scenarios", *dir, "Folder holding p5_coarse.yaml and p5_entry.yaml (default: scenarios)");
-  sub->add_option("--worlds", *worlds, "Random large worlds (default: 100)")->check(CLI::Range(0, 100000));
-  sub->callback([dir, worlds, &run] {
-    run = [dir, worlds] {
-      try {
-        bool ok = false;
-        std::cout << bench::run_p5_coarse(*dir, *worlds, &ok);
-        return ok ? kExitOk : kExitNotSolved;
-      } catch (const InputError& e) {
-        std::cerr << e.what() << "\n";
-        return kExitBadInput;
-      }
-    };
-  });
-}
-
-void add_p2(CLI::App* cmd, std::function<int()>& run) {
-  auto dir = std::make_shared<std::string>("scenarios");
-  CLI::App* p2 = cmd->add_subcommand("p2", "P2 tables: times to the task points for 25-100 ants, ant colony vs the A* optimum");
-  p2->add_option("--scenarios", *dir, "Folder holding p2_city.yaml (default: scenarios)");
-  p2->callback([dir, &run] {
-    run = [dir] {
-      try {
-        bool ok = false;
-        std::cout << bench::run_p2(*dir, &ok);
-        return ok ? kExitOk : kExitNotSolved;
-      } catch (const InputError& e) {
-        std::cerr << e.what() << "\n";
-        return kExitBadInput;
-      }
-    };
-  });
+  add_tables(cmd, run, "p5-coarse", "P5 coarse planning: multi- vs single-step PSO (4.1), entry headings (4.2a), random large worlds",
+             "p5_coarse.yaml and p5_entry.yaml", [worlds](const std::string& d, bool* ok) { return bench::run_p5_coarse(d, *worlds, ok); })
+      ->add_option("--worlds", *worlds, "Random large worlds (default: 100)")
+      ->check(CLI::Range(0, 100000));
+  add_tables(cmd, run, "p3", "P3 tables: group scores before/after smoothing, traditional baseline, scaling", "p3_group9.yaml",
+             [](const std::string& d, bool* ok) { return bench::run_p3(d, ok); });
+  add_tables(cmd, run, "p2", "P2 tables: times to the task points for 25-100 ants, ant colony vs the A* optimum", "p2_city.yaml",
+             [](const std::string& d, bool* ok) { return bench::run_p2(d, ok); });
 }
 
 void add_p1_local(CLI::App* cmd, std::function<int()>& run) {
@@ -213,11 +160,7 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
   cmd->require_subcommand(1);
   add_world(cmd, run);
   add_movingai(cmd, run);
-  add_p4(cmd, run);
-  add_p1(cmd, run);
-  add_p5_coarse(cmd, run);
-  add_p3(cmd, run);
-  add_p2(cmd, run);
+  add_papers(cmd, run);
   add_p1_local(cmd, run);
   add_soak(cmd, run);
 }

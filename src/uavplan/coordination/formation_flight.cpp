@@ -44,26 +44,23 @@ FormationFlight::FormationFlight(const FormationSchedule& schedule, FormationFli
 // UAV flies its path at the period's mean speed, a little off the schedule).
 std::vector<Track> FormationFlight::trusted_out(std::size_t i, std::vector<Track> tracks,
                                                 std::span<const FlightState> uavs) const {
-  // Mates share their commands: one that has already decided this period is seen flying what it
-  // was told to, not what it flew (a mate turning away from a threat would otherwise be predicted
-  // straight on, into the UAV that has not yet had its turn).
-  for (Track& k : tracks)
-    for (std::size_t m = 0; m < uavs.size(); ++m)
-      if (k.is_uav && k.id == uavs[m].spec->id && intent_[m]) {
-        k.velocity_mps = intent_[m]->velocity_mps;
-        k.commanded = true;
-        k.commanded_slack_m = intent_[m]->slack_m;
-      }
-  if (members_[i].mode == Mode::broken) return tracks;
   std::vector<Track> out;
   const double room = 1.05 * opt_.separation_m + kTimingMargin_m;
-  for (const Track& k : tracks) {
+  for (Track& k : tracks) {
     std::size_t j = members_.size();
-    for (std::size_t m = 0; m < uavs.size(); ++m)
-      if (k.is_uav && k.id == uavs[m].spec->id) j = m;
+    for (std::size_t m = 0; m < uavs.size() && k.is_uav; ++m)
+      if (k.id == uavs[m].spec->id) j = m;
+    // Mates share their commands: one that has already decided this period is seen flying what
+    // it was told to, not what it flew (a mate turning away from a threat would otherwise be
+    // predicted straight on, into the UAV that has not yet had its turn).
+    if (j < members_.size() && intent_[j]) {
+      k.velocity_mps = intent_[j]->velocity_mps;
+      k.commanded = true;
+      k.commanded_slack_m = intent_[j]->slack_m;
+    }
     // Trusted only when both fly the schedule in step (while re-forming their clocks differ: a
     // laggard catching up may pass where a mate ahead waits).
-    if (j < members_.size() && members_[j].mode != Mode::broken &&
+    if (members_[i].mode != Mode::broken && j < members_.size() && members_[j].mode != Mode::broken &&
         std::abs(period_tau_[j] - period_tau_[i]) <= 1e-6 && members_[j].rate == members_[i].rate) {
       const std::size_t a = sched_.interval(members_[i].tau_s), b = sched_.interval(members_[j].tau_s);
       bool apart = true;
@@ -71,7 +68,7 @@ std::vector<Track> FormationFlight::trusted_out(std::size_t i, std::vector<Track
         apart = apart && schedule_gap_m(sched_, i, j, q) > room;
       if (apart) continue;
     }
-    out.push_back(k);
+    out.push_back(std::move(k));
   }
   return out;
 }

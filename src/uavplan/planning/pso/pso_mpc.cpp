@@ -19,9 +19,8 @@ double bearing(const Vec3& from, const Vec3& to) { return std::atan2(to.y() - fr
 struct LegPlanner {
   const World& world;
   const SegmentRule& rule;
-  const UavSpec& uav;
   const PsoMpcOptions& o;
-  double l, dphi_max, dh_max, turn_max;
+  double l, dh_max, turn_max;
 
   // The prediction Q -> SP clear of the obstacles, cut where it leaves the bounds and kept within
   // the airspace's heights (P5-notes: SP may lie outside; only the no-fly zones count).
@@ -93,33 +92,30 @@ PsoMpcOptions PsoMpcOptions::from_params(const Params& params) {
   return o;
 }
 
-double pso_step_m(const PsoMpcOptions& o, const UavSpec& uav, const World& world) {
-  if (o.step_m > 0.0) return o.step_m;
+PsoSteps pso_steps(const PsoMpcOptions& o, const UavSpec& uav, const World& world) {
+  PsoSteps st;
+  st.max_turn_rad = std::min(deg_to_rad(o.max_turn_deg), uav.max_turn_rad);
   const double side = std::max(world.bounds().extent().x(), world.bounds().extent().y());
-  double l = side >= 200000.0 ? 5000.0 : side / 40.0;
-  if (uav.max_turn_rate_rad_s) {  // long enough for the vehicle to turn dphi_max between waypoints
-    const double radius = uav.speed.cruise_mps / *uav.max_turn_rate_rad_s;
-    l = std::max(l, 2.0 * radius * std::sin(0.5 * deg_to_rad(std::min(o.max_turn_deg, rad_to_deg(uav.max_turn_rad)))));
-  }
-  return l;
+  st.step_m = o.step_m > 0.0 ? o.step_m : side >= 200000.0 ? 5000.0 : side / 40.0;
+  if (o.step_m <= 0.0 && uav.max_turn_rate_rad_s)  // long enough for the vehicle to turn dphi_max between waypoints
+    st.step_m = std::max(st.step_m, 2.0 * uav.speed.cruise_mps / *uav.max_turn_rate_rad_s * std::sin(0.5 * st.max_turn_rad));
+  double climb = uav.max_climb_rad < kPi / 2 - 1e-9 ? uav.max_climb_rad : std::atan(300.0 / 5000.0);
+  if (uav.max_climb_rate_mps) climb = std::min(climb, std::atan(*uav.max_climb_rate_mps / uav.speed.cruise_mps));
+  st.max_dh_m = o.max_dh_m > 0.0 ? o.max_dh_m : st.step_m * std::tan(climb);
+  return st;
 }
 
 PlanResult PsoMpcPlanner::do_plan(const Problem& pb, const World& world, const StopCondition& stop) const {
   PlanResult res;
-  const double l = pso_step_m(options_, pb.uav, world);
+  const PsoSteps steps = pso_steps(options_, pb.uav, world);
+  const double l = steps.step_m, turn_max = steps.max_turn_rad, dh_max = steps.max_dh_m;
   // A UAV flown through its model turns on arcs of radius R that cut each corner by up to
   // R (1 / cos(dphi_max / 2) - 1): the no-fly zones are kept that much further off.
   UavSpec u = pb.uav;
-  if (u.model && u.max_turn_rate_rad_s) {
-    const double half = 0.5 * std::min(deg_to_rad(options_.max_turn_deg), u.max_turn_rad);
-    u.radius_m += u.speed.cruise_mps / *u.max_turn_rate_rad_s * (1.0 / std::cos(half) - 1.0);
-  }
+  if (u.model && u.max_turn_rate_rad_s)
+    u.radius_m += u.speed.cruise_mps / *u.max_turn_rate_rad_s * (1.0 / std::cos(0.5 * turn_max) - 1.0);
   const SegmentRule rule(world, u);
-  double climb = u.max_climb_rad < kPi / 2 - 1e-9 ? u.max_climb_rad : std::atan(300.0 / 5000.0);
-  if (u.max_climb_rate_mps) climb = std::min(climb, std::atan(*u.max_climb_rate_mps / u.speed.cruise_mps));
-  const double turn_max = std::min(deg_to_rad(options_.max_turn_deg), u.max_turn_rad);
-  const double dh_max = options_.max_dh_m > 0.0 ? options_.max_dh_m : l * std::tan(climb);
-  const LegPlanner leg_planner{world, rule, u, options_, l, turn_max, dh_max, turn_max};
+  const LegPlanner leg_planner{world, rule, options_, l, dh_max, turn_max};
   std::vector<Vec3> route{u.start};
   std::optional<Vec3> in;
   if (u.heading_rad) in = heading_vector(*u.heading_rad);

@@ -37,8 +37,13 @@ struct PsoMpcOptions {
   static PsoMpcOptions from_params(const Params& params);
 };
 
-// The step length these options give for a UAV in a world.
-double pso_step_m(const PsoMpcOptions& o, const UavSpec& uav, const World& world);
+// What these options give for a UAV in a world: l, dphi_max and dh_max (the scaling above).
+struct PsoSteps {
+  double step_m = 0.0;
+  double max_turn_rad = 0.0;
+  double max_dh_m = 0.0;
+};
+PsoSteps pso_steps(const PsoMpcOptions& o, const UavSpec& uav, const World& world);
 
 class PsoMpcPlanner final : public Planner {
  public:

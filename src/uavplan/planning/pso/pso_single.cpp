@@ -73,10 +73,8 @@ PsoSingleOptions PsoSingleOptions::from_params(const Params& params) {
 SingleStepRoute pso_single_route(const Problem& pb, const World& world, const PsoSingleOptions& o, const StopCondition& stop) {
   const UavSpec& u = pb.uav;
   const SegmentRule rule(world, u);
-  const double l = pso_step_m(o.steps, u, world);
-  double climb = u.max_climb_rad < kPi / 2 - 1e-9 ? u.max_climb_rad : std::atan(300.0 / 5000.0);
-  if (u.max_climb_rate_mps) climb = std::min(climb, std::atan(*u.max_climb_rate_mps / u.speed.cruise_mps));
-  const double turn_max = std::min(deg_to_rad(o.steps.max_turn_deg), u.max_turn_rad);
+  const PsoSteps steps = pso_steps(o.steps, u, world);
+  const double l = steps.step_m;
   SingleStepRoute out;
   out.waypoints = {u.start};
   std::optional<Vec3> in;
@@ -87,7 +85,7 @@ SingleStepRoute pso_single_route(const Problem& pb, const World& world, const Ps
   const Aabb& b = world.bounds();
   std::vector<Vec3> pts;
   for (std::size_t leg = 0; leg < stops.size() && !stop.should_stop(); ++leg) {
-    const LegCost cost{world, rule, o, l, turn_max, l * std::tan(climb), out.waypoints.back(), stops[leg], in};
+    const LegCost cost{world, rule, o, l, steps.max_turn_rad, steps.max_dh_m, out.waypoints.back(), stops[leg], in};
     const double d = (cost.to - cost.from).norm();
     const int n = o.waypoints > 0 ? o.waypoints : std::max(0, static_cast<int>(std::floor(d / l)) - 1);
     std::vector<double> lo, hi, seed;
