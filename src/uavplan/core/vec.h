@@ -35,6 +35,11 @@ struct Aabb {
     const Vec3 d = (min - p).cwiseMax(p - max).cwiseMax(Vec3::Zero());
     return d.norm();
   }
+  // Euclidean gap between two boxes (0 when they overlap).
+  double distance(const Aabb& b) const {
+    const Vec3 d = (min - b.max).cwiseMax(b.min - max).cwiseMax(Vec3::Zero());
+    return d.norm();
+  }
 };
 
 }  // namespace uavplan

@@ -31,6 +31,11 @@ double vertical_gap(double z, double z_min, double z_max) {
   return std::max({0.0, z_min - z, z - z_max});
 }
 
+// The gap between the height ranges [lo, hi] and [z_min, z_max].
+double vertical_gap_range(double lo, double hi, double z_min, double z_max) {
+  return std::max({0.0, z_min - hi, lo - z_max});
+}
+
 struct PointVisitor {
   const Vec3& p;
   double operator()(const Sphere& s) const { return std::max(0.0, (p - s.center).norm() - s.radius_m); }
@@ -68,18 +73,50 @@ bool segment_meets_prism(const Prism& pr, const Vec3& a, const Vec3& b) {
   return false;
 }
 
+// Where the segment's plan view lies within the cylinder's disc: [t0, t1] on [0, 1], or empty.
+bool disc_interval(const Cylinder& c, const Vec3& a, const Vec3& b, double& t0, double& t1) {
+  const Vec2 d = (b - a).head<2>(), f = a.head<2>() - c.center;
+  const double qa = d.squaredNorm(), qb = 2.0 * f.dot(d), qc = f.squaredNorm() - c.radius_m * c.radius_m;
+  if (qa < 1e-300) {
+    t0 = 0.0, t1 = 1.0;
+    return qc <= 0.0;
+  }
+  const double disc = qb * qb - 4.0 * qa * qc;
+  if (disc < 0.0) return false;
+  const double s = std::sqrt(disc);
+  t0 = std::max(0.0, (-qb - s) / (2.0 * qa));
+  t1 = std::min(1.0, (-qb + s) / (2.0 * qa));
+  return t0 <= t1;
+}
+
 struct SegmentVisitor {
   const Vec3& a;
   const Vec3& b;
+  double cap;
   double operator()(const Sphere& s) const {
     return std::max(0.0, point_segment_distance(s.center, a, b) - s.radius_m);
   }
-  // Distance to a convex solid is convex along a line: golden-section search is exact.
+  // Distance to a convex solid is convex along a line: golden-section search is exact. Before
+  // it, two cheap answers: the plan-view and height gaps bound the distance from below, and a
+  // segment whose plan view crosses the disc at a height within the cylinder meets it.
   double operator()(const Cylinder& c) const {
+    const double dz = vertical_gap_range(std::min(a.z(), b.z()), std::max(a.z(), b.z()), c.z_min_m, c.z_max_m);
+    const Vec3 a2(a.x(), a.y(), 0.0), b2(b.x(), b.y(), 0.0), c2(c.center.x(), c.center.y(), 0.0);
+    const double dr = std::max(0.0, point_segment_distance(c2, a2, b2) - c.radius_m);
+    if (std::max(dz, dr) >= cap) return std::max(dz, dr);
+    double t0 = 0.0, t1 = 0.0;
+    if (dr <= 0.0 && disc_interval(c, a, b, t0, t1)) {
+      const double z0 = a.z() + t0 * (b.z() - a.z()), z1 = a.z() + t1 * (b.z() - a.z());
+      if (std::max(z0, z1) >= c.z_min_m && std::min(z0, z1) <= c.z_max_m) return 0.0;
+    }
     return golden_section_min([&](double t) { return PointVisitor{a + t * (b - a)}(c); }, 0.0, 1.0);
   }
   double operator()(const Box& bx) const {
     const Aabb box{bx.min, bx.max};
+    const double gap = box.distance(Aabb{a.cwiseMin(b), a.cwiseMax(b)});  // a lower bound
+    if (gap >= cap) return gap;
+    double t0 = 0.0, t1 = 0.0;
+    if (clip_segment_to_box(a, b, box, t0, t1)) return 0.0;
     return golden_section_min([&](double t) { return box.distance(a + t * (b - a)); }, 0.0, 1.0);
   }
   // A possibly non-convex prism: 0 when they meet; otherwise the closest pair involves an
@@ -143,8 +180,8 @@ Aabb bounding_box(const Obstacle& o) { return std::visit(BoundsVisitor{}, o); }
 
 double point_distance(const Obstacle& o, const Vec3& p) { return std::visit(PointVisitor{p}, o); }
 
-double segment_distance(const Obstacle& o, const Vec3& a, const Vec3& b) {
-  return std::visit(SegmentVisitor{a, b}, o);
+double segment_distance(const Obstacle& o, const Vec3& a, const Vec3& b, double cap) {
+  return std::visit(SegmentVisitor{a, b, cap}, o);
 }
 
 }  // namespace uavplan

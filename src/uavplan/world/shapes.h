@@ -1,6 +1,7 @@
 // Hard obstacles: a route may never come closer to them than the UAV's radius.
 #pragma once
 
+#include <limits>
 #include <variant>
 #include <vector>
 
@@ -40,7 +41,10 @@ double point_distance(const Obstacle& o, const Vec3& p);
 // The point of the solid nearest to p (p itself when inside).
 Vec3 closest_point(const Obstacle& o, const Vec3& p);
 
-// Exact distance from segment [a, b] to the solid (0 when they meet).
-double segment_distance(const Obstacle& o, const Vec3& a, const Vec3& b);
+// Exact distance from segment [a, b] to the solid (0 when they meet). Where a bound shows the
+// distance is at least `cap`, that bound (>= cap) is returned instead: callers that keep the
+// smaller of the two lose nothing, and long segments far from a solid cost a few operations.
+double segment_distance(const Obstacle& o, const Vec3& a, const Vec3& b,
+                        double cap = std::numeric_limits<double>::infinity());
 
 }  // namespace uavplan

@@ -59,6 +59,25 @@ TEST(Shapes, SegmentDistanceAgainstSampling) {
   }
 }
 
+// With a cap, the answer is the exact distance below the cap and a lower bound of it at or
+// above the cap (what the world's queries need to keep the nearer of two).
+TEST(Shapes, SegmentDistanceWithACapIsExactBelowItAndABoundAbove) {
+  Rng r(3);
+  for (const auto& o : sample_shapes()) {
+    for (int k = 0; k < 2000; ++k) {
+      const Vec3 a(r.uniform(-9, 9), r.uniform(-9, 9), r.uniform(-7, 7));
+      const Vec3 b(r.uniform(-9, 9), r.uniform(-9, 9), r.uniform(-7, 7));
+      const double cap = r.uniform(0.0, 4.0), exact = segment_distance(o, a, b), capped = segment_distance(o, a, b, cap);
+      if (exact < cap) {
+        ASSERT_NEAR(capped, exact, 1e-9) << "shape " << o.index() << " case " << k;
+      } else {
+        ASSERT_GE(capped, cap) << "shape " << o.index() << " case " << k;
+        ASSERT_LE(capped, exact + 1e-12) << "shape " << o.index() << " case " << k;
+      }
+    }
+  }
+}
+
 TEST(Shapes, ClosestPointIsOnTheSolidAtThePointDistance) {
   Rng r(3);
   for (const auto& o : sample_shapes())

@@ -71,7 +71,7 @@ double World::segment_clearance(const Vec3& a, const Vec3& b, double cap) const 
   if (spec_.terrain) best = spec_.terrain->segment_distance(a, b, best);
   if (best <= 0.0) return 0.0;
   bvh_.visit_segment(a, b, best, [&](std::int32_t i, double& radius) {
-    radius = std::min(radius, segment_distance(spec_.obstacles[i], a, b));
+    radius = std::min(radius, segment_distance(spec_.obstacles[i], a, b, radius));
     return radius <= 0.0;
   });
   return best;
@@ -80,7 +80,7 @@ double World::segment_clearance(const Vec3& a, const Vec3& b, double cap) const 
 double World::segment_obstacle_clearance(const Vec3& a, const Vec3& b, double cap) const {
   double best = cap;
   bvh_.visit_segment(a, b, best, [&](std::int32_t i, double& radius) {
-    radius = std::min(radius, segment_distance(spec_.obstacles[i], a, b));
+    radius = std::min(radius, segment_distance(spec_.obstacles[i], a, b, radius));
     return radius <= 0.0;
   });
   return best;
