@@ -9,6 +9,7 @@
 #include "p3_runner.h"
 #include "p4_runner.h"
 #include "p5_coarse_runner.h"
+#include "p5_runner.h"
 #include "soak_runner.h"
 #include "uavplan/evaluation/world_bench.h"
 #include "uavplan/io/input_error.h"
@@ -116,6 +117,8 @@ void add_papers(CLI::App* cmd, std::function<int()>& run) {
              "p5_coarse.yaml and p5_entry.yaml", [worlds](const std::string& d, bool* ok) { return bench::run_p5_coarse(d, *worlds, ok); })
       ->add_option("--worlds", *worlds, "Random large worlds (default: 100)")
       ->check(CLI::Range(0, 100000));
+  add_tables(cmd, run, "p5", "P5 whole mission: the phase timetable beside Table 2, separation per phase, the 45 -> 15 deg turn",
+             "p5_mission.yaml", [](const std::string& d, bool* ok) { return bench::run_p5(d, ok); });
   add_tables(cmd, run, "p3", "P3 tables: group scores before/after smoothing, traditional baseline, scaling", "p3_group9.yaml",
              [](const std::string& d, bool* ok) { return bench::run_p3(d, ok); });
   add_tables(cmd, run, "p2", "P2 tables: times to the task points for 25-100 ants, ant colony vs the A* optimum", "p2_city.yaml",

@@ -7,6 +7,7 @@
 
 #include "uavplan/coordination/formation_mission.h"
 #include "uavplan/coordination/group_mission.h"
+#include "uavplan/coordination/phased_formation_mission.h"
 #include "uavplan/coordination/rendezvous_mission.h"
 #include "uavplan/coordination/routes_mission.h"
 #include "uavplan/planning/registry.h"
@@ -22,6 +23,7 @@ const std::vector<std::pair<MissionType, std::unique_ptr<Mission>>>& registry() 
     t.emplace_back(MissionType::group, std::make_unique<GroupMission>());
     t.emplace_back(MissionType::rendezvous, std::make_unique<RendezvousMission>());
     t.emplace_back(MissionType::formation, std::make_unique<FormationMission>());
+    t.emplace_back(MissionType::formation_mission, std::make_unique<PhasedFormationMission>());
     return t;
   }();
   return table;

@@ -12,10 +12,27 @@
 
 namespace uavplan {
 
-enum class MissionType { independent, route, group, rendezvous, formation };
+enum class MissionType { independent, route, group, rendezvous, formation, formation_mission };
 
 std::string_view to_string(MissionType t);
 std::optional<MissionType> mission_type_from_string(std::string_view s);
+
+// formation_mission (P5): the runway the UAVs take off from and land on. `position` is the
+// runway's threshold on the ground; the runway runs runway_length_m from it along the heading.
+struct Airfield {
+  Vec3 position = Vec3::Zero();
+  double runway_heading_rad = 0.0;  // 0 = east, pi/2 = north
+  double runway_length_m = 3000.0;
+};
+
+// formation_mission: reached when the formation's reference passes within radius_m of the
+// position flying within kTaskHeadingTolerance_deg of the entry heading (when one is given).
+struct TaskPoint {
+  Vec3 position = Vec3::Zero();
+  std::optional<double> entry_heading_rad;
+  double radius_m = 1000.0;
+};
+inline constexpr double kTaskHeadingTolerance_deg = 15.0;
 
 struct MissionSpec {
   MissionType type = MissionType::independent;
@@ -35,6 +52,11 @@ struct MissionSpec {
   std::vector<Vec3> shape;
   int reform_after_steps = 5;
   double arrival_tolerance_s = 2.0;
+  // formation_mission (P5): the airfield, the task points in order, the communication topology
+  // a_ij of the consensus control (rows per UAV in scenario order; empty: the complete graph).
+  std::optional<Airfield> airfield;
+  std::vector<TaskPoint> task_points;
+  std::vector<std::vector<double>> topology;
 };
 
 struct PlannerSpec {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "uavplan/coordination/separation.h"
 #include "uavplan/core/units.h"
 #include "uavplan/evaluation/ground_legs.h"
 
@@ -125,7 +126,11 @@ void compute_metrics(const Scenario& sc, Plan& plan) {
     });
     for (const Pair& pr : pairs) {
       if (pr.bound_m >= min_sep) break;
-      min_sep = std::min(min_sep, closest_approach(*trs[pr.i], *trs[pr.j]).distance_m);
+      // formation_mission: in the air (on the ground only bodies count, and a landed UAV is gone)
+      min_sep = std::min(min_sep, sc.mission.type == MissionType::formation_mission
+                                      ? airfield_encounter(sc, *sc.find_uav(flown[pr.i]->id), *trs[pr.i],
+                                                           *sc.find_uav(flown[pr.j]->id), *trs[pr.j]).airborne_min_m
+                                      : closest_approach(*trs[pr.i], *trs[pr.j]).distance_m);
     }
   }
   plan.metrics["total_length_m"] = total;

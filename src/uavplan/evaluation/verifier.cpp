@@ -7,6 +7,7 @@
 #include "uavplan/core/text.h"
 #include "uavplan/coordination/arrival_points.h"
 #include "uavplan/coordination/separation.h"
+#include "uavplan/coordination/task_points.h"
 #include "uavplan/core/geometry.h"
 #include "uavplan/core/units.h"
 #include "uavplan/evaluation/ground_legs.h"
@@ -192,6 +193,35 @@ void check_uav(const Scenario& sc, const UavSpec& u, const UavPlan& up, double a
   }
 }
 
+// formation_mission: the task points reached by the formation's reference in order at their
+// entry headings, every UAV ending stopped on the runway.
+void check_formation_mission(const Scenario& sc, const std::vector<std::pair<const UavSpec*, const UavPlan*>>& flown, Out& out) {
+  std::vector<const Trajectory*> trs;
+  for (const auto& f : flown) trs.push_back(&f.second->trajectory);
+  const std::vector<TaskVisit> visits = task_visits(sc, formation_reference(sc, trs));
+  for (std::size_t k = 0; k < sc.mission.task_points.size(); ++k) {
+    const TaskPoint& tp = sc.mission.task_points[k];
+    if (k < visits.size() && visits[k].reached) continue;
+    std::string why = "task point " + std::to_string(k) + " not reached in order by the formation's reference";
+    if (k < visits.size() && std::isfinite(visits[k].miss_m))
+      why += " (within " + num(tp.radius_m) + " m only " + num(rad_to_deg(visits[k].heading_error_rad)) + " deg off its entry heading)";
+    add(out, ViolationKind::via_point, "", std::nullopt, tp.position, why);
+    break;
+  }
+  if (!sc.mission.airfield) return;
+  const Airfield& af = *sc.mission.airfield;
+  const Vec2 along(std::cos(af.runway_heading_rad), std::sin(af.runway_heading_rad));
+  for (const auto& [u, up] : flown) {
+    const Vec3 end = up->trajectory.back().p;
+    const Vec2 rel = (end - af.position).head<2>();
+    const double a = rel.dot(along), off = std::abs(rel.x() * along.y() - rel.y() * along.x());
+    if (std::abs(end.z() - af.position.z()) > 1.0 || a < -kPositionTolerance_m || a > af.runway_length_m + kPositionTolerance_m || off > 100.0)
+      add(out, ViolationKind::goal, u->id, up->trajectory.back().t_s, end,
+          "does not end on the runway (" + num(a) + " m along it, " + num(off) + " m off its centreline, " +
+              num(end.z() - af.position.z()) + " m above it)");
+  }
+}
+
 }  // namespace
 
 std::vector<Violation> verify_plan(const Scenario& sc, const Plan& plan) {
@@ -226,6 +256,14 @@ std::vector<Violation> verify_plan(const Scenario& sc, const Plan& plan) {
       const auto& [ub, pb] = flown[j];
       const double need = required_separation_m(sc, *ua, *ub);
       if (boxes.lower_bound_m(i, j) >= need) continue;
+      if (sc.mission.type == MissionType::formation_mission) {  // the airfield's rule, gone after landing
+        const AirfieldEncounter e = airfield_encounter(sc, *ua, pa->trajectory, *ub, pb->trajectory);
+        if (e.conflict)
+          add(out, ViolationKind::separation, ua->id, e.t_s, e.where,
+              "distance " + num(e.distance_m) + " m to '" + ub->id + "', below " + num(e.need_m) + " m" +
+                  (e.need_m < need ? " (their bodies, on the ground)" : ""));
+        continue;
+      }
       const Encounter e = closest_approach(pa->trajectory, pb->trajectory);
       if (e.distance_m < need - kDistanceTolerance_m)
         add(out, ViolationKind::separation, ua->id, e.t_s, e.where,
@@ -243,6 +281,7 @@ std::vector<Violation> verify_plan(const Scenario& sc, const Plan& plan) {
       add(out, ViolationKind::length_spread, "", std::nullopt, std::nullopt,
           "route lengths differ by " + num(hi - lo) + " m, above the tolerance " + num(*sc.mission.arrival_tolerance_m) + " m");
   }
+  if (sc.mission.type == MissionType::formation_mission) check_formation_mission(sc, flown, out);
   if (sc.mission.type == MissionType::formation && flown.size() > 1) {
     double lo = World::kInf, hi = -World::kInf;
     for (const auto& f : flown) lo = std::min(lo, f.second->trajectory.back().t_s), hi = std::max(hi, f.second->trajectory.back().t_s);

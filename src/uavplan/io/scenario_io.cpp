@@ -375,7 +375,8 @@ void check_room(const At& obstacles, const World& w) {
 
 void check_uavs_fit(const At& uavs, const Scenario& sc) {
   const World& w = sc.world;
-  const bool goals_needed = true;  // (a formation's goals are its slots at the end)
+  // (a formation's goals are its slots at the end; a formation_mission's UAVs land on the runway)
+  const bool goals_needed = sc.mission.type != MissionType::formation_mission;
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
     const UavSpec& u = sc.uavs[i];
     const At ui = uavs.item(i);
@@ -412,6 +413,72 @@ void read_shape(const At& list, Scenario& sc) {
         list.item(i).fail("is " + At::fmt(d) + " m from slot " + std::to_string(j) + " (" + sc.uavs[j].id + "); slots must be at least " +
                           At::fmt(need) + " m apart (the separation, and the UAVs' bodies)");
     }
+}
+
+// formation_mission (P5): the airfield, the task points in order, the topology; UAVs parked on
+// the ground at least the separation apart, with no goal (they land on the runway).
+void read_formation_mission(const At& m, const At& uavs, Scenario& sc) {
+  MissionSpec& ms = sc.mission;
+  const At a = m.req("airfield");
+  a.keys({"position", "runway_heading_deg", "runway_length"});
+  Airfield af;
+  af.position = a.req("position").vec3();
+  if (a.has("runway_heading_deg")) af.runway_heading_rad = deg_to_rad(a["runway_heading_deg"].number());
+  if (a.has("runway_length")) af.runway_length_m = a["runway_length"].positive();
+  check_placed(a["position"], af.position, sc.world, "the airfield");
+  if (!sc.world.on_ground(af.position)) a["position"].fail("the airfield must lie on the ground (z = the ground there)");
+  const Vec3 end = af.position + af.runway_length_m * Vec3(std::cos(af.runway_heading_rad), std::sin(af.runway_heading_rad), 0.0);
+  if (!sc.world.in_bounds(end)) a["runway_length"].fail("the runway leaves the world bounds");
+  ms.airfield = af;
+  const At list = m.req("task_points");
+  list.expect_seq();
+  if (list.size() == 0) list.fail("a formation_mission needs at least one task point");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const At row = list.item(i);
+    row.keys({"position", "entry_heading_deg", "radius"});
+    TaskPoint tp;
+    tp.position = row.req("position").vec3();
+    check_placed(row["position"], tp.position, sc.world, "task point");
+    if (row.has("entry_heading_deg")) tp.entry_heading_rad = deg_to_rad(row["entry_heading_deg"].number());
+    if (row.has("radius")) tp.radius_m = row["radius"].positive();
+    ms.task_points.push_back(tp);
+  }
+  if (m.has("topology")) {
+    const At t = m["topology"];
+    t.expect_seq();
+    if (t.size() != sc.uavs.size()) t.fail("needs a row a_ij per UAV (" + std::to_string(sc.uavs.size()) + "), got " + std::to_string(t.size()));
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      const At row = t.item(i);
+      row.expect_seq();
+      if (row.size() != sc.uavs.size()) row.fail("needs " + std::to_string(sc.uavs.size()) + " entries a_ij");
+      std::vector<double> r;
+      for (std::size_t j = 0; j < row.size(); ++j) r.push_back(row.item(j).non_negative());
+      ms.topology.push_back(std::move(r));
+    }
+    // Every UAV must hear, through the others, from every other (else the shape cannot form).
+    std::vector<char> seen(sc.uavs.size(), 0);
+    std::vector<std::size_t> todo{0};
+    seen[0] = 1;
+    while (!todo.empty()) {
+      const std::size_t i = todo.back();
+      todo.pop_back();
+      for (std::size_t j = 0; j < sc.uavs.size(); ++j)
+        if (!seen[j] && (ms.topology[i][j] > 0.0 || ms.topology[j][i] > 0.0)) seen[j] = 1, todo.push_back(j);
+    }
+    for (std::size_t j = 0; j < sc.uavs.size(); ++j)
+      if (!seen[j]) t.fail("leaves " + sc.uavs[j].id + " out: the UAVs must all be connected");
+  }
+  if (!m.has("shape")) m.req("shape").fail("a formation_mission needs a slot per UAV");
+  for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
+    const UavSpec& u = sc.uavs[i];
+    const At ui = uavs.item(i);
+    if (u.goal) ui["goal"].fail("a formation_mission UAV has no goal: it lands on the runway");
+    if (!sc.world.on_ground(u.start)) ui["start"].fail("a formation_mission UAV starts parked on the ground at the airfield");
+    for (std::size_t j = 0; j < i; ++j)
+      if ((sc.uavs[j].start - u.start).norm() < ms.separation_m)
+        ui["start"].fail("is " + At::fmt((sc.uavs[j].start - u.start).norm()) + " m from " + sc.uavs[j].id +
+                         "'s start; starts must be at least the separation " + At::fmt(ms.separation_m) + " m apart");
+  }
 }
 
 YAML::Node parse_yaml(const std::string& raw, const std::string& file) {
@@ -590,10 +657,10 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
   if (top.has("mission")) {
     const At m = top["mission"];
     m.keys({"type", "separation", "waypoints", "arrival_tolerance", "step_s", "goal_spacing", "shape", "reform_after_steps",
-            "arrival_tolerance_s"});
+            "arrival_tolerance_s", "airfield", "task_points", "topology"});
     if (m.has("type")) {
       const auto t = mission_type_from_string(m["type"].text());
-      if (!t) m["type"].fail("unknown mission type '" + m["type"].text() + "' (expected independent, route, group, rendezvous or formation)");
+      if (!t) m["type"].fail("unknown mission type '" + m["type"].text() + "' (expected independent, route, group, rendezvous, formation or formation_mission)");
       sc.mission.type = *t;
     }
     if (m.has("separation")) sc.mission.separation_m = m["separation"].non_negative();
@@ -631,6 +698,12 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
     if (m.has("shape")) read_shape(m["shape"], sc);
     if (sc.mission.type == MissionType::formation && !m.has("shape"))
       m.req("shape").fail("a formation mission needs a slot per UAV");
+    if (sc.mission.type == MissionType::formation_mission) {
+      read_formation_mission(m, uavs, sc);
+    } else {
+      for (const char* k : {"airfield", "task_points", "topology"})
+        if (m.has(k)) m[k].fail("only a formation_mission has " + std::string(k));
+    }
   }
 
   // Every plan's trajectory has a row at least every second: a route that would take longer than

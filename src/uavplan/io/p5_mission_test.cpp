@@ -1,0 +1,96 @@
+// The P5 formation mission end to end (scenarios/p5_mission.yaml): every phase done in order, the
+// plan verified (cylinders, separation in the air, task points at their headings, every UAV
+// stopped on the runway), the same bytes for the same seed; and its bad input.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <iterator>
+
+#include "uavplan/coordination/mission_planner.h"
+#include "uavplan/evaluation/verifier.h"
+#include "uavplan/io/input_error.h"
+#include "uavplan/io/plan_io.h"
+#include "uavplan/io/scenario_io.h"
+
+namespace uavplan {
+namespace {
+
+const std::string kScenario = std::string(UAVPLAN_SOURCE_DIR) + "/scenarios/p5_mission.yaml";
+
+TEST(P5Mission, AllFivePhasesFlownAndVerified) {
+  const Scenario sc = load_scenario(kScenario);
+  MissionOptions o;
+  Plan plan = plan_mission(sc, o);
+  EXPECT_TRUE(finalize_plan(sc, plan).empty());
+  ASSERT_EQ(plan.status, Status::solved) << plan.message;
+  ASSERT_TRUE(plan.formation);
+  const std::vector<std::string> names{"form_up", "mission", "return", "dismiss", "landing"};
+  ASSERT_EQ(plan.formation->phases.size(), names.size());
+  double last = 0.0;
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    EXPECT_EQ(plan.formation->phases[k].name, names[k]);
+    EXPECT_GT(plan.formation->phases[k].end_s, last) << names[k];
+    last = plan.formation->phases[k].end_s;
+  }
+  EXPECT_GE(plan.metrics.at("min_separation_m"), 50.0);
+  for (const UavPlan& u : plan.uavs) EXPECT_NEAR(u.trajectory.back().p.z(), 0.0, 1e-9) << u.id;  // landed
+  Plan again = plan_mission(sc, o);
+  finalize_plan(sc, again);
+  EXPECT_EQ(plan_to_json(plan), plan_to_json(again));
+}
+
+// What the verifier must catch in a formation_mission plan: a UAV that does not land on the
+// runway, and a formation that misses a task point's entry heading.
+TEST(P5Mission, TheVerifierCatchesAMissedRunwayAndATaskPointMissed) {
+  Scenario sc = load_scenario(kScenario);
+  const Plan plan = plan_mission(sc, MissionOptions{});
+  ASSERT_EQ(plan.status, Status::solved) << plan.message;
+  Plan off = plan;
+  off.uavs[0].trajectory.back().p.y() += 500.0;
+  bool runway = false;
+  for (const Violation& v : verify_plan(sc, off)) runway = runway || (v.kind == ViolationKind::goal && v.uav == "u1");
+  EXPECT_TRUE(runway);
+  sc.mission.task_points[1].entry_heading_rad = *sc.mission.task_points[1].entry_heading_rad + kPi / 2;
+  bool task = false;
+  for (const Violation& v : verify_plan(sc, plan)) task = task || v.kind == ViolationKind::via_point;
+  EXPECT_TRUE(task);
+}
+
+std::string text_of(const std::string& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+std::string replaced(std::string s, const std::string& from, const std::string& to) {
+  const auto p = s.find(from);
+  EXPECT_NE(p, std::string::npos) << from;
+  if (p != std::string::npos) s.replace(p, from.size(), to);
+  return s;
+}
+
+void expect_bad(const std::string& text, const std::string& part) {
+  try {
+    parse_scenario(text, "m.yaml");
+    FAIL() << "no error for " << part;
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+    EXPECT_NE(msg.find(part), std::string::npos) << "'" << part << "' not in: " << msg;
+  }
+}
+
+TEST(P5Mission, BadInputIsOneLineNamingThePlace) {
+  const std::string good = text_of(kScenario);
+  expect_bad(replaced(good, "  airfield: {position: [50000, 50000, 0], runway_heading_deg: 0, runway_length: 3000}\n", ""),
+             "airfield");
+  expect_bad(replaced(good, "[409000, 271000, 5000]", "[173000, 455000, 5000]"), "inside an obstacle");
+  expect_bad(replaced(good, "[409000, 271000, 5000]", "[409000, 271000, 50000]"), "outside the world bounds");
+  expect_bad(replaced(good, "start: [50200, 49800, 0]", "start: [50030, 49800, 0]"), "at least the separation");
+  expect_bad(replaced(good, "[-120, 0, 0]]", "[-120, 0, 0], [-180, 0, 0]]"), "slots for 4 UAVs");
+  expect_bad(replaced(good, "  task_points:", "  topology: [[0, 1, 0, 0], [1, 0, 0, 0], [0, 0, 0, 1], [0, 0, 1, 0]]\n  task_points:"),
+             "connected");
+  expect_bad(replaced(good, "start: [50000, 49800, 0]", "start: [50000, 49800, 0], goal: [60000, 60000, 5000]"), "no goal");
+}
+
+}  // namespace
+}  // namespace uavplan
