@@ -1,6 +1,8 @@
 #include "uavplan/coordination/consensus.h"
 
 #include <Eigen/Eigenvalues>
+#include <boost/graph/adjacency_list.hpp>
+#include <boost/graph/connected_components.hpp>
 #include <cmath>
 #include <complex>
 #include <algorithm>
@@ -62,6 +64,15 @@ std::vector<AutopilotCommand> consensus_commands(const std::vector<AutopilotStat
     }
   }
   return out;
+}
+
+bool topology_connected(const Topology& a) {
+  boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS> g(a.size());
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t j = i + 1; j < a.size(); ++j)
+      if (a[i][j] > 0.0 || a[j][i] > 0.0) boost::add_edge(i, j, g);
+  std::vector<int> component(a.size());
+  return a.empty() || boost::connected_components(g, component.data()) == 1;
 }
 
 bool gains_stable(const Topology& a, const ConsensusGains& g) {

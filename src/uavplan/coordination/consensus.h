@@ -50,6 +50,10 @@ std::vector<AutopilotCommand> consensus_commands(const std::vector<AutopilotStat
                                                  const ConsensusTarget& target, const Topology& topology,
                                                  const ConsensusGains& gains);
 
+// Whether every UAV hears, through the others, from every other (a_ij or a_ji > 0 joins i and j):
+// otherwise the shape cannot form.
+bool topology_connected(const Topology& topology);
+
 // Whether the closed loop (each channel a double integrator once eq. 13-16 invert the lags) is
 // stable for every eigenvalue lambda of the topology's Laplacian: the roots of
 // s^2 + (b + lambda) s + k_x lambda (x; y alike) and s^2 + (k + k_z lambda) s + (d + lambda) (z) in

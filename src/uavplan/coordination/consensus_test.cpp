@@ -34,6 +34,8 @@ TEST(Consensus, DefaultGainsAreStableOnCompleteAndRingTopologies) {
   EXPECT_TRUE(gains_stable(complete_topology(4), g));
   const Topology ring{{0, 1, 0, 1}, {1, 0, 1, 0}, {0, 1, 0, 1}, {1, 0, 1, 0}};
   EXPECT_TRUE(gains_stable(ring, g));
+  EXPECT_TRUE(topology_connected(ring));
+  EXPECT_FALSE(topology_connected({{0, 1, 0, 0}, {1, 0, 0, 0}, {0, 0, 0, 1}, {0, 0, 1, 0}}));
   ConsensusGains printed = g;  // the printed bracket sign: position consensus as positive feedback
   printed.kx_per_s = -g.kx_per_s;
   EXPECT_FALSE(gains_stable(complete_topology(4), printed));

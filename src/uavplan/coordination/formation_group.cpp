@@ -16,13 +16,11 @@ FormationGroup::FormationGroup(std::vector<AutopilotModel> models, std::vector<V
   flying_.assign(n, 0);
   joined_.assign(n, 0);
   rows_.resize(n);
-  last_row_s_.assign(n, -1e300);
 }
 
 void FormationGroup::record(std::size_t i) {
   if (!rows_[i].empty() && rows_[i].back().t_s >= t_s_) return;
   rows_[i].push_back({t_s_, states_[i].position});
-  last_row_s_[i] = t_s_;
 }
 
 void FormationGroup::launch(std::size_t i, const AutopilotState& s, bool join) {
@@ -96,7 +94,7 @@ void FormationGroup::step(const FormationOrder& order, const std::function<Autop
   for (std::size_t i = 0; i < size(); ++i) {
     if (!flying_[i]) continue;
     models_[i].advance(states_[i], cmd[i], o_.dt_s);
-    if (t_s_ - last_row_s_[i] >= o_.record_s - 1e-9) record(i);
+    if (rows_[i].empty() || t_s_ - rows_[i].back().t_s >= o_.record_s - 1e-9) record(i);
   }
 }
 

@@ -74,7 +74,6 @@ class FormationGroup {
   std::vector<AutopilotState> states_;
   std::vector<char> flying_, joined_;
   std::vector<Trajectory> rows_;
-  std::vector<double> last_row_s_;
 };
 
 // Steers a group's centroid along a route (P5 sec. 3.1): phi* the bearing from the centroid to the

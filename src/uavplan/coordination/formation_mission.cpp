@@ -56,10 +56,6 @@ std::vector<double> windows_of(const Scenario& sc, const LocalLayer& layer) {
   return w;
 }
 
-void fail_all(const Scenario& sc, const std::string& why, Plan& plan) {
-  for (const UavSpec& u : sc.uavs) plan.uavs.push_back(flown_plan(u.id, false, why, {}, {}));
-}
-
 // What they flew must keep clear of everything that moves and of each other, and arrive within
 // the tolerance of one another.
 void check_flown(const Scenario& sc, const FormationFlight& flight, Plan& plan) {

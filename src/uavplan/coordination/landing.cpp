@@ -11,18 +11,6 @@ double wrap_2pi(double a) {
   return a < 0.0 ? a + 2.0 * kPi : a;
 }
 
-// Rows every sample_s along a straight line at constant deceleration from v0 to v1 (m/s).
-void straight_rows(Trajectory& out, const Vec3& from, const Vec3& to, double v0, double v1, double sample_s) {
-  const double len = (to - from).norm(), t0 = out.back().t_s;
-  if (len <= 0.0) return;
-  const double dur = 2.0 * len / std::max(v0 + v1, 1e-9), acc = (v1 - v0) / dur;
-  for (double t = sample_s; t < dur - 1e-9; t += sample_s) {
-    const double s = v0 * t + 0.5 * acc * t * t;
-    out.push_back({t0 + t, from + s / len * (to - from)});
-  }
-  out.push_back({t0 + dur, to});
-}
-
 }  // namespace
 
 LandingResult plan_landing(const Airfield& af, const AutopilotModel& model, const AutopilotState& state, double t0_s,
@@ -74,8 +62,8 @@ LandingResult plan_landing(const Airfield& af, const AutopilotModel& model, cons
       for (const FollowSample& s : fr.samples) flight.push_back({t0_s + s.t_s, s.state.position});
       const double to_fix = (final_fix - flight.back().p).norm();
       if (to_fix > 0.0) flight.push_back({flight.back().t_s + to_fix / v, final_fix});
-      straight_rows(flight, final_fix, touch, v, v, o.sample_s);
-      straight_rows(flight, touch, stop, v, 0.0, o.sample_s);
+      append_straight_run(flight, touch, v, v, o.sample_s);
+      append_straight_run(flight, stop, v, 0.0, o.sample_s);
       if (conflicts(flight)) continue;
       best.landed = true;
       best.message.clear();

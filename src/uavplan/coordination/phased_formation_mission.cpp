@@ -11,6 +11,7 @@
 #include "uavplan/coordination/separation.h"
 #include "uavplan/coordination/timing.h"
 #include "uavplan/planning/registry.h"
+#include "uavplan/simulation/vehicle_flight.h"
 
 namespace uavplan {
 namespace {
@@ -21,27 +22,19 @@ constexpr double kG_mps2 = 9.81;
 // a 30 deg bank at cruise; climb at most 20 m/s and within its climb angle at its least speed;
 // the horizontal speed at most what leaves the maximum speed in 3-D while climbing).
 AutopilotModel mission_model(const UavSpec& u) {
-  AutopilotLimits lim;
-  lim.speed = u.speed;
-  lim.max_turn_rate_rad_s = u.max_turn_rate_rad_s.value_or(kG_mps2 * std::tan(deg_to_rad(30.0)) / u.speed.cruise_mps);
+  const AutopilotModel own = autopilot_of(u);
+  AutopilotLimits lim = own.limits();
+  if (!u.max_turn_rate_rad_s) lim.max_turn_rate_rad_s = kG_mps2 * std::tan(deg_to_rad(30.0)) / u.speed.cruise_mps;
   double climb = u.max_climb_rate_mps.value_or(20.0);
   if (u.max_climb_rad < kPi / 2 - 1e-9) climb = std::min(climb, 0.95 * std::max(u.speed.min_mps, 1.0) * std::tan(u.max_climb_rad));
   lim.max_climb_rate_mps = climb;
   // The model holds the horizontal speed; climbing at full rate it must stay within the maximum.
   lim.speed.max_mps = std::sqrt(std::max(0.0, u.speed.max_mps * u.speed.max_mps - climb * climb)) * (1.0 - 1e-6);
   lim.speed.cruise_mps = std::min(lim.speed.cruise_mps, lim.speed.max_mps);
-  return AutopilotModel(u.model.value_or(AutopilotParams{}), lim);
+  return AutopilotModel(own.params(), lim);
 }
 
 double lift_off_mps(const UavSpec& u) { return std::max(u.speed.min_mps, 0.5 * u.speed.cruise_mps); }
-
-// Rows every second along a straight ground run from v0 to v1 (constant acceleration).
-void run_rows(Trajectory& out, const Vec3& from, const Vec3& to, double t0, double dur) {
-  const double len = (to - from).norm();
-  if (len <= 0.0 || dur <= 0.0) return;
-  for (double t = 1.0; t < dur - 1e-9; t += 1.0) out.push_back({t0 + t, from + (t / dur) * (to - from)});
-  out.push_back({t0 + dur, to});
-}
 
 struct GroundRun {
   Trajectory ground;  // parked, taxi to the threshold, take-off roll
@@ -76,10 +69,10 @@ std::vector<GroundRun> departures(const Scenario& sc, const std::vector<Vec3>& s
     GroundRun& d = out[i];
     d.ground.push_back({0.0, starts[i]});
     if (taxi_start > 0.0) d.ground.push_back({taxi_start, starts[i]});
-    run_rows(d.ground, starts[i], thr, taxi_start, taxi_s);
+    append_straight_run(d.ground, thr, o.taxi_mps, o.taxi_mps, 1.0);
     if (d.ground.back().t_s < roll_start) d.ground.push_back({roll_start, thr});
     const Vec3 lift_at = thr + roll_m * dir;
-    for (double t = 1.0; t < roll_s - 1e-9; t += 1.0) d.ground.push_back({roll_start + t, thr + 0.5 * acc * t * t * dir});
+    append_straight_run(d.ground, lift_at, 0.0, v_lo, 1.0);
     d.lift_s = lift;
     d.lift_off.position = lift_at;
     d.lift_off.speed_mps = v_lo;
@@ -88,10 +81,6 @@ std::vector<GroundRun> departures(const Scenario& sc, const std::vector<Vec3>& s
     prev_roll = roll_start;
   }
   return out;
-}
-
-void fail_all(const Scenario& sc, const std::string& why, Plan& plan) {
-  for (const UavSpec& u : sc.uavs) plan.uavs.push_back(flown_plan(u.id, false, why, {}, {}));
 }
 
 }  // namespace

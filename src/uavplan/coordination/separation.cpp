@@ -39,8 +39,8 @@ AirfieldEncounter airfield_encounter(const Scenario& sc, const UavSpec& ua, cons
     if (need == sep) out.airborne_min_m = std::min(out.airborne_min_m, dist);
     if (need - dist > worst + 1e-6) {
       worst = need - dist;
-      const double keep = out.airborne_min_m;
-      out = {true, t0 + s * (t1 - t0), dist, need, Vec3(a0 + s * (a1 - a0)), keep};
+      out.conflict = true;
+      out.t_s = t0 + s * (t1 - t0), out.distance_m = dist, out.need_m = need, out.where = a0 + s * (a1 - a0);
     }
   }
   return out;

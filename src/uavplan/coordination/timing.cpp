@@ -54,6 +54,10 @@ Departure earliest_departure(const Scenario& sc, const UavSpec& u, const std::ve
   return d;
 }
 
+void fail_all(const Scenario& sc, const std::string& why, Plan& plan) {
+  for (const UavSpec& u : sc.uavs) plan.uavs.push_back(flown_plan(u.id, false, why, {}, {}));
+}
+
 UavPlan flown_plan(const std::string& id, bool ok, std::string message, std::vector<Vec3> waypoints, Trajectory trajectory) {
   UavPlan up;
   up.id = id;

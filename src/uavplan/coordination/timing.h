@@ -45,4 +45,7 @@ Departure earliest_departure(const Scenario& sc, const UavSpec& u, const std::ve
 UavPlan flown_plan(const std::string& id, bool ok, std::string message, std::vector<Vec3> waypoints,
                    Trajectory trajectory);
 
+// Every scenario UAV failed with the same message (a mission that cannot plan at all).
+void fail_all(const Scenario& scenario, const std::string& why, Plan& plan);
+
 }  // namespace uavplan

@@ -18,6 +18,7 @@
 #include "uavplan/io/osm_buildings.h"
 #include "uavplan/io/text_input.h"
 #include "uavplan/io/tree_check.h"
+#include "uavplan/coordination/consensus.h"
 #include "uavplan/coordination/mission.h"
 #include "uavplan/coordination/planning_view.h"
 #include "uavplan/planning/registry.h"
@@ -455,18 +456,7 @@ void read_formation_mission(const At& m, const At& uavs, Scenario& sc) {
       for (std::size_t j = 0; j < row.size(); ++j) r.push_back(row.item(j).non_negative());
       ms.topology.push_back(std::move(r));
     }
-    // Every UAV must hear, through the others, from every other (else the shape cannot form).
-    std::vector<char> seen(sc.uavs.size(), 0);
-    std::vector<std::size_t> todo{0};
-    seen[0] = 1;
-    while (!todo.empty()) {
-      const std::size_t i = todo.back();
-      todo.pop_back();
-      for (std::size_t j = 0; j < sc.uavs.size(); ++j)
-        if (!seen[j] && (ms.topology[i][j] > 0.0 || ms.topology[j][i] > 0.0)) seen[j] = 1, todo.push_back(j);
-    }
-    for (std::size_t j = 0; j < sc.uavs.size(); ++j)
-      if (!seen[j]) t.fail("leaves " + sc.uavs[j].id + " out: the UAVs must all be connected");
+    if (!topology_connected(ms.topology)) t.fail("leaves a UAV out: the UAVs must all be connected, through the others");
   }
   if (!m.has("shape")) m.req("shape").fail("a formation_mission needs a slot per UAV");
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) {

@@ -28,6 +28,15 @@ Trajectory time_route(std::span<const Vec3> pts, double speed_mps, double depart
   return tr;
 }
 
+void append_straight_run(Trajectory& tr, const Vec3& to, double v0, double v1, double sample_s) {
+  const Vec3 from = tr.back().p;
+  const double len = (to - from).norm(), t0 = tr.back().t_s;
+  if (len <= 0.0) return;
+  const double dur = 2.0 * len / std::max(v0 + v1, 1e-9), acc = (v1 - v0) / dur;
+  for (double t = sample_s; t < dur - 1e-9; t += sample_s) tr.push_back({t0 + t, from + (v0 * t + 0.5 * acc * t * t) / len * (to - from)});
+  tr.push_back({t0 + dur, to});
+}
+
 Vec3 position_at(const Trajectory& tr, double t) {
   if (tr.empty()) return Vec3::Zero();
   if (t <= tr.front().t_s) return tr.front().p;

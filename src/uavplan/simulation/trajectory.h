@@ -22,6 +22,10 @@ using Trajectory = std::vector<TrajectorySample>;
 // the start before), with a sample at every waypoint and at most `max_dt_s` between samples.
 Trajectory time_route(std::span<const Vec3> waypoints, double speed_mps, double depart_s, double max_dt_s);
 
+// Appends a straight run from the trajectory's last row to `to`, the speed changing evenly from
+// v0_mps to v1_mps (taxiing, a take-off roll, a glide, a roll-out): a row every sample_s and at `to`.
+void append_straight_run(Trajectory& tr, const Vec3& to, double v0_mps, double v1_mps, double sample_s);
+
 Vec3 position_at(const Trajectory& tr, double t_s);
 
 struct Encounter {
