@@ -230,7 +230,9 @@ std::string circle_meets(const Scenario& sc, const ExportedUav& e, const std::ve
 // The exported UAVs' whole flights verified together: goals moved to where they now end.
 std::vector<Violation> verify_flights(const Scenario& sc, const std::vector<ExportedUav>& uavs) {
   Scenario ext = sc;
-  ext.mission.type = MissionType::independent;  // via points and lengths are the plan's, verified
+  // Via points and lengths are the plan's, verified; a formation_mission keeps its airfield rule
+  // (separation in the air only, a landed UAV gone).
+  if (ext.mission.type != MissionType::formation_mission) ext.mission.type = MissionType::independent;
   ext.mission.waypoints.clear();
   Plan p;
   for (const ExportedUav& e : uavs) {

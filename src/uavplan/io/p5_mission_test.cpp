@@ -8,6 +8,7 @@
 
 #include "uavplan/coordination/mission_planner.h"
 #include "uavplan/evaluation/verifier.h"
+#include "uavplan/io/flight_export.h"
 #include "uavplan/io/input_error.h"
 #include "uavplan/io/plan_io.h"
 #include "uavplan/io/scenario_io.h"
@@ -37,6 +38,17 @@ TEST(P5Mission, AllFivePhasesFlownAndVerified) {
   Plan again = plan_mission(sc, o);
   finalize_plan(sc, again);
   EXPECT_EQ(plan_to_json(plan), plan_to_json(again));
+}
+
+// The verified plan exports whole: landed UAVs are gone, not parked on one another at the
+// runway's stop point (the export's own check keeps the mission's airfield rule).
+TEST(P5Mission, EveryUavExports) {
+  const Scenario sc = load_scenario(kScenario);
+  const Plan plan = plan_mission(sc, MissionOptions{});
+  ASSERT_EQ(plan.status, Status::solved) << plan.message;
+  const VerifiedExport e = verified_export(sc, plan, ExportOptions{});
+  EXPECT_EQ(e.uavs.size(), sc.uavs.size());
+  for (const std::string& why : e.left_out) ADD_FAILURE() << why;
 }
 
 // What the verifier must catch in a formation_mission plan: a UAV that does not land on the
