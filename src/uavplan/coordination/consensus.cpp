@@ -62,6 +62,8 @@ std::vector<AutopilotCommand> consensus_commands(const std::vector<AutopilotStat
       c.speed_mps = vc.norm();
       c.heading_rad = std::atan2(vc.y(), vc.x());
     }
+    const double off = std::remainder(c.heading_rad - t.heading_rad, 2.0 * kPi);
+    c.heading_rad = t.heading_rad + std::clamp(off, -g.max_off_heading_rad, g.max_off_heading_rad);
   }
   return out;
 }

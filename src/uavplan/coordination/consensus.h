@@ -27,6 +27,11 @@ struct ConsensusGains {
   double ky_per_s = 0.25;  // y position consensus (k_y)
   double kz_s = 0.5;       // climb-rate consensus (k_z)
   bool exact_inversion = true;
+  // Far from the shape (km apart, as after take-off) each UAV's heading command stays within this
+  // of the ordered heading phi*: the UAVs close the gap by speed on converging courses. Without it
+  // two parts of the group a turn diameter apart chase each other round a circle at the
+  // turn-rate limit and never meet. Inactive near the shape (the linear analysis holds there).
+  double max_off_heading_rad = kPi / 3.0;
 };
 
 // a_ij, row i: whom UAV i hears (a_ii ignored).

@@ -65,6 +65,23 @@ TEST(Consensus, StraightFlightConvergesToTheShapeAtTheDesiredVelocity) {
   EXPECT_NEAR(nearest_spacing(g), 60.0 * std::sqrt(2.0), 1.0);
 }
 
+// After take-off in turn the UAVs are kilometres apart, on opposite courses: they must meet, not
+// chase each other round a turn circle (R = 150 / 2.2 deg/s = 3.9 km) at the turn-rate limit.
+TEST(Consensus, UavsKilometresApartOnOppositeCoursesGather) {
+  FormationGroup g(fixed_wings(4), kDiamond, complete_topology(4), {}, 0.0);
+  const std::vector<Vec3> starts{{0, 0, 5000}, {4000, 3000, 5000}, {-3000, 6000, 5000}, {8000, -2000, 5000}};
+  for (std::size_t i = 0; i < 4; ++i) {
+    AutopilotState s;
+    s.position = starts[i];
+    s.speed_mps = 150.0;
+    s.heading_rad = deg_to_rad(90.0 * i);
+    g.launch(i, s, true);
+  }
+  FormationOrder o{150.0, 0.0, 3.0, std::vector<double>(4, 5000.0)};
+  for (int k = 0; k < 6000 && g.shape_error_m(o) > 5.0; ++k) g.step(o, {});
+  EXPECT_LT(g.shape_error_m(o), 5.0) << "after " << g.time_s() << " s";
+}
+
 // P5 sec. 4.2(b): heading 45 deg, then 15 deg (the largest turn, 30 deg), the diamond of 60 m.
 TEST(Consensus, TheFortyFiveToFifteenTurnKeepsTheSafetyDistanceAndPassesTheWaypoint) {
   FormationGroup g(fixed_wings(4), kDiamond, complete_topology(4), {}, 0.0);

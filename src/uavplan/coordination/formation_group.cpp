@@ -36,6 +36,10 @@ void FormationGroup::release(std::size_t i) {
   joined_[i] = 0;
 }
 
+bool FormationGroup::anyone_in_formation() const {
+  return std::any_of(joined_.begin(), joined_.end(), [](char j) { return j != 0; });
+}
+
 Vec3 FormationGroup::centroid() const {
   Vec3 c = Vec3::Zero();
   int n = 0;

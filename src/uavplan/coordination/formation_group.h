@@ -49,7 +49,8 @@ class FormationGroup {
   void release(std::size_t i);
   bool flying(std::size_t i) const { return flying_[i]; }
 
-  // Mean position of those in formation (P5's reference, the centroid).
+  bool anyone_in_formation() const;
+  // Mean position of those in formation (P5's reference, the centroid); zero when nobody is.
   Vec3 centroid() const;
   // Largest distance of a UAV in formation from its slot relative to the others' (3-D, m): how far
   // the group is from holding the order's shape.

@@ -83,6 +83,22 @@ std::vector<GroundRun> departures(const Scenario& sc, const std::vector<Vec3>& s
   return out;
 }
 
+// The world with its horizontal bounds drawn in by `margin_m` (the formation's slots and turns
+// around the reference must stay inside), but never past the route's fixed points.
+World inner_world(const World& w, const Problem& pb, double margin_m) {
+  const Aabb& b = w.bounds();
+  std::vector<Vec3> fixed = pb.via;
+  fixed.push_back(pb.uav.start);
+  fixed.push_back(pb.goal);
+  for (const Vec3& p : fixed)
+    for (int k = 0; k < 2; ++k) margin_m = std::min({margin_m, p[k] - b.min[k], b.max[k] - p[k]});
+  if (margin_m <= 0.0) return w;
+  WorldSpec spec = w.spec();
+  spec.bounds.min.head<2>() += Vec2::Constant(margin_m);
+  spec.bounds.max.head<2>() -= Vec2::Constant(margin_m);
+  return World(std::move(spec));
+}
+
 }  // namespace
 
 void PhasedFormationMission::plan(const Scenario& sc, const MissionContext& ctx, Plan& plan) const {
@@ -136,9 +152,10 @@ void PhasedFormationMission::plan(const Scenario& sc, const MissionContext& ctx,
   const Vec3 cylinder = af.position - LandingOptions{}.cylinder_before_threshold_m * dir;
   pb.goal = Vec3(cylinder.x(), cylinder.y(), sc.mission.task_points.back().position.z());
   pb.seed = ctx.options.seed;
+  const World route_world = inner_world(sc.world, pb, pb.uav.radius_m);
   PlanResult route;
   try {
-    route = make_planner(ctx.algorithm, ctx.params)->plan(pb, sc.world, ctx.options.stop);
+    route = make_planner(ctx.algorithm, ctx.params)->plan(pb, route_world, ctx.options.stop);
   } catch (const std::invalid_argument& e) {
     route.message = e.what();
   }
@@ -175,8 +192,12 @@ void PhasedFormationMission::plan(const Scenario& sc, const MissionContext& ctx,
   };
   bool route_left = true;
   const auto step = [&] {
-    for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t i = 0; i < n; ++i) {
       if (!group.flying(i) && dep[i].lift_s <= group.time_s() + 1e-9) group.launch(i, dep[i].lift_off, false);
+      // Straight ahead off the runway, into the consensus once clear of the ground.
+      if (group.flying(i) && group.state(i).position.z() > af.position.z() + o.join_above_m) group.join(i);
+    }
+    if (!group.anyone_in_formation()) return group.step(order_now, solo);
     const Vec3 c = group.centroid();
     route_left = steer.update(c);
     // The frame turns towards phi* no faster than the UAVs can (a waypoint passed behind the
@@ -197,17 +218,20 @@ void PhasedFormationMission::plan(const Scenario& sc, const MissionContext& ctx,
     return true;
   };
   const auto all_joined = [&] {
-    for (std::size_t i = 0; i < n; ++i) {
-      if (!group.flying(i)) return false;
-      group.join(i);
-    }
+    for (std::size_t i = 0; i < n; ++i)
+      if (!group.in_formation(i)) return false;
     return true;
   };
   const auto in_shape = [&] { return group.shape_error_m(order_now) < o.shape_tolerance_m; };
   FormationLog log;
   std::string failed;
   const auto phase = [&](const char* name, bool ok) {
-    if (!ok && failed.empty()) failed = std::string("the ") + name + " phase did not complete";
+    if (!ok && failed.empty()) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "the %s phase did not complete (at t = %.0f s the shape was %.1f m off, tolerance %.1f m)", name,
+                    group.time_s(), group.shape_error_m(order_now), o.shape_tolerance_m);
+      failed = buf;
+    }
     log.phases.push_back({name, group.time_s()});
     return ok;
   };

@@ -25,6 +25,7 @@ struct FormationMissionOptions {
   double dismiss_within_m = 30000.0;       // of the airfield (P5-notes: 20 km; ours leaves room to dismiss)
   double taxi_mps = 10.0;
   double takeoff_interval_s = 20.0;        // least time between two lift-offs
+  double join_above_m = 50.0;              // above the airfield a UAV off the runway joins the consensus
   double step_timeout_s = 1800.0;          // a form-up or dismiss step that takes longer fails
 };
 

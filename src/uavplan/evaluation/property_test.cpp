@@ -160,5 +160,22 @@ TEST(MissionProperties, FormationClaimsHoldOnRandomFields) {
   EXPECT_GE(solved, 0.75 * uavs) << solved << " of " << uavs << " UAVs solved";
 }
 
+// P5's whole mission on airfields, task points and shapes nobody tuned for: every `solved` plan
+// passes the verifier (separation in the air, task points with their headings, every UAV on the
+// runway), and most are solved (the benchmark `uavplan bench p5` runs more).
+TEST(MissionProperties, FormationMissionClaimsHoldOnRandomMissions) {
+  int solved = 0;
+  const int missions = 12;
+  for (std::uint64_t seed = 1; seed <= missions; ++seed) {
+    const Scenario sc = random_formation_mission(seed);
+    const Plan plan = plan_mission(sc, options("pso_mpc", seed, kSafetyNet_s));
+    expect_claims_hold(sc, plan, "formation_mission seed " + std::to_string(seed));
+    if (plan.status != Status::solved) continue;
+    ++solved;
+    for (const Violation& v : verify_plan(sc, plan)) ADD_FAILURE() << "formation_mission seed " << seed << ": solved but " << describe(v);
+  }
+  EXPECT_GE(solved, 0.8 * missions) << solved << " of " << missions << " missions solved";
+}
+
 }  // namespace
 }  // namespace uavplan

@@ -242,6 +242,97 @@ Scenario random_p5_world(std::uint64_t seed) {
   return sc;
 }
 
+namespace {
+
+// A ring a_ij (each UAV talks to the ones before and after it): connected, far from complete.
+std::vector<std::vector<double>> ring_topology(std::size_t n) {
+  std::vector<std::vector<double>> a(n, std::vector<double>(n, 0.0));
+  for (std::size_t i = 0; i < n; ++i) a[i][(i + 1) % n] = a[(i + 1) % n][i] = 1.0;
+  return a;
+}
+
+// n UAVs parked `gap_m` apart: a row beside the runway (either side), or a line behind the
+// threshold on its axis.
+std::vector<Vec3> parking(Rng& r, const Airfield& af, std::size_t n, double gap_m) {
+  const Vec3 dir(std::cos(af.runway_heading_rad), std::sin(af.runway_heading_rad), 0.0), left(-dir.y(), dir.x(), 0.0);
+  std::vector<Vec3> out;
+  const bool beside = r.uniform01() < 0.7;
+  const double side = (r.uniform01() < 0.5 ? 1.0 : -1.0) * r.uniform(150.0, 400.0), first = r.uniform(-300.0, 500.0);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double at = static_cast<double>(k) * gap_m;
+    out.push_back(beside ? Vec3(af.position + (first + at) * dir + side * left) : Vec3(af.position - (200.0 + at) * dir));
+  }
+  return out;
+}
+
+}  // namespace
+
+Scenario random_formation_mission(std::uint64_t seed) {
+  Rng r(seed);
+  const double size = r.uniform(300000, 1000000), height = 10000;
+  Airfield af;
+  af.position = Vec3(r.uniform(60000, size - 60000), r.uniform(60000, size - 60000), 0.0);
+  af.runway_heading_rad = deg_to_rad(r.uniform(-180.0, 180.0));
+  af.runway_length_m = r.uniform(2000, 4000);
+  const Vec3 dir(std::cos(af.runway_heading_rad), std::sin(af.runway_heading_rad), 0.0);
+  // Places no cylinder may come near: the airfield, its landing cylinder and departure point.
+  std::vector<std::pair<Vec3, double>> keep{{af.position, 40000.0}, {af.position - 10000.0 * dir, 30000.0},
+                                            {af.position + (af.runway_length_m + 15000.0) * dir, 30000.0}};
+  Scenario sc;
+  sc.name = "p5_mission_random" + std::to_string(seed);
+  sc.mission.type = MissionType::formation_mission;
+  sc.mission.separation_m = 50.0;
+  sc.mission.airfield = af;
+  for (int k = static_cast<int>(r.uniform_int(2, 5)); k > 0; --k) {
+    TaskPoint tp;
+    tp.position = Vec3(r.uniform(0.1, 0.9) * size, r.uniform(0.1, 0.9) * size, r.uniform(3000, 7000));
+    tp.entry_heading_rad = deg_to_rad(r.uniform(-180.0, 180.0));
+    sc.mission.task_points.push_back(tp);
+    keep.emplace_back(tp.position, 25000.0);
+  }
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3::Zero(), Vec3(size, size, height)};
+  for (int k = static_cast<int>(r.uniform_int(5, 15)); k > 0; --k) {
+    const double radius = std::min(r.uniform(10000, 60000), 0.06 * size);
+    const Vec2 c(r.uniform(0.05, 0.95) * size, r.uniform(0.05, 0.95) * size);
+    bool clear = true;
+    for (const auto& [p, margin] : keep) clear = clear && (p.head<2>() - c).norm() > radius + margin;
+    if (clear) ws.obstacles.push_back(Cylinder{c, radius, 0.0, height});
+  }
+  sc.world = World(std::move(ws));
+  const std::size_t n = static_cast<std::size_t>(r.uniform_int(3, 6));
+  const double gap = r.uniform(60.0, 150.0);
+  const int kind = static_cast<int>(r.uniform_int(0, 3));
+  if (kind < 3) {
+    sc.mission.shape = formation_shape(kind, static_cast<int>(n), gap);
+  } else {  // a diamond grid: rows of two, alternating sides
+    for (std::size_t k = 0; k < n; ++k)
+      sc.mission.shape.emplace_back(-gap * static_cast<double>(k), (k % 2 == 0 ? 0.5 : -0.5) * gap, 0.0);
+  }
+  if (r.uniform01() < 0.3)
+    for (std::size_t k = 0; k < n; ++k) sc.mission.shape[k].z() = 30.0 * static_cast<double>(k % 3);
+  if (r.uniform01() < 0.4) sc.mission.topology = ring_topology(n);
+  const std::vector<Vec3> starts = parking(r, af, n, r.uniform(100.0, 250.0));
+  const bool own_model = r.uniform01() < 0.5;
+  for (std::size_t i = 0; i < n; ++i) {
+    UavSpec u;
+    u.id = "uav" + std::to_string(i + 1);
+    u.start = starts[i];
+    u.heading_rad = af.runway_heading_rad;
+    u.radius_m = 5.0;
+    u.speed = own_model ? SpeedLimits{70, 150, 200} : SpeedLimits{r.uniform(55, 75), r.uniform(120, 170), r.uniform(190, 230)};
+    u.max_turn_rad = deg_to_rad(30);
+    if (own_model) u.max_turn_rate_rad_s = deg_to_rad(2.2);
+    u.max_climb_rate_mps = 20;
+    if (own_model) u.model = AutopilotParams{};
+    sc.uavs.push_back(u);
+  }
+  if (!own_model)  // one vehicle type for the whole formation
+    for (UavSpec& u : sc.uavs) u.speed = sc.uavs.front().speed;
+  sc.planner.algorithm = "pso_mpc";
+  return sc;
+}
+
 Scenario enclosed_goal_world(std::uint64_t seed) {
   Rng r(seed);
   WorldSpec ws;

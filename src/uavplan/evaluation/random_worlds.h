@@ -30,6 +30,14 @@ Scenario random_formation_world(std::uint64_t seed);
 // from near one corner, 1-3 via points with random entry headings (multiples of 45 deg), a goal.
 Scenario random_p5_world(std::uint64_t seed);
 
+// P5's whole formation mission (issue targets): 300-1000 km square, 10 km high, an airfield
+// anywhere at least 60 km from the edges with a random runway heading and a 2-4 km runway, 3-6
+// UAVs parked beside the runway or behind its threshold, a wedge, line abreast, column or diamond
+// (sometimes stepped in height) 60-150 m apart, separation 50 m, the complete or a ring topology,
+// 2-5 task points at 3-7 km with random entry headings, 5-15 no-fly cylinders of 10-60 km kept
+// clear of the task points and the airfield's approach and departure, P5's vehicle or one near it.
+Scenario random_formation_mission(std::uint64_t seed);
+
 // A world whose first UAV's goal sits in a closed hollow box: no route can reach it.
 Scenario enclosed_goal_world(std::uint64_t seed);
 

@@ -464,6 +464,13 @@ void read_formation_mission(const At& m, const At& uavs, Scenario& sc) {
     const At ui = uavs.item(i);
     if (u.goal) ui["goal"].fail("a formation_mission UAV has no goal: it lands on the runway");
     if (!sc.world.on_ground(u.start)) ui["start"].fail("a formation_mission UAV starts parked on the ground at the airfield");
+    // The take-off rolls and climb-outs pass over the runway: nobody may wait on it.
+    const Vec3 along = Vec3(std::cos(ms.airfield->runway_heading_rad), std::sin(ms.airfield->runway_heading_rad), 0.0);
+    const Vec3 rel = u.start - ms.airfield->position;
+    const double s_m = rel.dot(along), off_m = std::abs(along.x() * rel.y() - along.y() * rel.x());
+    if (s_m > 0.0 && s_m <= ms.airfield->runway_length_m && off_m < ms.separation_m)
+      ui["start"].fail("is parked on the runway (" + At::fmt(std::round(off_m)) + " m from its centreline), where the others take off; park it at least the separation " +
+                       At::fmt(ms.separation_m) + " m beside the runway or behind its threshold");
     for (std::size_t j = 0; j < i; ++j)
       if ((sc.uavs[j].start - u.start).norm() < ms.separation_m)
         ui["start"].fail("is " + At::fmt((sc.uavs[j].start - u.start).norm()) + " m from " + sc.uavs[j].id +
