@@ -6,6 +6,7 @@
 //  - a legend entry per UAV in its colour, axes labelled in metres, a north arrow, a scale bar,
 //    the altitude / speed / separation (log) charts and the height-above-ground profile;
 //  - radar shells and moving-obstacle tracks when the scenario has them;
+//  - a phased mission's phases as bands on the time charts, named beside the time slider;
 //  - the page is no wider than the window.
 // The screenshot written is of the whole page.
 //   node report_browser_test.mjs REPORT.html NODE_MODULES_DIR SCREENSHOT.png
@@ -123,6 +124,18 @@ try {
   if (info.profiled && info.profile !== 1) fail('no height-above-ground profile');
   if (info.radars && info.shells < info.radars) fail(`${info.radars} radars but ${info.shells} range shells`);
   if (info.tracks !== info.moving) fail(`${info.moving} moving obstacles but ${info.tracks} tracks`);
+  // A phased mission: bands on every time chart, and the phase named beside the time slider.
+  const phases = await page.evaluate(() => JSON.parse(document.getElementById('uavplan-data').textContent).phases || []);
+  if (phases.length) {
+    const banded = await page.evaluate(() => window.uavplanReport.chartsWithPhaseBands());
+    const timeCharts = 2 + (info.uavs.length > 1 ? 1 : 0);
+    if (banded < timeCharts) fail(`${phases.length} phases but bands on ${banded} of ${timeCharts} time charts`);
+    for (const p of phases) {
+      const label = await page.evaluate((t) => { window.uavplanReport.setTime(t); return window.uavplanReport.timeLabel(); }, (p.start_s + p.end_s) / 2);
+      if (!label.includes(p.name)) fail(`at t = ${(p.start_s + p.end_s) / 2} s the label says '${label}', not ${p.name}`);
+    }
+    await page.evaluate(() => window.uavplanReport.setTime(0));
+  }
   if (info.pageWidth > 1400) fail(`the page is ${info.pageWidth} px wide in a 1400 px window`);
   await page.screenshot({ path: shotPath, fullPage: true });
   for (const e of errors) fail(e);

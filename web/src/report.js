@@ -269,6 +269,29 @@ const movers = data.moving.map((m) => {
   return { m, mesh };
 });
 
+// The rows of a trajectory that a drawn line needs: Douglas-Peucker within `tol` metres (a long
+// mission's rows every second are mostly straight runs; drawing all of them stalls the page).
+function simplified(traj, tol) {
+  if (traj.length <= 2) return traj;
+  const keep = new Uint8Array(traj.length);
+  keep[0] = keep[traj.length - 1] = 1;
+  const stack = [[0, traj.length - 1]];
+  while (stack.length) {
+    const [a, b] = stack.pop();
+    const [, ax, ay, az] = traj[a], [, bx, by, bz] = traj[b];
+    const dx = bx - ax, dy = by - ay, dz = bz - az, len2 = dx * dx + dy * dy + dz * dz;
+    let worst = -1, at = -1;
+    for (let i = a + 1; i < b; ++i) {
+      const [, x, y, z] = traj[i];
+      const s = len2 > 0 ? Math.min(1, Math.max(0, ((x - ax) * dx + (y - ay) * dy + (z - az) * dz) / len2)) : 0;
+      const ex = x - ax - s * dx, ey = y - ay - s * dy, ez = z - az - s * dz, d = ex * ex + ey * ey + ez * ez;
+      if (d > worst) { worst = d; at = i; }
+    }
+    if (at >= 0 && worst > tol * tol) { keep[at] = 1; stack.push([a, at], [at, b]); }
+  }
+  return traj.filter((_, i) => keep[i]);
+}
+
 // Routes as screen-space wide lines, and one marker per UAV that the time slider moves.
 const routeGroup = new THREE.Group();
 scene.add(routeGroup);
@@ -277,7 +300,7 @@ const uavMarkers = [];
 for (const u of data.uavs) {
   if (u.trajectory.length < 2) continue;
   const pts = [];
-  for (const [, x, y, z] of u.trajectory) pts.push(x, y, z);
+  for (const [, x, y, z] of simplified(u.trajectory, diag * 1e-4)) pts.push(x, y, z);
   const g = new LineGeometry();
   g.setPositions(pts);
   const mat = new LineMaterial({ color: new THREE.Color(u.colour), linewidth: 3, worldUnits: false });
@@ -303,11 +326,18 @@ function positionAt(traj, t) {
   return [1, 2, 3].map((k) => a[k] + s * (b[k] - a[k]));
 }
 
+// A phased mission's phase at time t (the last one holds to the end).
+const phases = data.phases || [];
+function phaseAt(t) {
+  return phases.find((p) => t >= p.start_s && t <= p.end_s) || null;
+}
+
 let currentTime = 0;
 function setTime(t) {
   currentTime = Math.min(Math.max(0, t), data.t_end_s || 0);
   slider.value = String(currentTime);
-  timeLabel.textContent = `t = ${currentTime.toFixed(1)} s`;
+  const phase = phaseAt(currentTime);
+  timeLabel.textContent = `t = ${currentTime.toFixed(1)} s${phase ? ` \u00b7 ${phase.name}` : ''}`;
   for (const { u, dot } of uavMarkers) dot.position.set(...positionAt(u.trajectory, currentTime));
   for (const { m, mesh } of movers) mesh.position.set(...movingAt(m, currentTime));
   for (const c of charts) c.setCursor({ left: c.valToPos(currentTime, 'x'), top: 10 }, false);
@@ -339,6 +369,26 @@ const chartWidth = () => Math.max(280, Math.floor(right.clientWidth || 400));
 right.append(el('h2', {}, 'Altitude, speed and separation over time'));
 const series = data.series;
 const colourOf = Object.fromEntries(data.uavs.map((u) => [u.id, u.colour]));
+// Phases as coloured bands behind the series, each named at its top left.
+const phaseColours = ['rgba(59,130,246,0.10)', 'rgba(16,185,129,0.10)', 'rgba(245,158,11,0.12)', 'rgba(139,92,246,0.10)', 'rgba(239,68,68,0.10)'];
+const chartsBanded = new Set();
+function drawPhaseBands(u) {
+  if (!phases.length) return;
+  chartsBanded.add(u);
+  const { ctx } = u;
+  const { top, height } = u.bbox;
+  ctx.save();
+  ctx.font = `${Math.round(10 * devicePixelRatio)}px sans-serif`;
+  ctx.textBaseline = 'top';
+  phases.forEach((p, k) => {
+    const x0 = u.valToPos(p.start_s, 'x', true), x1 = u.valToPos(p.end_s, 'x', true);
+    ctx.fillStyle = phaseColours[k % phaseColours.length];
+    ctx.fillRect(x0, top, Math.max(1, x1 - x0), height);
+    ctx.fillStyle = '#374151';
+    if (x1 - x0 > ctx.measureText(p.name).width + 4) ctx.fillText(p.name, x0 + 3, top + 3);
+  });
+  ctx.restore();
+}
 function addChart(title, key, unit, extra, opts = {}) {
   const host = el('div', { class: 'chart' });
   right.append(host);
@@ -348,8 +398,9 @@ function addChart(title, key, unit, extra, opts = {}) {
   if (extra) { cols.push(series.t_s.map(() => extra.value)); sers.push(extra.series); }
   const chart = new uPlot({
     title: `${title} (${unit})`, width: chartWidth(), height: 170, series: sers,
-    scales: { x: { time: false }, ...(opts.scales || {}) }, axes: [{ label: 't (s)' }, {}],
+    scales: { x: { time: false }, ...(opts.scales || {}) }, axes: [{ label: 't (s)' }, { size: 64 }],
     legend: { show: series.uavs.length <= 12 },
+    hooks: { drawClear: [drawPhaseBands] },
   }, cols, host);
   charts.push(chart);
   return chart;
@@ -359,7 +410,8 @@ if (series.t_s.length > 0) {
   addChart('Speed', 'speed_mps', 'm/s');
   if (series.uavs.length > 1) {
     // A log scale shows close approaches next to the separation; distances under 1 cm are drawn at 1 cm.
-    addChart('Distance to the nearest UAV', 'nearest_m', 'm, log scale',
+    addChart(data.mission === 'formation_mission' ? 'Spacing: distance to the nearest UAV in the air' : 'Distance to the nearest UAV',
+      'nearest_m', 'm, log scale',
       data.separation_m > 0 ? { value: data.separation_m, series: { label: 'separation', stroke: '#000', dash: [6, 4], width: 1 } } : null,
       { map: (v) => Math.max(v, 0.01), scales: { y: { distr: 3, log: 10 } } });
   }
@@ -458,6 +510,9 @@ window.uavplanReport = {
   uavs: data.uavs.length,
   radarShells: shellCount,
   movingTracks: movers.length,
+  phases: phases.length,
+  chartsWithPhaseBands: () => chartsBanded.size,
+  timeLabel: () => timeLabel.textContent,
   axisLabels: axisLabels.length,
   setTime,
   setRoutesVisible(v) { routesToggle.checked = v; routeGroup.visible = v; renderer.render(scene, camera); },

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "uavplan/coordination/separation.h"
 #include "uavplan/evaluation/metrics.h"
 #include "uavplan/io/palette.h"
 #include "uavplan/io/report_assets.h"
@@ -163,6 +164,14 @@ std::string report_data_json(const Scenario& sc, const Plan& plan_in, const std:
     times.push_back(round6(t));
     for (std::size_t k = 0; k < flown.size(); ++k) pos[k].push_back(position_at(flown[k]->trajectory, t));
   }
+  // At an airfield (formation_mission) a pair counts only while either UAV is in the air and both
+  // are still there (a landed UAV is gone after its last row): the verifier's rule.
+  const auto counts = [&](std::size_t k, std::size_t o, int i) {
+    if (!sc.mission.airfield) return true;
+    const double t = t_end * i / (n - 1), air = sc.mission.airfield->position.z() + kAirborneAbove_m;
+    if (t > flown[k]->trajectory.back().t_s || t > flown[o]->trajectory.back().t_s) return false;
+    return pos[k][static_cast<std::size_t>(i)].z() > air || pos[o][static_cast<std::size_t>(i)].z() > air;
+  };
   ojson series = ojson::array();
   for (std::size_t k = 0; k < flown.size(); ++k) {
     ojson alt = ojson::array(), speed = ojson::array(), nearest = ojson::array();
@@ -172,13 +181,22 @@ std::string report_data_json(const Scenario& sc, const Plan& plan_in, const std:
       speed.push_back(round6(speed_at(flown[k]->trajectory, t)));
       double d = World::kInf;
       for (std::size_t o = 0; o < flown.size(); ++o)
-        if (o != k) d = std::min(d, (pos[k][i] - pos[o][i]).norm());
+        if (o != k && counts(k, o, i)) d = std::min(d, (pos[k][i] - pos[o][i]).norm());
       nearest.push_back(std::isfinite(d) ? ojson(round6(d)) : ojson(nullptr));
     }
     series.push_back({{"id", flown[k]->id}, {"altitude_m", std::move(alt)}, {"speed_mps", std::move(speed)},
                       {"nearest_m", std::move(nearest)}});
   }
   j["series"] = {{"t_s", std::move(times)}, {"uavs", std::move(series)}};
+  // A phased mission's phases (P5's form-up ... landing), for bands on the charts.
+  j["phases"] = ojson::array();
+  if (plan.formation) {
+    double from = 0.0;
+    for (const FormationLog::Phase& ph : plan.formation->phases) {
+      j["phases"].push_back({{"name", ph.name}, {"start_s", round6(from)}, {"end_s", round6(ph.end_s)}});
+      from = ph.end_s;
+    }
+  }
 
   ojson pm = ojson::object();
   for (const auto& [key, v] : plan.metrics) pm[key] = round6(v);

@@ -91,5 +91,41 @@ TEST(Report, RadarShellsWhereTheThreatCostFallsToTheFuelCost) {
   EXPECT_NEAR(shells[2].get<double>(), std::pow(1e6, 0.25), 1e-6);
 }
 
+// A phased mission (P5): its phases for the charts' bands, and the spacing chart by the
+// airfield's rule: nothing while both UAVs are on the ground, nothing once one has gone.
+TEST(Report, PhasesAndTheSpacingInTheAir) {
+  Scenario sc = scenario_with();
+  sc.mission.type = MissionType::formation_mission;
+  sc.mission.airfield = Airfield{Vec3(0, 0, 0), 0.0, 1000.0};
+  UavSpec b = sc.uavs[0];
+  b.id = "b";
+  sc.uavs.push_back(b);
+  UavPlan ua = test::sample_uav(), ub = test::sample_uav();
+  ub.id = "b";
+  ua.trajectory = {{0.0, Vec3(0, 0, 0)}, {10.0, Vec3(0, 0, 0)}, {20.0, Vec3(0, 0, 50)}, {40.0, Vec3(0, 0, 50)}};
+  ub.trajectory = {{0.0, Vec3(30, 0, 0)}, {10.0, Vec3(30, 0, 0)}, {20.0, Vec3(30, 0, 50)}, {30.0, Vec3(30, 0, 50)}};
+  Plan plan = test::plan_of({ua, ub});
+  plan.formation = FormationLog{};
+  plan.formation->phases = {{"form_up", 12.0}, {"mission", 25.0}, {"landing", 40.0}};
+  const auto data = nlohmann::json::parse(report_data_json(sc, plan, {}));
+  const auto& ph = data["phases"];
+  ASSERT_EQ(ph.size(), 3u);
+  EXPECT_EQ(ph[1]["name"], "mission");
+  EXPECT_DOUBLE_EQ(ph[1]["start_s"].get<double>(), 12.0);
+  EXPECT_DOUBLE_EQ(ph[1]["end_s"].get<double>(), 25.0);
+  const auto& t = data["series"]["t_s"];
+  const auto& near = data["series"]["uavs"][0]["nearest_m"];
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const double ti = t[i].get<double>();
+    if (ti < 11.0 || ti > 30.5) {
+      EXPECT_TRUE(near[i].is_null()) << "t = " << ti;
+    } else if (ti > 19.0 && ti < 29.5) {
+      EXPECT_NEAR(near[i].get<double>(), 30.0, 1e-9) << "t = " << ti;
+    }
+  }
+  // Other missions: no phases.
+  EXPECT_TRUE(nlohmann::json::parse(report_data_json(scenario_with(), sample_plan(), {}))["phases"].empty());
+}
+
 }  // namespace
 }  // namespace uavplan
