@@ -83,22 +83,6 @@ std::vector<GroundRun> departures(const Scenario& sc, const std::vector<Vec3>& s
   return out;
 }
 
-// The world with its horizontal bounds drawn in by `margin_m` (the formation's slots and turns
-// around the reference must stay inside), but never past the route's fixed points.
-World inner_world(const World& w, const Problem& pb, double margin_m) {
-  const Aabb& b = w.bounds();
-  std::vector<Vec3> fixed = pb.via;
-  fixed.push_back(pb.uav.start);
-  fixed.push_back(pb.goal);
-  for (const Vec3& p : fixed)
-    for (int k = 0; k < 2; ++k) margin_m = std::min({margin_m, p[k] - b.min[k], b.max[k] - p[k]});
-  if (margin_m <= 0.0) return w;
-  WorldSpec spec = w.spec();
-  spec.bounds.min.head<2>() += Vec2::Constant(margin_m);
-  spec.bounds.max.head<2>() -= Vec2::Constant(margin_m);
-  return World(std::move(spec));
-}
-
 }  // namespace
 
 void PhasedFormationMission::plan(const Scenario& sc, const MissionContext& ctx, Plan& plan) const {
@@ -152,10 +136,9 @@ void PhasedFormationMission::plan(const Scenario& sc, const MissionContext& ctx,
   const Vec3 cylinder = af.position - LandingOptions{}.cylinder_before_threshold_m * dir;
   pb.goal = Vec3(cylinder.x(), cylinder.y(), sc.mission.task_points.back().position.z());
   pb.seed = ctx.options.seed;
-  const World route_world = inner_world(sc.world, pb, pb.uav.radius_m);
-  PlanResult route;
+  PlanResult route;  // pso_mpc keeps the body (and its turns) inside the bounds too
   try {
-    route = make_planner(ctx.algorithm, ctx.params)->plan(pb, route_world, ctx.options.stop);
+    route = make_planner(ctx.algorithm, ctx.params)->plan(pb, sc.world, ctx.options.stop);
   } catch (const std::invalid_argument& e) {
     route.message = e.what();
   }

@@ -160,6 +160,16 @@ TEST(MissionProperties, FormationClaimsHoldOnRandomFields) {
   EXPECT_GE(solved, 0.75 * uavs) << solved << " of " << uavs << " UAVs solved";
 }
 
+// pso_mpc through P5's model on large random worlds: a flown route it calls solved holds (its
+// turns' overshoot kept off the cylinders and inside the bounds).
+TEST(MissionProperties, PsoMpcFlownRoutesHoldOnLargeRandomWorlds) {
+  for (std::uint64_t seed = 80; seed <= 95; ++seed) {
+    const Scenario sc = random_p5_world(seed);
+    const Plan plan = plan_mission(sc, options("pso_mpc", seed, kSafetyNet_s));
+    expect_claims_hold(sc, plan, "p5 world seed " + std::to_string(seed));
+  }
+}
+
 // P5's whole mission on airfields, task points and shapes nobody tuned for: every `solved` plan
 // passes the verifier (separation in the air, task points with their headings, every UAV on the
 // runway), and most are solved (the benchmark `uavplan bench p5` runs more).

@@ -49,7 +49,7 @@ struct LegPlanner {
 
   // Eqs. 5-12 for the candidate U = (dphi, dh) from p (heading psi, arriving along `in`).
   double cost(std::span<const double> u, const Vec3& p, double psi, const std::optional<Vec3>& in, const Vec3& t,
-              const std::optional<double>& entry) const {
+              const std::optional<double>& entry, int prediction_steps) const {
     const double psi_c = psi + u[0], d = (p - t).norm();
     const Vec3 q = p + Vec3(l * std::cos(psi_c), l * std::sin(psi_c), u[1]);
     const Vec3 seg = q - p;
@@ -57,8 +57,8 @@ struct LegPlanner {
     if (in && in->norm() > 0.0 && turn_rad(*in, seg) > turn_max + kAngleTolerance_rad) return kInf;
     if (d < 3.0 * l && !closes(q, seg, t, entry)) return kInf;  // eq. 6 (and 10): hard near the end
     Vec3 e = q;
-    if (o.prediction_steps > 0 && d > o.d_t_l * l) {
-      const Vec3 sp = p + (1.0 + o.prediction_steps) * seg;
+    if (prediction_steps > 0 && d > o.d_t_l * l) {
+      const Vec3 sp = p + (1.0 + prediction_steps) * seg;
       if (!prediction_clear(q, sp)) return kInf;
       e = sp;
       e.z() = std::clamp(e.z(), world.bounds().min.z(), world.bounds().max.z());  // for the cost only
@@ -114,7 +114,15 @@ PlanResult PsoMpcPlanner::do_plan(const Problem& pb, const World& world, const S
   UavSpec u = pb.uav;
   if (u.model && u.max_turn_rate_rad_s)
     u.radius_m += u.speed.cruise_mps / *u.max_turn_rate_rad_s * (1.0 / std::cos(0.5 * turn_max) - 1.0);
-  const SegmentRule rule(world, u);
+  // The same overshoot, and the body, kept inside the bounds' sides (never past a fixed point).
+  std::vector<Vec3> fixed = pb.via;
+  fixed.push_back(u.start);
+  fixed.push_back(pb.goal);
+  double edge_m = u.radius_m;
+  const Aabb& box = world.bounds();
+  for (const Vec3& f : fixed)
+    for (int k = 0; k < 2; ++k) edge_m = std::min({edge_m, f[k] - box.min[k], box.max[k] - f[k]});
+  const SegmentRule rule = SegmentRule(world, u).with_edge_margin(edge_m);
   const LegPlanner leg_planner{world, rule, options_, l, dh_max, turn_max};
   std::vector<Vec3> route{u.start};
   std::optional<Vec3> in;
@@ -150,11 +158,11 @@ PlanResult PsoMpcPlanner::do_plan(const Problem& pb, const World& world, const S
       std::vector<double> dead;  // turns (dphi) that led to dead ends
       double chosen = 0.0;
     };
-    constexpr int kMaxBacktracks = 20;
+    constexpr int kMaxBacktracks = 200;
     std::vector<Before> history;
     std::vector<double> dead_here;
     int backtracks = 0;
-    for (int step = 0; step < cap + 2 * kMaxBacktracks && !arrived; ++step) {
+    for (int step = 0; static_cast<int>(history.size()) < cap && !arrived; ++step) {  // backtracks are bounded below
       if (stop.should_stop()) {
         res.message = "stopped before the route was complete";
         return res;
@@ -166,16 +174,25 @@ PlanResult PsoMpcPlanner::do_plan(const Problem& pb, const World& world, const S
         break;
       }
       const double near = 0.25 * turn_max;
+      int prediction = options_.prediction_steps;
       const auto f = [&](std::span<const double> x) {
         for (const double d : dead_here)
           if (std::abs(x[0] - d) < near) return kInf;
-        return leg_planner.cost(x, p, psi, in, target, entry);
+        return leg_planner.cost(x, p, psi, in, target, entry, prediction);
       };
       const std::array<double, 2> lo{-turn_max, -dh_max}, hi{turn_max, dh_max};
       const std::array<double, 4> seeds{0.0, 0.0, std::clamp(wrap(bearing(p, target) - psi), -turn_max, turn_max),
                                         std::clamp(target.z() - p.z(), -dh_max, dh_max)};
       Rng rng = base.split(leg * 1000003u + static_cast<std::uint64_t>(step));
       PsoResult best = pso_minimize(f, lo, hi, options_.pso, rng, seeds);
+      // Every candidate's straight look-ahead blocked (a no-fly zone ahead closer than the
+      // prediction reaches, a turn of 30 deg per step cannot clear it): look half as far ahead.
+      while (best.f == kInf && prediction > 0) {
+        prediction /= 2;
+        const PsoResult shorter = pso_minimize(f, lo, hi, options_.pso, rng, seeds);
+        best.evaluations += shorter.evaluations;
+        best.f = shorter.f, best.x = shorter.x;
+      }
       if (best.f == kInf && history.empty()) {  // once more, with a swarm twice as large (P5-notes 4.1)
         PsoOptions wider = options_.pso;
         wider.particles *= 2;

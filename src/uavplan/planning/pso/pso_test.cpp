@@ -95,6 +95,37 @@ TEST(PsoMpc, WithoutTheLookAheadTheCylinderIsHarderToPass) {
   }
 }
 
+// Heading straight at a cylinder 20 km ahead: every candidate's 55 km look-ahead is blocked, and
+// no sequence of 30 deg turns clears it in time; looking less far ahead it goes round.
+TEST(PsoMpc, ACylinderCloserThanTheLookAheadIsStillPassed) {
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(-100000, -100000, 0), Vec3(300000, 300000, 10000)};
+  ws.obstacles.push_back(Cylinder{Vec2(80000, 0), 55000, 0, 10000});
+  const World w(std::move(ws));
+  Problem p = problem();
+  p.uav.heading_rad = 0.0;
+  p.goal = Vec3(250000, 0, 5000);
+  const PlanResult r = PsoMpcPlanner({}).plan(p, w, {});
+  ASSERT_EQ(r.status, Status::solved) << r.message;
+  const SegmentRule rule(w, p.uav);
+  for (std::size_t k = 1; k < r.route.waypoints.size(); ++k) EXPECT_TRUE(rule(r.route.waypoints[k - 1], r.route.waypoints[k])) << k;
+}
+
+// A margin off the bounds' sides (pso_mpc: the body and the turns' overshoot), not off the top.
+TEST(SegmentRule, AnEdgeMarginKeepsPointsOffTheSides) {
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(1000, 1000, 100)};
+  const World w(std::move(ws));
+  UavSpec u;
+  const SegmentRule plain(w, u), kept = plain.with_edge_margin(100.0);
+  EXPECT_TRUE(plain.point_ok(Vec3(50, 500, 50)));
+  EXPECT_FALSE(kept.point_ok(Vec3(50, 500, 50)));
+  EXPECT_FALSE(kept.point_ok(Vec3(500, 950, 50)));
+  EXPECT_TRUE(kept.point_ok(Vec3(500, 500, 99)));
+  EXPECT_FALSE(kept(Vec3(500, 500, 50), Vec3(500, 920, 50)));
+  EXPECT_TRUE(plain(Vec3(500, 500, 50), Vec3(500, 920, 50)));
+}
+
 TEST(PsoSingle, TheBaselineBreaksALimitOnTheSameScene) {
   // The multi-step route's waypoint count, all in one swarm (P5 sec. 4.1): its best route turns
   // beyond 30 deg somewhere or cuts the cylinder; the planner does not call it solved.
