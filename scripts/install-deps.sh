@@ -15,6 +15,10 @@ PACKAGES=(
   libbenchmark-dev
   libompl-dev            # bench: OMPL's RRT, RRTConnect and RRT* as the baselines of P1's local layer
   libgeographiclib-dev   # io: local frame <-> WGS84 (exports, OSM buildings)
+  libtbb-dev             # experiments: a batch's runs on every core
+  libopenmpi-dev openmpi-bin  # uavplan batch --mpi: a batch across machines
+  python3-dev pybind11-dev python3-pybind11  # the Python module
+  python3-numpy python3-pytest python3-matplotlib  #   its arrays, its tests, its example's plot
   gdal-bin               # tests: ogr2ogr reads the GeoJSON and KML exports back
   clang-14 libclang-rt-14-dev  # make fuzz: libFuzzer with AddressSanitizer and UBSan
   chromium               # tests: the HTML report in a headless browser

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <atomic>
 #include <functional>
 #include <optional>
 #include <string>
@@ -25,6 +26,7 @@ void add_info_command(CLI::App& app, std::function<int()>& run);
 void add_bench_command(CLI::App& app, std::function<int()>& run);
 void add_export_command(CLI::App& app, std::function<int()>& run);
 void add_report_command(CLI::App& app, std::function<int()>& run);
+void add_batch_command(CLI::App& app, std::function<int()>& run);
 
 // Loads both and checks that every plan UAV is in the scenario; on bad input prints the one-line
 // error on stderr and returns false (the caller exits with kExitBadInput).
@@ -64,6 +66,7 @@ void add_run_options(CLI::App& cmd, RunArgs& a);
 // Interrupts: the first SIGINT / SIGTERM stops planning (the command ends with exit 130).
 void install_interrupt_handlers();
 bool interrupted();
+const std::atomic<bool>* interrupt_flag();
 inline constexpr int kExitInterrupted = 130;
 // The stop condition of a run: the interrupt, the time limit, threads and memory.
 StopCondition run_stop(const RunArgs& a);

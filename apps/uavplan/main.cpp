@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
       "  uavplan report scenarios/demo.yaml out/plan.json -o out/report.html  HTML report, 3-D view\n"
       "  uavplan info scenarios/demo.yaml                 summarise a scenario's world\n"
       "  uavplan bench world                              world-query benchmark table\n"
+      "  uavplan batch sweep.yaml -o results              a sweep of runs on every core, results.csv\n"
       "Exit codes: 0 solved (or plan holds), 1 not solved (or violations), 2 bad input.");
   // Usage errors are one line too, like every bad input.
   app.failure_message([](const CLI::App*, const CLI::Error& e) { return "uavplan: " + std::string(e.what()) + "\n"; });
@@ -27,6 +28,7 @@ int main(int argc, char** argv) {
   add_bench_command(app, run);
   add_export_command(app, run);
   add_report_command(app, run);
+  add_batch_command(app, run);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -54,6 +54,8 @@ void install_interrupt_handlers() {
 
 bool interrupted() { return g_interrupted.load(); }
 
+const std::atomic<bool>* interrupt_flag() { return &g_interrupted; }
+
 StopCondition run_stop(const RunArgs& a) {
   StopCondition stop = StopCondition::cancel_flag(&g_interrupted);
   if (a.time_limit_s > 0.0) stop = stop | StopCondition::time_limit(a.time_limit_s);

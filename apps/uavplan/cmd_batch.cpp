@@ -1,0 +1,284 @@
+// uavplan batch SWEEP -o DIR: every run of a sweep planned and verified, on every core (oneTBB)
+// and, with --mpi under mpirun, across machines; DIR/results.csv, timings.csv, each run's plan,
+// a summary table. A batch killed part way continues with --resume.
+//
+// DIR/journal/ holds one line per finished run (written in one write(2) after the run's plan
+// file is in place): a SIGKILL loses at most the runs under way, and a line cut short is
+// dropped on resume, its run done again. Under MPI every rank appends to its own journal, so
+// DIR must be a folder every rank sees (as a cluster's shared file system is).
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <set>
+#include <thread>
+
+#include "batch_mpi.h"
+#include "commands.h"
+#include "uavplan/experiments/batch.h"
+#include "uavplan/experiments/ompl_log.h"
+#include "uavplan/experiments/results.h"
+#include "uavplan/experiments/sweep.h"
+#include "uavplan/io/files.h"
+#include "uavplan/io/input_error.h"
+
+namespace uavplan::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+struct BatchArgs {
+  std::string sweep;
+  std::string out_dir;
+  int jobs = 0;
+  bool resume = false, dry_run = false, isolate = false, mpi = false;
+  std::string ompl_log;
+  std::uint64_t max_memory_bytes = 0;
+};
+
+fs::path journal_dir(const std::string& out) { return fs::path(out) / "journal"; }
+
+// Every parsable journal line of every rank's file.
+std::vector<RunRecord> read_journals(const std::string& out) {
+  std::vector<RunRecord> done;
+  std::error_code ec;
+  if (!fs::is_directory(journal_dir(out), ec)) return done;
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(journal_dir(out))) files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  for (const fs::path& f : files) {
+    std::ifstream in(f);
+    std::string line;
+    while (std::getline(in, line))
+      if (auto r = parse_journal_line(line)) done.push_back(std::move(*r));
+  }
+  return done;
+}
+
+// The runs a journal holds, checked against the sweep (one record per run number).
+std::optional<std::vector<RunRecord>> resumed_runs(const BatchArgs& a, const std::vector<RunSpec>& runs, bool root) {
+  std::vector<RunRecord> kept;
+  std::set<std::size_t> seen;
+  for (RunRecord& r : read_journals(a.out_dir)) {
+    if (r.spec.index >= runs.size() || !same_run(r.spec, runs[r.spec.index])) {
+      if (root)
+        std::cerr << a.sweep << ": --resume: " << a.out_dir << " holds run " << r.spec.index
+                  << " of another sweep (scenario, planner, seed or parameters differ); use a new folder\n";
+      return std::nullopt;
+    }
+    if (seen.insert(r.spec.index).second) kept.push_back(std::move(r));
+  }
+  return kept;
+}
+
+std::string format_eta(double s) {
+  char buf[32];
+  if (s >= 3600) std::snprintf(buf, sizeof buf, "%dh%02dm", int(s / 3600), int(s / 60) % 60);
+  else std::snprintf(buf, sizeof buf, "%dm%02ds", int(s / 60), int(s) % 60);
+  return buf;
+}
+
+std::string now_text() {
+  const std::time_t t = std::time(nullptr);
+  char buf[64];
+  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M:%S", std::localtime(&t));
+  return buf;
+}
+
+std::string host_name() {
+  char buf[256] = {0};
+  return ::gethostname(buf, sizeof buf - 1) == 0 ? std::string(buf) : std::string("unknown");
+}
+
+void write_ompl_logs(const BatchArgs& a, const Sweep& sweep, const std::vector<RunRecord>& all, double total_s,
+                     const std::string& started) {
+  // One experiment per scenario: one file for one scenario, FILE-<scenario stem>.log for several.
+  std::vector<std::string> scenarios = sweep.scenarios;
+  for (std::size_t i = 0; i < scenarios.size(); ++i) {
+    std::vector<RunRecord> mine;
+    for (const RunRecord& r : all)
+      if (r.spec.scenario == scenarios[i]) mine.push_back(r);
+    std::sort(mine.begin(), mine.end(), [](const RunRecord& x, const RunRecord& y) { return x.spec.index < y.spec.index; });
+    OmplLogHeader h;
+    h.experiment = sweep.name + (scenarios.size() > 1 ? "-" + fs::path(scenarios[i]).stem().string() : "");
+    h.host = host_name();
+    h.date = started;
+    h.setup = "sweep " + sweep.source + "\nscenario " + scenarios[i] + "\n";
+    h.time_limit_s = sweep.time_limit_s;
+    h.memory_limit_mb = double(a.max_memory_bytes) / (1024.0 * 1024.0);
+    h.total_s = total_s;
+    fs::path file = a.ompl_log;
+    if (scenarios.size() > 1)
+      file = file.parent_path() / (file.stem().string() + "-" + std::to_string(i) + "-" + fs::path(scenarios[i]).stem().string() +
+                                   (file.extension().empty() ? ".log" : file.extension().string()));
+    write_file_atomic(file.string(), ompl_log(mine, h));
+    std::cout << "wrote " << file.string() << "\n";
+  }
+}
+
+int run_batch_command(const BatchArgs& a) {
+  MpiSession mpi(a.mpi);
+  Sweep sweep;
+  std::vector<RunSpec> runs;
+  try {
+    sweep = load_sweep(a.sweep);
+    check_sweep(sweep);
+    runs = expand_runs(sweep);
+  } catch (const InputError& e) {
+    if (mpi.root()) std::cerr << e.what() << "\n";
+    return kExitBadInput;
+  }
+  if (a.dry_run) {
+    if (mpi.root()) {
+      std::size_t settings = 0;
+      for (const auto& p : sweep.planners) {
+        std::size_t n = 1;
+        for (const auto& g : p.params) n *= g.values.size();
+        settings += n;
+      }
+      std::size_t grid = 1;
+      for (const auto& g : sweep.params) grid *= g.values.size();
+      std::printf("%zu runs: %zu scenarios x %zu planner settings x %zu parameter settings x %zu seeds\n", runs.size(),
+                  sweep.scenarios.size(), settings, grid, sweep.seeds.size());
+    }
+    return kExitOk;
+  }
+  const bool exists = fs::exists(journal_dir(a.out_dir));
+  if (exists && !a.resume) {
+    if (mpi.root())
+      std::cerr << a.sweep << ": " << a.out_dir << " holds a batch already: --resume continues it, or choose another folder\n";
+    return kExitBadInput;
+  }
+  mpi.barrier();  // every rank has looked before rank 0 touches the folder
+  // Rank 0 merges the journals of the last attempt into one file (lines cut short dropped).
+  std::vector<RunRecord> previous;
+  if (mpi.root()) {
+    const auto kept = resumed_runs(a, runs, true);
+    if (!kept) {
+      mpi.any(true);
+      return kExitBadInput;
+    }
+    previous = *kept;
+    std::string merged;
+    for (const RunRecord& r : previous) merged += journal_line(r) + "\n";
+    fs::create_directories(journal_dir(a.out_dir));
+    const fs::path mine = journal_dir(a.out_dir) / "rank-0.jsonl";
+    write_file_atomic(mine.string(), merged);
+    for (const auto& e : fs::directory_iterator(journal_dir(a.out_dir)))
+      if (e.path() != mine) fs::remove(e.path());
+  }
+  if (mpi.any(false)) return kExitBadInput;
+  mpi.barrier();
+  if (!mpi.root()) previous = read_journals(a.out_dir);
+  std::set<std::size_t> done_before;
+  for (const RunRecord& r : previous) done_before.insert(r.spec.index);
+  std::vector<RunSpec> pending;
+  std::size_t k = 0;
+  for (const RunSpec& r : runs)
+    if (!done_before.count(r.index) && (k++ % std::size_t(mpi.size())) == std::size_t(mpi.rank())) pending.push_back(r);
+
+  const fs::path journal = journal_dir(a.out_dir) / ("rank-" + std::to_string(mpi.rank()) + ".jsonl");
+  const int fd = ::open(journal.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    std::cerr << a.out_dir << ": cannot write " << journal.string() << "\n";
+    return kExitBadInput;
+  }
+  const std::string started = now_text();
+  const auto t0 = Clock::now();
+  install_interrupt_handlers();
+  ScenarioCache cache;
+  BatchOptions opt;
+  opt.jobs = a.jobs;
+  opt.time_limit_s = sweep.time_limit_s;
+  opt.isolate = a.isolate;
+  opt.uavplan_exe = fs::canonical("/proc/self/exe").string();
+  opt.work_dir = (fs::path(a.out_dir) / "tmp" / ("rank-" + std::to_string(mpi.rank()))).string();
+  opt.max_memory_bytes = a.max_memory_bytes;
+  opt.stop = interrupt_flag();
+  std::vector<RunRecord> mine;
+  Progress progress;
+  const std::size_t total = pending.size();
+  run_batch(pending, cache, opt, [&](RunRecord&& rec, const std::string& plan_json) {
+    if (!plan_json.empty()) write_file_atomic((fs::path(a.out_dir) / rec.plan_file).string(), plan_json);
+    const std::string line = journal_line(rec) + "\n";
+    if (::write(fd, line.data(), line.size()) != static_cast<ssize_t>(line.size()))
+      throw std::runtime_error("cannot append to " + journal.string());
+    mine.push_back(std::move(rec));
+    const double s = std::chrono::duration<double>(Clock::now() - t0).count();
+    const double rate = double(mine.size()) / std::max(s, 1e-9);
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "batch: %zu/%zu runs (%.0f %%), %.1f runs/s, ETA %s", mine.size(), total,
+                  100.0 * double(mine.size()) / double(std::max<std::size_t>(total, 1)), rate,
+                  format_eta(double(total - mine.size()) / std::max(rate, 1e-9)).c_str());
+    progress.update(buf);
+  });
+  ::close(fd);
+  std::error_code ec;
+  fs::remove_all(opt.work_dir, ec);
+  const double total_s = std::chrono::duration<double>(Clock::now() - t0).count();
+
+  // Rank 0 gathers every rank's runs (as journal lines) and writes the results.
+  std::string lines;
+  for (const RunRecord& r : mine) lines += journal_line(r) + "\n";
+  const std::string gathered = mpi.gather(lines);
+  const bool stopped = mpi.any(interrupted());
+  if (!mpi.root()) return stopped ? kExitInterrupted : kExitOk;
+  std::vector<RunRecord> all = previous;
+  std::size_t from = 0;
+  while (from < gathered.size()) {
+    const std::size_t nl = gathered.find('\n', from);
+    if (auto r = parse_journal_line(gathered.substr(from, nl - from))) all.push_back(std::move(*r));
+    from = nl == std::string::npos ? gathered.size() : nl + 1;
+  }
+  write_file_atomic((fs::path(a.out_dir) / "results.csv").string(), results_csv(all));
+  write_file_atomic((fs::path(a.out_dir) / "timings.csv").string(), timings_csv(all));
+  std::cout << summary_table(all);
+  std::size_t solved = 0;
+  for (const RunRecord& r : all) solved += r.outcome.status == "solved";
+  std::printf("%zu of %zu runs done (%zu this time, %.1f s, %d rank%s x %d jobs), %zu solved; results in %s/results.csv\n",
+              all.size(), runs.size(), all.size() - previous.size(), total_s, mpi.size(), mpi.size() > 1 ? "s" : "",
+              opt.jobs > 0 ? opt.jobs : int(std::max(1u, std::thread::hardware_concurrency())), solved, a.out_dir.c_str());
+  if (!a.ompl_log.empty()) write_ompl_logs(a, sweep, all, total_s, started);
+  if (stopped && all.size() < runs.size()) {
+    std::cerr << "uavplan: interrupted after the runs under way; --resume continues the " << runs.size() - all.size()
+              << " runs left\n";
+    return kExitInterrupted;
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_batch_command(CLI::App& app, std::function<int()>& run) {
+  auto args = std::make_shared<BatchArgs>();
+  CLI::App* cmd = app.add_subcommand("batch", "Run a sweep (scenarios x planners x parameters x seeds), each run planned and verified");
+  cmd->add_option("sweep", args->sweep, "Sweep file (YAML: scenarios, planners, seeds, params, time_limit_s)")->required();
+  cmd->add_option("-o,--out", args->out_dir, "Output folder: results.csv, timings.csv, runs/, journal/")->required();
+  cmd->add_option("--jobs", args->jobs, "Runs at once (default 0: every core)")->check(non_negative_integer());
+  cmd->add_flag("--resume", args->resume, "Continue a batch that was stopped or killed, in the same folder");
+  cmd->add_flag("--dry-run", args->dry_run, "Print the number of runs and exit");
+  cmd->add_flag("--isolate", args->isolate, "Each run in its own process: a crash is a row, not the end of the batch");
+  cmd->add_flag("--mpi", args->mpi, "Split the runs over the ranks of mpirun; rank 0 writes the results");
+  cmd->add_option("--ompl-log", args->ompl_log, "Also write OMPL's benchmark log (Planner Arena); one per scenario");
+  cmd->add_option("--max-memory", args->max_memory_bytes,
+                  "Memory one run's planner grids may take, e.g. 2G (default: half the machine's RAM over the jobs)")
+      ->transform(CLI::AsSizeValue(false));
+  cmd->footer("Example: uavplan batch sweeps/compare.yaml -o results --jobs 2 --ompl-log results/ompl.log");
+  cmd->callback([args, &run] {
+    run = [args] {
+      if (args->max_memory_bytes == 0) {
+        const int jobs = args->jobs > 0 ? args->jobs : int(std::max(1u, std::thread::hardware_concurrency()));
+        args->max_memory_bytes = default_memory_cap_bytes() / std::uint64_t(jobs);
+      }
+      return run_batch_command(*args);
+    };
+  });
+}
+
+}  // namespace uavplan::cli

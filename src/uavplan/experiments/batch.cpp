@@ -1,0 +1,242 @@
+#include "uavplan/experiments/batch.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <mutex>
+#include <thread>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "uavplan/coordination/mission_planner.h"
+#include "uavplan/evaluation/verifier.h"
+#include "uavplan/io/files.h"
+#include "uavplan/io/input_error.h"
+#include "uavplan/io/plan_io.h"
+#include "uavplan/io/scenario_io.h"
+
+extern char** environ;
+
+namespace uavplan {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+bool scenario_key(const std::string& key) { return key.find_first_of(".[") != std::string::npos; }
+
+void split_params(const ParamSetting& all, ParamSetting& scenario_overrides, Params& planner_params) {
+  for (const auto& [k, v] : all) {
+    if (scenario_key(k)) scenario_overrides.emplace_back(k, v);
+    else planner_params[k] = v;
+  }
+}
+
+// The row's numbers from a finalized plan and its violations.
+RunOutcome outcome_of(const Plan& plan, std::size_t violations, bool time_limited) {
+  RunOutcome o;
+  o.status = std::string(to_string(plan.status));
+  o.algorithm = plan.algorithm;
+  o.violations = violations;
+  o.verified = violations == 0;
+  o.uavs = plan.uavs.size();
+  double last = -1.0;
+  for (const UavPlan& u : plan.uavs) {
+    o.uavs_solved += u.status == Status::solved;
+    o.expansions += u.stats.nodes_expanded;
+    if (!u.trajectory.empty()) last = std::max(last, u.trajectory.back().t_s);
+    if (time_limited && u.message == kStoppedMessage) o.status = "timeout";
+  }
+  if (last >= 0.0) o.flight_time_s = last;
+  if (const auto it = plan.metrics.find("total_length_m"); it != plan.metrics.end()) o.length_m = it->second;
+  if (const auto it = plan.metrics.find("min_separation_m"); it != plan.metrics.end()) o.min_separation_m = it->second;
+  if (plan.status != Status::solved) {
+    o.message = plan.message;
+    for (const UavPlan& u : plan.uavs)
+      if (o.message.empty() && u.status != Status::solved) o.message = u.id + ": " + u.message;
+  }
+  return o;
+}
+
+std::string first_line(const std::string& text) {
+  std::string s = text.substr(0, text.find('\n'));
+  return s.size() > 500 ? s.substr(0, 500) : s;
+}
+
+}  // namespace
+
+struct ScenarioCache::Impl {
+  mutable std::mutex mutex;
+  mutable std::map<std::string, std::shared_ptr<const Scenario>> loaded;
+};
+
+ScenarioCache::ScenarioCache() : impl_(std::make_unique<Impl>()) {}
+ScenarioCache::~ScenarioCache() = default;
+
+std::shared_ptr<const Scenario> ScenarioCache::get(const std::string& path, const ParamSetting& overrides) const {
+  const std::string key = path + '\n' + params_text(overrides);
+  {
+    std::lock_guard lock(impl_->mutex);
+    if (const auto it = impl_->loaded.find(key); it != impl_->loaded.end()) return it->second;
+  }
+  // Loaded outside the lock (two threads may both load the first time; one copy is kept).
+  auto sc = std::make_shared<const Scenario>(load_scenario(path, Overrides(overrides.begin(), overrides.end())));
+  std::lock_guard lock(impl_->mutex);
+  return impl_->loaded.emplace(key, std::move(sc)).first->second;
+}
+
+std::string run_plan_file(std::size_t index) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "runs/%06zu.plan.json", index);
+  return buf;
+}
+
+RunOutcome run_in_process(const RunSpec& run, const ScenarioCache& cache, const BatchOptions& options, std::string& plan_json) {
+  const double time_limit_s = options.time_limit_s;
+  const auto t0 = Clock::now();
+  plan_json.clear();
+  RunOutcome o;
+  ParamSetting overrides;
+  MissionOptions opt;
+  split_params(run.params, overrides, opt.params);
+  if (!run.planner.empty()) opt.algorithm = run.planner;
+  opt.seed = run.seed;
+  if (time_limit_s > 0.0) opt.stop = StopCondition::time_limit(time_limit_s);
+  opt.stop = opt.stop.with_threads(1).with_memory_cap(options.max_memory_bytes);  // the batch is parallel; a run is not
+  try {
+    const auto sc = cache.get(run.scenario, overrides);
+    const auto p0 = Clock::now();
+    Plan plan = plan_mission(*sc, opt);
+    const double plan_ms = ms_since(p0);
+    const std::size_t violations = finalize_plan(*sc, plan).size();
+    o = outcome_of(plan, violations, time_limit_s > 0.0);
+    o.plan_ms = plan_ms;
+    plan_json = plan_to_json(plan);
+  } catch (const std::exception& e) {
+    o = RunOutcome{};
+    o.status = "error";
+    o.message = first_line(e.what());
+  }
+  o.wall_ms = ms_since(t0);
+  return o;
+}
+
+RunOutcome run_isolated(const RunSpec& run, const ScenarioCache& cache, const BatchOptions& options, std::string& plan_json) {
+  const auto t0 = Clock::now();
+  plan_json.clear();
+  const fs::path dir = fs::path(options.work_dir) / ("run-" + std::to_string(run.index));
+  fs::create_directories(dir);
+  std::vector<std::string> args = {options.uavplan_exe, "plan", run.scenario, "-o", dir.string(), "--seed",
+                                   std::to_string(run.seed), "--threads", "1", "--timing"};
+  if (!run.planner.empty()) args.insert(args.end(), {"--algorithm", run.planner});
+  for (const auto& [k, v] : run.params) args.insert(args.end(), {"--set", k + "=" + v});
+  if (options.time_limit_s > 0.0) args.insert(args.end(), {"--time-limit", std::to_string(options.time_limit_s)});
+  args.insert(args.end(), {"--max-memory", std::to_string(options.max_memory_bytes)});
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  const std::string err_path = (dir / "stderr.txt").string();
+  posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
+  posix_spawnattr_setpgroup(&attr, 0);
+  pid_t pid = -1;
+  const int spawned = posix_spawn(&pid, options.uavplan_exe.c_str(), &actions, &attr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  posix_spawnattr_destroy(&attr);
+  RunOutcome o;
+  if (spawned != 0) {
+    o.message = "could not start " + options.uavplan_exe;
+    o.wall_ms = ms_since(t0);
+    return o;
+  }
+  const double kill_after_ms = options.time_limit_s > 0.0 ? 2000.0 * options.time_limit_s + 5000.0 : -1.0;
+  int wstatus = 0;
+  bool killed = false;
+  while (::waitpid(pid, &wstatus, WNOHANG) == 0) {
+    if (kill_after_ms > 0.0 && !killed && ms_since(t0) > kill_after_ms) {
+      ::kill(pid, SIGKILL);
+      killed = true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  std::string err;
+  try {
+    err = read_text_file(err_path);
+  } catch (const std::exception&) {
+  }
+  const fs::path plan_path = dir / "plan.json";
+  if (killed) {
+    o.status = "timeout";
+    o.message = "killed at twice the time limit plus 5 s";
+  } else if (WIFSIGNALED(wstatus)) {
+    o.status = "crashed";
+    o.message = "the run's process died of signal " + std::to_string(WTERMSIG(wstatus));
+  } else if (WIFEXITED(wstatus) && (WEXITSTATUS(wstatus) == 0 || WEXITSTATUS(wstatus) == 1) && fs::exists(plan_path)) {
+    try {
+      ParamSetting overrides;
+      Params unused;
+      split_params(run.params, overrides, unused);
+      const auto sc = cache.get(run.scenario, overrides);
+      const std::string text = read_text_file(plan_path.string());
+      Plan plan = parse_plan(text, plan_path.string());
+      o = outcome_of(plan, verify_plan(*sc, plan).size(), options.time_limit_s > 0.0);
+      o.plan_ms = plan.plan_ms;
+      plan_json = plan_to_json(plan);  // without the timing the process wrote
+    } catch (const std::exception& e) {
+      o.status = "error";
+      o.message = first_line(e.what());
+    }
+  } else {
+    o.status = "error";
+    o.message = first_line(err.empty() ? "the run's process ended with exit " + std::to_string(WEXITSTATUS(wstatus)) : err);
+  }
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+  o.wall_ms = ms_since(t0);
+  return o;
+}
+
+void run_batch(const std::vector<RunSpec>& runs, const ScenarioCache& cache, const BatchOptions& options,
+               const std::function<void(RunRecord&&, const std::string& plan_json)>& done) {
+  std::mutex done_mutex;
+  const int jobs = options.jobs > 0 ? options.jobs : tbb::this_task_arena::max_concurrency();
+  tbb::task_arena arena(jobs);
+  arena.execute([&] {
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, runs.size(), 1),
+        [&](const tbb::blocked_range<std::size_t>& range) {
+          for (std::size_t i = range.begin(); i != range.end(); ++i) {
+            if (options.stop && options.stop->load()) return;
+            std::string json;
+            RunRecord rec;
+            rec.spec = runs[i];
+            rec.outcome = options.isolate ? run_isolated(runs[i], cache, options, json)
+                                          : run_in_process(runs[i], cache, options, json);
+            if (!json.empty()) rec.plan_file = run_plan_file(runs[i].index);
+            std::lock_guard lock(done_mutex);
+            done(std::move(rec), json);
+          }
+        },
+        tbb::simple_partitioner());
+  });
+}
+
+}  // namespace uavplan
