@@ -5,15 +5,28 @@
 #include <stdexcept>
 
 namespace uavplan {
+namespace {
+thread_local ParamListing* g_listing = nullptr;
 
-const std::string* ParamReader::find(const std::string& key) {
+std::string shortest(double v) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+}  // namespace
+
+ParamListing::ParamListing() { g_listing = this; }
+ParamListing::~ParamListing() { g_listing = nullptr; }
+
+const std::string* ParamReader::find(const std::string& key, const std::string& fallback) {
   known_.insert(key);
+  if (g_listing) g_listing->defaults.emplace(key, fallback);
   const auto it = params_.find(key);
   return it == params_.end() ? nullptr : &it->second;
 }
 
 double ParamReader::number(const std::string& key, double fallback, double lo, double hi) {
-  const std::string* s = find(key);
+  const std::string* s = find(key, shortest(fallback));
   if (!s) return fallback;
   double v = 0.0;
   const char* end = s->data() + s->size();
@@ -27,7 +40,7 @@ double ParamReader::number(const std::string& key, double fallback, double lo, d
 }
 
 int ParamReader::integer(const std::string& key, int fallback, int lo, int hi) {
-  const std::string* s = find(key);
+  const std::string* s = find(key, std::to_string(fallback));
   if (!s) return fallback;
   int v = 0;
   const char* end = s->data() + s->size();
@@ -41,7 +54,7 @@ int ParamReader::integer(const std::string& key, int fallback, int lo, int hi) {
 }
 
 bool ParamReader::boolean(const std::string& key, bool fallback) {
-  const std::string* s = find(key);
+  const std::string* s = find(key, fallback ? "true" : "false");
   if (!s) return fallback;
   if (*s == "true" || *s == "1" || *s == "yes") return true;
   if (*s == "false" || *s == "0" || *s == "no") return false;
@@ -49,7 +62,7 @@ bool ParamReader::boolean(const std::string& key, bool fallback) {
 }
 
 std::string ParamReader::text(const std::string& key, const std::string& fallback) {
-  const std::string* s = find(key);
+  const std::string* s = find(key, fallback);
   return s ? *s : fallback;
 }
 

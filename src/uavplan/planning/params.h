@@ -10,6 +10,17 @@ namespace uavplan {
 
 using Params = std::map<std::string, std::string>;
 
+// While one is alive, every ParamReader on this thread records the keys it reads and their
+// defaults here (registry.h's planner_parameters lists a planner's parameters this way).
+class ParamListing {
+ public:
+  ParamListing();
+  ~ParamListing();
+  ParamListing(const ParamListing&) = delete;
+  ParamListing& operator=(const ParamListing&) = delete;
+  std::map<std::string, std::string> defaults;  // key -> default value as text
+};
+
 class ParamReader {
  public:
   ParamReader(const Params& params, std::string planner) : params_(params), planner_(std::move(planner)) {}
@@ -24,7 +35,7 @@ class ParamReader {
   void finish() const;
 
  private:
-  const std::string* find(const std::string& key);
+  const std::string* find(const std::string& key, const std::string& fallback);
   const Params& params_;
   std::string planner_;
   std::set<std::string> known_;

@@ -135,3 +135,20 @@ TEST(Registry, UnknownNamesAndParametersAreErrors) {
 
 }  // namespace
 }  // namespace uavplan
+
+namespace uavplan {
+namespace {
+
+TEST(Registry, ListsEveryPlannersParametersWithTheirDefaults) {
+  for (const PlannerInfo& info : planner_catalog()) {
+    const auto params = planner_parameters(info.name);
+    EXPECT_FALSE(params.empty()) << info.name;
+    for (const auto& [key, value] : params) EXPECT_TRUE(planner_accepts(info.name, key, value) || value == "nan" || value == "inf")
+        << info.name << " " << key << "=" << value;
+  }
+  EXPECT_EQ(planner_parameters("rrt").count("goal_bias"), 1u);
+  EXPECT_THROW(planner_parameters("nosuch"), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace uavplan

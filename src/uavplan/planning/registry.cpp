@@ -71,6 +71,12 @@ bool planner_accepts(std::string_view name, const std::string& key, const std::s
   }
 }
 
+std::map<std::string, std::string> planner_parameters(std::string_view name) {
+  ParamListing listing;
+  make_planner(name, {});
+  return listing.defaults;
+}
+
 std::vector<PlannerInfo> planner_catalog() {
   std::vector<PlannerInfo> out;
   for (const Entry& e : entries()) out.push_back(e.info);

@@ -1,6 +1,7 @@
 // Planners by name.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -25,6 +26,10 @@ struct PlannerInfo {
   bool relaxed = false;
 };
 std::vector<PlannerInfo> planner_catalog();
+
+// The planner's parameters and their defaults (as text; "nan" or "inf" where the default is
+// derived from the problem). Throws std::invalid_argument for an unknown name.
+std::map<std::string, std::string> planner_parameters(std::string_view name);
 
 // Whether the planner takes this parameter (the value checked too).
 bool planner_accepts(std::string_view name, const std::string& key, const std::string& value);

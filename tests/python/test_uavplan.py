@@ -1,0 +1,187 @@
+"""The Python module against the command line: same plans, same bytes, same messages."""
+import json
+import subprocess
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import uavplan
+import ompl_log
+
+
+@pytest.fixture(scope="module")
+def demo(root):
+    return uavplan.Scenario.load(str(root / "scenarios/demo.yaml"))
+
+
+@pytest.fixture(scope="module")
+def demo_plan(demo):
+    return uavplan.plan(demo)
+
+
+def test_plan_is_the_clis_plan_byte_for_byte(root, exe, tmp_path, demo, demo_plan):
+    subprocess.run([exe, "plan", str(root / "scenarios/demo.yaml"), "-o", str(tmp_path)], check=True,
+                   stdout=subprocess.DEVNULL)
+    assert demo_plan.status == "solved"
+    assert demo_plan.to_json() == (tmp_path / "plan.json").read_text()
+    demo_plan.save(str(tmp_path / "again.json"))
+    assert (tmp_path / "again.json").read_bytes() == (tmp_path / "plan.json").read_bytes()
+    loaded = uavplan.Plan.load(str(tmp_path / "plan.json"))
+    assert loaded.to_json() == demo_plan.to_json()
+
+
+def test_trajectory_is_a_read_only_view_with_t_x_y_z(root, demo_plan):
+    u = demo_plan.uavs[0]
+    t = u.trajectory
+    assert t.shape[1] == 4 and t.shape[0] > 10 and t.dtype == np.float64
+    assert not t.flags["OWNDATA"] and not t.flags["WRITEABLE"]
+    assert np.all(np.diff(t[:, 0]) >= 0)
+    row = json.loads(demo_plan.to_json())["uavs"][0]["trajectory"][-1]
+    assert list(t[-1]) == pytest.approx([row["t"], *row["p"]] if isinstance(row, dict) else row)
+    # The view keeps the plan alive.
+    p = uavplan.plan(uavplan.Scenario.load(str(root / "scenarios/demo.yaml")))
+    view = p.uavs[1].trajectory
+    first = view.copy()
+    del p
+    assert np.array_equal(view, first)
+    assert u.metrics["length_m"] == pytest.approx(u.length_m)
+    assert demo_plan.uav(u.id).id == u.id
+    with pytest.raises(KeyError):
+        demo_plan.uav("nobody")
+
+
+def test_seed_algorithm_and_params_as_on_the_command_line(root, exe, tmp_path, demo):
+    p = uavplan.plan(demo, algorithm="rrt", seed=5, params={"goal_bias": 0.2})
+    subprocess.run([exe, "plan", str(root / "scenarios/demo.yaml"), "-o", str(tmp_path), "--algorithm", "rrt",
+                    "--seed", "5", "--set", "goal_bias=0.2"], stdout=subprocess.DEVNULL)
+    assert p.algorithm == "rrt" and p.seed == 5
+    assert p.to_json() == (tmp_path / "plan.json").read_text()
+
+
+def test_verify_finds_a_route_through_a_building(root, tmp_path, demo, demo_plan):
+    assert uavplan.verify(demo, demo_plan).ok
+    d = json.loads(demo_plan.to_json())
+    traj = d["uavs"][0]["trajectory"]
+    mid = traj[len(traj) // 2]
+    if isinstance(mid, dict):
+        mid["p"] = [230.0, 230.0, 30.0]
+    else:
+        mid[1:4] = [230.0, 230.0, 30.0]  # inside tower_a
+    (tmp_path / "bad.json").write_text(json.dumps(d))
+    verdict = uavplan.verify(demo, uavplan.Plan.load(str(tmp_path / "bad.json")))
+    assert not verdict.ok and not verdict
+    kinds = {v["kind"] for v in verdict.violations}
+    assert "obstacle" in kinds
+    assert all(v["text"] for v in verdict.violations)
+
+
+def test_from_dict_plans_a_scenario_written_in_python():
+    sc = uavplan.Scenario.from_dict({
+        "version": 1, "name": "py",
+        "world": {"bounds": {"min": [0, 0, 0], "max": [200, 200, 50]},
+                  "obstacles": [{"type": "box", "min": [80, 0, 0], "max": [120, 150, 50]}]},
+        "uavs": [{"id": "a", "start": [20, 20, 10], "goal": [180, 20, 10], "speed": 5}],
+        "planner": {"algorithm": "astar"}})
+    p = uavplan.plan(sc, seed=3)
+    assert p.status == "solved" and uavplan.verify(sc, p).ok
+    t = p.uavs[0].trajectory
+    assert t[:, 3].max() <= 50
+    assert t[:, 2].max() > 150  # around the wall's end (it stands to the ceiling)
+
+
+def test_errors_carry_the_clis_one_line_message(root, exe, tmp_path):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text((root / "scenarios/demo.yaml").read_text().replace("speed:", "speeed:", 1))
+    cli = subprocess.run([exe, "plan", str(bad), "-o", str(tmp_path / "o")], capture_output=True, text=True)
+    assert cli.returncode == 2
+    with pytest.raises(uavplan.InputError) as e:
+        uavplan.Scenario.load(str(bad))
+    assert str(e.value) == cli.stderr.strip()
+    assert isinstance(e.value, ValueError)
+    with pytest.raises(ValueError, match="planner.params.cell_m"):
+        uavplan.plan(uavplan.Scenario.load(str(root / "scenarios/demo.yaml")), params={"cell_m": "wide"})
+    with pytest.raises(ValueError, match="unknown planner"):
+        uavplan.plan(uavplan.Scenario.load(str(root / "scenarios/demo.yaml")), algorithm="nosuch")
+
+
+def test_export_writes_the_clis_files(root, exe, tmp_path, demo, demo_plan):
+    written = uavplan.export(demo, demo_plan, ["qgc", "csv"], str(tmp_path / "py"))
+    assert len(written) == 6
+    subprocess.run([exe, "plan", str(root / "scenarios/demo.yaml"), "-o", str(tmp_path / "cli"), "--export", "qgc,csv"],
+                   check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    for path in written:
+        name = path.rsplit("/", 1)[1]
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+    qgc = json.loads((tmp_path / "py" / "u1.plan").read_text())
+    assert qgc["fileType"] == "Plan" and len(qgc["mission"]["items"]) > 2
+    with pytest.raises(ValueError):
+        uavplan.export(demo, demo_plan, ["shapefile"], str(tmp_path / "x"))
+
+
+def test_planners_lists_names_and_parameters(root, exe):
+    names = [p["name"] for p in uavplan.planners()]
+    info = subprocess.run([exe, "info", str(root / "scenarios/demo.yaml")], capture_output=True, text=True).stdout
+    assert info.split("planners available:")[1].split() == names
+    rrt = next(p for p in uavplan.planners() if p["name"] == "rrt")
+    assert "goal_bias" in rrt["params"] and rrt["description"]
+
+
+def test_the_gil_is_released_while_planning(demo):
+    ticks = 0
+    stop = False
+
+    def count():
+        nonlocal ticks
+        while not stop:
+            ticks += 1
+            time.sleep(0.001)
+
+    t = threading.Thread(target=count)
+    t.start()
+    time.sleep(0.01)
+    before = ticks
+    t0 = time.perf_counter()
+    uavplan.plan(demo, algorithm="astar")
+    elapsed = time.perf_counter() - t0
+    during = ticks - before
+    stop = True
+    t.join()
+    # With the GIL held the counter would stand still for the whole plan.
+    assert elapsed > 0.05 and during > 5, (elapsed, during)
+
+
+def test_batch_ompl_log_reads_back_with_a_parser_from_the_format(root, exe, tmp_path):
+    sweep = tmp_path / "sweep.yaml"
+    sweep.write_text(f"name: py ompl\nscenarios: [{root}/scenarios/demo.yaml]\n"
+                     "planners: [astar, {name: rrt, params: {goal_bias: [0.05, 0.3]}}]\nseeds: 4\n")
+    subprocess.run([exe, "batch", str(sweep), "-o", str(tmp_path / "out"), "--ompl-log", str(tmp_path / "b.log")],
+                   check=True, stdout=subprocess.DEVNULL)
+    log = ompl_log.parse((tmp_path / "b.log").read_text())
+    assert log["experiment"] == "py_ompl" and log["runs_per_planner"] == 4
+    assert [p["name"] for p in log["planners"]] == ["astar", "rrt[goal_bias=0.05]", "rrt[goal_bias=0.3]"]
+    rows = (tmp_path / "out/results.csv").read_text().splitlines()[1:]
+    assert sum(len(p["runs"]) for p in log["planners"]) == len(rows) == 12
+    for p in log["planners"]:
+        assert ("time", "REAL") in p["properties"] and ("solved", "BOOLEAN") in p["properties"]
+        for run in p["runs"]:
+            assert run["time"] >= 0 and isinstance(run["solved"], bool)
+            if run["solved"]:
+                assert run["solution length"] > 0 and run["correct solution"] is True
+    assert log["planners"][1]["common"] == {"goal_bias": "0.05"}
+    # The parser is strict: a count that does not match is an error.
+    broken = (tmp_path / "b.log").read_text().replace("4 runs\n", "5 runs\n", 1)
+    with pytest.raises(ompl_log.LogError):
+        ompl_log.parse(broken)
+
+
+def test_the_example_plans_verifies_and_plots(root, tmp_path):
+    import os
+    env = dict(os.environ)
+    out = subprocess.run([os.sys.executable, str(root / "examples/plan_and_plot.py"), str(root / "scenarios/demo.yaml"),
+                          str(tmp_path / "routes.png")], capture_output=True, text=True, env=env)
+    assert out.returncode == 0, out.stderr
+    assert "demo: solved with astar" in out.stdout and "holds" in out.stdout
+    png = (tmp_path / "routes.png").read_bytes()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 20000
