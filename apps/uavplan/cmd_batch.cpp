@@ -189,6 +189,9 @@ int run_batch_command(const BatchArgs& a) {
     std::cerr << a.out_dir << ": cannot write " << journal.string() << "\n";
     return kExitBadInput;
   }
+  const fs::path runs_dir = fs::path(a.out_dir) / "runs";
+  fs::create_directories(runs_dir);
+  if (mpi.root()) remove_temporaries(runs_dir.string());  // plan files a killed batch was writing
   const std::string started = now_text();
   const auto t0 = Clock::now();
   install_interrupt_handlers();
@@ -205,7 +208,7 @@ int run_batch_command(const BatchArgs& a) {
   Progress progress;
   const std::size_t total = pending.size();
   run_batch(pending, cache, opt, [&](RunRecord&& rec, const std::string& plan_json) {
-    if (!plan_json.empty()) write_file_atomic((fs::path(a.out_dir) / rec.plan_file).string(), plan_json);
+    if (!plan_json.empty()) write_file_atomic_in((fs::path(a.out_dir) / rec.plan_file).string(), plan_json);
     const std::string line = journal_line(rec) + "\n";
     if (::write(fd, line.data(), line.size()) != static_cast<ssize_t>(line.size()))
       throw std::runtime_error("cannot append to " + journal.string());

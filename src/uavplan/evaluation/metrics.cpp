@@ -65,13 +65,14 @@ UavMetrics uav_metrics(const Scenario& sc, const UavSpec& spec, const UavPlan& p
     const Vec3 seg = pts[i] - pts[i - 1];
     if (seg.norm() <= 0.0) continue;
     if (legs.covers(i)) {
-      m.min_clearance_m = std::min(m.min_clearance_m, sc.world.segment_obstacle_clearance(pts[i - 1], pts[i], cap));
+      // Only the least clearance counts: each query stops at the least one so far (same result).
+      m.min_clearance_m = sc.world.segment_obstacle_clearance(pts[i - 1], pts[i], std::min(cap, m.min_clearance_m));
       continue;
     }
     m.max_climb_deg = std::max(m.max_climb_deg, rad_to_deg(std::abs(pitch_rad(seg))));
     if (prev) m.max_turn_deg = std::max(m.max_turn_deg, rad_to_deg(turn_rad(*prev, seg)));
     prev = seg;
-    m.min_clearance_m = std::min(m.min_clearance_m, sc.world.segment_clearance(pts[i - 1], pts[i], cap));
+    m.min_clearance_m = sc.world.segment_clearance(pts[i - 1], pts[i], std::min(cap, m.min_clearance_m));
     if (has_ground) m.min_agl_m = std::min(m.min_agl_m, sc.world.lowest_height_above_ground(pts[i - 1], pts[i]));
   }
   m.p1_cost = p1_route_cost(plan.waypoints, sc.world);

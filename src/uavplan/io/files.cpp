@@ -29,15 +29,16 @@ std::string read_text_file(const std::string& path) {
 namespace {
 
 // Temporary files of this target left by a run that was killed (its process is gone).
-void remove_stale_temporaries(const std::filesystem::path& target) {
+// Temporaries of `target` (empty: of any file) in its folder whose process is gone.
+void remove_stale_temporaries(const std::filesystem::path& dir, const std::string& target_name) {
   namespace fs = std::filesystem;
-  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  const std::string prefix = target.filename().string() + ".tmp.";
+  const std::string prefix = target_name + ".tmp.";
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(dir, ec)) {
     const std::string name = entry.path().filename().string();
-    if (name.rfind(prefix, 0) != 0) continue;
-    const std::string pid_text = name.substr(prefix.size());
+    const auto at = target_name.empty() ? name.rfind(".tmp.") : (name.rfind(prefix, 0) == 0 ? target_name.size() : std::string::npos);
+    if (at == std::string::npos) continue;
+    const std::string pid_text = name.substr(at + 5);
     if (pid_text.empty() || pid_text.find_first_not_of("0123456789") != std::string::npos) continue;
     const long pid = std::strtol(pid_text.c_str(), nullptr, 10);
     if (pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) fs::remove(entry.path(), ec);
@@ -53,7 +54,15 @@ void write_file_atomic(const std::string& path, const std::string& content) {
   if (fs::is_directory(target, probe))
     throw InputError(path, 0, "", "is a folder: give a file name (" + (target / "NAME").string() + ")");
   if (target.has_parent_path()) fs::create_directories(target.parent_path());
-  remove_stale_temporaries(target);
+  remove_stale_temporaries(target.has_parent_path() ? target.parent_path() : fs::path("."), target.filename().string());
+  write_file_atomic_in(path, content);
+}
+
+void remove_temporaries(const std::string& dir) { remove_stale_temporaries(dir, ""); }
+
+void write_file_atomic_in(const std::string& path, const std::string& content) {
+  namespace fs = std::filesystem;
+  const fs::path target(path);
   const fs::path tmp = target.string() + ".tmp." + std::to_string(::getpid());
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);

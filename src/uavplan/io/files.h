@@ -15,4 +15,11 @@ std::string read_text_file(const std::string& path);
 // is removed).
 void write_file_atomic(const std::string& path, const std::string& content);
 
+// The same for one of many files in a folder the caller owns (a batch's plans): no scan of the
+// folder for temporaries (that made writing n files O(n^2)); the folder must exist. The caller
+// removes what a killed run left once (remove_temporaries).
+void write_file_atomic_in(const std::string& path, const std::string& content);
+// Removes every "NAME.tmp.PID" file in the folder whose process is gone.
+void remove_temporaries(const std::string& dir);
+
 }  // namespace uavplan

@@ -27,8 +27,8 @@ struct PlannerInfo {
 };
 std::vector<PlannerInfo> planner_catalog();
 
-// The planner's parameters and their defaults (as text; "nan" or "inf" where the default is
-// derived from the problem). Throws std::invalid_argument for an unknown name.
+// The planner's parameters and their defaults as text (0, nan or inf where the planner derives
+// the value from the problem). Throws std::invalid_argument for an unknown name.
 std::map<std::string, std::string> planner_parameters(std::string_view name);
 
 // Whether the planner takes this parameter (the value checked too).
