@@ -37,6 +37,11 @@ out=$("$UAVPLAN" batch "$T/sweep.yaml" -o "$T/dry" --dry-run) || fail "dry run"
 [ "$out" = "18 runs: 2 scenarios x 3 planner settings x 1 parameter settings x 3 seeds" ] || fail "dry run said: $out"
 [ ! -e "$T/dry" ] || fail "dry run wrote $T/dry"
 
+# A glob beside the sweep does not take the sweep file for a scenario.
+mkdir -p "$T/g" && cp "$ROOT/scenarios/demo.yaml" "$T/g/" && printf 'scenarios: ["*.yaml"]\n' > "$T/g/sweep.yaml"
+out=$("$UAVPLAN" batch "$T/g/sweep.yaml" -o "$T/g/out" --dry-run) || fail "glob beside the sweep"
+[ "$out" = "1 runs: 1 scenarios x 1 planner settings x 1 parameter settings x 1 seeds" ] || fail "glob beside the sweep: $out"
+
 # The same bytes whatever the number of jobs, and isolated in processes.
 "$UAVPLAN" batch "$T/sweep.yaml" -o "$T/j1" --jobs 1 >"$T/j1.out" || fail "batch --jobs 1"
 "$UAVPLAN" batch "$T/sweep.yaml" -o "$T/j2" --jobs 2 >/dev/null || fail "batch --jobs 2"

@@ -69,6 +69,10 @@ void read_scenarios(const Reader& r, const YAML::Node& n, const fs::path& base, 
     const fs::path p = fs::path(given[i]).is_absolute() ? fs::path(given[i]) : base / given[i];
     const bool pattern = given[i].find_first_of("*?[") != std::string::npos;
     std::vector<std::string> found = pattern ? expand_glob(p.string()) : std::vector<std::string>{p.string()};
+    // A glob beside the sweep ("*.yaml") would match the sweep file itself.
+    std::error_code ec;
+    const fs::path self = fs::weakly_canonical(r.file, ec);
+    std::erase_if(found, [&](const std::string& f) { return pattern && fs::weakly_canonical(f, ec) == self; });
     if (pattern && found.empty()) r.fail(item, key, "'" + given[i] + "' matches no file");
     if (!pattern && !fs::is_regular_file(p)) r.fail(item, key, "no such scenario file: " + p.string());
     for (auto& f : found) {
