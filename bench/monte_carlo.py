@@ -3,6 +3,9 @@
 seeds, not one run):
   - P2 Table 1: the cellular ant colony on p2_city over 20 seeds per ant count (25-100 ants):
     finish time, route length, planning time, solved and verified, beside the paper's finish;
+  - P3 scaling: the improved potential field and the traditional one on random obstacle fields
+    (P3's block-to-block group, as `uavplan bench p3` builds them) of 9 to 400 UAVs, 10 fields
+    (seeds) per size: solved UAVs, planning time, the least separation, the group score SC;
   - P4 Table 5: directional A* for uav3 of p4_rendezvous over the L x M grid (step 1.0-3.0
     cells, 3-6 directions), route length beside the paper's (one run per cell: the search is
     deterministic, so a seed changes nothing).
@@ -11,7 +14,10 @@ seeds, not one run):
 """
 import argparse
 import csv
+import json
+import math
 import pathlib
+import random
 import statistics
 import subprocess
 import sys
@@ -64,6 +70,57 @@ def p2_table(exe, tmp, seeds, jobs):
     print("(the paper's finish times are one run each and include its hover at the task points)\n")
 
 
+def p3_group(n, seed):
+    """P3's scaling scene (bench/p3_runner.cpp, 2-D): n UAVs in a square block 1.5 m apart, goals
+    in the same block at the upper right, random spheres of 0.1-0.4 m in between (none within the
+    separation of a goal); separation 0.5 m, radius 0.1 m, 1 m/s."""
+    rng = random.Random(seed)
+    side_n = math.ceil(math.sqrt(n))
+    spacing, separation, radius = 1.5, 0.5, 0.1
+    side = spacing * side_n
+    span = 3.0 * side + 10.0
+    uavs = []
+    for i in range(n):
+        start = [spacing * (i % side_n), spacing * (i // side_n), 0.0]
+        uavs.append({"id": f"u{i + 1}", "start": start, "goal": [start[0] + span - side, start[1] + span - side, 0.0],
+                     "radius": radius, "speed": 1})
+    spheres = []
+    while len(spheres) < int(2 * side * side / 3) + 5:
+        c = [rng.uniform(side + 2.0, span - 2.0), rng.uniform(side + 2.0, span - 2.0), 0.0]
+        r = rng.uniform(0.1, 0.4)
+        if all(math.dist(u["goal"], c) >= r + radius + separation for u in uavs):
+            spheres.append({"type": "sphere", "center": c, "radius": r})
+    return {"version": 1, "name": f"p3_field_{n}_{seed}",
+            "world": {"bounds": {"min": [-2, -2, 0], "max": [span + side + 2, span + side + 2, 0]}, "obstacles": spheres},
+            "uavs": uavs, "mission": {"type": "group", "separation": separation}, "planner": {"algorithm": "apf"}}
+
+
+def p3_scaling(exe, tmp, seeds, jobs, sizes):
+    fields = tmp / "p3_fields"
+    fields.mkdir()
+    for n in sizes:
+        for seed in range(1, seeds + 1):
+            (fields / f"n{n:04d}_s{seed:02d}.json").write_text(json.dumps(p3_group(n, seed)))
+    rows = batch(exe, f"scenarios: [\"{fields}/*.json\"]\nplanners: [apf, apf_traditional]\n", tmp, "p3", jobs)
+    print(f"P3 scaling over {seeds} random fields per size (2-D, block to block, separation 0.5 m; mean ± sd)")
+    print("| uavs | planner | UAVs solved | plan ms | least separation m | group SC |")
+    print("|---:|---|---:|---:|---:|---:|")
+    for n in sizes:
+        for planner in ("apf", "apf_traditional"):
+            mine = [r for r in rows if r["planner"] == planner and f"/n{n:04d}_" in r["scenario"]]
+            scores = []
+            for r in mine:
+                if r["plan_file"]:
+                    plan = json.loads((tmp / "p3" / r["plan_file"]).read_text())
+                    if plan["metrics"].get("p3_group_score") is not None:
+                        scores.append(plan["metrics"]["p3_group_score"])
+            seps = [float(r["min_separation_m"]) for r in mine if r["min_separation_m"]]
+            solved = sum(int(r["uavs_solved"]) for r in mine)
+            print(f"| {n} | {planner} | {solved}/{n * len(mine)} | {mean_sd([r['plan_ms'] for r in mine])} | "
+                  f"{mean_sd(seps) if seps else '-'} | {mean_sd(scores) if scores else '-'} |")
+    print("(the paper times one group of 9; a solved UAV's route is verified, separation included)\n")
+
+
 def p4_table5(exe, tmp, jobs):
     sc = yaml.safe_load((ROOT / "scenarios/p4_rendezvous.yaml").read_text())
     sc["name"] = "p4_uav3"
@@ -95,9 +152,11 @@ def main():
     ap.add_argument("exe", nargs="?", default=str(ROOT / "build/uavplan"))
     ap.add_argument("--seeds", type=int, default=20)
     ap.add_argument("--jobs", type=int, default=0)
+    ap.add_argument("--p3-sizes", default="9,25,100,400")
     a = ap.parse_args()
     with tempfile.TemporaryDirectory(prefix="uavplan-mc-") as tmp:
         p2_table(a.exe, pathlib.Path(tmp), a.seeds, a.jobs)
+        p3_scaling(a.exe, pathlib.Path(tmp), 10, a.jobs, [int(x) for x in a.p3_sizes.split(",")])
         p4_table5(a.exe, pathlib.Path(tmp), a.jobs)
     return 0
 
