@@ -31,9 +31,10 @@ asan: deps
 	@cmake --build build-asan -j $(JOBS)
 	cd build-asan && ctest --output-on-failure -j $(JOBS)
 
-# The tests that run several threads (rendezvous engines, the ant colony, --threads, batch), under
-# ThreadSanitizer (CI runs it).
-TSAN_TESTS ?= Rendezvous|DirectionalAStar|Cellular|Cells|threads|cli.batch$$
+# The tests that run several threads (rendezvous engines, the ant colony, --threads), under
+# ThreadSanitizer (CI runs it). Not `batch`: Debian's oneTBB is not instrumented, so TSan cannot
+# see the synchronisation of its task handoffs and would report every run's data.
+TSAN_TESTS ?= Rendezvous|DirectionalAStar|Cellular|Cells|threads
 tsan: deps
 	@cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUAVPLAN_TSAN=ON $(CMAKE_FLAGS) >/dev/null
 	@cmake --build build-tsan -j $(JOBS)
