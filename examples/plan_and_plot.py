@@ -23,6 +23,18 @@ def main(scenario_path, png_path, algorithm=None):
         print("  ", v["text"])
 
     fig, (top, side) = plt.subplots(1, 2, figsize=(12, 5))
+    grey = dict(facecolor="0.8", edgecolor="0.5")
+    for o in sc.obstacles:  # the top view of each obstacle
+        if o["type"] in ("sphere", "cylinder"):
+            top.add_patch(plt.Circle(o["center"][:2], o["radius"], **grey))
+        elif o["type"] == "box":
+            (x0, y0, _), (x1, y1, _) = o["min"], o["max"]
+            top.add_patch(plt.Rectangle((x0, y0), x1 - x0, y1 - y0, **grey))
+        else:
+            top.add_patch(plt.Polygon(o["polygon"], **grey))
+    (bx0, by0, _), (bx1, by1, _) = sc.bounds
+    top.set_xlim(bx0, bx1)
+    top.set_ylim(by0, by1)
     for u in plan.uavs:
         t = u.trajectory  # N x 4: t_s, x, y, z (a view of the plan, no copy)
         if len(t) == 0:

@@ -62,6 +62,36 @@ std::shared_ptr<Plan> plan_scenario(const Scenario& sc, const std::optional<std:
   return plan;
 }
 
+// An obstacle as the scenario file writes it (type and geometry), for plots.
+py::dict obstacle_dict(const Obstacle& o) {
+  py::dict d;
+  auto xy = [](const Vec2& p) { return std::vector<double>{p.x(), p.y()}; };
+  auto xyz = [](const Vec3& p) { return std::vector<double>{p.x(), p.y(), p.z()}; };
+  if (const auto* s = std::get_if<Sphere>(&o)) {
+    d["type"] = "sphere";
+    d["center"] = xyz(s->center);
+    d["radius"] = s->radius_m;
+  } else if (const auto* c = std::get_if<Cylinder>(&o)) {
+    d["type"] = "cylinder";
+    d["center"] = xy(c->center);
+    d["radius"] = c->radius_m;
+    d["z_min"] = c->z_min_m;
+    d["z_max"] = c->z_max_m;
+  } else if (const auto* b = std::get_if<Box>(&o)) {
+    d["type"] = "box";
+    d["min"] = xyz(b->min);
+    d["max"] = xyz(b->max);
+  } else if (const auto* p = std::get_if<Prism>(&o)) {
+    std::vector<std::vector<double>> poly;
+    for (const Vec2& v : p->polygon) poly.push_back(xy(v));
+    d["type"] = "prism";
+    d["polygon"] = poly;
+    d["z_min"] = p->z_min_m;
+    d["z_max"] = p->z_max_m;
+  }
+  return d;
+}
+
 py::dict violation_dict(const Violation& v) {
   py::dict d;
   d["kind"] = std::string(to_string(v.kind));
@@ -142,6 +172,15 @@ PYBIND11_MODULE(uavplan, m) {
       })
       .def_property_readonly("mission_type", [](const Scenario& s) { return std::string(to_string(s.mission.type)); })
       .def_property_readonly("algorithm", [](const Scenario& s) { return s.planner.algorithm; })
+      .def_property_readonly("obstacles", [](const Scenario& s) {
+        py::list l;
+        for (const Obstacle& o : s.world.obstacles()) l.append(obstacle_dict(o));
+        return l;
+      }, "The static obstacles as dicts of the scenario file's shape (buildings included)")
+      .def_property_readonly("bounds", [](const Scenario& s) {
+        const Aabb b = s.world.bounds();
+        return std::vector<std::vector<double>>{{b.min.x(), b.min.y(), b.min.z()}, {b.max.x(), b.max.y(), b.max.z()}};
+      })
       .def_property_readonly("seed", [](const Scenario& s) { return s.seed; })
       .def("__repr__", [](const Scenario& s) {
         return "<uavplan.Scenario '" + s.name + "', " + std::to_string(s.uavs.size()) + " UAVs>";

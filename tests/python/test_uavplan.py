@@ -89,6 +89,8 @@ def test_from_dict_plans_a_scenario_written_in_python():
     t = p.uavs[0].trajectory
     assert t[:, 3].max() <= 50
     assert t[:, 2].max() > 150  # around the wall's end (it stands to the ceiling)
+    assert sc.obstacles == [{"type": "box", "min": [80.0, 0.0, 0.0], "max": [120.0, 150.0, 50.0]}]
+    assert sc.bounds == [[0, 0, 0], [200, 200, 50]]
 
 
 def test_errors_carry_the_clis_one_line_message(root, exe, tmp_path):
