@@ -313,3 +313,70 @@ TEST(Export, FolderManifestRemovesStaleFilesOnly) {
 
 }  // namespace
 }  // namespace uavplan
+
+#include "uavplan/coordination/mission_planner.h"
+#include "uavplan/io/files.h"
+#include "uavplan/io/scenario_io.h"
+
+namespace uavplan {
+namespace {
+
+// P5's reference UAV flown through the autopilot model: a row every second along its arcs.
+struct ModelFlown {
+  Scenario sc;
+  Plan plan;
+  ModelFlown() {
+    const std::string path = std::string(UAVPLAN_SOURCE_DIR) + "/scenarios/p5_entry.yaml";
+    sc = parse_scenario(read_text_file(path) + "origin: {lat: 30.5, lon: 104.0, alt: 500}\n", path);
+    plan = plan_mission(sc, {});
+    finalize_plan(sc, plan);
+  }
+};
+
+std::size_t waypoints(const std::vector<MissionItem>& items) {
+  return static_cast<std::size_t>(std::count_if(items.begin(), items.end(), [](const MissionItem& i) { return i.command == kCmdWaypoint; }));
+}
+
+TEST(ExportSimplify, AModelFlownTrajectoryIsFlownAsVerifiedChords) {
+  const ModelFlown m;
+  ASSERT_EQ(m.plan.status, Status::solved) << m.plan.message;
+  ExportOptions all_rows;
+  all_rows.simplify_m = 0.0;
+  const VerifiedExport full = verified_export(m.sc, m.plan, all_rows);
+  const VerifiedExport chords = verified_export(m.sc, m.plan, {});
+  ASSERT_TRUE(full.holds() && chords.holds());
+  const Trajectory& a = full.uavs[0].plan.trajectory;
+  const Trajectory& b = chords.uavs[0].plan.trajectory;
+  const std::size_t n_full = waypoints(mission_items(m.sc, full.uavs[0], all_rows));
+  const std::size_t n_chords = waypoints(mission_items(m.sc, chords.uavs[0], {}));
+  EXPECT_LT(3 * n_chords, n_full) << n_chords << " of " << n_full;
+  EXPECT_LT(3 * b.size(), a.size());
+  // Every row flown is a row of the plan, and every row left out is within the UAV's radius of
+  // where the chord has it at that time.
+  const double tol = m.sc.uavs[0].radius_m;
+  std::size_t k = 0;
+  for (std::size_t i = 0; i + 1 < b.size(); ++i) {
+    while (k < a.size() && a[k].t_s < b[i].t_s) ++k;
+    ASSERT_LT(k, a.size());
+    ASSERT_EQ(a[k].p, b[i].p);
+    for (std::size_t r = k + 1; r < a.size() && a[r].t_s < b[i + 1].t_s; ++r) {
+      const double f = (a[r].t_s - b[i].t_s) / (b[i + 1].t_s - b[i].t_s);
+      EXPECT_LE((a[r].p - (b[i].p + f * (b[i + 1].p - b[i].p))).norm(), tol + 1e-9);
+    }
+  }
+  EXPECT_EQ(b.back().p, a.back().p);
+}
+
+TEST(ExportSimplify, ChordsThatDoNotHoldAreNotFlown) {
+  const ModelFlown m;
+  ExportOptions coarse;
+  coarse.simplify_m = 1e6;  // one chord from start to goal: through the no-fly cylinder
+  ExportOptions all_rows;
+  all_rows.simplify_m = 0.0;
+  const VerifiedExport e = verified_export(m.sc, m.plan, coarse);
+  ASSERT_TRUE(e.holds());
+  EXPECT_EQ(e.uavs[0].plan.trajectory.size(), verified_export(m.sc, m.plan, all_rows).uavs[0].plan.trajectory.size());
+}
+
+}  // namespace
+}  // namespace uavplan

@@ -260,6 +260,59 @@ std::string_view to_string(MissionEnd e) {
 
 double fixed_wing_loiter_radius_m(Firmware f) { return f == Firmware::px4 ? 80.0 : 60.0; }
 
+namespace {
+
+// Where the trajectory is at rows[k].t_s on the chord from rows[i] to rows[j].
+double synchronised_distance(const Trajectory& tr, std::size_t i, std::size_t j, std::size_t k) {
+  const double span = tr[j].t_s - tr[i].t_s;
+  const double f = span > 0.0 ? (tr[k].t_s - tr[i].t_s) / span : 0.0;
+  return (tr[k].p - (tr[i].p + f * (tr[j].p - tr[i].p))).norm();
+}
+
+// Douglas-Peucker on the rows [begin, end] with the synchronised distance; returns whether a row
+// was left out.
+bool simplify_body(ExportedUav& e, double tol_m) {
+  Trajectory& tr = e.plan.trajectory;
+  const std::size_t begin = e.body_begin, end = e.body_end;
+  if (end <= begin + 1) return false;
+  std::vector<char> keep(tr.size(), 1);
+  std::fill(keep.begin() + static_cast<std::ptrdiff_t>(begin) + 1, keep.begin() + static_cast<std::ptrdiff_t>(end), 0);
+  std::vector<std::pair<std::size_t, std::size_t>> stack = {{begin, end}};
+  while (!stack.empty()) {
+    const auto [i, j] = stack.back();
+    stack.pop_back();
+    double worst = 0.0;
+    std::size_t at = i;
+    for (std::size_t k = i + 1; k < j; ++k)
+      if (const double d = synchronised_distance(tr, i, j, k); d > worst) {
+        worst = d;
+        at = k;
+      }
+    if (worst <= tol_m) continue;
+    keep[at] = 1;
+    stack.push_back({i, at});
+    stack.push_back({at, j});
+  }
+  Trajectory out;
+  std::size_t new_end = 0;
+  for (std::size_t k = 0; k < tr.size(); ++k) {
+    if (!keep[k]) continue;
+    if (k == end) new_end = out.size();
+    out.push_back(tr[k]);
+  }
+  if (out.size() == tr.size()) return false;
+  tr = std::move(out);
+  e.body_end = new_end;
+  return true;
+}
+
+double simplify_tolerance_m(const ExportedUav& e, const ExportOptions& opt) {
+  if (opt.simplify_m >= 0.0) return opt.simplify_m;
+  return e.spec->model ? e.spec->radius_m : 0.0;
+}
+
+}  // namespace
+
 VerifiedExport verified_export(const Scenario& sc, const Plan& plan, const ExportOptions& opt) {
   VerifiedExport out;
   for (const UavPlan& u : plan.uavs)
@@ -290,6 +343,12 @@ VerifiedExport verified_export(const Scenario& sc, const Plan& plan, const Expor
   }
   for (const Violation& v : out.violations)
     if (v.uav.empty()) out.left_out.push_back("the plan: " + describe(v));
+  // Model-flown trajectories flown as chords, when the chords hold with everything else.
+  std::vector<ExportedUav> chords = out.uavs;
+  bool changed = false;
+  for (ExportedUav& e : chords)
+    if (const double tol = simplify_tolerance_m(e, opt); tol > 0.0) changed |= simplify_body(e, tol);
+  if (changed && verify_flights(sc, chords).empty()) out.uavs = std::move(chords);
   // The added legs, with everything else that flies: a UAV whose legs do not hold goes.
   std::set<std::string> failed;
   for (Violation& v : verify_flights(sc, out.uavs)) {

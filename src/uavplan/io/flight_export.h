@@ -52,6 +52,13 @@ struct ExportOptions {
   double speed_change_fraction = 0.10;
   FenceMode fence = FenceMode::bounds;
   int max_fence_exclusions = 16;  // FenceMode::bounds: autopilots store few fence points
+  // A trajectory flown through a vehicle model (a row every fraction of a second along its
+  // arcs) is flown as a subset of its rows: each left-out row within this distance of where the
+  // UAV is at that time on the chord between the rows kept (synchronised distance, so timing
+  // holds too). Negative: the UAV's radius for model-flown UAVs, none for the others (their
+  // straight legs are one mission item already). The chords are verified with everything else
+  // that flies; if they do not hold, every UAV flies all its rows.
+  double simplify_m = -1.0;
 };
 
 inline constexpr double kFixedWingGlide_deg = 5.0;     // PX4 FW_LND_ANG default
