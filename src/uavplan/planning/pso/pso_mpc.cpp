@@ -92,6 +92,119 @@ PsoMpcOptions PsoMpcOptions::from_params(const Params& params) {
   return o;
 }
 
+namespace {
+
+constexpr const char* kStoppedWhy = "stopped before the route was complete";
+
+// One leg of P5's multi-step planning, from route.back() (arriving along `in`) to `task`: a PSO
+// per waypoint, backing up from dead ends. On success appends the leg's waypoints to `route`,
+// sets `in` and returns ""; else returns why (": ..." after the leg's name, or kStoppedWhy) and
+// leaves both as they were.
+std::string fly_leg(const LegPlanner& lp, const Vec3& task, const std::optional<double>& entry, const Rng& base,
+                    std::uint64_t salt, const StopCondition& stop, std::vector<Vec3>& route_io, std::optional<Vec3>& in_io,
+                    PlanStats& stats) {
+  const double l = lp.l, turn_max = lp.turn_max, dh_max = lp.dh_max;
+  const PsoMpcOptions& options = lp.o;
+  std::vector<Vec3> route = route_io;
+  std::optional<Vec3> in = in_io;
+  Vec3 target = task;
+  if (entry) {  // eq. 10: the fixed final segment, one step l long at the task's height
+    target = task - l * heading_vector(*entry);
+    if (!lp.rule.point_ok(target) || !lp.rule(target, task)) return ": the fixed segment into the entry heading is blocked";
+  }
+  Vec3 p = route.back();
+  double psi = in ? std::atan2(in->y(), in->x()) : bearing(p, target);
+  const int cap = static_cast<int>(10.0 * (p - target).norm() / l) + 20;
+  bool arrived = (p - target).norm() <= 1e-9;
+  // The leg's states before each step, with the turns tried from each that led to dead ends:
+  // where no waypoint is feasible it backs up a step and turns another way (at most
+  // kMaxBacktracks times a leg; P5 re-runs the swarm, which cannot leave a dead end: that only
+  // where there is no step to back up).
+  struct Before {
+    Vec3 p;
+    double psi;
+    std::optional<Vec3> in;
+    std::size_t route_size;
+    std::vector<double> dead;  // turns (dphi) that led to dead ends
+    double chosen = 0.0;
+  };
+  constexpr int kMaxBacktracks = 200;
+  std::vector<Before> history;
+  std::vector<double> dead_here;
+  int backtracks = 0;
+  for (int step = 0; static_cast<int>(history.size()) < cap && !arrived; ++step) {  // backtracks are bounded below
+    if (stop.should_stop()) return kStoppedWhy;
+    if ((p - target).norm() < 2.0 * l && lp.closes(p, in, target, entry)) {  // the target is the last waypoint
+      in = target - p;
+      route.push_back(target);
+      arrived = true;
+      break;
+    }
+    const double near = 0.25 * turn_max;
+    int prediction = options.prediction_steps;
+    const auto f = [&](std::span<const double> x) {
+      for (const double d : dead_here)
+        if (std::abs(x[0] - d) < near) return kInf;
+      return lp.cost(x, p, psi, in, target, entry, prediction);
+    };
+    const std::array<double, 2> lo{-turn_max, -dh_max}, hi{turn_max, dh_max};
+    const std::array<double, 4> seeds{0.0, 0.0, std::clamp(wrap(bearing(p, target) - psi), -turn_max, turn_max),
+                                      std::clamp(target.z() - p.z(), -dh_max, dh_max)};
+    Rng rng = base.split(salt + static_cast<std::uint64_t>(step));
+    PsoResult best = pso_minimize(f, lo, hi, options.pso, rng, seeds);
+    // Every candidate's straight look-ahead blocked (a no-fly zone ahead closer than the
+    // prediction reaches, a turn of 30 deg per step cannot clear it): look half as far ahead.
+    while (best.f == kInf && prediction > 0) {
+      prediction /= 2;
+      const PsoResult shorter = pso_minimize(f, lo, hi, options.pso, rng, seeds);
+      best.evaluations += shorter.evaluations;
+      best.f = shorter.f, best.x = shorter.x;
+    }
+    if (best.f == kInf && history.empty()) {  // once more, with a swarm twice as large (P5-notes 4.1)
+      PsoOptions wider = options.pso;
+      wider.particles *= 2;
+      wider.iterations *= 2;
+      const PsoResult again = pso_minimize(f, lo, hi, wider, rng, seeds);
+      best.evaluations += again.evaluations;
+      best.f = again.f, best.x = again.x;
+    }
+    stats.nodes_expanded += static_cast<std::uint64_t>(best.evaluations);
+    if (best.f == kInf) {
+      if (history.empty() || backtracks >= kMaxBacktracks) {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, ": no feasible waypoint %g m on from (%.1f, %.1f, %.1f)", l, p.x(), p.y(), p.z());
+        return buf;
+      }
+      ++backtracks;
+      Before b = std::move(history.back());
+      history.pop_back();
+      b.dead.push_back(b.chosen);
+      p = b.p, psi = b.psi, in = b.in;
+      route.resize(b.route_size);
+      dead_here = std::move(b.dead);
+      continue;
+    }
+    history.push_back({p, psi, in, route.size(), std::move(dead_here), best.x[0]});
+    dead_here.clear();
+    psi += best.x[0];
+    const Vec3 q = p + Vec3(l * std::cos(psi), l * std::sin(psi), best.x[1]);
+    in = q - p;
+    route.push_back(q);
+    p = q;
+  }
+  if (!arrived)
+    return ": not at its target within " + std::to_string(cap) + " steps of " + std::to_string(static_cast<int>(l)) + " m";
+  if (entry) {
+    in = task - target;
+    route.push_back(task);
+  }
+  route_io = std::move(route);
+  in_io = in;
+  return "";
+}
+
+}  // namespace
+
 PsoSteps pso_steps(const PsoMpcOptions& o, const UavSpec& uav, const World& world) {
   PsoSteps st;
   st.max_turn_rad = std::min(deg_to_rad(o.max_turn_deg), uav.max_turn_rad);
@@ -123,7 +236,12 @@ PlanResult PsoMpcPlanner::do_plan(const Problem& pb, const World& world, const S
   for (const Vec3& f : fixed)
     for (int k = 0; k < 2; ++k) edge_m = std::min({edge_m, f[k] - box.min[k], box.max[k] - f[k]});
   const SegmentRule rule = SegmentRule(world, u).with_edge_margin(edge_m);
-  const LegPlanner leg_planner{world, rule, options_, l, dh_max, turn_max};
+  // A leg whose waypoints l apart cannot go on (a start heading into a nearby corner, a dead end
+  // the backtracking does not leave, a target it circles) is flown again with steps half as
+  // long, never shorter than the vehicle turns dphi_max in (its turn circle's chord).
+  double l_min = 0.5 * l;
+  if (u.model && u.max_turn_rate_rad_s)
+    l_min = std::max(l_min, 2.0 * u.speed.cruise_mps / *u.max_turn_rate_rad_s * std::sin(0.5 * turn_max));
   std::vector<Vec3> route{u.start};
   std::optional<Vec3> in;
   if (u.heading_rad) in = heading_vector(*u.heading_rad);
@@ -131,109 +249,18 @@ PlanResult PsoMpcPlanner::do_plan(const Problem& pb, const World& world, const S
   stops.push_back(pb.goal);
   const Rng base(pb.seed);
   for (std::size_t leg = 0; leg < stops.size(); ++leg) {
-    const Vec3 task = stops[leg];
     const std::optional<double> entry =
         leg < pb.via_entry_heading_rad.size() && leg < pb.via.size() ? pb.via_entry_heading_rad[leg] : std::nullopt;
-    Vec3 target = task;
-    if (entry) {  // eq. 10: the fixed final segment, one step l long at the task's height
-      target = task - l * heading_vector(*entry);
-      if (!rule.point_ok(target) || !rule(target, task)) {
-        res.message = leg_name(leg, stops.size() + 1) + ": the fixed segment into the entry heading is blocked";
-        return res;
-      }
+    std::string why;
+    for (const double lt : {l, l_min}) {
+      const LegPlanner leg_planner{world, rule, options_, lt, dh_max * lt / l, turn_max};
+      why = fly_leg(leg_planner, stops[leg], entry, base, leg * 1000003u + (lt < l ? 500000u : 0u), stop, route, in,
+                    res.stats);
+      if (why.empty() || why == kStoppedWhy || l_min >= l) break;
     }
-    Vec3 p = route.back();
-    double psi = in ? std::atan2(in->y(), in->x()) : bearing(p, target);
-    const int cap = static_cast<int>(10.0 * (p - target).norm() / l) + 20;
-    bool arrived = (p - target).norm() <= 1e-9;
-    // The leg's states before each step, with the turns tried from each that led to dead ends:
-    // where no waypoint is feasible it backs up a step and turns another way (at most
-    // kMaxBacktracks times a leg; P5 re-runs the swarm, which cannot leave a dead end: that only
-    // where there is no step to back up).
-    struct Before {
-      Vec3 p;
-      double psi;
-      std::optional<Vec3> in;
-      std::size_t route_size;
-      std::vector<double> dead;  // turns (dphi) that led to dead ends
-      double chosen = 0.0;
-    };
-    constexpr int kMaxBacktracks = 200;
-    std::vector<Before> history;
-    std::vector<double> dead_here;
-    int backtracks = 0;
-    for (int step = 0; static_cast<int>(history.size()) < cap && !arrived; ++step) {  // backtracks are bounded below
-      if (stop.should_stop()) {
-        res.message = "stopped before the route was complete";
-        return res;
-      }
-      if ((p - target).norm() < 2.0 * l && leg_planner.closes(p, in, target, entry)) {  // the target is the last waypoint
-        in = target - p;
-        route.push_back(target);
-        arrived = true;
-        break;
-      }
-      const double near = 0.25 * turn_max;
-      int prediction = options_.prediction_steps;
-      const auto f = [&](std::span<const double> x) {
-        for (const double d : dead_here)
-          if (std::abs(x[0] - d) < near) return kInf;
-        return leg_planner.cost(x, p, psi, in, target, entry, prediction);
-      };
-      const std::array<double, 2> lo{-turn_max, -dh_max}, hi{turn_max, dh_max};
-      const std::array<double, 4> seeds{0.0, 0.0, std::clamp(wrap(bearing(p, target) - psi), -turn_max, turn_max),
-                                        std::clamp(target.z() - p.z(), -dh_max, dh_max)};
-      Rng rng = base.split(leg * 1000003u + static_cast<std::uint64_t>(step));
-      PsoResult best = pso_minimize(f, lo, hi, options_.pso, rng, seeds);
-      // Every candidate's straight look-ahead blocked (a no-fly zone ahead closer than the
-      // prediction reaches, a turn of 30 deg per step cannot clear it): look half as far ahead.
-      while (best.f == kInf && prediction > 0) {
-        prediction /= 2;
-        const PsoResult shorter = pso_minimize(f, lo, hi, options_.pso, rng, seeds);
-        best.evaluations += shorter.evaluations;
-        best.f = shorter.f, best.x = shorter.x;
-      }
-      if (best.f == kInf && history.empty()) {  // once more, with a swarm twice as large (P5-notes 4.1)
-        PsoOptions wider = options_.pso;
-        wider.particles *= 2;
-        wider.iterations *= 2;
-        const PsoResult again = pso_minimize(f, lo, hi, wider, rng, seeds);
-        best.evaluations += again.evaluations;
-        best.f = again.f, best.x = again.x;
-      }
-      res.stats.nodes_expanded += static_cast<std::uint64_t>(best.evaluations);
-      if (best.f == kInf) {
-        if (history.empty() || backtracks >= kMaxBacktracks) {
-          char buf[160];
-          std::snprintf(buf, sizeof buf, ": no feasible waypoint %g m on from (%.1f, %.1f, %.1f)", l, p.x(), p.y(), p.z());
-          res.message = leg_name(leg, stops.size() + 1) + buf;
-          return res;
-        }
-        ++backtracks;
-        Before b = std::move(history.back());
-        history.pop_back();
-        b.dead.push_back(b.chosen);
-        p = b.p, psi = b.psi, in = b.in;
-        route.resize(b.route_size);
-        dead_here = std::move(b.dead);
-        continue;
-      }
-      history.push_back({p, psi, in, route.size(), std::move(dead_here), best.x[0]});
-      dead_here.clear();
-      psi += best.x[0];
-      const Vec3 q = p + Vec3(l * std::cos(psi), l * std::sin(psi), best.x[1]);
-      in = q - p;
-      route.push_back(q);
-      p = q;
-    }
-    if (!arrived) {
-      res.message = leg_name(leg, stops.size() + 1) + ": not at its target within " + std::to_string(cap) + " steps of " +
-                    std::to_string(static_cast<int>(l)) + " m";
+    if (!why.empty()) {
+      res.message = why == kStoppedWhy ? why : leg_name(leg, stops.size() + 1) + why;
       return res;
-    }
-    if (entry) {
-      in = task - target;
-      route.push_back(task);
     }
   }
   res.status = Status::solved;

@@ -111,6 +111,32 @@ TEST(PsoMpc, ACylinderCloserThanTheLookAheadIsStillPassed) {
   for (std::size_t k = 1; k < r.route.waypoints.size(); ++k) EXPECT_TRUE(rule(r.route.waypoints[k - 1], r.route.waypoints[k])) << k;
 }
 
+// Heading into a corner 8-9 km off: 30 deg turns every 5 km (a polygon of radius 9.7 km) cannot
+// turn back inside the bounds; on steps half as long they can.
+TEST(PsoMpc, AStartHeadingIntoANearbyCornerTurnsBackOnShorterSteps) {
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(200000, 200000, 10000)};
+  ws.obstacles.push_back(Cylinder{Vec2(100000, 100000), 30000, 0, 10000});
+  const World w(std::move(ws));
+  Problem p = problem();
+  p.uav.start = Vec3(9000, 8000, 5000);
+  p.uav.heading_rad = deg_to_rad(225);
+  p.uav.max_turn_rad = deg_to_rad(30);
+  p.goal = Vec3(180000, 150000, 5000);
+  const PlanResult r = PsoMpcPlanner({}).plan(p, w, {});
+  ASSERT_EQ(r.status, Status::solved) << r.message;
+  const auto& wp = r.route.waypoints;
+  EXPECT_LT((wp[1] - wp[0]).norm(), 5000.0 - 1.0);  // the first leg on the shorter steps
+  const SegmentRule rule(w, p.uav);
+  for (std::size_t k = 1; k < wp.size(); ++k) {
+    EXPECT_TRUE(rule(wp[k - 1], wp[k])) << k;
+    if (k >= 2) {
+      EXPECT_LE(std::abs(std::remainder(heading(wp[k] - wp[k - 1]) - heading(wp[k - 1] - wp[k - 2]), 2 * kPi)),
+                deg_to_rad(30) + 1e-9);
+    }
+  }
+}
+
 // A margin off the bounds' sides (pso_mpc: the body and the turns' overshoot), not off the top.
 TEST(SegmentRule, AnEdgeMarginKeepsPointsOffTheSides) {
   WorldSpec ws;
