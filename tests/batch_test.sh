@@ -58,6 +58,27 @@ sc=$(echo "$row" | cut -d, -f2); plan=$(echo "$row" | cut -d, -f15)
 grep -q "^astar  *demo.yaml  *3  *3  *3 " "$T/j1.out" || { cat "$T/j1.out"; fail "summary row for astar on demo"; }
 head -1 "$T/j1/timings.csv" | grep -q "^run,plan_ms,wall_ms$" || fail "timings.csv header"
 
+# --isolate: a run whose process dies (here: SIGKILL, which no sanitizer runtime intercepts) is a
+# row, the batch goes on.
+cat > "$T/crash.yaml" <<YAML
+scenarios: [$ROOT/scenarios/demo.yaml]
+planners: [astar]
+seeds: 3
+YAML
+"$UAVPLAN" batch "$T/crash.yaml" -o "$T/crash" --jobs 1 --isolate >/dev/null 2>&1 &
+pid=$!
+killed=0
+for _ in $(seq 1 600); do
+  child=$(pgrep -P $pid -f "plan $ROOT/scenarios/demo.yaml" | head -1)
+  if [ -n "$child" ]; then kill -KILL "$child"; killed=1; break; fi
+  sleep 0.01
+done
+wait $pid || fail "the isolated batch did not finish after a run's process died"
+[ $killed = 1 ] || fail "no run's process was seen to kill"
+[ "$(runs "$T/crash")" = 3 ] || fail "the isolated batch has $(runs "$T/crash") rows, not 3"
+grep -q ',crashed,0,.*signal 9' "$T/crash/results.csv" || { cat "$T/crash/results.csv"; fail "the dead run is not a crashed row"; }
+[ "$(grep -c ',solved,1,' "$T/crash/results.csv")" = 2 ] || fail "the other runs were not solved"
+
 # Bad sweeps: exit 2, one line naming the sweep's key, nothing written.
 bad() {  # name, yaml, expected text
   printf '%s\n' "$2" > "$T/bad.yaml"
