@@ -106,20 +106,7 @@ py::dict violation_dict(const Violation& v) {
 std::vector<std::string> export_plan(const Scenario& sc, const Plan& plan, const std::vector<std::string>& formats,
                                      const std::string& dir, const std::string& firmware, const std::string& vehicle,
                                      const std::string& end, const std::string& fence, bool force) {
-  ExportOptions opt;
-  auto pick = [](const std::string& v, const char* what, std::initializer_list<const char*> allowed) {
-    for (const char* a : allowed)
-      if (v == a) return;
-    throw py::value_error(std::string(what) + ": '" + v + "' is not one of the choices");
-  };
-  pick(firmware, "firmware", {"px4", "ardupilot"});
-  pick(vehicle, "vehicle", {"multirotor", "fixedwing"});
-  pick(end, "end", {"land", "rtl", "loiter", "none"});
-  pick(fence, "fence", {"none", "bounds", "all"});
-  opt.firmware = firmware == "ardupilot" ? Firmware::ardupilot : Firmware::px4;
-  opt.vehicle = vehicle == "fixedwing" ? VehicleKind::fixed_wing : VehicleKind::multirotor;
-  opt.end = end == "rtl" ? MissionEnd::rtl : end == "loiter" ? MissionEnd::loiter : end == "none" ? MissionEnd::none : MissionEnd::land;
-  opt.fence = fence == "none" ? FenceMode::none : fence == "all" ? FenceMode::all : FenceMode::bounds;
+  const ExportOptions opt = export_options(firmware, vehicle, end, fence);
   if (formats.empty()) throw py::value_error("formats: name at least one of qgc, wpl, geojson, kml, csv");
   std::vector<ExportFormat> fs;
   for (const std::string& f : formats) {

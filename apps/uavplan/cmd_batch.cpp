@@ -99,7 +99,7 @@ std::string host_name() {
 void write_ompl_logs(const BatchArgs& a, const Sweep& sweep, const std::vector<RunRecord>& all, double total_s,
                      const std::string& started) {
   // One experiment per scenario: one file for one scenario, FILE-<scenario stem>.log for several.
-  std::vector<std::string> scenarios = sweep.scenarios;
+  const std::vector<std::string>& scenarios = sweep.scenarios;
   for (std::size_t i = 0; i < scenarios.size(); ++i) {
     std::vector<RunRecord> mine;
     for (const RunRecord& r : all)
@@ -137,15 +137,9 @@ int run_batch_command(const BatchArgs& a) {
   if (a.dry_run) {
     if (mpi.root()) {
       std::size_t settings = 0;
-      for (const auto& p : sweep.planners) {
-        std::size_t n = 1;
-        for (const auto& g : p.params) n *= g.values.size();
-        settings += n;
-      }
-      std::size_t grid = 1;
-      for (const auto& g : sweep.params) grid *= g.values.size();
+      for (const auto& p : sweep.planners) settings += grid_size(p.params);
       std::printf("%zu runs: %zu scenarios x %zu planner settings x %zu parameter settings x %zu seeds\n", runs.size(),
-                  sweep.scenarios.size(), settings, grid, sweep.seeds.size());
+                  sweep.scenarios.size(), settings, grid_size(sweep.params), sweep.seeds.size());
     }
     return kExitOk;
   }

@@ -48,11 +48,7 @@ void add_export_options(CLI::App& cmd, ExportArgs& a, bool formats_required) {
 
 int write_exports(const std::string& scenario_path, const Scenario& sc, const Plan& plan, const ExportArgs& a,
                   const std::string& dir) {
-  ExportOptions opt;
-  opt.firmware = a.firmware == "ardupilot" ? Firmware::ardupilot : Firmware::px4;
-  opt.vehicle = a.vehicle == "fixedwing" ? VehicleKind::fixed_wing : VehicleKind::multirotor;
-  opt.end = a.end == "rtl" ? MissionEnd::rtl : a.end == "loiter" ? MissionEnd::loiter : a.end == "none" ? MissionEnd::none : MissionEnd::land;
-  opt.fence = a.fence == "none" ? FenceMode::none : a.fence == "all" ? FenceMode::all : FenceMode::bounds;
+  const ExportOptions opt = export_options(a.firmware, a.vehicle, a.end, a.fence);  // CLI11 checked the spellings
   // Everything is verified and built before anything is written: a refusal or an error leaves
   // the folder as it was.
   std::vector<ExportFile> files;

@@ -136,12 +136,6 @@ void read_seeds(const Reader& r, const YAML::Node& n, Sweep& s) {
   }
 }
 
-std::size_t grid_size(const ParamGrid& g) {
-  std::size_t n = 1;
-  for (const auto& e : g) n *= e.values.size();
-  return n;
-}
-
 // The k-th combination of a grid, the last key varying fastest.
 void append_combination(const ParamGrid& g, std::size_t k, ParamSetting& out) {
   std::vector<std::size_t> idx(g.size());
@@ -202,6 +196,12 @@ Sweep parse_sweep(const std::string& text, const std::string& source_path) {
 
 Sweep load_sweep(const std::string& path) { return parse_sweep(read_text_file(path), path); }
 
+std::size_t grid_size(const ParamGrid& g) {
+  std::size_t n = 1;
+  for (const auto& e : g) n *= e.values.size();
+  return n;
+}
+
 std::size_t run_count(const Sweep& sweep) {
   std::size_t per_scenario = 0;
   for (const SweepPlanner& p : sweep.planners) per_scenario += grid_size(p.params);
@@ -252,8 +252,10 @@ void check_sweep(const Sweep& sweep) {
   for (std::size_t si = 0; si < sweep.scenarios.size(); ++si) {
     const std::string skey = "scenarios[" + std::to_string(si) + "]";
     Scenario sc;
+    std::string text;
     try {
-      sc = load_scenario(sweep.scenarios[si]);
+      text = read_text_file(sweep.scenarios[si]);
+      sc = parse_scenario(text, sweep.scenarios[si]);
     } catch (const InputError& e) {
       throw InputError(sweep.source, sweep.scenario_lines[si], skey, e.what());
     }
@@ -269,7 +271,7 @@ void check_sweep(const Sweep& sweep) {
         for (const std::string& v : g.values) {
           if (dotted(g.key)) {
             try {
-              parse_scenario(read_text_file(sweep.scenarios[si]), sweep.scenarios[si], {{g.key, v}});
+              parse_scenario(text, sweep.scenarios[si], {{g.key, v}});
             } catch (const InputError& e) {
               throw InputError(sweep.source, g.line, key, e.what());
             }

@@ -68,6 +68,8 @@ void check_sweep(const Sweep& sweep);
 // Every run of the sweep, numbered from 0.
 std::vector<RunSpec> expand_runs(const Sweep& sweep);
 std::size_t run_count(const Sweep& sweep);
+// Settings a grid spans (the product of its value counts; 1 for none).
+std::size_t grid_size(const ParamGrid& grid);
 
 // "cell_m=2;goal_bias=0.1" (empty for none); the CSV's and the OMPL log's spelling.
 std::string params_text(const ParamSetting& params);

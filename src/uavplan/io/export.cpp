@@ -58,6 +58,26 @@ std::string_view to_string(ExportFormat f) {
 
 bool needs_origin(ExportFormat f) { return f != ExportFormat::csv; }
 
+ExportOptions export_options(std::string_view firmware, std::string_view vehicle, std::string_view end,
+                             std::string_view fence) {
+  const auto bad = [](const char* what, std::string_view v, const char* choices) {
+    return ExportError(std::string(what) + ": '" + std::string(v) + "' is not one of " + choices);
+  };
+  ExportOptions o;
+  if (firmware == "ardupilot") o.firmware = Firmware::ardupilot;
+  else if (firmware != "px4") throw bad("firmware", firmware, "px4, ardupilot");
+  if (vehicle == "fixedwing") o.vehicle = VehicleKind::fixed_wing;
+  else if (vehicle != "multirotor") throw bad("vehicle", vehicle, "multirotor, fixedwing");
+  if (end == "rtl") o.end = MissionEnd::rtl;
+  else if (end == "loiter") o.end = MissionEnd::loiter;
+  else if (end == "none") o.end = MissionEnd::none;
+  else if (end != "land") throw bad("end", end, "land, rtl, loiter, none");
+  if (fence == "none") o.fence = FenceMode::none;
+  else if (fence == "all") o.fence = FenceMode::all;
+  else if (fence != "bounds") throw bad("fence", fence, "none, bounds, all");
+  return o;
+}
+
 std::string file_stem(std::string_view id) {
   std::string s(id);
   for (char& c : s)

@@ -17,6 +17,12 @@ namespace uavplan {
 enum class ExportFormat { qgc, wpl, geojson, kml, csv };
 std::optional<ExportFormat> export_format_from_string(std::string_view s);
 std::string_view to_string(ExportFormat f);
+// Export options from the command line's spellings: firmware px4 | ardupilot, vehicle
+// multirotor | fixedwing, end land | rtl | loiter | none, fence none | bounds | all. Throws
+// ExportError naming the value that is none of them.
+ExportOptions export_options(std::string_view firmware, std::string_view vehicle, std::string_view end,
+                             std::string_view fence);
+
 // Whether the format is in WGS84 (needs the scenario's origin); CSV is local without one.
 bool needs_origin(ExportFormat f);
 
