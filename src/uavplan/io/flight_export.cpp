@@ -344,11 +344,14 @@ VerifiedExport verified_export(const Scenario& sc, const Plan& plan, const Expor
   for (const Violation& v : out.violations)
     if (v.uav.empty()) out.left_out.push_back("the plan: " + describe(v));
   // Model-flown trajectories flown as chords, when the chords hold with everything else.
-  std::vector<ExportedUav> chords = out.uavs;
-  bool changed = false;
-  for (ExportedUav& e : chords)
-    if (const double tol = simplify_tolerance_m(e, opt); tol > 0.0) changed |= simplify_body(e, tol);
-  if (changed && verify_flights(sc, chords).empty()) out.uavs = std::move(chords);
+  // (Copied only when some UAV is to be simplified: most plans have none.)
+  if (std::any_of(out.uavs.begin(), out.uavs.end(), [&](const ExportedUav& e) { return simplify_tolerance_m(e, opt) > 0.0; })) {
+    std::vector<ExportedUav> chords = out.uavs;
+    bool changed = false;
+    for (ExportedUav& e : chords)
+      if (const double tol = simplify_tolerance_m(e, opt); tol > 0.0) changed |= simplify_body(e, tol);
+    if (changed && verify_flights(sc, chords).empty()) out.uavs = std::move(chords);
+  }
   // The added legs, with everything else that flies: a UAV whose legs do not hold goes.
   std::set<std::string> failed;
   for (Violation& v : verify_flights(sc, out.uavs)) {
