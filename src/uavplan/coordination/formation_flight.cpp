@@ -86,7 +86,7 @@ void FormationFlight::fly_slot(double t, std::size_t i, FlightState& s, double h
   // arrived before the others.
   const bool at_goal = (s.position - sched_.slots[i].back()).norm() <= 1e-9;
   if (s.route.empty() || at_goal) s.route.clear();
-  if (at_goal && next < sched_.end_s()) s.route.push_back(s.position);
+  if (at_goal && (next < sched_.end_s() || waiting())) s.route.push_back(s.position);
   s.speed_mps = now_m / opt_.step_s;
   s.depart_s = t;
   s.done = s.route.empty();
@@ -99,8 +99,9 @@ void FormationFlight::find_on_path(std::size_t i, const FlightState& s) {
   Member& m = members_[i];
   m.on_path = false;
   const std::vector<Vec3>& p = sched_.slots[i];
+  const bool heading = !s.route.empty() && s.route.front() != s.position;  // not hovering
   for (std::size_t k = std::max<std::size_t>(m.knot, 1); k < p.size(); ++k) {
-    if (p[k] == p[k - 1] || (!s.route.empty() && p[k] != s.route.front())) continue;
+    if (p[k] == p[k - 1] || (heading && p[k] != s.route.front())) continue;
     const Vec3 seg = p[k] - p[k - 1], rel = s.position - p[k - 1];
     const double f = rel.dot(seg) / seg.squaredNorm();
     if (f < -1e-9 || f > 1.0 + 1e-9 || (rel - f * seg).norm() > 1e-6) continue;
@@ -126,17 +127,47 @@ void FormationFlight::clip_route(std::size_t i, FlightState& s) const {
     const bool rejoins = !s.route.empty() && Vec3(s.route.back() - wait).cross(leg).norm() <= 1e-6 * leg.norm();
     if (!rejoins && (s.position - left).norm() > 1e-9) s.route.push_back(left);
   }
+  // Where it waits is its goal when the end leg has no length: it hovers there until the others
+  // are in their slots (it has not arrived before them).
+  if (s.route.empty() && (s.position - goal).norm() <= 1e-6) s.route.push_back(s.position);
   s.done = s.route.empty();
+}
+
+// The re-forming's duration: P1 eq. 9, t = x / (V_max / v) rounded up to whole periods, x the
+// clock spread.
+double FormationFlight::reform_span_s() const {
+  double lo = World::kInf, hi = -World::kInf;
+  for (const Member& m : members_) lo = std::min(lo, m.tau_s), hi = std::max(hi, m.tau_s);
+  const double catch_up = std::max(1.0, opt_.max_speed_mps / opt_.cruise_mps);
+  return std::max(1.0, std::ceil((hi - lo) / catch_up / opt_.step_s - 1e-9)) * opt_.step_s;
+}
+
+// Whether every pair stays apart while re-forming: each UAV runs its own path at its own clock
+// rate, so one catching up may pass over a mate that waits ahead of it (a column's rear UAV flies
+// where the one ahead of it was). Sampled 20 times a period, with the room the schedule's
+// trust needs; if not, the UAVs fly on as they are and the re-forming waits.
+bool FormationFlight::reform_is_clear(double span_s) const {
+  double hi = -World::kInf;
+  for (const Member& m : members_) hi = std::max(hi, m.tau_s);
+  const double room = 1.05 * opt_.separation_m + kTimingMargin_m;
+  const int samples = static_cast<int>(std::ceil(20.0 * span_s / opt_.step_s));
+  for (int k = 0; k <= samples; ++k) {
+    const double f = static_cast<double>(k) / samples;
+    for (std::size_t i = 0; i < members_.size(); ++i)
+      for (std::size_t j = i + 1; j < members_.size(); ++j) {
+        const double ti = members_[i].tau_s + f * (hi - members_[i].tau_s);
+        const double tj = members_[j].tau_s + f * (hi - members_[j].tau_s);
+        if ((sched_.at(i, ti) - sched_.at(j, tj)).norm() <= room) return false;
+      }
+  }
+  return true;
 }
 
 // P1 eq. 8-9, N UAVs, on the shared clock: x = max_i tau_i - tau_m (m the furthest behind),
 // t = x / (V_max / v) rounded up to whole periods; each UAV's clock runs at (tau_max - tau_i) / t.
-void FormationFlight::start_reform(double t) {
-  double lo = World::kInf, hi = -World::kInf;
-  for (const Member& m : members_) lo = std::min(lo, m.tau_s), hi = std::max(hi, m.tau_s);
-  const double catch_up = std::max(1.0, opt_.max_speed_mps / opt_.cruise_mps);
-  const double periods = std::max(1.0, std::ceil((hi - lo) / catch_up / opt_.step_s - 1e-9));
-  const double span_s = periods * opt_.step_s;
+void FormationFlight::start_reform(double t, double span_s) {
+  double hi = -World::kInf;
+  for (const Member& m : members_) hi = std::max(hi, m.tau_s);
   for (Member& m : members_) {
     m.mode = Mode::reforming;
     m.rate = (hi - m.tau_s) / span_s;
@@ -146,8 +177,15 @@ void FormationFlight::start_reform(double t) {
   ++reforms_;
 }
 
+bool FormationFlight::waiting() const {
+  return std::any_of(members_.begin(), members_.end(), [](const Member& m) { return m.mode != Mode::formed; });
+}
+
 void FormationFlight::control(double t, std::span<FlightState> uavs, std::span<const Sensor> sensors) {
-  intent_.assign(uavs.size(), std::nullopt);
+  // Each UAV's plan as the period begins is heard by all (a mate about to stop at its goal is not
+  // predicted flying on); those that change it this period are heard again after their turn.
+  intent_.clear();
+  for (const FlightState& s : uavs) intent_.push_back(commanded(t, s, opt_.step_s));
   period_tau_.clear();
   for (const Member& m : members_) period_tau_.push_back(m.tau_s);
   if (reform_end_s_ >= 0.0 && t + 1e-9 >= reform_end_s_) {  // re-formed: w = 0 again
@@ -166,8 +204,11 @@ void FormationFlight::control(double t, std::span<FlightState> uavs, std::span<c
     ready = ready && members_[i].on_path && members_[i].clear_steps >= opt_.reform_after_steps;
   }
   if (any_broken && ready) {
-    start_reform(t);
-    any_broken = false;
+    const double span_s = reform_span_s();
+    if (reform_is_clear(span_s)) {
+      start_reform(t, span_s);
+      any_broken = false;
+    }
   }
   // In their slots they wait at the end leg's start while any UAV is out of its slot.
   const double hold_s = any_broken ? sched_.knots_s[sched_.final_knot] : sched_.end_s();
@@ -176,6 +217,10 @@ void FormationFlight::control(double t, std::span<FlightState> uavs, std::span<c
     FlightState& s = uavs[i];
     const std::vector<Track> tracks = trusted_out(i, sensors[i].tracks, uavs);
     if (m.mode == Mode::broken) {
+      // Stopped short of where it waits (its local route ended off its path, or a re-forming was
+      // put off): on along its path from where it was last on it.
+      if (s.route.empty() && (s.position - sched_.slots[i][sched_.final_knot]).norm() > 1e-6)
+        s.route = sched_.path(i, m.tau_s, sched_.end_s());
       s.speed_mps = s.spec->speed.cruise_mps;
       m.clear_steps = guard_.guard(t, i, s, tracks) ? 0 : m.clear_steps + 1;
       clip_route(i, s);

@@ -44,6 +44,8 @@ class FormationFlight final : public FlightController {
  public:
   FormationFlight(const FormationSchedule& schedule, FormationFlightOptions options, RollingWindow& guard);
   void control(double t_s, std::span<FlightState> uavs, std::span<const Sensor> sensors) override;
+  // Until every UAV is back in its slot: one waiting out of its slot at the end leg has not arrived.
+  bool waiting() const override;
   const std::vector<FormationBreak>& breaks() const { return breaks_; }
   int reforms() const { return reforms_; }
   double formed_s() const { return formed_s_; }
@@ -64,7 +66,9 @@ class FormationFlight final : public FlightController {
   void fly_slot(double t_s, std::size_t i, FlightState& s, double hold_s);
   void find_on_path(std::size_t i, const FlightState& s);
   void clip_route(std::size_t i, FlightState& s) const;
-  void start_reform(double t_s);
+  double reform_span_s() const;
+  bool reform_is_clear(double span_s) const;
+  void start_reform(double t_s, double span_s);
   const FormationSchedule& sched_;
   FormationFlightOptions opt_;
   RollingWindow& guard_;

@@ -128,16 +128,19 @@ void FormationMission::plan(const Scenario& sc, const MissionContext& ctx, Plan&
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
     const FlightState& f = flown.uavs[i];
     const RollingWindowLog& log = guard.log(i);
-    UavPlan up = flown_plan(sc.uavs[i].id, f.done, "", trajectory_corners(f.flown), f.flown);
+    // Done at the horizon while some UAV is still out of its slot: waiting, not arrived.
+    const bool arrived = f.done && !flight.waiting();
+    UavPlan up = flown_plan(sc.uavs[i].id, arrived, "", trajectory_corners(f.flown), f.flown);
     up.stats = i == 0 ? ref.stats : PlanStats{};
     up.stats.plan_ms += log.local_ms;
     char buf[200];
     std::snprintf(buf, sizeof buf, "in formation (T = %g s): %d local replans, %d holds, %d escapes", sc.mission.step_s,
                   log.replans, log.holds, log.escapes);
-    up.message = f.done ? std::string(buf)
-                        : "did not reach its goal by t=" + std::to_string(static_cast<int>(lo.horizon_s)) + " s" +
-                              (log.trouble.empty() ? "" : ": " + log.trouble);
-    if (f.done) eta = std::max(eta, up.arrival_s);
+    const std::string by = " by t=" + std::to_string(static_cast<int>(lo.horizon_s)) + " s";
+    up.message = arrived  ? std::string(buf)
+                 : f.done ? "waited for the formation to re-form" + by
+                          : "did not reach its goal" + by + (log.trouble.empty() ? "" : ": " + log.trouble);
+    if (arrived) eta = std::max(eta, up.arrival_s);
     plan.uavs.push_back(std::move(up));
   }
   check_flown(sc, flight, plan);

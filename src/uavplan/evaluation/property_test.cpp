@@ -147,8 +147,10 @@ TEST(MissionProperties, GroupRendezvousAndSensingClaimsHold) {
 
 
 // P1's formation on random fields (3-7 UAVs, radars, cylinders, crossing, head-on and turning
-// movers, 20-100 m sensors): what is called solved holds, and most such UAVs are solved (columns,
-// which must overtake to re-form, least often: bench p1 has the table).
+// movers, 20-100 m sensors): what is called solved holds, and nearly every UAV is solved (a UAV
+// out of its slot at goals that are the slots waits there for the others; a re-forming that
+// would run a catching-up UAV over a mate is put off; mates hear each other's plans; bench p1
+// has the table).
 TEST(MissionProperties, FormationClaimsHoldOnRandomFields) {
   int uavs = 0, solved = 0;
   for (std::uint64_t seed = 1; seed <= 30; ++seed) {
@@ -157,7 +159,7 @@ TEST(MissionProperties, FormationClaimsHoldOnRandomFields) {
     expect_claims_hold(sc, plan, "formation seed " + std::to_string(seed));
     for (const UavPlan& u : plan.uavs) uavs += 1, solved += u.status == Status::solved;
   }
-  EXPECT_GE(solved, 0.75 * uavs) << solved << " of " << uavs << " UAVs solved";
+  EXPECT_GE(solved, 0.95 * uavs) << solved << " of " << uavs << " UAVs solved";
 }
 
 // pso_mpc through P5's model on large random worlds: a flown route it calls solved holds (its

@@ -24,6 +24,10 @@ void advance(FlightState& s, double t, double dt) {
   while (reached < s.route.size() && remaining > eps) {
     const Vec3 seg = s.route[reached] - s.position;
     const double len = seg.norm();
+    if (len <= eps) {  // a vertex where it already is: reached, without a sliver row
+      ++reached;
+      continue;
+    }
     if (len > remaining + eps) {
       s.position += seg / len * remaining;
       s.direction = seg / len;
@@ -108,6 +112,7 @@ LoopResult fly_closed_loop(const World& world, std::span<const LoopUav> uavs, st
     res.uavs.push_back(std::move(s));
   }
   const auto finished = [&](double t) {
+    if (controller.waiting()) return false;
     for (const FlightState& s : res.uavs)
       if (!s.done || threatened(world, scripted, *s.spec, s.position, t, opt.separation_m)) return false;
     return true;

@@ -49,6 +49,9 @@ class FlightController {
   // Called every period with each UAV's state and sensor; may change routes and speeds (a UAV
   // that is done and is given a route flies again).
   virtual void control(double t_s, std::span<FlightState> uavs, std::span<const Sensor> sensors) = 0;
+  // Whether the flight goes on though every UAV has flown its route (a group waiting where it is
+  // for one of its own to catch up has not arrived).
+  virtual bool waiting() const { return false; }
 };
 
 // The loop ends when every UAV is done and nothing that moves (by the truth) will come within

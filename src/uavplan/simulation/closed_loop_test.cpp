@@ -48,6 +48,30 @@ TEST(ClosedLoop, FliesRoutesExactlyWithARowAtEveryVertexAndPeriod) {
   }
 }
 
+// A route vertex a rounding error from where the UAV is (a controller's path starting at its
+// own nominal point) is reached without a row: a row a few ulps later and a few ulps away would
+// read as any speed at all.
+TEST(ClosedLoop, AVertexWhereTheUavIsLeavesNoSliverRow) {
+  const UavSpec u = uav("u1", 4.0);
+  FlightState s;
+  s.spec = &u;
+  s.position = Vec3(491.18213, 402.87531, 0.0);
+  s.speed_mps = 4.0;
+  s.flown.push_back({109.0, s.position});
+  s.route = {s.position + Vec3(3e-14, -5e-14, 0.0), s.position + Vec3(4.0, 0.0, 0.0)};
+  advance(s, 109.0, 1.0);
+  const Trajectory& tr = s.flown;
+  for (std::size_t i = 1; i < tr.size(); ++i) {
+    const double dt = tr[i].t_s - tr[i - 1].t_s, len = (tr[i].p - tr[i - 1].p).norm();
+    if (dt > 0.0) {
+      EXPECT_LE(len / dt, 4.0 * (1.0 + 1e-9)) << "row " << i;
+    }
+    EXPECT_FALSE(dt > 0.0 && dt < 1e-9) << "a sliver row at " << tr[i].t_s;
+  }
+  EXPECT_TRUE(s.done);
+  EXPECT_EQ(tr.back().t_s, 110.0);
+}
+
 TEST(ClosedLoop, SensorsSeeOnlyWhatIsInRange) {
   WorldSpec ws;
   ws.bounds = Aabb{Vec3(-200, -200, 0), Vec3(200, 200, 0)};
