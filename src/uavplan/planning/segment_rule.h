@@ -33,11 +33,12 @@ class SegmentRule {
   bool point_ok(const Vec3& p) const {
     return inside(p) && p.z() <= ceiling_m_ && !world_->point_collides(p, inflation_m_);
   }
-  bool operator()(const Vec3& a, const Vec3& b) const {
+  bool operator()(const Vec3& a, const Vec3& b) const { return limits_ok(a, b) && !world_->segment_collides(a, b, inflation_m_); }
+  // Everything but the obstacles and terrain: inside, under the ceiling, within the climb limit.
+  bool limits_ok(const Vec3& a, const Vec3& b) const {
     if (!inside(a) || !inside(b)) return false;
     if (a.z() > ceiling_m_ || b.z() > ceiling_m_) return false;
-    if (tan_climb_ >= 0.0 && std::abs(b.z() - a.z()) > tan_climb_ * (b - a).head<2>().norm()) return false;
-    return !world_->segment_collides(a, b, inflation_m_);
+    return tan_climb_ < 0.0 || std::abs(b.z() - a.z()) <= tan_climb_ * (b - a).head<2>().norm();
   }
   double inflation_m() const { return inflation_m_; }
   double ceiling_m() const { return ceiling_m_; }

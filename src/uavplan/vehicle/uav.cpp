@@ -27,6 +27,17 @@ double turn_rad(const Vec3& from, const Vec3& to) {
   return angle;
 }
 
+bool turn_within(const Vec3& from, const Vec3& to, double limit_rad) {
+  const double n1 = from.norm(), n2 = to.norm();
+  if (n1 <= 0.0 || n2 <= 0.0) return true;
+  const double c = std::cos(limit_rad);  // both angles lie in [0, pi], where cos falls
+  if (from.dot(to) < c * n1 * n2) return false;
+  const double h1 = from.head<2>().norm(), h2 = to.head<2>().norm();
+  if (h1 > kTinyLength_m * n1 && h2 > kTinyLength_m * n2)
+    return from.head<2>().dot(to.head<2>()) >= c * h1 * h2;
+  return true;
+}
+
 std::vector<LimitViolation> check_route_limits(std::span<const Vec3> pts, const UavSpec& uav) {
   std::vector<LimitViolation> out;
   std::optional<Vec3> prev;

@@ -53,6 +53,8 @@ double pitch_rad(const Vec3& segment);
 // (P4's constraint) and the change of horizontal heading (the contract's "heading change"),
 // the latter only when both segments have a horizontal part.
 double turn_rad(const Vec3& from, const Vec3& to);
+// turn_rad(from, to) <= limit_rad (below pi), by cosines: no acos or atan2 (a planner's inner loop).
+bool turn_within(const Vec3& from, const Vec3& to, double limit_rad);
 
 // Unit horizontal vector of a heading.
 inline Vec3 heading_vector(double heading_rad) { return {std::cos(heading_rad), std::sin(heading_rad), 0.0}; }

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdint>
+
 namespace uavplan {
 namespace {
 
@@ -19,6 +22,28 @@ TEST(Uav, TurnIsTheLargerOfThreeDAngleAndYawChange) {
   EXPECT_NEAR(turn_rad(Vec3(1, 0, 0), Vec3(1, 0, 1)), kPi / 4, 1e-12);
   // A vertical segment has no yaw.
   EXPECT_NEAR(turn_rad(Vec3(1, 0, 0), Vec3(0, 0, 1)), kPi / 2, 1e-12);
+}
+
+// The planners' check without trigonometry agrees with turn_rad on both sides of the limit.
+TEST(Uav, TurnWithinAgreesWithTurnRad) {
+  std::uint64_t state = 12345;
+  auto uniform = [&] {  // a small LCG: the test needs no distribution, only spread
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state >> 11) * 0x1.0p-53 * 2.0 - 1.0;
+  };
+  int checked = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const Vec3 a(uniform(), uniform(), 0.3 * uniform()), b(uniform(), uniform(), k % 5 == 0 ? 3.0 * uniform() : 0.3 * uniform());
+    const double limit = 0.05 + 1.5 * (0.5 + 0.5 * uniform());
+    const double turn = turn_rad(a, b);
+    if (std::abs(turn - limit) < 1e-9) continue;  // rounding decides there
+    EXPECT_EQ(turn_within(a, b, limit), turn <= limit) << k;
+    ++checked;
+  }
+  EXPECT_GT(checked, 19000);
+  EXPECT_TRUE(turn_within(Vec3(1, 0, 1), Vec3(0, 1, 1), kPi / 2 + 1e-9));   // the yaw change counts
+  EXPECT_FALSE(turn_within(Vec3(1, 0, 1), Vec3(0, 1, 1), kPi / 2 - 1e-3));
+  EXPECT_TRUE(turn_within(Vec3(1, 0, 0), Vec3(0, 0, 0), 0.0));               // no segment, no turn
 }
 
 TEST(Uav, RouteLimitsIncludeTheStartHeading) {

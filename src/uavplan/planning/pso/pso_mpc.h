@@ -33,7 +33,7 @@ struct PsoMpcOptions {
   // 30 particles, 100 iterations, w 0.9 -> 0.4, c1 = c2 = 2 (P5-notes 4.1); stop after 20
   // iterations without improving by 1e-6 of the cost (about a metre in 1000 km), or without any
   // feasible point (keys stall, give_up).
-  PsoOptions pso{30, 100, 0.9, 0.4, 2.0, 2.0, 20, 1e-6, 20};
+  PsoOptions pso{30, 100, 0.9, 0.4, 2.0, 2.0, 10, 1e-6, 20};
   static PsoMpcOptions from_params(const Params& params);
 };
 

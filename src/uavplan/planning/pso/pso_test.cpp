@@ -3,7 +3,9 @@
 // single-step baseline on the same scene.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <vector>
 
 #include "uavplan/planning/pso/pso_mpc.h"
 #include "uavplan/planning/pso/pso_single.h"
@@ -135,6 +137,35 @@ TEST(PsoMpc, AStartHeadingIntoANearbyCornerTurnsBackOnShorterSteps) {
                 deg_to_rad(30) + 1e-9);
     }
   }
+}
+
+// From a via point heading away from the goal, with cylinders on both sides of the way back:
+// P5's 12-step look-ahead rules out every heading whose ray meets a cylinder, so the route went
+// round the whole northern group (1.6x A*'s). Looking half as far ahead where the route comes out
+// more than 1.2x the straight lines, the shorter route is kept.
+TEST(PsoMpc, ALongDetourIsPlannedAgainLookingLessFarAhead) {
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(138656, 138656, 10000)};
+  for (const auto& [x, y, r] : std::vector<std::array<double, 3>>{{46451, 15309, 11093},
+                                                                  {103514, 62842, 11093},
+                                                                  {100433, 59958, 11093},
+                                                                  {29622, 35969, 11093},
+                                                                  {69489, 89872, 11093},
+                                                                  {86922, 87665, 11093},
+                                                                  {61541, 105788, 10356}})
+    ws.obstacles.push_back(Cylinder{Vec2(x, y), r, 0, 10000});
+  const World w(std::move(ws));
+  Problem p = problem();
+  p.uav.heading_rad.reset();
+  p.uav.start = Vec3(7665, 4906, 5000);
+  p.via = {Vec3(32780, 63511, 5000)};
+  p.goal = Vec3(97115, 28117, 5000);
+  const double straight = (p.via[0] - p.uav.start).norm() + (p.goal - p.via[0]).norm();
+  const PlanResult r = PsoMpcPlanner({}).plan(p, w, {});
+  ASSERT_EQ(r.status, Status::solved) << r.message;
+  EXPECT_LE(r.route.length_m(), 1.2 * straight);
+  const SegmentRule rule(w, p.uav);
+  for (std::size_t k = 1; k < r.route.waypoints.size(); ++k) EXPECT_TRUE(rule(r.route.waypoints[k - 1], r.route.waypoints[k])) << k;
 }
 
 // A margin off the bounds' sides (pso_mpc: the body and the turns' overshoot), not off the top.
