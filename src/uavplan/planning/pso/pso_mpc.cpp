@@ -281,9 +281,9 @@ PsoSteps pso_steps(const PsoMpcOptions& o, const UavSpec& uav, const World& worl
 namespace {
 
 // P5's multi-step planning with a given look-ahead (prediction steps).
-PlanResult plan_multi_step(const Problem& pb, const World& world, const StopCondition& stop, const PsoMpcOptions& options_) {
+PlanResult plan_multi_step(const Problem& pb, const World& world, const StopCondition& stop, const PsoMpcOptions& options) {
   PlanResult res;
-  const PsoSteps steps = pso_steps(options_, pb.uav, world);
+  const PsoSteps steps = pso_steps(options, pb.uav, world);
   const double l = steps.step_m, turn_max = steps.max_turn_rad, dh_max = steps.max_dh_m;
   // A UAV flown through its model turns on arcs of radius R that cut each corner by up to
   // R (1 / cos(dphi_max / 2) - 1): the no-fly zones are kept that much further off.
@@ -316,7 +316,7 @@ PlanResult plan_multi_step(const Problem& pb, const World& world, const StopCond
         leg < pb.via_entry_heading_rad.size() && leg < pb.via.size() ? pb.via_entry_heading_rad[leg] : std::nullopt;
     std::string why;
     for (const double lt : {l, l_min}) {
-      const LegPlanner leg_planner{world, rule, options_, lt, dh_max * lt / l, turn_max};
+      const LegPlanner leg_planner{world, rule, options, lt, dh_max * lt / l, turn_max};
       why = fly_leg(leg_planner, stops[leg], entry, base, leg * 1000003u + (lt < l ? 500000u : 0u), stop, route, in,
                     res.stats);
       if (why.empty() || why == kStoppedWhy || l_min >= l) break;
