@@ -56,8 +56,9 @@ class PlannerProperties : public ::testing::TestWithParam<std::string> {};
 TEST_P(PlannerProperties, RandomWorldsClaimsHoldAndRepeat) {
   const std::string name = GetParam();
   // 200 worlds a planner; the ant colony (100 ants by default) takes 80 to stay within a minute,
-  // the single-step swarm (100 particles x 500 iterations over every waypoint) 20.
-  const std::uint64_t worlds = name == "cellular_aco" ? 80 : name == "pso_single" ? 20 : 200;
+  // the single-step swarm (100 particles x 500 iterations over every waypoint) 20, the multi-step
+  // one 100 (a route that fails or comes out long is planned twice).
+  const std::uint64_t worlds = name == "cellular_aco" ? 80 : name == "pso_single" ? 20 : name == "pso_mpc" ? 100 : 200;
   int solved = 0, uavs = 0;
   for (std::uint64_t seed = 1; seed <= worlds; ++seed) {
     const Scenario sc = random_world(seed * 7919 + name.size());
