@@ -1,4 +1,5 @@
 #include "p1_runner.h"
+#include "stats.h"
 
 #include <algorithm>
 #include <chrono>
@@ -24,11 +25,6 @@ double p1_cost(const std::vector<Vec3>& pts, const World& w) {
   double c = 0.0;
   for (std::size_t i = 1; i < pts.size(); ++i) c += p1_edge_cost(pts[i - 1], pts[i], w, {});
   return c;
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
 }
 
 // The formation's reference problem: from the starts' centroid to the goals' centroid.

@@ -133,11 +133,19 @@ void FormationFlight::clip_route(std::size_t i, FlightState& s) const {
   s.done = s.route.empty();
 }
 
+// The clock of the UAV furthest on (the one the others re-form on).
+double FormationFlight::lead_tau_s() const {
+  double hi = -World::kInf;
+  for (const Member& m : members_) hi = std::max(hi, m.tau_s);
+  return hi;
+}
+
 // The re-forming's duration: P1 eq. 9, t = x / (V_max / v) rounded up to whole periods, x the
 // clock spread.
 double FormationFlight::reform_span_s() const {
-  double lo = World::kInf, hi = -World::kInf;
-  for (const Member& m : members_) lo = std::min(lo, m.tau_s), hi = std::max(hi, m.tau_s);
+  double lo = World::kInf;
+  for (const Member& m : members_) lo = std::min(lo, m.tau_s);
+  const double hi = lead_tau_s();
   const double catch_up = std::max(1.0, opt_.max_speed_mps / opt_.cruise_mps);
   return std::max(1.0, std::ceil((hi - lo) / catch_up / opt_.step_s - 1e-9)) * opt_.step_s;
 }
@@ -147,8 +155,7 @@ double FormationFlight::reform_span_s() const {
 // where the one ahead of it was). Sampled 20 times a period, with the room the schedule's
 // trust needs; if not, the UAVs fly on as they are and the re-forming waits.
 bool FormationFlight::reform_is_clear(double span_s) const {
-  double hi = -World::kInf;
-  for (const Member& m : members_) hi = std::max(hi, m.tau_s);
+  const double hi = lead_tau_s();
   const double room = 1.05 * opt_.separation_m + kTimingMargin_m;
   const int samples = static_cast<int>(std::ceil(20.0 * span_s / opt_.step_s));
   for (int k = 0; k <= samples; ++k) {
@@ -166,8 +173,7 @@ bool FormationFlight::reform_is_clear(double span_s) const {
 // P1 eq. 8-9, N UAVs, on the shared clock: x = max_i tau_i - tau_m (m the furthest behind),
 // t = x / (V_max / v) rounded up to whole periods; each UAV's clock runs at (tau_max - tau_i) / t.
 void FormationFlight::start_reform(double t, double span_s) {
-  double hi = -World::kInf;
-  for (const Member& m : members_) hi = std::max(hi, m.tau_s);
+  const double hi = lead_tau_s();
   for (Member& m : members_) {
     m.mode = Mode::reforming;
     m.rate = (hi - m.tau_s) / span_s;

@@ -66,6 +66,7 @@ class FormationFlight final : public FlightController {
   void fly_slot(double t_s, std::size_t i, FlightState& s, double hold_s);
   void find_on_path(std::size_t i, const FlightState& s);
   void clip_route(std::size_t i, FlightState& s) const;
+  double lead_tau_s() const;
   double reform_span_s() const;
   bool reform_is_clear(double span_s) const;
   void start_reform(double t_s, double span_s);

@@ -68,6 +68,23 @@ TEST(ThreatRoadmap, EdgesThroughObstaclesAreDropped) {
   ASSERT_EQ(r1.status, Status::solved) << r1.message;
 }
 
+// n radars of one weight, seeded, over the 600 m field.
+World random_threats(std::uint64_t seed, int n, double weight) {
+  Rng rng(seed);
+  std::vector<Radar> radars;
+  for (int k = 0; k < n; ++k) radars.push_back({Vec3(rng.uniform(30, 570), rng.uniform(30, 570), 50), weight});
+  return threat_world(radars);
+}
+
+// Corner to corner across the field.
+Problem across() {
+  Problem p;
+  p.uav = uav();
+  p.uav.start = Vec3(5, 5, 50);
+  p.goal = Vec3(595, 595, 50);
+  return p;
+}
+
 // The colony against the optimum on random threat fields of 10-200 threats, weak (1e4) and as
 // strong as p1_formation's (1e6): within 5 % of Dijkstra's cost on average, never below it.
 // With P1's beta 5 and Q / L_k the strong fields come out near 1.8x (bench p1 has the table).
@@ -75,15 +92,9 @@ TEST(AcoVoronoi, ColonyWithinFivePercentOfTheOptimum) {
   for (const double weight : {1e4, 1e6}) {
     double ratios = 0.0;
     for (int trial = 0; trial < 6; ++trial) {
-      Rng rng(100 + trial);
-      std::vector<Radar> radars;
       const int n = 10 + 38 * trial;
-      for (int k = 0; k < n; ++k) radars.push_back({Vec3(rng.uniform(30, 570), rng.uniform(30, 570), 50), weight});
-      const World w = threat_world(radars);
-      Problem p;
-      p.uav = uav();
-      p.uav.start = Vec3(5, 5, 50);
-      p.goal = Vec3(595, 595, 50);
+      const World w = random_threats(100 + trial, n, weight);
+      const Problem p = across();
       const PlanResult opt = make_planner("voronoi_dijkstra", {})->plan(p, w, {});
       const PlanResult aco = make_planner("aco_voronoi", {})->plan(p, w, {});
       ASSERT_EQ(opt.status, Status::solved) << opt.message;
@@ -101,14 +112,8 @@ TEST(AcoVoronoi, ColonyWithinFivePercentOfTheOptimum) {
 }
 
 TEST(AcoVoronoi, EdgeOnlyHeuristicWandersWhereTheGoalTermDoesNot) {
-  Rng rng(7);
-  std::vector<Radar> radars;
-  for (int k = 0; k < 60; ++k) radars.push_back({Vec3(rng.uniform(30, 570), rng.uniform(30, 570), 50), 1.0});
-  const World w = threat_world(radars);
-  Problem p;
-  p.uav = uav();
-  p.uav.start = Vec3(5, 5, 50);
-  p.goal = Vec3(595, 595, 50);
+  const World w = random_threats(7, 60, 1.0);
+  const Problem p = across();
   const PlanResult toward = make_planner("aco_voronoi", {})->plan(p, w, {});
   const PlanResult literal = make_planner("aco_voronoi", {{"toward_goal", "0"}})->plan(p, w, {});
   const PlanResult opt = make_planner("voronoi_dijkstra", {})->plan(p, w, {});

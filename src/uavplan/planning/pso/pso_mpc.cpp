@@ -342,20 +342,21 @@ PlanResult plan_multi_step(const Problem& pb, const World& world, const StopCond
 PlanResult PsoMpcPlanner::do_plan(const Problem& pb, const World& world, const StopCondition& stop) const {
   constexpr double kLongRoute = 1.2;
   PlanResult first = plan_multi_step(pb, world, stop, options_);
-  double straight_m = 0.0;
-  Vec3 from = pb.uav.start;
-  for (const Vec3& s : pb.via) straight_m += (s - from).norm(), from = s;
-  straight_m += (pb.goal - from).norm();
-  const bool long_route = first.status == Status::solved && first.route.length_m() > kLongRoute * straight_m;
-  if (options_.prediction_steps < 2 || stop.should_stop() || (first.status == Status::solved && !long_route)) return first;
+  Route straight{{pb.uav.start}};
+  straight.waypoints.insert(straight.waypoints.end(), pb.via.begin(), pb.via.end());
+  straight.waypoints.push_back(pb.goal);
+  const bool solved = first.status == Status::solved;
+  if (options_.prediction_steps < 2 || stop.should_stop() || (solved && first.route.length_m() <= kLongRoute * straight.length_m()))
+    return first;
   PsoMpcOptions nearer = options_;
   nearer.prediction_steps /= 2;
   PlanResult second = plan_multi_step(pb, world, stop, nearer);
-  second.stats.nodes_expanded += first.stats.nodes_expanded;
-  first.stats.nodes_expanded = second.stats.nodes_expanded;
-  if (second.status != Status::solved) return first.status == Status::solved ? first : second.message == kStoppedWhy ? second : first;
-  if (first.status == Status::solved && first.route.length_m() <= second.route.length_m()) return first;
-  return second;
+  const bool second_better = second.status == Status::solved
+                                 ? !solved || second.route.length_m() < first.route.length_m()
+                                 : !solved && second.message == kStoppedWhy;
+  PlanResult& kept = second_better ? second : first;
+  kept.stats.nodes_expanded = first.stats.nodes_expanded + second.stats.nodes_expanded;
+  return std::move(kept);
 }
 
 }  // namespace uavplan
