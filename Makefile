@@ -25,9 +25,16 @@ test: build
 bench: build
 	./$(BUILD)/bench/world_queries
 
-# The whole test suite (unit, CLI, exports, report) under AddressSanitizer + UBSan (CI runs it).
+# Sanitizer builds: -O2 with line tables only (-g1: enough for the sanitizers' stack traces, a
+# fraction of full debug information to compile and link), no benchmark programs (the tests run
+# the benchmark tables through `uavplan bench`).
+SAN_FLAGS = -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
+  -DUAVPLAN_BENCH_PROGRAMS=OFF
+
+# The whole test suite (unit, CLI, exports, report) under AddressSanitizer + UBSan (CI runs it);
+# the random-world property sweeps run a sample of their worlds (core/build_info.h).
 asan: deps
-	@cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUAVPLAN_SANITIZE=ON $(CMAKE_FLAGS) >/dev/null
+	@cmake -S . -B build-asan $(SAN_FLAGS) -DUAVPLAN_SANITIZE=ON $(CMAKE_FLAGS) >/dev/null
 	@cmake --build build-asan -j $(JOBS)
 	cd build-asan && ctest --output-on-failure -j $(JOBS)
 
@@ -35,9 +42,11 @@ asan: deps
 # ThreadSanitizer (CI runs it). Not `batch`: Debian's oneTBB is not instrumented, so TSan cannot
 # see the synchronisation of its task handoffs and would report every run's data.
 TSAN_TESTS ?= Rendezvous|DirectionalAStar|Cellular|Cells|threads
+# Only the executables those tests are in.
+TSAN_TARGETS ?= uavplan uavplan_coordination_test uavplan_evaluation_test uavplan_planning_test
 tsan: deps
-	@cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUAVPLAN_TSAN=ON $(CMAKE_FLAGS) >/dev/null
-	@cmake --build build-tsan -j $(JOBS)
+	@cmake -S . -B build-tsan $(SAN_FLAGS) -DUAVPLAN_TSAN=ON $(CMAKE_FLAGS) >/dev/null
+	@cmake --build build-tsan -j $(JOBS) --target $(TSAN_TARGETS)
 	cd build-tsan && TSAN_OPTIONS=halt_on_error=1 ctest --output-on-failure -j $(JOBS) -R "$(TSAN_TESTS)"
 
 # libFuzzer (clang) on every reader of outside input, FUZZ_SECONDS each (CI: 60 s each).
