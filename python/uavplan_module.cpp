@@ -107,6 +107,7 @@ std::vector<std::string> export_plan(const Scenario& sc, const Plan& plan, const
                                      const std::string& dir, const std::string& firmware, const std::string& vehicle,
                                      const std::string& end, const std::string& fence, bool force) {
   const ExportOptions opt = export_options(firmware, vehicle, end, fence);
+  check_output_dir(dir, "dir");
   if (formats.empty()) throw py::value_error("formats: name at least one of qgc, wpl, geojson, kml, csv");
   std::vector<ExportFormat> fs;
   for (const std::string& f : formats) {
@@ -137,6 +138,7 @@ PYBIND11_MODULE(uavplan, m) {
   m.doc() = "uavplan: route planning for UAVs, UAV groups and formations, with verification";
   py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
   py::register_exception<ExportError>(m, "ExportError", PyExc_RuntimeError);
+  py::register_exception<OutputError>(m, "OutputError", PyExc_OSError);
 
   py::class_<Scenario, std::shared_ptr<Scenario>>(m, "Scenario")
       .def_static(

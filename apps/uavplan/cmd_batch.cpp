@@ -69,7 +69,8 @@ std::optional<std::vector<RunRecord>> resumed_runs(const BatchArgs& a, const std
     if (r.spec.index >= runs.size() || !same_run(r.spec, runs[r.spec.index])) {
       if (root)
         std::cerr << a.sweep << ": --resume: " << a.out_dir << " holds run " << r.spec.index
-                  << " of another sweep (scenario, planner, seed or parameters differ); use a new folder\n";
+                  << " of another sweep, or its scenario file changed since (scenario, its content, planner, seed or "
+                     "parameters differ); use a new folder\n";
       return std::nullopt;
     }
     if (seen.insert(r.spec.index).second) kept.push_back(std::move(r));
@@ -123,13 +124,15 @@ void write_ompl_logs(const BatchArgs& a, const Sweep& sweep, const std::vector<R
 }
 
 int run_batch_command(const BatchArgs& a) {
+  check_output_dir(a.out_dir);
   MpiSession mpi(a.mpi);
   Sweep sweep;
   std::vector<RunSpec> runs;
   try {
     sweep = load_sweep(a.sweep);
     check_sweep(sweep);
-    runs = expand_runs(sweep);
+    // A dry run counts the runs without listing them (a sweep may have 1e8).
+    if (!a.dry_run) runs = expand_runs(sweep);
   } catch (const InputError& e) {
     if (mpi.root()) std::cerr << e.what() << "\n";
     return kExitBadInput;
@@ -138,7 +141,7 @@ int run_batch_command(const BatchArgs& a) {
     if (mpi.root()) {
       std::size_t settings = 0;
       for (const auto& p : sweep.planners) settings += grid_size(p.params);
-      std::printf("%zu runs: %zu scenarios x %zu planner settings x %zu parameter settings x %zu seeds\n", runs.size(),
+      std::printf("%zu runs: %zu scenarios x %zu planner settings x %zu parameter settings x %zu seeds\n", run_count(sweep),
                   sweep.scenarios.size(), settings, grid_size(sweep.params), sweep.seeds.size());
     }
     return kExitOk;
@@ -178,7 +181,7 @@ int run_batch_command(const BatchArgs& a) {
     if (!done_before.count(r.index) && (k++ % std::size_t(mpi.size())) == std::size_t(mpi.rank())) pending.push_back(r);
 
   const fs::path journal = journal_dir(a.out_dir) / ("rank-" + std::to_string(mpi.rank()) + ".jsonl");
-  const int fd = ::open(journal.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+  const int fd = ::open(journal.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC | O_NOFOLLOW, 0644);
   if (fd < 0) {
     std::cerr << a.out_dir << ": cannot write " << journal.string() << "\n";
     return kExitBadInput;

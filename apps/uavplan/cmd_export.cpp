@@ -4,6 +4,7 @@
 
 #include "commands.h"
 #include "uavplan/io/export.h"
+#include "uavplan/io/files.h"
 
 namespace uavplan::cli {
 
@@ -46,16 +47,12 @@ void add_export_options(CLI::App& cmd, ExportArgs& a, bool formats_required) {
       ->each(given);
 }
 
-int write_exports(const std::string& scenario_path, const Scenario& sc, const Plan& plan, const ExportArgs& a,
-                  const std::string& dir) {
+int prepare_exports(const std::string& scenario_path, const Scenario& sc, const Plan& plan, const ExportArgs& a,
+                    PreparedExport& out) {
   const ExportOptions opt = export_options(a.firmware, a.vehicle, a.end, a.fence);  // CLI11 checked the spellings
-  // Everything is verified and built before anything is written: a refusal or an error leaves
-  // the folder as it was.
-  std::vector<ExportFile> files;
-  std::vector<std::string> notes;
-  VerifiedExport flights;
   try {
-    flights = verified_export(sc, plan, opt);
+    const VerifiedExport flights = verified_export(sc, plan, opt);
+    out.left_out = flights.left_out;
     if (flights.uavs.empty() || (!flights.holds() && !a.force)) {
       const std::size_t bad = plan.uavs.size() - flights.uavs.size();
       std::cerr << scenario_path << ": export refused: "
@@ -67,18 +64,24 @@ int write_exports(const std::string& scenario_path, const Scenario& sc, const Pl
       return kExitNotSolved;
     }
     for (const std::string& name : a.formats) {
-      auto more = export_files(sc, flights, *export_format_from_string(name), opt, &notes);
-      files.insert(files.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
+      auto more = export_files(sc, flights, *export_format_from_string(name), opt, &out.notes);
+      out.files.insert(out.files.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
     }
   } catch (const ExportError& e) {
     std::cerr << scenario_path << ": export: " << e.what() << "\n";
     return kExitBadInput;
   }
-  write_export(dir, files);
-  for (const ExportFile& f : files) std::cout << "wrote " << dir << "/" << f.name << "\n";
-  for (const std::string& n : notes) std::cerr << "note: " << n << "\n";
-  for (const std::string& why : flights.left_out) std::cerr << "left out of the export: " << why << "\n";
   return kExitOk;
+}
+
+void report_exports(const std::string& dir, const PreparedExport& done) {
+  for (const ExportFile& f : done.files) {
+    std::cout << "wrote " << dir << "/" << f.name;
+    if (!f.uav.empty() && f.name.rfind(f.uav + ".", 0) != 0) std::cout << " (UAV '" << f.uav << "')";
+    std::cout << "\n";
+  }
+  for (const std::string& n : done.notes) std::cerr << "note: " << n << "\n";
+  for (const std::string& why : done.left_out) std::cerr << "left out of the export: " << why << "\n";
 }
 
 namespace {
@@ -89,6 +92,7 @@ struct Args {
 };
 
 int run_export(const Args& a) {
+  check_output_dir(a.out_dir);
   Scenario sc;
   Plan plan;
   if (!load_scenario_and_plan(a.scenario, a.plan, sc, plan)) return kExitBadInput;
@@ -96,7 +100,13 @@ int run_export(const Args& a) {
     std::cerr << a.scenario << ": export: " << *problem << "\n";
     return kExitBadInput;
   }
-  return write_exports(a.scenario, sc, plan, a.exp, a.out_dir);
+  // Everything is verified and built before anything is written, and written all or nothing: a
+  // refusal or an error leaves the folder as it was.
+  PreparedExport prepared;
+  if (const int rc = prepare_exports(a.scenario, sc, plan, a.exp, prepared); rc != kExitOk) return rc;
+  write_export(a.out_dir, prepared.files);
+  report_exports(a.out_dir, prepared);
+  return kExitOk;
 }
 
 }  // namespace

@@ -60,7 +60,35 @@ void print_summary(const Plan& plan, const std::string& path) {
               static_cast<unsigned long long>(plan.seed), plan.plan_ms, path.c_str());
 }
 
+bool interrupted_nothing_written() {
+  if (!interrupted()) return false;
+  std::cerr << "uavplan: interrupted; nothing written\n";
+  return true;
+}
+
+// plan.json and the exports asked for, all or nothing. An export refused (a UAV that does not
+// hold) leaves plan.json written and no export; the last export in the folder is stale either way.
+int write_outputs(const PlanArgs& a, const Scenario& sc, const Plan& plan) {
+  const ExportFile plan_file{"plan.json", plan_to_json(plan, {a.timing}), ""};
+  const std::string path = a.out_dir + "/plan.json";
+  PreparedExport prepared;
+  const int export_rc = a.exp.formats.empty() ? kExitOk : prepare_exports(a.scenario, sc, plan, a.exp, prepared);
+  if (interrupted_nothing_written()) return kExitInterrupted;
+  if (!a.exp.formats.empty() && export_rc == kExitOk) {
+    write_export(a.out_dir, prepared.files, {plan_file});
+  } else {
+    StagedFiles staged(a.out_dir);
+    staged.add(plan_file.name, plan_file.content);
+    staged.commit();
+    clear_export(a.out_dir);
+  }
+  print_summary(plan, path);
+  if (!a.exp.formats.empty() && export_rc == kExitOk) report_exports(a.out_dir, prepared);
+  return export_rc;
+}
+
 int run_plan(const PlanArgs& a) {
+  check_output_dir(a.out_dir);
   const auto overrides = parse_sets(a.sets);
   if (!overrides) return kExitBadInput;
   Scenario sc;
@@ -91,19 +119,11 @@ int run_plan(const PlanArgs& a) {
     return kExitBadInput;
   }
   for (const std::string& note : plan.notes) std::cerr << a.scenario << ": note: " << note << "\n";
-  if (interrupted()) {
-    std::cerr << "uavplan: interrupted; nothing written\n";
-    return kExitInterrupted;
-  }
-  finalize_plan(sc, plan);
-  const std::string path = a.out_dir + "/plan.json";
-  clear_export(a.out_dir);  // the files of an export of the last plan in this folder are stale now
-  write_file_atomic(path, plan_to_json(plan, {a.timing}));
-  print_summary(plan, path);
-  if (!a.exp.formats.empty()) {
-    const int rc = write_exports(a.scenario, sc, plan, a.exp, a.out_dir);
-    if (rc != kExitOk) return rc;
-  }
+  if (interrupted_nothing_written()) return kExitInterrupted;
+  finalize_plan(sc, plan);  // verifies
+  if (interrupted_nothing_written()) return kExitInterrupted;
+  const int export_rc = write_outputs(a, sc, plan);
+  if (export_rc != kExitOk) return export_rc;
   return plan.status == Status::solved ? kExitOk : kExitNotSolved;
 }
 

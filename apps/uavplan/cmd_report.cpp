@@ -14,6 +14,7 @@ struct Args {
 };
 
 int run_report(const Args& a) {
+  check_output_dir(a.out);
   Scenario sc;
   Plan plan;
   if (!load_scenario_and_plan(a.scenario, a.plan, sc, plan)) return kExitBadInput;

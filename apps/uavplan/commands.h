@@ -1,5 +1,5 @@
 // The command-line tool: one small file per subcommand. Exit codes: 0 solved / plan holds,
-// 1 not solved / violations, 2 bad input.
+// 1 not solved / violations, 2 bad input, 3 output not written, 130 interrupted.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -12,12 +12,14 @@
 #include "uavplan/coordination/plan.h"
 #include "uavplan/coordination/scenario.h"
 #include "uavplan/core/stop.h"
+#include "uavplan/io/export.h"
 
 namespace uavplan::cli {
 
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitNotSolved = 1;
 inline constexpr int kExitBadInput = 2;
+inline constexpr int kExitOutputError = 3;  // the output could not be written (a full disk, permissions)
 
 // Each registers its subcommand on the app and sets `run` to the action to take when chosen.
 void add_plan_command(CLI::App& app, std::function<int()>& run);
@@ -46,11 +48,16 @@ void add_export_options(CLI::App& cmd, ExportArgs& a, bool formats_required);
 // Why the export asked for cannot be made (checked before anything is planned or written).
 std::optional<std::string> export_request_problem(const Scenario& sc, const ExportArgs& a);
 // Verifies the plan with the legs the mission files add (flight_export.h); when every UAV holds
-// (or --force and some do) writes every file of every format into dir, replacing the folder's
-// last export, and prints what it wrote and what it left out; else prints why and writes
-// nothing. Returns an exit code (1: refused).
-int write_exports(const std::string& scenario_path, const Scenario& sc, const Plan& plan, const ExportArgs& a,
-                  const std::string& dir);
+// (or --force and some do) builds every file of every format into `out`; else prints why and
+// builds nothing. Returns an exit code (1: refused, 2: an export that cannot be made).
+struct PreparedExport {
+  std::vector<ExportFile> files;
+  std::vector<std::string> notes, left_out;
+};
+int prepare_exports(const std::string& scenario_path, const Scenario& sc, const Plan& plan, const ExportArgs& a,
+                    PreparedExport& out);
+// Prints what was written (and for which UAV, where the file name does not say) and the notes.
+void report_exports(const std::string& dir, const PreparedExport& done);
 
 // Limits every planning command takes: --time-limit, --threads, --max-memory.
 struct RunArgs {
@@ -65,11 +72,17 @@ CLI::Validator non_negative_integer();
 void add_run_options(CLI::App& cmd, RunArgs& a);
 // Interrupts: the first SIGINT / SIGTERM stops planning (the command ends with exit 130).
 void install_interrupt_handlers();
+// In a run a batch started in its own process: end with the batch (a killed batch leaves no orphans).
+void die_with_batch();
 bool interrupted();
 const std::atomic<bool>* interrupt_flag();
 inline constexpr int kExitInterrupted = 130;
 // The stop condition of a run: the interrupt, the time limit, threads and memory.
 StopCondition run_stop(const RunArgs& a);
+
+// Makes everything printed on stdout and stderr (C and C++ streams) terminal-safe: control
+// characters from names and messages are written as escapes (terminal.cpp). Call first in main.
+void install_terminal_filter();
 
 // Progress on stderr, only on a terminal and only once a run has taken over a second.
 class Progress {

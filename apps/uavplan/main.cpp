@@ -3,9 +3,12 @@
 #include <new>
 
 #include "commands.h"
+#include "uavplan/io/files.h"
 
 int main(int argc, char** argv) {
   using namespace uavplan::cli;
+  install_terminal_filter();
+  die_with_batch();
   CLI::App app{"uavplan: route planning for UAVs, UAV groups and formations, with verification"};
   app.require_subcommand(1);
   app.footer(
@@ -18,7 +21,8 @@ int main(int argc, char** argv) {
       "  uavplan info scenarios/demo.yaml                 summarise a scenario's world\n"
       "  uavplan bench world                              world-query benchmark table\n"
       "  uavplan batch sweep.yaml -o results              a sweep of runs on every core, results.csv\n"
-      "Exit codes: 0 solved (or plan holds), 1 not solved (or violations), 2 bad input.");
+      "Exit codes: 0 solved (or plan holds), 1 not solved (or violations), 2 bad input, 3 output not written\n"
+      "(a full disk, permissions), 130 interrupted.");
   // Usage errors are one line too, like every bad input.
   app.failure_message([](const CLI::App*, const CLI::Error& e) { return "uavplan: " + std::string(e.what()) + "\n"; });
   std::function<int()> run;
@@ -41,6 +45,9 @@ int main(int argc, char** argv) {
   }
   try {
     return run ? run() : kExitBadInput;
+  } catch (const uavplan::OutputError& e) {
+    std::cerr << "uavplan: " << e.what() << "; nothing written\n";
+    return kExitOutputError;
   } catch (const std::bad_alloc&) {
     std::cerr << "uavplan: out of memory: the input asks for more than this machine has (see --max-memory)\n";
     return kExitBadInput;

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "uavplan/io/input_error.h"
 
 namespace uavplan::cli {
 namespace {
@@ -20,7 +21,11 @@ Progress::~Progress() {
 
 void Progress::update(const std::string& line) {
   if (!tty_ || now_s() - started_s_ < 1.0) return;
-  std::cerr << "\r\033[K" << line << std::flush;
+  // Straight to the terminal: the \r and clear-line are ours (the filter of terminal.cpp would
+  // escape them); the line itself is escaped here.
+  std::cerr.flush();
+  const std::string text = "\r\033[K" + printable(line);
+  if (::write(STDERR_FILENO, text.data(), text.size()) < 0) tty_ = false;
   shown_ = true;
 }
 

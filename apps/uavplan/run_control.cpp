@@ -1,13 +1,16 @@
 // What every long-running command shares: interrupts (SIGINT, SIGTERM) that stop planning
 // cleanly, thread and memory limits.
+#include <sys/prctl.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <csignal>
 #include <cmath>
 #include <cstdlib>
+#include <string>
 
 #include "commands.h"
+#include "uavplan/experiments/batch.h"
 
 namespace uavplan::cli {
 namespace {
@@ -38,8 +41,11 @@ CLI::Validator positive_number() {
 CLI::Validator non_negative_integer() {
   return CLI::Validator(
       [](std::string& v) {
-        long long x = 0;
-        return CLI::detail::lexical_cast(v, x) && x >= 0 ? std::string() : "must be a non-negative integer, got '" + v + "'";
+        // Digits only, and within 64 bits: "1e23" or "-1" would otherwise be read as some other
+        // number without a word.
+        const bool digits = !v.empty() && v.size() <= 20 && v.find_first_not_of("0123456789") == std::string::npos;
+        const bool fits = digits && (v.size() < 20 || v <= "18446744073709551615");
+        return fits ? std::string() : "must be a whole number from 0 to 18446744073709551615, got '" + v + "'";
       },
       "NONNEGATIVE");
 }
@@ -53,6 +59,14 @@ void install_interrupt_handlers() {
 }
 
 bool interrupted() { return g_interrupted.load(); }
+
+void die_with_batch() {
+  const char* parent = std::getenv(kParentPidVariable);
+  if (!parent) return;
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  // The batch may have died before the line above: then this process has another parent now.
+  if (std::to_string(::getppid()) != parent) std::_Exit(kExitInterrupted);
+}
 
 const std::atomic<bool>* interrupt_flag() { return &g_interrupted; }
 
@@ -75,6 +89,11 @@ void add_run_options(CLI::App& cmd, RunArgs& a) {
       ->check(non_negative_integer());
   cmd.add_option("--max-memory", a.max_memory_bytes,
                  "Memory a planner's grids may take, e.g. 512M or 8G (default half the machine's RAM; 0: no cap)")
+      ->check(CLI::Validator(
+          [](std::string& v) {
+            return v.find('-') == std::string::npos ? std::string() : "must be a size such as 512M or 8G, got '" + v + "'";
+          },
+          "SIZE"))
       ->transform(CLI::AsSizeValue(false));
 }
 

@@ -1,6 +1,7 @@
 #include "uavplan/core/stop.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <stdexcept>
@@ -9,9 +10,12 @@
 namespace uavplan {
 
 StopCondition StopCondition::time_limit(double seconds) {
+  // A limit past 1e9 s (31 years) is no limit in practice, and beyond about 9.2e9 s the clock's
+  // nanoseconds would overflow into the past: such limits are held at 1e9 s.
+  constexpr double kLongest_s = 1e9;
   StopCondition c;
-  c.deadline_ = Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                                   std::chrono::duration<double>(std::max(0.0, seconds)));
+  const double s = std::isnan(seconds) ? 0.0 : std::clamp(seconds, 0.0, kLongest_s);
+  c.deadline_ = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
   return c;
 }
 

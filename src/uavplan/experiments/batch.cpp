@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <mutex>
@@ -113,6 +114,7 @@ RunOutcome run_in_process(const RunSpec& run, const ScenarioCache& cache, const 
   if (!run.planner.empty()) opt.algorithm = run.planner;
   opt.seed = run.seed;
   if (time_limit_s > 0.0) opt.stop = StopCondition::time_limit(time_limit_s);
+  if (options.stop) opt.stop = opt.stop | StopCondition::cancel_flag(options.stop);  // an interrupt stops the run
   opt.stop = opt.stop.with_threads(1).with_memory_cap(options.max_memory_bytes);  // the batch is parallel; a run is not
   try {
     const auto sc = cache.get(run.scenario, overrides);
@@ -141,7 +143,11 @@ RunOutcome run_isolated(const RunSpec& run, const ScenarioCache& cache, const Ba
                                    std::to_string(run.seed), "--threads", "1", "--timing"};
   if (!run.planner.empty()) args.insert(args.end(), {"--algorithm", run.planner});
   for (const auto& [k, v] : run.params) args.insert(args.end(), {"--set", k + "=" + v});
-  if (options.time_limit_s > 0.0) args.insert(args.end(), {"--time-limit", std::to_string(options.time_limit_s)});
+  if (options.time_limit_s > 0.0) {
+    char limit[32];
+    std::snprintf(limit, sizeof limit, "%.17g", options.time_limit_s);  // exactly the sweep's (1e-7 is not "0.000000")
+    args.insert(args.end(), {"--time-limit", limit});
+  }
   args.insert(args.end(), {"--max-memory", std::to_string(options.max_memory_bytes)});
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
@@ -152,13 +158,24 @@ RunOutcome run_isolated(const RunSpec& run, const ScenarioCache& cache, const Ba
   posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
   posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
   const std::string err_path = (dir / "stderr.txt").string();
-  posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  // A fresh file, never through a link planted under its name.
+  ::unlink(err_path.c_str());
+  posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW, 0644);
   posix_spawnattr_t attr;
   posix_spawnattr_init(&attr);
   posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
   posix_spawnattr_setpgroup(&attr, 0);
   pid_t pid = -1;
-  const int spawned = posix_spawn(&pid, options.uavplan_exe.c_str(), &actions, &attr, argv.data(), environ);
+  // The child ends with the batch: it is told its parent, and dies when that is gone (a killed
+  // batch leaves no orphans to race a later --resume).
+  std::vector<std::string> env_text;
+  for (char** e = environ; *e; ++e)
+    if (std::strncmp(*e, kParentPidVariable, std::strlen(kParentPidVariable)) != 0) env_text.emplace_back(*e);
+  env_text.push_back(std::string(kParentPidVariable) + "=" + std::to_string(::getpid()));
+  std::vector<char*> envp;
+  for (auto& e : env_text) envp.push_back(e.data());
+  envp.push_back(nullptr);
+  const int spawned = posix_spawn(&pid, options.uavplan_exe.c_str(), &actions, &attr, argv.data(), envp.data());
   posix_spawn_file_actions_destroy(&actions);
   posix_spawnattr_destroy(&attr);
   RunOutcome o;
@@ -170,7 +187,12 @@ RunOutcome run_isolated(const RunSpec& run, const ScenarioCache& cache, const Ba
   const double kill_after_ms = options.time_limit_s > 0.0 ? 2000.0 * options.time_limit_s + 5000.0 : -1.0;
   int wstatus = 0;
   bool killed = false;
+  bool interrupted = false;
   while (::waitpid(pid, &wstatus, WNOHANG) == 0) {
+    if (options.stop && options.stop->load() && !interrupted) {
+      ::kill(-pid, SIGINT);  // its own process group: the terminal's Ctrl-C does not reach it
+      interrupted = true;
+    }
     if (kill_after_ms > 0.0 && !killed && ms_since(t0) > kill_after_ms) {
       ::kill(pid, SIGKILL);
       killed = true;
@@ -230,6 +252,7 @@ void run_batch(const std::vector<RunSpec>& runs, const ScenarioCache& cache, con
             rec.spec = runs[i];
             rec.outcome = options.isolate ? run_isolated(runs[i], cache, options, json)
                                           : run_in_process(runs[i], cache, options, json);
+            if (options.stop && options.stop->load()) return;  // cut short: not a result; --resume runs it again
             if (!json.empty()) rec.plan_file = run_plan_file(runs[i].index);
             std::lock_guard lock(done_mutex);
             done(std::move(rec), json);

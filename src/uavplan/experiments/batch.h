@@ -59,18 +59,25 @@ struct BatchOptions {
   std::string uavplan_exe;        // isolate: the command-line tool to run
   std::string work_dir;           // isolate: where the processes write their plans
   std::uint64_t max_memory_bytes = 0;  // per run (a planner's grids); 0: no cap
-  const std::atomic<bool>* stop = nullptr;  // once set, no new run starts (those under way finish)
+  // Once set (an interrupt), no new run starts and those under way are stopped; a run cut short
+  // is not reported (a later --resume runs it again).
+  const std::atomic<bool>* stop = nullptr;
 };
+
+// The environment variable that tells an isolated run its batch's process id: the run ends when
+// the batch does (die_with_batch() in the command-line tool).
+inline constexpr const char* kParentPidVariable = "UAVPLAN_BATCH_PID";
 
 // One run in this process: the plan's file text goes to `plan_json` (empty when none).
 RunOutcome run_in_process(const RunSpec& run, const ScenarioCache& cache, const BatchOptions& options, std::string& plan_json);
 // One run as `uavplan plan` in its own process (process group of its own, so a terminal's
-// Ctrl-C reaches only the batch); killed when still going at twice the time limit plus 5 s.
+// Ctrl-C reaches only the batch, which passes it on); killed when still going at twice the time
+// limit plus 5 s, and when the batch dies.
 RunOutcome run_isolated(const RunSpec& run, const ScenarioCache& cache, const BatchOptions& options, std::string& plan_json);
 
 // Runs every spec on options.jobs threads; `done` is called once per finished run, one call at a
-// time, with the record and the plan's text. Runs not started because of options.stop are not
-// reported.
+// time, with the record and the plan's text. Runs not started or cut short because of
+// options.stop are not reported.
 void run_batch(const std::vector<RunSpec>& runs, const ScenarioCache& cache, const BatchOptions& options,
                const std::function<void(RunRecord&&, const std::string& plan_json)>& done);
 

@@ -93,6 +93,7 @@ std::string journal_line(const RunRecord& r) {
   for (const auto& [k, v] : r.spec.params) params.push_back({k, v});
   const nlohmann::json j = {{"run", r.spec.index},
                             {"scenario", r.spec.scenario},
+                            {"scenario_fingerprint", r.spec.scenario_fingerprint},
                             {"planner", r.spec.planner},
                             {"seed", r.spec.seed},
                             {"params", params},
@@ -121,6 +122,7 @@ std::optional<RunRecord> parse_journal_line(const std::string& line) {
     RunRecord r;
     r.spec.index = j.at("run").get<std::size_t>();
     r.spec.scenario = j.at("scenario").get<std::string>();
+    r.spec.scenario_fingerprint = j.value("scenario_fingerprint", std::string());
     r.spec.planner = j.at("planner").get<std::string>();
     r.spec.seed = j.at("seed").get<std::uint64_t>();
     for (const auto& p : j.at("params")) r.spec.params.emplace_back(p.at(0).get<std::string>(), p.at(1).get<std::string>());
@@ -146,7 +148,8 @@ std::optional<RunRecord> parse_journal_line(const std::string& line) {
 }
 
 bool same_run(const RunSpec& a, const RunSpec& b) {
-  return a.index == b.index && a.scenario == b.scenario && a.planner == b.planner && a.seed == b.seed && a.params == b.params;
+  return a.index == b.index && a.scenario == b.scenario && a.scenario_fingerprint == b.scenario_fingerprint &&
+         a.planner == b.planner && a.seed == b.seed && a.params == b.params;
 }
 
 std::string summary_table(const std::vector<RunRecord>& records) {

@@ -24,8 +24,9 @@ std::string timings_csv(const std::vector<RunRecord>& records);
 std::string journal_line(const RunRecord& record);
 std::optional<RunRecord> parse_journal_line(const std::string& line);
 
-// Whether a journal's run is the sweep's run of the same number (same scenario, planner, seed
-// and parameters): a journal of another sweep is not resumed.
+// Whether a journal's run is the sweep's run of the same number (same scenario file with the
+// same content, planner, seed and parameters): a journal of another sweep, or of a scenario
+// edited since, is not resumed (two versions of a file never mix in one results.csv).
 bool same_run(const RunSpec& a, const RunSpec& b);
 
 // Per planner and scenario: runs, solved, verified, median and p95 plan time, mean length.

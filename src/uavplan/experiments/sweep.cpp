@@ -76,6 +76,11 @@ void read_scenarios(const Reader& r, const YAML::Node& n, const fs::path& base, 
     if (pattern && found.empty()) r.fail(item, key, "'" + given[i] + "' matches no file");
     if (!pattern && !fs::is_regular_file(p)) r.fail(item, key, "no such scenario file: " + p.string());
     for (auto& f : found) {
+      // A file named twice (by two globs, or a glob and its name) is run once.
+      const fs::path canon = fs::weakly_canonical(f, ec);
+      if (std::any_of(s.scenarios.begin(), s.scenarios.end(),
+                      [&](const std::string& g) { return fs::weakly_canonical(g, ec) == canon; }))
+        continue;
       s.scenarios.push_back(std::move(f));
       s.scenario_lines.push_back(item.Mark().line + 1);
     }
@@ -211,7 +216,8 @@ std::size_t run_count(const Sweep& sweep) {
 std::vector<RunSpec> expand_runs(const Sweep& sweep) {
   std::vector<RunSpec> runs;
   runs.reserve(run_count(sweep));
-  for (const std::string& sc : sweep.scenarios)
+  for (const std::string& sc : sweep.scenarios) {
+    const std::string fingerprint = content_fingerprint(read_text_file(sc));
     for (const SweepPlanner& p : sweep.planners)
       for (std::size_t pk = 0; pk < grid_size(p.params); ++pk)
         for (std::size_t gk = 0; gk < grid_size(sweep.params); ++gk)
@@ -219,12 +225,14 @@ std::vector<RunSpec> expand_runs(const Sweep& sweep) {
             RunSpec r;
             r.index = runs.size();
             r.scenario = sc;
+            r.scenario_fingerprint = fingerprint;
             r.planner = p.name;
             r.seed = seed;
             append_combination(sweep.params, gk, r.params);
             append_combination(p.params, pk, r.params);
             runs.push_back(std::move(r));
           }
+  }
   return runs;
 }
 

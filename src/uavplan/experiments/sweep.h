@@ -49,6 +49,7 @@ struct Sweep {
 struct RunSpec {
   std::size_t index = 0;
   std::string scenario;  // path
+  std::string scenario_fingerprint;  // of the file's content when the runs were listed (files.h)
   std::string planner;   // empty: the scenario's own
   std::uint64_t seed = 1;
   ParamSetting params;   // shared grid first, then the planner's own
@@ -65,7 +66,7 @@ Sweep load_sweep(const std::string& path);
 // no planner or mission of the product takes (or a value it refuses).
 void check_sweep(const Sweep& sweep);
 
-// Every run of the sweep, numbered from 0.
+// Every run of the sweep, numbered from 0, each with its scenario file's fingerprint.
 std::vector<RunSpec> expand_runs(const Sweep& sweep);
 std::size_t run_count(const Sweep& sweep);
 // Settings a grid spans (the product of its value counts; 1 for none).

@@ -8,33 +8,66 @@
 
 #include "uavplan/io/files.h"
 #include "uavplan/io/gis_export.h"
+#include "uavplan/io/input_error.h"
 #include "uavplan/io/qgc_export.h"
 
 namespace uavplan {
 namespace {
 
-// The files the folder's manifest lists: plain names only, so nothing outside it is touched.
-std::vector<std::string> manifest(const std::string& dir) {
+// The files the folder's manifest lists, each with the fingerprint of what this tool wrote
+// there: plain names only, so nothing outside the folder is touched. A line without a
+// fingerprint (a hand-written manifest) names nothing this tool may remove.
+struct Listed {
+  std::string name, fingerprint;
+};
+std::vector<Listed> manifest(const std::string& dir) {
   std::ifstream in(std::filesystem::path(dir) / kExportManifest);
-  std::vector<std::string> names;
+  std::vector<Listed> listed;
   std::string line;
   while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#' || line == "." || line == ".." || line.find('/') != std::string::npos ||
-        line.find('\\') != std::string::npos || line.find('\0') != std::string::npos)
+    if (line.empty() || line[0] == '#') continue;
+    const auto tab = line.find('\t');
+    if (tab == std::string::npos) continue;
+    Listed l{line.substr(0, tab), line.substr(tab + 1, 16)};
+    if (l.name.empty() || l.name == "." || l.name == ".." || l.name.find('/') != std::string::npos ||
+        l.name.find('\\') != std::string::npos || l.name.find('\0') != std::string::npos || l.fingerprint.size() != 16)
       continue;
-    names.push_back(line);
+    listed.push_back(std::move(l));
   }
-  return names;
+  return listed;
 }
 
-void remove_listed(const std::string& dir, const std::vector<std::string>& names, const std::set<std::string>& keep) {
+// Removes the listed files not in `keep` that still hold exactly what this tool wrote: a file
+// edited or replaced since, or one the manifest was made to name, stays.
+void remove_listed(const std::string& dir, const std::vector<Listed>& listed, const std::set<std::string>& keep) {
   namespace fs = std::filesystem;
-  for (const std::string& n : names) {
-    if (keep.count(n)) continue;
-    const fs::path p = fs::path(dir) / n;
+  for (const Listed& l : listed) {
+    if (keep.count(l.name) || l.name == kExportManifest) continue;
+    const fs::path p = fs::path(dir) / l.name;
     std::error_code ec;
-    if (fs::is_regular_file(fs::symlink_status(p, ec))) fs::remove(p, ec);
+    if (!fs::is_regular_file(fs::symlink_status(p, ec))) continue;
+    std::string now;
+    try {
+      now = read_text_file(p.string());
+    } catch (const std::exception&) {
+      continue;
+    }
+    if (content_fingerprint(now) == l.fingerprint) fs::remove(p, ec);
   }
+}
+
+// A file name no other UAV's has: the id made safe, cut to a length every file system takes,
+// and numbered where that is taken already (compared without case: some file systems ignore it).
+std::string unique_stem(std::string_view id, std::set<std::string>& taken_lower) {
+  const std::string base = file_stem(id);
+  const auto lower = [](std::string s) {
+    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+  };
+  std::string stem = base;
+  for (int n = 2; taken_lower.count(lower(stem)); ++n) stem = base + "_" + std::to_string(n);
+  taken_lower.insert(lower(stem));
+  return stem;
 }
 
 }  // namespace
@@ -79,7 +112,8 @@ ExportOptions export_options(std::string_view firmware, std::string_view vehicle
 }
 
 std::string file_stem(std::string_view id) {
-  std::string s(id);
+  constexpr std::size_t kMaxStem = 100;  // with its extension and a number, far below NAME_MAX (255)
+  std::string s(id.substr(0, std::min(id.size(), kMaxStem)));
   for (char& c : s)
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')) c = '_';
   if (s.empty() || s[0] == '.') s.insert(s.begin(), '_');
@@ -95,39 +129,43 @@ std::vector<ExportFile> export_files(const Scenario& sc, const VerifiedExport& f
     case ExportFormat::geojson: files.push_back({"plan.geojson", plan_geojson(sc, flights)}); break;
     case ExportFormat::kml: files.push_back({"plan.kml", plan_kml(sc, flights)}); break;
     default: {
-      std::vector<std::string> used;
+      std::set<std::string> taken;
       for (const ExportedUav& e : flights.uavs) {
-        std::string stem = file_stem(e.spec->id);
-        if (std::find(used.begin(), used.end(), stem) != used.end()) stem += "_" + std::to_string(used.size());
-        used.push_back(stem);
+        const std::string stem = unique_stem(e.spec->id, taken);
+        const std::string& id = e.spec->id;
         if (format == ExportFormat::qgc) {
           std::vector<std::string> mine;
-          files.push_back({stem + ".plan", qgc_plan_json(sc, e, opt, &mine)});
+          files.push_back({stem + ".plan", qgc_plan_json(sc, e, opt, &mine), id});
           if (notes)
             for (const std::string& n : mine) notes->push_back(stem + ".plan: " + n);
         }
-        if (format == ExportFormat::wpl) files.push_back({stem + ".waypoints", qgc_wpl(sc, e, opt)});
-        if (format == ExportFormat::csv) files.push_back({stem + ".csv", trajectory_csv(sc, e)});
+        if (format == ExportFormat::wpl) files.push_back({stem + ".waypoints", qgc_wpl(sc, e, opt), id});
+        if (format == ExportFormat::csv) files.push_back({stem + ".csv", trajectory_csv(sc, e), id});
       }
     }
   }
   return files;
 }
 
-void write_export(const std::string& dir, const std::vector<ExportFile>& files) {
+void write_export(const std::string& dir, const std::vector<ExportFile>& files, const std::vector<ExportFile>& with) {
   std::set<std::string> names;
-  std::string list = "# files of the last uavplan export in this folder (the next one removes them)\n";
+  std::string list = "# files of the last uavplan export in this folder: name, fingerprint, UAV (the next export\n"
+                     "# removes those that still hold what was written)\n";
+  StagedFiles staged(dir);
   for (const ExportFile& f : files) {
-    names.insert(f.name);
-    list += f.name + "\n";
+    if (!names.insert(f.name).second) throw std::logic_error("export file " + f.name + " written twice");
+    staged.add(f.name, f.content);
+    list += f.name + "\t" + content_fingerprint(f.content) + "\t" + printable(f.uav) + "\n";
   }
-  remove_listed(dir, manifest(dir), names);
-  for (const ExportFile& f : files) write_file_atomic(dir + "/" + f.name, f.content);
-  write_file_atomic(dir + "/" + kExportManifest, list);
+  for (const ExportFile& f : with) staged.add(f.name, f.content);
+  staged.add(kExportManifest, list);
+  const std::vector<Listed> old = manifest(dir);  // read before the new one replaces it
+  staged.commit();
+  remove_listed(dir, old, names);
 }
 
 void clear_export(const std::string& dir) {
-  const std::vector<std::string> old = manifest(dir);
+  const std::vector<Listed> old = manifest(dir);
   if (old.empty()) return;
   remove_listed(dir, old, {});
   std::error_code ec;

@@ -29,23 +29,29 @@ bool needs_origin(ExportFormat f);
 struct ExportFile {
   std::string name;  // file name inside the output directory
   std::string content;
+  std::string uav;   // the UAV whose mission it is; empty for a file of the whole plan
 };
 
-// Every file of one format: qgc, wpl and csv one per exported UAV (named by its id, made safe
-// and distinct), geojson and kml one for the whole plan. `notes` receives what the user should
+// Every file of one format: qgc, wpl and csv one per exported UAV (named by its id made safe,
+// cut to 100 characters and numbered where another UAV's file has that name already: distinct by
+// construction, even where the file system ignores case), geojson and kml one for the whole plan. `notes` receives what the user should
 // know (fence zones dropped). Throws ExportError without an origin for a WGS84 format.
 std::vector<ExportFile> export_files(const Scenario& scenario, const VerifiedExport& flights, ExportFormat format,
                                      const ExportOptions& options = {}, std::vector<std::string>* notes = nullptr);
 
-// A UAV id made safe as a file name ([A-Za-z0-9_.-], others become '_').
+// A UAV id made safe as a file name ([A-Za-z0-9_.-], others become '_'; at most 100 characters).
 std::string file_stem(std::string_view id);
 
-// The export folder keeps a manifest (.uavplan-export) of the files the last export wrote:
-// writing a new export removes those of the last one it does not write again (a UAV left out
-// this time, a format not asked for), so a folder never mixes two plans. Each file is written
-// atomically. clear_export() removes the last export's files (a new plan makes them stale).
+// The export folder keeps a manifest (.uavplan-export) of the files the last export wrote, each
+// with the fingerprint of its content and its UAV: writing a new export removes those of the
+// last one it does not write again (a UAV left out this time, a format not asked for) and that
+// still hold what was written, so a folder never mixes two plans and no file this tool did not
+// write is removed. The export is all or nothing (files.h: StagedFiles): every file, `with`
+// (plan.json of `plan --export`) and the manifest go to temporaries first; a failure leaves the
+// folder as it was. Throws OutputError. clear_export() removes the last export's files (a new
+// plan makes them stale).
 inline constexpr const char* kExportManifest = ".uavplan-export";
-void write_export(const std::string& dir, const std::vector<ExportFile>& files);
+void write_export(const std::string& dir, const std::vector<ExportFile>& files, const std::vector<ExportFile>& with = {});
 void clear_export(const std::string& dir);
 
 }  // namespace uavplan

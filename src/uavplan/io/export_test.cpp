@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <set>
 #include <fstream>
 
 #include "uavplan/io/geo.h"
@@ -289,26 +290,70 @@ TEST(Export, FileNamesAreSafeAndDistinct) {
   EXPECT_NE(files[0].name, files[1].name);
 }
 
-// A folder holds one export: the next removes what the last wrote and it does not.
+// A folder holds one export: the next removes what the last wrote and it does not write again,
+// and only while the file still holds what was written; nothing a manifest was made to name.
 TEST(Export, FolderManifestRemovesStaleFilesOnly) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("uavplan_manifest_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
   fs::remove_all(dir);
   fs::create_directories(dir / "sub");
   std::ofstream(dir / "mine.txt") << "user file";
+  std::ofstream(dir / "plan.json") << "the plan";
   std::ofstream(dir / "sub" / "keep.plan") << "x";
-  write_export(dir.string(), {{"q1.plan", "1"}, {"q5.plan", "5"}});
+  write_export(dir.string(), {{"q1.plan", "1", "q1"}, {"q5.plan", "5", "q5"}, {"q6.plan", "6", "q6"}});
   EXPECT_TRUE(fs::exists(dir / "q5.plan"));
-  std::ofstream(dir / kExportManifest, std::ios::app) << "../sub/keep.plan\nmine.txt.nope\n";
-  write_export(dir.string(), {{"q1.plan", "1b"}});
+  std::ofstream(dir / "q6.plan") << "edited by hand";
+  // Hand-written lines: a path outside, plain names, and names with a made-up fingerprint.
+  std::ofstream(dir / kExportManifest, std::ios::app)
+      << "../sub/keep.plan\tcbf29ce484222325\nmine.txt\nplan.json\t0000000000000000\nmine.txt\tffffffffffffffff\n";
+  write_export(dir.string(), {{"q1.plan", "1b", "q1"}});
   EXPECT_FALSE(fs::exists(dir / "q5.plan"));
+  EXPECT_TRUE(fs::exists(dir / "q6.plan"));  // not what was written: somebody's now
   EXPECT_TRUE(fs::exists(dir / "q1.plan"));
   EXPECT_TRUE(fs::exists(dir / "sub" / "keep.plan"));
+  EXPECT_TRUE(fs::exists(dir / "plan.json"));
+  EXPECT_TRUE(fs::exists(dir / "mine.txt"));
   clear_export(dir.string());
   EXPECT_FALSE(fs::exists(dir / "q1.plan"));
   EXPECT_FALSE(fs::exists(dir / kExportManifest));
   EXPECT_TRUE(fs::exists(dir / "mine.txt"));
+  EXPECT_TRUE(fs::exists(dir / "plan.json"));
   fs::remove_all(dir);
+}
+
+// File names are distinct by construction: ids that make the same safe name (or one another's
+// numbered name, or differ only in case) get names no other UAV has; long ids stay short enough.
+TEST(Export, FileStemsAreDistinctByConstruction) {
+  Scenario sc = scenario_with();
+  const std::vector<std::string> ids = {"a_b_2", "a_b", "a b", "A B", "a?b", std::string(300, 'x'), std::string(300, 'x') + "?"};
+  std::vector<UavPlan> plans;
+  sc.uavs.resize(1);
+  const UavSpec first = sc.uavs[0];
+  sc.uavs.clear();
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    UavSpec u = first;
+    u.id = ids[k];
+    u.start.y() += 120.0 * static_cast<double>(k);
+    if (u.goal) u.goal->y() += 120.0 * static_cast<double>(k);
+    sc.uavs.push_back(u);
+    UavPlan p = sample_uav();
+    p.id = ids[k];
+    for (auto& row : p.trajectory) row.p.y() += 120.0 * static_cast<double>(k);
+    for (auto& w : p.waypoints) w.y() += 120.0 * static_cast<double>(k);
+    plans.push_back(p);
+  }
+  const auto files = export_files(sc, verified_export(sc, plan_of(plans), {}), ExportFormat::csv);
+  ASSERT_EQ(files.size(), ids.size());
+  std::set<std::string> lower;
+  for (std::size_t k = 0; k < files.size(); ++k) {
+    std::string l = files[k].name;
+    for (char& c : l) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    EXPECT_TRUE(lower.insert(l).second) << files[k].name << " twice";
+    EXPECT_LT(files[k].name.size(), 120u);
+    EXPECT_EQ(files[k].uav, ids[k]);
+  }
+  EXPECT_EQ(files[0].name, "a_b_2.csv");
+  EXPECT_EQ(files[1].name, "a_b.csv");
 }
 
 }  // namespace

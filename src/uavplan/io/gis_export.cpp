@@ -51,7 +51,11 @@ std::string xml_escape(std::string_view s) {
       case '>': out += "&gt;"; break;
       case '"': out += "&quot;"; break;
       case '\'': out += "&apos;"; break;
-      default: out += c;
+      // XML 1.0 has no way to write C0 controls but tab, newline and return, not even as
+      // references: such a character from a name becomes U+FFFD.
+      default:
+        if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r') out += "\xEF\xBF\xBD";
+        else out += c;
     }
   }
   return out;

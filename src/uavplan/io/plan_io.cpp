@@ -10,6 +10,7 @@
 #include <map>
 #include <set>
 
+#include "uavplan/core/text.h"
 #include "uavplan/io/files.h"
 #include "uavplan/io/input_error.h"
 #include "uavplan/io/text_input.h"
@@ -280,8 +281,13 @@ Plan parse_plan(const std::string& raw, const std::string& file) {
     for (std::size_t k = 0; k < tr.size(); ++k) {
       const std::string row = at + ".trajectory[" + std::to_string(k) + "]";
       if (!tr[k].is_array() || tr[k].size() != 4) r.fail(row, "expected [t, x, y, z]");
-      u.trajectory.push_back({r.number(tr[k][0], row), Vec3(r.number(tr[k][1], row), r.number(tr[k][2], row),
-                                                            r.number(tr[k][3], row))});
+      // The input limits of scenarios hold here too: times from 0 (a mission starts at 0; a UAV
+      // is at its first row before it) to 1e9 s, coordinates within 1e9 m.
+      const double t_s = r.number(tr[k][0], row);
+      if (t_s < 0.0 || t_s > 1e9) r.fail(row, "time must be from 0 to 1e9 s, got " + num_text(t_s));
+      const Vec3 at_m(r.number(tr[k][1], row), r.number(tr[k][2], row), r.number(tr[k][3], row));
+      if (at_m.cwiseAbs().maxCoeff() > 1e9) r.fail(row, "coordinates must be within 1e9 m");
+      u.trajectory.push_back({t_s, at_m});
     }
     if (ju.contains("length_m")) u.length_m = r.number(ju["length_m"], at + ".length_m");
     if (ju.contains("arrival_s")) u.arrival_s = r.number(ju["arrival_s"], at + ".arrival_s");

@@ -478,8 +478,20 @@ void read_formation_mission(const At& m, const At& uavs, Scenario& sc) {
   }
 }
 
+// At least as many as the values written in the text (each value but the last is followed by a
+// comma, a colon or a line break), counted without parsing it.
+std::size_t written_values_bound(std::string_view text) {
+  std::size_t n = 1;
+  for (char c : text) n += c == ',' || c == ':' || c == '\n';
+  return n;
+}
+
 YAML::Node parse_yaml(const std::string& raw, const std::string& file) {
   const std::string text = checked_text(raw, file);
+  if (const std::size_t n = written_values_bound(text); n > kMaxWrittenValues)
+    throw InputError(file, 0, "", "holds about " + std::to_string(n) + " values; a scenario holds at most " +
+                                      std::to_string(kMaxWrittenValues) +
+                                      " (an inline terrain of about 2000 x 2000 cells), so that it loads in bounded memory");
   const bool json = file.size() >= 5 && file.compare(file.size() - 5, 5, ".json") == 0;
   if (json) {
     try {
@@ -496,7 +508,9 @@ YAML::Node parse_yaml(const std::string& raw, const std::string& file) {
   try {
     root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
-    throw InputError(file, e.mark.line >= 0 ? e.mark.line + 1 : 0, "", "YAML syntax error: " + e.msg);
+    // yaml-cpp says "bad file" when its parser's depth guard trips (about 500 nested levels).
+    const std::string what = e.msg == "bad file" ? "nested too deeply (a scenario needs a few levels, not hundreds)" : e.msg;
+    throw InputError(file, e.mark.line >= 0 ? e.mark.line + 1 : 0, "", "YAML syntax error: " + what);
   }
   check_tree(root, file, kMaxScenarioValues);
   return root;
