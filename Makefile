@@ -3,7 +3,7 @@ BUILD ?= build
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps build demo test bench asan tsan fuzz clean
+.PHONY: all deps build demo test bench asan-build asan tsan fuzz clean
 
 all: build
 
@@ -25,18 +25,23 @@ test: build
 bench: build
 	./$(BUILD)/bench/world_queries
 
-# Sanitizer builds: -O2 with line tables only (-g1: enough for the sanitizers' stack traces, a
+# Sanitizer builds at -O1 with line tables only (-g1: enough for the sanitizers' stack traces, a
 # fraction of full debug information to compile and link), no benchmark programs (the tests run
 # the benchmark tables through `uavplan bench`).
-SAN_FLAGS = -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
+SAN_FLAGS = -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
   -DUAVPLAN_BENCH_PROGRAMS=OFF
+# One clang build with AddressSanitizer + UBSan serves the whole test suite and the libFuzzer
+# targets (every object carries the fuzzer's coverage counters): one build, not two.
+ASAN_BUILD = build-asan
+asan-build: deps
+	@cmake -S . -B $(ASAN_BUILD) $(SAN_FLAGS) -DUAVPLAN_SANITIZE=ON -DUAVPLAN_FUZZ=ON \
+	  -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 $(CMAKE_FLAGS) >/dev/null
+	@cmake --build $(ASAN_BUILD) -j $(JOBS)
 
 # The whole test suite (unit, CLI, exports, report) under AddressSanitizer + UBSan (CI runs it);
 # the random-world property sweeps run a sample of their worlds (core/build_info.h).
-asan: deps
-	@cmake -S . -B build-asan $(SAN_FLAGS) -DUAVPLAN_SANITIZE=ON $(CMAKE_FLAGS) >/dev/null
-	@cmake --build build-asan -j $(JOBS)
-	cd build-asan && ctest --output-on-failure -j $(JOBS)
+asan: asan-build
+	cd $(ASAN_BUILD) && ctest --output-on-failure -j $(JOBS)
 
 # The tests that run several threads (rendezvous engines, the ant colony, --threads), under
 # ThreadSanitizer (CI runs it). Not `batch`: Debian's oneTBB is not instrumented, so TSan cannot
@@ -49,13 +54,11 @@ tsan: deps
 	@cmake --build build-tsan -j $(JOBS) --target $(TSAN_TARGETS)
 	cd build-tsan && TSAN_OPTIONS=halt_on_error=1 ctest --output-on-failure -j $(JOBS) -R "$(TSAN_TESTS)"
 
-# libFuzzer (clang) on every reader of outside input, FUZZ_SECONDS each (CI: 60 s each).
+# libFuzzer on every reader of outside input, FUZZ_SECONDS each (CI: 60 s each), from the
+# sanitizer build above.
 FUZZ_SECONDS ?= 60
-fuzz: deps
-	@cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUAVPLAN_FUZZ=ON -DCMAKE_C_COMPILER=clang-14 \
-	  -DCMAKE_CXX_COMPILER=clang++-14 >/dev/null
-	@cmake --build build-fuzz -j $(JOBS) --target fuzz_scenario fuzz_plan fuzz_geojson fuzz_movingai
-	bash fuzz/run.sh build-fuzz $(FUZZ_SECONDS)
+fuzz: asan-build
+	bash fuzz/run.sh $(ASAN_BUILD) $(FUZZ_SECONDS)
 
 clean:
 	rm -rf $(BUILD) build-asan build-tsan build-fuzz out

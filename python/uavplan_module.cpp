@@ -7,7 +7,10 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <atomic>
+#include <chrono>
 #include <cstddef>
+#include <future>
 #include <memory>
 
 #include "uavplan/coordination/mission_planner.h"
@@ -53,12 +56,30 @@ std::shared_ptr<Plan> plan_scenario(const Scenario& sc, const std::optional<std:
     if (!(*time_limit_s > 0.0)) throw py::value_error("time_limit_s must be a positive number of seconds");
     opt.stop = StopCondition::time_limit(*time_limit_s);
   }
+  // Planning runs on a thread of its own while this one, holding the GIL only for a moment every
+  // 50 ms, looks for Python's signals: Ctrl-C stops the plan at its next stop check and raises
+  // KeyboardInterrupt then, not after the whole plan.
   auto plan = std::make_shared<Plan>();
+  std::atomic<bool> cancel{false};
+  opt.stop = opt.stop | StopCondition::cancel_flag(&cancel);
+  std::future<void> done;
   {
     py::gil_scoped_release release;
-    *plan = plan_mission(sc, opt);
-    finalize_plan(sc, *plan);
+    done = std::async(std::launch::async, [&] {
+      *plan = plan_mission(sc, opt);
+      if (!cancel.load()) finalize_plan(sc, *plan);
+    });
+    while (done.wait_for(std::chrono::milliseconds(50)) != std::future_status::ready) {
+      py::gil_scoped_acquire acquire;
+      if (PyErr_CheckSignals() != 0) {
+        cancel.store(true);
+        break;
+      }
+    }
+    done.wait();
   }
+  if (cancel.load()) throw py::error_already_set();  // the KeyboardInterrupt PyErr_CheckSignals set
+  done.get();  // what planning threw
   return plan;
 }
 
@@ -178,6 +199,8 @@ PYBIND11_MODULE(uavplan, m) {
   py::class_<UavPlan>(m, "UavPlan")
       .def_property_readonly("id", [](const UavPlan& u) { return u.id; })
       .def_property_readonly("status", [](const UavPlan& u) { return std::string(to_string(u.status)); })
+      .def_property_readonly("reason", [](const UavPlan& u) { return std::string(to_string(u.reason)); },
+                             "Why it is not solved: none, stopped, budget, no_route, invalid, conflict or rejected")
       .def_property_readonly("message", [](const UavPlan& u) { return u.message; })
       .def_property_readonly("length_m", [](const UavPlan& u) { return u.length_m; })
       .def_property_readonly("arrival_s", [](const UavPlan& u) { return u.arrival_s; })

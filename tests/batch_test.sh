@@ -152,4 +152,45 @@ cmp "$T/full/results.csv" "$T/int/results.csv" || fail "results after Ctrl-C and
 sed -i 's/seeds: 24/seeds: [5, 6]/' "$T/long.yaml"
 "$UAVPLAN" batch "$T/long.yaml" -o "$T/int" --resume >/dev/null 2>"$T/other.err"; rc=$?
 [ $rc = 2 ] && grep -q "another sweep" "$T/other.err" || fail "resume with another sweep was not refused"
+# A resume after a scenario file was edited is refused: two versions never mix in one results.csv.
+cp "$ROOT/scenarios/demo.yaml" "$T/edit.yaml"
+printf 'scenarios: [%s]\nplanners: [astar]\nseeds: 4\n' "$T/edit.yaml" > "$T/edit_sweep.yaml"
+"$UAVPLAN" batch "$T/edit_sweep.yaml" -o "$T/edit" --jobs 1 >/dev/null || fail "batch before the edit"
+sed -i 's/^name: demo/name: demo2/' "$T/edit.yaml"
+"$UAVPLAN" batch "$T/edit_sweep.yaml" -o "$T/edit" --resume >/dev/null 2>"$T/edit.err"; rc=$?
+[ $rc = 2 ] && grep -q "changed" "$T/edit.err" || { cat "$T/edit.err"; fail "resume after a scenario edit was not refused"; }
+
+# A tiny time limit is passed to isolated runs exactly (1e-7, not "0.000000"): the same rows.
+printf 'scenarios: [%s]\nplanners: [astar]\nseeds: 2\ntime_limit_s: 1e-7\n' "$ROOT/scenarios/demo.yaml" > "$T/tiny.yaml"
+"$UAVPLAN" batch "$T/tiny.yaml" -o "$T/tiny_in" --jobs 1 >/dev/null 2>&1
+"$UAVPLAN" batch "$T/tiny.yaml" -o "$T/tiny_iso" --jobs 1 --isolate >/dev/null 2>&1
+cmp "$T/tiny_in/results.csv" "$T/tiny_iso/results.csv" || fail "a 1e-7 s limit gives other rows with --isolate"
+grep -q ',timeout,' "$T/tiny_in/results.csv" || fail "a run stopped by its limit is not a timeout row"
+
+# Ctrl-C reaches isolated runs (their own process group), and a killed batch leaves no orphans.
+printf 'scenarios: [%s]\nplanners: [{name: cellular_aco, params: {iterations: [100000]}}]\nseeds: 2\n' \
+  "$ROOT/scenarios/p2_city.yaml" > "$T/slow.yaml"
+"$UAVPLAN" batch "$T/slow.yaml" -o "$T/slow_int" --jobs 1 --isolate >/dev/null 2>&1 &
+pid=$!
+child=""
+for _ in $(seq 1 500); do
+  child=$(pgrep -P $pid -f "p2_city.yaml" | head -1); [ -n "$child" ] && break; sleep 0.01
+done
+[ -n "$child" ] || fail "no isolated run was seen"
+sleep 0.5
+kill -INT $pid
+for _ in $(seq 1 100); do kill -0 "$child" 2>/dev/null || break; sleep 0.05; done
+kill -0 "$child" 2>/dev/null && fail "an isolated run went on after Ctrl-C"
+wait $pid; rc=$?
+[ $rc = 130 ] || fail "interrupted isolated batch: exit $rc, not 130"
+"$UAVPLAN" batch "$T/slow.yaml" -o "$T/slow_kill" --jobs 1 --isolate >/dev/null 2>&1 &
+pid=$!
+child=""
+for _ in $(seq 1 500); do
+  child=$(pgrep -P $pid -f "p2_city.yaml" | head -1); [ -n "$child" ] && break; sleep 0.01
+done
+[ -n "$child" ] || fail "no isolated run was seen"
+kill -KILL $pid; wait $pid 2>/dev/null
+for _ in $(seq 1 100); do kill -0 "$child" 2>/dev/null || break; sleep 0.05; done
+kill -0 "$child" 2>/dev/null && { kill -KILL "$child"; fail "a killed batch left its run running"; }
 echo "batch: ok"

@@ -34,6 +34,9 @@ cmp -s "$TMP/a/plan.json" "$TMP/b/plan.json"; check demo.deterministic 0 $?
 "$BIN" plan "$SRC/scenarios/demo.yaml" -o "$TMP/c" --set nonsense=1 >/dev/null 2>"$TMP/stderr"; check unknown.param 2 $?
 grep -q "planner.params.nonsense" "$TMP/stderr" || { echo "FAIL unknown.param message"; fails=$((fails + 1)); }
 "$BIN" plan "$SRC/scenarios/demo.yaml" -o "$TMP/c" --algorithm nope >/dev/null 2>&1; check unknown.algorithm 2 $?
+# --algorithm is the planner the mission is checked against (the file's astar cannot plan a group).
+"$BIN" plan "$SRC/scenarios/demo.yaml" -o "$TMP/c" --set mission.type=group --algorithm apf >/dev/null 2>"$TMP/stderr"
+rc=$?; [ $rc != 2 ] && pass=$((pass + 1)) || { echo "FAIL algorithm.wins: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
 "$BIN" frobnicate >/dev/null 2>&1; check unknown.subcommand 2 $?
 
 # P4 scenarios: every route verified (turn <= 60, pitch <= 30, no threat), rendezvous lengths

@@ -89,8 +89,13 @@ int write_outputs(const PlanArgs& a, const Scenario& sc, const Plan& plan) {
 
 int run_plan(const PlanArgs& a) {
   check_output_dir(a.out_dir);
-  const auto overrides = parse_sets(a.sets);
+  // The clock starts now: loading counts against --time-limit too.
+  const StopCondition stop = run_stop(a.run);
+  auto overrides = parse_sets(a.sets);
   if (!overrides) return kExitBadInput;
+  // --algorithm wins over the file's planner before the scenario is checked (a mission's
+  // planners are checked against the one that will plan it).
+  if (!a.algorithm.empty()) overrides->emplace_back("planner.algorithm", a.algorithm);
   Scenario sc;
   try {
     sc = load_scenario(a.scenario, *overrides);
@@ -106,7 +111,7 @@ int run_plan(const PlanArgs& a) {
   MissionOptions opt;
   if (!a.algorithm.empty()) opt.algorithm = a.algorithm;
   opt.seed = a.seed.value_or(sc.seed.value_or(1));
-  opt.stop = run_stop(a.run);
+  opt.stop = stop;
   Progress progress;
   opt.progress = [&](std::size_t done, std::size_t total) {
     progress.update("planning: " + std::to_string(done) + "/" + std::to_string(total) + " UAVs");

@@ -187,3 +187,28 @@ def test_the_example_plans_verifies_and_plots(root, tmp_path):
     assert "demo: solved with astar" in out.stdout and "holds" in out.stdout
     png = (tmp_path / "routes.png").read_bytes()
     assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 20000
+
+
+def test_ctrl_c_inside_plan_raises_keyboard_interrupt_at_once(root):
+    """Ctrl-C while uavplan.plan() runs stops the plan and raises within half a second."""
+    import signal
+    import sys
+    code = (
+        "import time, uavplan\n"
+        f"sc = uavplan.Scenario.load({str(root / 'scenarios/p2_city.yaml')!r})\n"
+        "print('ready', flush=True)\n"
+        "try:\n"
+        "    uavplan.plan(sc, algorithm='cellular_aco', params={'iterations': 100000})\n"
+        "    print('finished', flush=True)\n"
+        "except KeyboardInterrupt:\n"
+        "    print('interrupted', flush=True)\n")
+    proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True)
+    assert proc.stdout.readline().strip() == "ready"
+    time.sleep(1.0)
+    sent = time.monotonic()
+    proc.send_signal(signal.SIGINT)
+    line = proc.stdout.readline().strip()
+    took = time.monotonic() - sent
+    proc.wait(timeout=30)
+    assert line == "interrupted"
+    assert took < 0.5, f"KeyboardInterrupt after {took:.2f} s"

@@ -55,7 +55,17 @@ Plan plan_mission(const Scenario& sc, const MissionOptions& opt) {
   const PlanningView view = planning_view(sc, !(mission && mission->times_ground_legs()));
   ctx.ground = view.ground;
   if (mission) {
-    mission->plan(view.identity ? sc : view.scenario, ctx, plan);
+    try {
+      mission->plan(view.identity ? sc : view.scenario, ctx, plan);
+    } catch (const Stopped&) {  // a set-up outside the planners (a roadmap, a map) was stopped
+      for (std::size_t i = plan.uavs.size(); i < sc.uavs.size(); ++i) {
+        UavPlan& up = plan.uavs.emplace_back();
+        up.id = sc.uavs[i].id;
+        up.message = kStoppedMessage;
+      }
+      for (UavPlan& up : plan.uavs)
+        if (up.status != Status::solved) up.reason = Reason::stopped;
+    }
     to_scenario(view, sc, plan, opt.max_sample_dt_s);
     for (std::size_t i = 0; i < plan.uavs.size() && i < view.arrival_problem.size(); ++i)
       if (!view.arrival_problem[i].empty() && plan.uavs[i].status == Status::solved) {
@@ -71,6 +81,10 @@ Plan plan_mission(const Scenario& sc, const MissionOptions& opt) {
       plan.uavs.push_back(std::move(up));
     }
   }
+  // A UAV a mission failed without saying why in a word: stopped, or no route it could fly.
+  for (UavPlan& u : plan.uavs)
+    if (u.status != Status::solved && u.reason == Reason::none)
+      u.reason = opt.stop.should_stop() ? Reason::stopped : Reason::no_route;
   plan.status = combined_status(plan.uavs);
   for (const auto& u : plan.uavs)
     if (u.status != Status::solved && plan.message.empty()) plan.message = u.id + ": " + u.message;

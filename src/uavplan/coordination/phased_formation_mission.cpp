@@ -245,7 +245,7 @@ void PhasedFormationMission::plan(const Scenario& sc, const MissionContext& ctx,
     // Phase 5: in turn, the nearest to the landing cylinder first (eq. 2 for each).
     std::vector<std::size_t> land(n);
     std::iota(land.begin(), land.end(), 0);
-    const Vec3 centre = af.position - 10000.0 * dir;
+    const Vec3 centre = af.position - LandingOptions{}.cylinder_before_threshold_m * dir;
     std::stable_sort(land.begin(), land.end(), [&](std::size_t a, std::size_t b) {
       return (group.state(a).position - centre).head<2>().norm() < (group.state(b).position - centre).head<2>().norm();
     });

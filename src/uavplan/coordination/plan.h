@@ -16,6 +16,7 @@ namespace uavplan {
 struct UavPlan {
   std::string id;
   Status status = Status::failed;
+  Reason reason = Reason::none;  // why it is not solved (the message says it in words)
   std::string message;
   std::vector<Vec3> waypoints;
   Trajectory trajectory;

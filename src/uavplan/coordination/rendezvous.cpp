@@ -234,8 +234,10 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
     r.id = u.id;
     if (!u.goal) {
       r.detail = "no goal given";
+      r.reason = Reason::invalid;
     } else if (!preplans[k]) {
       r.detail = "stopped before a route was found";
+      r.reason = Reason::stopped;
       ++k;
     } else {
       const DirectionalRoute& route = *preplans[k++];
@@ -243,7 +245,10 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
       r.waypoints = route.waypoints;
       r.preplanned_m = r.final_m = route.length_m;
       r.step = route.found ? RendezvousStep::preplanned : RendezvousStep::none;
-      if (!route.found) r.detail = route.message;
+      if (!route.found) {
+        r.detail = route.message;
+        r.reason = route.stopped ? Reason::stopped : Reason::no_route;
+      }
     }
     res.uavs.push_back(std::move(r));
   }

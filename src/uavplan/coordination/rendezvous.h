@@ -28,6 +28,7 @@ struct RendezvousUav {
   double preplanned_m = 0.0, final_m = 0.0;
   RendezvousStep step = RendezvousStep::none;
   std::string detail;  // L and M, loiter radius, virtual threat radius and centre, or why it failed
+  Reason reason = Reason::none;  // why it failed
 };
 
 struct RendezvousResult {

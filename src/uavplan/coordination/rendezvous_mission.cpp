@@ -30,8 +30,12 @@ void RendezvousMission::plan(const Scenario& sc, const MissionContext& ctx, Plan
     std::snprintf(buf, sizeof buf, "rendezvous: %s, pre-planned %.1f m, final %.1f m (target %.1f m, epsilon %.1f m)",
                   std::string(to_string(r.step)).c_str(), r.preplanned_m, r.final_m, rr.target_m, rr.epsilon_m);
     messages[i] = std::string(buf) + (r.detail.empty() ? "" : "; " + r.detail);
-    if (r.ok) order.push_back(i);
-    else planned[i] = flown_plan(r.id, false, messages[i], {}, {});
+    if (r.ok) {
+      order.push_back(i);
+      continue;
+    }
+    planned[i] = flown_plan(r.id, false, messages[i], {}, {});
+    planned[i].reason = r.reason;
   }
   double shortest_m = World::kInf;
   for (const std::size_t i : order) shortest_m = std::min(shortest_m, rr.uavs[i].final_m);
@@ -47,11 +51,13 @@ void RendezvousMission::plan(const Scenario& sc, const MissionContext& ctx, Plan
     char buf[200];
     if (d.stopped) {
       planned[i] = flown_plan(r.id, false, messages[i] + "; " + kStoppedMessage, {}, {});
+      planned[i].reason = Reason::stopped;
       continue;
     }
     if (!d.placed) {
       std::snprintf(buf, sizeof buf, " for every departure delay up to %.1f s (its arrival slack)", slack_s[i]);
       planned[i] = flown_plan(r.id, false, messages[i] + "; conflicts with " + d.first.what + buf, {}, {});
+      planned[i].reason = Reason::conflict;
       continue;
     }
     if (d.delay_s > 0.0) {

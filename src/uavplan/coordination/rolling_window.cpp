@@ -163,8 +163,9 @@ bool RollingWindow::guard(double t, std::size_t i, FlightState& s, const std::ve
     if (clear_to_stay(t, i, s, threats)) return false;
     s.route.insert(s.route.begin(), s.position);  // comes back here
     s.depart_s = t;
-    if (escape(t, s, threats)) ++log.escapes;
-    log.events.push_back({t, "", Vec3::Zero(), ReplanEvent::Outcome::escaped});
+    const bool escaped = escape(t, s, threats);
+    log.escapes += escaped;
+    log.events.push_back({t, "", Vec3::Zero(), escaped ? ReplanEvent::Outcome::escaped : ReplanEvent::Outcome::none});
     return true;
   }
   std::vector<MovingKeepOut> discs;

@@ -31,10 +31,12 @@ Committed plan_and_time(const Scenario& sc, const Planner& planner, const Missio
     if (opt.progress) opt.progress(i, sc.uavs.size());
     if (!u.goal) {
       up.message = "no goal given";
+      up.reason = Reason::invalid;
       continue;
     }
     if (opt.stop.should_stop()) {
       up.message = kStoppedMessage;
+      up.reason = Reason::stopped;
       continue;
     }
     Problem pb{u, *u.goal, {}};
@@ -45,6 +47,7 @@ Committed plan_and_time(const Scenario& sc, const Planner& planner, const Missio
     pb.seed = opt.seed + i;  // one stream per UAV
     const PlanResult r = planner.plan(pb, sc.world, opt.stop);
     up.status = r.status;
+    up.reason = r.reason;
     up.message = r.message;
     up.stats = r.stats;
     up.waypoints = r.route.waypoints;
@@ -56,6 +59,7 @@ Committed plan_and_time(const Scenario& sc, const Planner& planner, const Missio
     if (u.model && fly_route(u, up.waypoints, 0.0, opt.max_sample_dt_s, sc.mission.waypoints).empty()) {
       up.status = Status::failed;
       up.message = "its autopilot model cannot fly the route: it circles a waypoint (a turn tighter than its turn radius)";
+      up.reason = Reason::no_route;
       continue;
     }
     horizon_s += 2.0 * up.length_m / u.speed.cruise_mps;
@@ -64,6 +68,7 @@ Committed plan_and_time(const Scenario& sc, const Planner& planner, const Missio
     if (d.stopped) {
       up.status = Status::failed;
       up.message = kStoppedMessage;
+      up.reason = Reason::stopped;
       continue;
     }
     if (!d.placed && senses(u)) {  // no clear departure planned: it departs at once and sees to it in the loop
@@ -72,6 +77,7 @@ Committed plan_and_time(const Scenario& sc, const Planner& planner, const Missio
     }
     if (!d.placed) {
       up.status = Status::failed;
+      up.reason = Reason::conflict;
       up.message = "conflicts with " + d.first.what + " for every departure delay up to " +
                    std::to_string(static_cast<int>(horizon_s)) + " s";
       continue;
@@ -143,6 +149,7 @@ void fly_sensing(const Scenario& sc, const MissionContext& ctx, const Committed&
     up.trajectory = f.flown;  // what it flew, also when it failed (the report shows it)
     if (!f.done) {
       up.status = Status::failed;
+      up.reason = flight.stopped && opt.stop.should_stop() ? Reason::stopped : Reason::no_route;
       up.message = "did not reach its goal by t=" + std::to_string(static_cast<int>(lo.horizon_s)) + " s" +
                    (log.trouble.empty() ? "" : ": " + log.trouble);
       continue;

@@ -1,4 +1,4 @@
-// Outcome of planning: expected results are a status, misuse is an exception.
+// Outcome of planning: expected results are a status and a reason, misuse is an exception.
 #pragma once
 
 #include <optional>
@@ -15,6 +15,39 @@ constexpr std::string_view to_string(Status s) {
     case Status::failed: return "failed";
   }
   return "failed";
+}
+
+// Why a result is what it is, as a value (OMPL's PlannerStatus is the model): what callers, the
+// batch's status column and the plan file branch on. The message says it in words for people;
+// nothing reads an outcome from a message.
+enum class Reason {
+  none,        // solved, or nothing more to say
+  stopped,     // the stop condition (a time limit, an interrupt) ended planning first
+  budget,      // the planner's own budget ran out (max_nodes, max_expansions, iterations, memory)
+  no_route,    // the search ended without a route (none exists, or none at this resolution)
+  invalid,     // the problem cannot be posed (no goal, a start the mission cannot use)
+  conflict,    // the other UAVs or the moving obstacles leave it no way (separation, departure)
+  rejected,    // the verifier found a violation in what was planned
+};
+
+constexpr std::string_view to_string(Reason r) {
+  switch (r) {
+    case Reason::none: return "none";
+    case Reason::stopped: return "stopped";
+    case Reason::budget: return "budget";
+    case Reason::no_route: return "no_route";
+    case Reason::invalid: return "invalid";
+    case Reason::conflict: return "conflict";
+    case Reason::rejected: return "rejected";
+  }
+  return "none";
+}
+
+inline std::optional<Reason> reason_from_string(std::string_view s) {
+  for (Reason r : {Reason::none, Reason::stopped, Reason::budget, Reason::no_route, Reason::invalid, Reason::conflict,
+                   Reason::rejected})
+    if (to_string(r) == s) return r;
+  return std::nullopt;
 }
 
 inline std::optional<Status> status_from_string(std::string_view s) {

@@ -13,6 +13,11 @@
 
 namespace uavplan {
 
+// Thrown by set-up code (a cell map, a grid, a roadmap being built) when the stop condition
+// holds, so that a long set-up ends within the limit too; Planner::plan and plan_mission turn it
+// into a result stopped with Reason::stopped. Not a std::exception: nothing else catches it.
+struct Stopped {};
+
 class StopCondition {
  public:
   using Clock = std::chrono::steady_clock;
@@ -28,6 +33,10 @@ class StopCondition {
 
   // True when planning must end; `iteration` is the caller's count of its main loop.
   bool should_stop(std::uint64_t iteration = 0) const;
+  // Throws Stopped when should_stop().
+  void throw_if_stopped() const {
+    if (should_stop()) throw Stopped{};
+  }
   bool has_time_limit() const { return deadline_.has_value(); }
   // Seconds left before the deadline (+inf without one).
   double seconds_left() const;

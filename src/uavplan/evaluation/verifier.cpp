@@ -298,6 +298,7 @@ std::vector<Violation> finalize_plan(const Scenario& sc, Plan& plan) {
     for (auto& up : plan.uavs) {
       if (up.id != v.uav || up.status != Status::solved) continue;
       up.status = Status::failed;
+      up.reason = Reason::rejected;
       up.message = "verification: " + describe(v);
     }
   }

@@ -57,7 +57,7 @@ RunOutcome outcome_of(const Plan& plan, std::size_t violations, bool time_limite
     o.uavs_solved += u.status == Status::solved;
     o.expansions += u.stats.nodes_expanded;
     if (!u.trajectory.empty()) last = std::max(last, u.trajectory.back().t_s);
-    if (time_limited && u.message == kStoppedMessage) o.status = "timeout";
+    if (time_limited && u.reason == Reason::stopped) o.status = "timeout";
   }
   if (last >= 0.0) o.flight_time_s = last;
   if (const auto it = plan.metrics.find("total_length_m"); it != plan.metrics.end()) o.length_m = it->second;

@@ -123,3 +123,49 @@ TEST(OmplLog, FollowsTheGrammar) {
 
 }  // namespace
 }  // namespace uavplan
+
+namespace uavplan {
+namespace {
+
+// A run that its time limit stopped is a `timeout` row for every mission type and the planner
+// it plans with (read from the UAVs' reason, never from a message).
+TEST(Batch, ARunItsLimitStoppedIsATimeoutForEveryMission) {
+  const std::string dir = std::string(UAVPLAN_SOURCE_DIR) + "/scenarios/";
+  ScenarioCache cache;
+  BatchOptions opt;
+  opt.time_limit_s = 1e-9;
+  for (const char* name : {"demo", "p5_entry", "p3_group9", "p4_rendezvous", "p1_formation", "p5_mission", "p2_city"}) {
+    RunSpec run;
+    run.scenario = dir + name + ".yaml";
+    std::string json;
+    const RunOutcome o = run_in_process(run, cache, opt, json);
+    EXPECT_EQ(o.status, "timeout") << name << ": " << o.message;
+  }
+}
+
+// A journal line carries its scenario's fingerprint: a run of an edited scenario is another run.
+TEST(Results, AnEditedScenarioIsAnotherRun) {
+  RunSpec a;
+  a.scenario = kDemo;
+  a.scenario_fingerprint = "0123456789abcdef";
+  RunRecord r;
+  r.spec = a;
+  const auto back = parse_journal_line(journal_line(r));
+  ASSERT_TRUE(back);
+  EXPECT_TRUE(same_run(back->spec, a));
+  RunSpec edited = a;
+  edited.scenario_fingerprint = "fedcba9876543210";
+  EXPECT_FALSE(same_run(back->spec, edited));
+  EXPECT_EQ(expand_runs(sweep_of("seeds: 1\n"))[0].scenario_fingerprint.size(), 16u);
+}
+
+// A scenario named twice (by two globs, or a name and a glob) is run once.
+TEST(Sweep, AScenarioNamedTwiceRunsOnce) {
+  const Sweep s = parse_sweep("scenarios: [" + kDemo + ", " + kDemo + ", \"" + std::string(UAVPLAN_SOURCE_DIR) +
+                                  "/scenarios/dem?.yaml\"]\n",
+                              "/tmp/s.yaml");
+  EXPECT_EQ(s.scenarios.size(), 1u);
+}
+
+}  // namespace
+}  // namespace uavplan

@@ -126,8 +126,8 @@ std::vector<ExportFile> export_files(const Scenario& sc, const VerifiedExport& f
     throw ExportError("scenario '" + sc.name + "' has no origin: add origin: {lat, lon, alt} to export to WGS84");
   std::vector<ExportFile> files;
   switch (format) {
-    case ExportFormat::geojson: files.push_back({"plan.geojson", plan_geojson(sc, flights)}); break;
-    case ExportFormat::kml: files.push_back({"plan.kml", plan_kml(sc, flights)}); break;
+    case ExportFormat::geojson: files.push_back({"plan.geojson", plan_geojson(sc, flights), ""}); break;
+    case ExportFormat::kml: files.push_back({"plan.kml", plan_kml(sc, flights), ""}); break;
     default: {
       std::set<std::string> taken;
       for (const ExportedUav& e : flights.uavs) {

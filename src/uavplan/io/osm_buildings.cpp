@@ -3,6 +3,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 
 #include "uavplan/core/geometry.h"
@@ -126,9 +127,11 @@ struct Reader {
     } else if (const auto ml = props.contains("building:min_level") ? non_negative(props["building:min_level"]) : std::nullopt) {
       bottom = *ml * opt.level_height_m;
     }
-    if (!(top > bottom)) {
-      ++counts.skipped;
-      return;
+    if (!(top > bottom)) {  // a part that starts at or above its own top is a tagging error: say so
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "the building's bottom (min_height or building:min_level: %g m) is not below its top (%g m)",
+                    bottom, top);
+      fail(place, buf);
     }
     const json& c = g["coordinates"];
     const std::string cplace = place + ".coordinates";

@@ -98,6 +98,13 @@ TEST(OsmBuildings, BadInputNamesTheFileAndFeature) {
   EXPECT_NE(message(mercator).find("crs"), std::string::npos);
   EXPECT_NE(message(R"({"type": "FeatureCollection", "features": [{"type": "Feature", "geometry": {"type": "Polygon"}}]})").find("coordinates"),
             std::string::npos);
+  // A part whose bottom is above its top is a tagging error, named (it was dropped without a word).
+  const std::string upside_down = R"({"type": "FeatureCollection", "features": [{"type": "Feature",
+    "properties": {"height": 20, "min_height": 30},
+    "geometry": {"type": "Polygon", "coordinates": [[[-74.0, 40.0], [-73.9999, 40.0], [-73.9999, 40.0001], [-74.0, 40.0]]]}}]})";
+  const std::string u = message(upside_down);
+  EXPECT_NE(u.find("features[0]"), std::string::npos) << u;
+  EXPECT_NE(u.find("not below its top"), std::string::npos) << u;
 }
 
 // The bundled OpenStreetMap extract: 15 New York buildings, every height tagged in metres.

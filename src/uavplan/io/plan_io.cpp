@@ -176,6 +176,7 @@ std::string plan_to_json(const Plan& plan, const PlanWriteOptions& options) {
     Json ju;
     ju["id"] = u.id;
     ju["status"] = std::string(to_string(u.status));
+    if (u.reason != Reason::none) ju["reason"] = std::string(to_string(u.reason));
     ju["message"] = u.message;
     // Built apart and moved in: ju[key] looks the key up in an ordered map every time.
     Json waypoints = Json::array();
@@ -267,6 +268,11 @@ Plan parse_plan(const std::string& raw, const std::string& file) {
     if (!us) r.fail(at + ".status", "expected solved, partial or failed");
     u.status = *us;
     if (ju.contains("message")) u.message = r.text(ju["message"], at + ".message");
+    if (ju.contains("reason")) {
+      const auto reason = reason_from_string(r.text(ju["reason"], at + ".reason"));
+      if (!reason) r.fail(at + ".reason", "expected none, stopped, budget, no_route, invalid, conflict or rejected");
+      u.reason = *reason;
+    }
     if (ju.contains("waypoints")) {
       const Json& w = ju["waypoints"];
       if (!w.is_array()) r.fail(at + ".waypoints", "expected an array");

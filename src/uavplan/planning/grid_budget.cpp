@@ -13,4 +13,9 @@ void require_grid(double cells, double bytes_per_cell, const StopCondition& stop
   stop.require_memory(static_cast<std::uint64_t>(cells * bytes_per_cell), what + buf);
 }
 
+bool grid_fits(double cells, double bytes_per_cell, const StopCondition& stop) {
+  if (!(cells <= kMaxGridCells)) return false;
+  return stop.memory_cap_bytes() == 0 || cells * bytes_per_cell <= static_cast<double>(stop.memory_cap_bytes());
+}
+
 }  // namespace uavplan

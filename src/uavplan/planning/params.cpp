@@ -42,15 +42,16 @@ double ParamReader::number(const std::string& key, double fallback, double lo, d
 int ParamReader::integer(const std::string& key, int fallback, int lo, int hi) {
   const std::string* s = find(key, std::to_string(fallback));
   if (!s) return fallback;
-  int v = 0;
+  // A whole number, also in exponent notation (1e6 is a million: counts are written that way).
+  double x = 0.0;
   const char* end = s->data() + s->size();
-  const auto [ptr, ec] = std::from_chars(s->data(), end, v);
-  if (ec != std::errc() || ptr != end)
-    throw std::invalid_argument("planner.params." + key + ": expected an integer, got '" + *s + "'");
-  if (v < lo || v > hi)
+  const auto [ptr, ec] = std::from_chars(s->data(), end, x);
+  if (ec != std::errc() || ptr != end || !std::isfinite(x) || x != std::floor(x))
+    throw std::invalid_argument("planner.params." + key + ": expected a whole number, got '" + *s + "'");
+  if (x < lo || x > hi)
     throw std::invalid_argument("planner.params." + key + ": " + *s + " is outside [" + std::to_string(lo) +
                                 ", " + std::to_string(hi) + "]");
-  return v;
+  return static_cast<int>(x);
 }
 
 bool ParamReader::boolean(const std::string& key, bool fallback) {

@@ -35,7 +35,17 @@ void validate_problem(const Problem& pb, const World& world) {
 PlanResult Planner::plan(const Problem& problem, const World& world, const StopCondition& stop) const {
   validate_problem(problem, world);
   const auto t0 = std::chrono::steady_clock::now();
-  PlanResult r = do_plan(problem, world, stop);
+  PlanResult r;
+  try {
+    r = do_plan(problem, world, stop);
+  } catch (const Stopped&) {
+    r = PlanResult{};
+    r.reason = Reason::stopped;
+    r.message = "stopped (time limit or interrupt) while setting up";
+  }
+  // A failure a planner did not classify: the stop came first, or it found no route it could fly.
+  if (r.status != Status::solved && r.reason == Reason::none)
+    r.reason = stop.should_stop() ? Reason::stopped : Reason::no_route;
   r.stats.plan_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }

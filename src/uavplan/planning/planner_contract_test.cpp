@@ -96,12 +96,15 @@ TEST_P(PlannerContract, UnreachableGoalFailsWithAReason) {
   EXPECT_EQ(r.status, Status::failed);
   EXPECT_FALSE(r.message.empty());
   EXPECT_TRUE(r.route.waypoints.empty());
+  EXPECT_NE(r.reason, Reason::none) << r.message;  // why, as a value
+  EXPECT_NE(r.reason, Reason::stopped) << r.message;
 }
 
 TEST_P(PlannerContract, HonoursACancelledStop) {
   std::atomic<bool> cancel{true};
   const PlanResult r = planner->plan(problem(Vec3(10, 10, 10), Vec3(90, 10, 10)), world, StopCondition::cancel_flag(&cancel));
   EXPECT_NE(r.status, Status::solved);
+  EXPECT_EQ(r.reason, Reason::stopped) << r.message;  // the batch's `timeout` reads this
 }
 
 TEST_P(PlannerContract, SameInputSameRoute) {

@@ -42,6 +42,7 @@ struct PlanStats {
 
 struct PlanResult {
   Status status = Status::failed;
+  Reason reason = Reason::none;  // why it is not solved
   Route route;
   PlanStats stats;
   std::string message;  // why it failed, or a note

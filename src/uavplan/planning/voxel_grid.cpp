@@ -35,7 +35,7 @@ void VoxelGrid::cell_of(const Vec3& p, int& i, int& j, int& k) const {
   }
 }
 
-VoxelGrid voxelize(const World& world, const Vec3& cell, double inflation_m, double ceiling_m) {
+VoxelGrid voxelize(const World& world, const Vec3& cell, double inflation_m, double ceiling_m, const StopCondition& stop) {
   VoxelGrid g(world.bounds(), cell);
   const Vec3 half = 0.5 * g.cell();
   // A cell is unsafe when its centre is closer than inflation + half-diagonal to an obstacle:
@@ -53,23 +53,29 @@ VoxelGrid voxelize(const World& world, const Vec3& cell, double inflation_m, dou
     int i0, j0, k0, i1, j1, k1;
     g.cell_of(box.min, i0, j0, k0);
     g.cell_of(box.max, i1, j1, k1);
-    for (int k = k0; k <= k1; ++k)
-      for (int j = j0; j <= j1; ++j)
+    for (int k = k0; k <= k1; ++k) {
+      for (int j = j0; j <= j1; ++j) {
+        // A large obstacle (a prism of many vertices) on a fine grid takes a while.
+        if (((j - j0) & 15) == 0) stop.throw_if_stopped();
         for (int i = i0; i <= i1; ++i) {
           const std::int64_t idx = g.index(i, j, k);
           if (!g.blocked(idx) && point_distance(o, g.center(i, j, k)) < reach) g.set_blocked(idx);
         }
+      }
+    }
   }
 
   if (const TerrainGrid* t = world.terrain()) {
     // Distance to the terrain never decreases with height, so each column is blocked from the
     // bottom up to its first safe cell.
-    for (int j = 0; j < g.ny(); ++j)
+    for (int j = 0; j < g.ny(); ++j) {
+      stop.throw_if_stopped();
       for (int i = 0; i < g.nx(); ++i)
         for (int k = 0; k < g.nz(); ++k) {
           if (t->point_distance(g.center(i, j, k), reach) >= reach) break;
           g.set_blocked(g.index(i, j, k));
         }
+    }
   }
   return g;
 }

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "uavplan/core/stop.h"
 #include "uavplan/core/vec.h"
 #include "uavplan/planning/search/bit_grid.h"
 #include "uavplan/world/world.h"
@@ -55,6 +56,8 @@ class VoxelGrid {
 // Marks every cell that is not safe for a UAV of `inflation_m` radius, and every cell whose
 // centre lies above `ceiling_m`. Obstacles are rasterised through their bounding boxes, so the
 // cost is proportional to the space they cover, not to the grid.
-VoxelGrid voxelize(const World& world, const Vec3& cell, double inflation_m, double ceiling_m);
+// Throws Stopped (core/stop.h) when the stop condition holds while it is built.
+VoxelGrid voxelize(const World& world, const Vec3& cell, double inflation_m, double ceiling_m,
+                   const StopCondition& stop = {});
 
 }  // namespace uavplan

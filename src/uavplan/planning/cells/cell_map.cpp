@@ -97,12 +97,14 @@ CellMap::CellMap(const World& world, const CellMapOptions& opt, const StopCondit
   constexpr double kAbove_m = 1e-6;
   required_.assign(static_cast<std::size_t>(nx_) * ny_, flat ? b.min.z() : b.min.z() + r);
   for (const Obstacle& o : world.obstacles()) {
+    stop.throw_if_stopped();  // a fine map of a city takes seconds to build
     const Aabb ob = bounding_box(o);
     const int i0 = std::max(0, static_cast<int>(std::floor((ob.min.x() - r - origin_.x()) / cell_m_)));
     const int i1 = std::min(nx_ - 1, static_cast<int>(std::floor((ob.max.x() + r - origin_.x()) / cell_m_)));
     const int j0 = std::max(0, static_cast<int>(std::floor((ob.min.y() - r - origin_.y()) / cell_m_)));
     const int j1 = std::min(ny_ - 1, static_cast<int>(std::floor((ob.max.y() + r - origin_.y()) / cell_m_)));
-    for (int j = j0; j <= j1; ++j)
+    for (int j = j0; j <= j1; ++j) {
+      stop.throw_if_stopped();
       for (int i = i0; i <= i1; ++i) {
         const Vec2 lo(origin_.x() + i * cell_m_, origin_.y() + j * cell_m_);
         const Vec2 hi(lo.x() + cell_m_, lo.y() + cell_m_);
@@ -112,10 +114,12 @@ CellMap::CellMap(const World& world, const CellMapOptions& opt, const StopCondit
           req = std::max(req, top + r + kAbove_m);
         }
       }
+    }
   }
   if (terrain) {
     // The highest terrain cell within the inflation of the column.
-    for (int j = 0; j < ny_; ++j)
+    for (int j = 0; j < ny_; ++j) {
+      stop.throw_if_stopped();
       for (int i = 0; i < nx_; ++i) {
         const double x0 = origin_.x() + i * cell_m_ - r, x1 = x0 + cell_m_ + 2 * r;
         const double y0 = origin_.y() + j * cell_m_ - r, y1 = y0 + cell_m_ + 2 * r;
@@ -129,6 +133,7 @@ CellMap::CellMap(const World& world, const CellMapOptions& opt, const StopCondit
         for (int tj = tj0; tj <= tj1; ++tj)
           for (int ti = ti0; ti <= ti1; ++ti) req = std::max(req, terrain->height(ti, tj) + r + kAbove_m);
       }
+    }
   }
 }
 

@@ -114,10 +114,17 @@ PlanResult plan_once(const Problem& problem, const World& world, const CellPlanO
     if (stop.should_stop()) {
       res.status = Status::failed;
       res.message = "stopped before the route was complete";
+      res.reason = Reason::stopped;
       return res;
     }
     const auto path = search(cw.graph, nodes[leg], nodes[leg + 1], static_cast<int>(leg), res.stats);
+    if (!path && stop.should_stop()) {  // the search was cut short: no advice on the cells
+      res.message = "stopped before the route was complete";
+      res.reason = Reason::stopped;
+      return res;
+    }
     if (!path) {
+      res.reason = Reason::no_route;
       res.message = leg_name(leg, stops.size()) + ": no route on the cell map; " + cells_hint(map, problem.uav.max_climb_rad);
       finer_may_help = true;
       return res;

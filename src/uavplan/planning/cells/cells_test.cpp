@@ -1,9 +1,13 @@
 #include <gtest/gtest.h>
 
+#include <atomic>
+
 #include "uavplan/planning/cells/cell_astar.h"
+#include "uavplan/planning/cells/cell_map.h"
 #include "uavplan/planning/cells/cellular_aco.h"
 #include "uavplan/planning/registry.h"
 #include "uavplan/planning/segment_rule.h"
+#include "uavplan/planning/voxel_grid.h"
 
 namespace uavplan {
 namespace {
@@ -154,6 +158,30 @@ TEST(CellularAco, NearTheOptimumAndIndependentOfThreads) {
   bool via = false;
   for (const auto& q : a.route.waypoints) via = via || (q - p.via[0]).norm() < 1e-9;
   EXPECT_TRUE(via);
+}
+
+// The stop condition holds while a map is built, not only once it is searched (a fine map of a
+// city took 46 s under a 2 s limit): set-up ends with a stopped result, and no advice on cells.
+TEST(CellPlanners, StopHoldsWhileTheMapIsBuilt) {
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(200, 200, 50)};
+  for (int k = 0; k < 20; ++k) ws.obstacles.push_back(Box{Vec3(10.0 * k, 50, 0), Vec3(10.0 * k + 5, 60, 30)});
+  const World w(std::move(ws));
+  std::atomic<bool> cancel{true};
+  const StopCondition stop = StopCondition::cancel_flag(&cancel);
+  CellMapOptions mo;
+  mo.cell_m = 1.0;
+  mo.ceiling_m = 50.0;
+  EXPECT_THROW(CellMap(w, mo, stop), Stopped);
+  EXPECT_THROW(voxelize(w, Vec3(1, 1, 1), 0.5, 50.0, stop), Stopped);
+  Problem p;
+  p.uav.start = Vec3(5, 5, 10);
+  p.goal = Vec3(195, 195, 10);
+  for (const char* name : {"cell_astar", "cellular_aco", "astar"}) {
+    const PlanResult r = make_planner(name, {{"cell_m", "1"}})->plan(p, w, stop);
+    EXPECT_EQ(r.reason, Reason::stopped) << name << ": " << r.message;
+    EXPECT_EQ(r.message.find("cell_m"), std::string::npos) << name << ": " << r.message;
+  }
 }
 
 }  // namespace

@@ -233,6 +233,7 @@ ApfRun run_apf(const PotentialField& field, const Vec3& start, const Vec3& goal,
     if (start == goal) break;
     if ((f & 63) == 0 && stop.should_stop(static_cast<std::uint64_t>(f))) {
       run.message = "stopped before the goal was reached";
+      run.reason = Reason::stopped;
       return run;
     }
     flight.advance({}, guide ? guide : own_guide);
@@ -243,8 +244,10 @@ ApfRun run_apf(const PotentialField& field, const Vec3& start, const Vec3& goal,
     run.points.push_back(flight.position());
   }
   run.reached = start == goal || flight.arrived();
-  if (!run.reached)
+  if (!run.reached) {
     run.message = "not there within " + std::to_string(max_frames) + " frames; raise planner.params.max_frames";
+    run.reason = Reason::budget;
+  }
   return run;
 }
 
@@ -267,6 +270,7 @@ PlanResult ApfPlanner::do_plan(const Problem& pb, const World& world, const Stop
     res.route.waypoints.insert(res.route.waypoints.end(), run.points.begin() + 1, run.points.end());
     if (!run.reached) {
       res.message = leg_name(leg, stops.size() + 1) + ": " + run.message;
+      res.reason = run.reason;
       res.route.waypoints.clear();
       return res;
     }

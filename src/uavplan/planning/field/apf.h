@@ -88,6 +88,7 @@ struct ApfRun {
   bool reached = false;
   std::vector<Vec3> points;
   std::string message;
+  Reason reason = Reason::no_route;  // when not reached
 };
 
 // One UAV flying the field frame by frame, shared by the single-UAV planner and the group.

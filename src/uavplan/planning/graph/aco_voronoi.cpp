@@ -200,7 +200,8 @@ PlanResult AcoVoronoiPlanner::do_plan(const Problem& pb, const World& world, con
   std::vector<Vec3> stops{pb.uav.start};
   stops.insert(stops.end(), pb.via.begin(), pb.via.end());
   stops.push_back(pb.goal);
-  Roadmap map = threat_roadmap(world, rule, pb.uav.start.z(), options_.roadmap);
+  stop.throw_if_stopped();
+  Roadmap map = threat_roadmap(world, rule, pb.uav.start.z(), options_.roadmap, stop);
   std::vector<std::uint32_t> at;
   for (const Vec3& s : stops) {
     std::vector<std::uint32_t> also;
@@ -213,6 +214,7 @@ PlanResult AcoVoronoiPlanner::do_plan(const Problem& pb, const World& world, con
   for (std::size_t leg = 0; leg + 1 < stops.size(); ++leg) {
     if (stop.should_stop()) {
       res.message = "stopped before the route was complete";
+      res.reason = Reason::stopped;
       return res;
     }
     if ((stops[leg + 1] - stops[leg]).norm() <= 1e-9) continue;  // a stop repeated: nothing to fly
@@ -222,8 +224,10 @@ PlanResult AcoVoronoiPlanner::do_plan(const Problem& pb, const World& world, con
     if (!r) {
       if (stop.should_stop()) {
         res.message = "stopped before the route was complete";
+        res.reason = Reason::stopped;
         return res;
       }
+      res.reason = Reason::no_route;
       res.message = leg_name(leg, stops.size()) + ": no route on the threat roadmap (" + std::to_string(map.vertices.size()) +
                     " vertices, " + std::to_string(map.edges.size()) + " edges from " + std::to_string(map.sites) + " sites" +
                     (colony_ ? "; no ant arrived: raise planner.params.iterations or ants, " : "; ") +

@@ -125,7 +125,8 @@ double p1_edge_cost(const Vec3& a, const Vec3& b, const World& world, const Road
   return o.k1 * o.threat_prefactor * p1_threat_cost(a, b, world.radars()) + (1.0 - o.k1) * (b - a).norm();
 }
 
-Roadmap threat_roadmap(const World& world, const SegmentRule& rule, double plane_z, const RoadmapOptions& o) {
+Roadmap threat_roadmap(const World& world, const SegmentRule& rule, double plane_z, const RoadmapOptions& o,
+                       const StopCondition& stop) {
   Roadmap map;
   const Aabb& bounds = world.bounds();
   const IntFrame frame(bounds);
@@ -161,7 +162,9 @@ Roadmap threat_roadmap(const World& world, const SegmentRule& rule, double plane
     if (fresh) it->second = map.add_vertex(p);
     return it->second;
   };
+  std::size_t seen = 0;
   for (const auto& e : vd.edges()) {
+    if ((++seen & 1023) == 0) stop.throw_if_stopped();  // each edge is checked and costed (P1 eq. 1-3)
     if (e.color() != 0) continue;  // its twin was taken
     e.twin()->color(1);
     const std::size_t c0 = e.cell()->source_index(), c1 = e.twin()->cell()->source_index();

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "uavplan/core/stop.h"
 #include "uavplan/core/vec.h"
 #include "uavplan/planning/segment_rule.h"
 
@@ -42,7 +43,9 @@ double p1_edge_cost(const Vec3& a, const Vec3& b, const World& world, const Road
 // samples of their inflated footprint outlines (edges between two samples of one outline are not
 // kept: what remains runs midway between obstacles); with fewer than three sites the bounds'
 // corners are added. The clipped diagram's ends on the bounds are joined along the bounds.
-Roadmap threat_roadmap(const World& world, const SegmentRule& rule, double plane_z, const RoadmapOptions& o);
+// Throws Stopped (core/stop.h) when the stop condition holds while it is built.
+Roadmap threat_roadmap(const World& world, const SegmentRule& rule, double plane_z, const RoadmapOptions& o,
+                       const StopCondition& stop = {});
 
 // Adds p as a vertex joined to the `join_nearest` nearest vertices it sees (and to each of
 // `also` it sees); returns its index.

@@ -323,6 +323,7 @@ PlanResult plan_multi_step(const Problem& pb, const World& world, const StopCond
     }
     if (!why.empty()) {
       res.message = why == kStoppedWhy ? why : leg_name(leg, stops.size() + 1) + why;
+      res.reason = why == kStoppedWhy ? Reason::stopped : Reason::no_route;
       return res;
     }
   }

@@ -125,6 +125,7 @@ PlanResult PsoSinglePlanner::do_plan(const Problem& pb, const World& world, cons
   res.stats.nodes_expanded = static_cast<std::uint64_t>(r.evaluations);
   if (stop.should_stop()) {
     res.message = "stopped before the swarm was done";
+    res.reason = Reason::stopped;
     return res;
   }
   const SegmentRule rule(world, pb.uav);

@@ -23,7 +23,8 @@ struct PsoSingleOptions {
   double w_climb = 10.0;      // per metre over dh_max (P5's alpha)
   double w_len = 10.0;        // per metre a segment falls short of l
   double w_nfz_per_m = 100.0; // per metre inside a no-fly zone
-  PsoOptions pso{100, 500, 0.9, 0.4, 2.0, 2.0, 50, 1e-9, 0};
+  PsoOptions pso{.particles = 100, .iterations = 500, .w_start = 0.9, .w_end = 0.4, .c1 = 2.0, .c2 = 2.0,
+                 .stall_iterations = 50, .stall_tolerance = 1e-9, .infeasible_iterations = 0};
   static PsoSingleOptions from_params(const Params& params);
 };
 

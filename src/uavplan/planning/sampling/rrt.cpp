@@ -188,6 +188,7 @@ RrtResult rrt_search(const SegmentRule& rule, double max_turn, const RrtQuery& q
   while (reached < 0) {
     if (stop.should_stop(res.iterations)) {
       res.message = "stopped after " + std::to_string(tree.size()) + " nodes";
+      res.stopped = true;
       break;
     }
     // A start every move from which is refused (boxed in by keep-outs) is given up early.
@@ -278,6 +279,7 @@ PlanResult RrtPlanner::do_plan(const Problem& pb, const World& world, const Stop
     out.stats.nodes_expanded += static_cast<std::uint64_t>(r.nodes);
     if (!r.ok) {
       out.route.waypoints.clear();
+      out.reason = r.stopped ? Reason::stopped : Reason::budget;
       out.message = name_ + ": " + leg_name(leg, stops.size()) + " from " + fmt(q.start) + " to " + fmt(q.goal) + ": " +
                     r.message;
       return out;

@@ -79,6 +79,7 @@ struct RrtResult {
   int nodes = 0;
   std::uint64_t iterations = 0;
   std::string message;      // why it failed
+  bool stopped = false;     // by the stop condition (else its node or iteration budget)
 };
 
 // Throws std::invalid_argument when the start breaks the rule (outside, inside an obstacle).

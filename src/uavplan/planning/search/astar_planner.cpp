@@ -18,7 +18,7 @@ AStarOptions AStarOptions::from_params(const Params& params) {
   o.cell_m = r.number("cell_m", o.cell_m, 0.0, 1e9);
   o.shortcut = r.boolean("shortcut", o.shortcut);
   o.refinements = r.integer("refinements", o.refinements, 0, 8);
-  o.max_cells = static_cast<std::int64_t>(r.number("max_cells", static_cast<double>(o.max_cells), 1, 1e9));
+  o.max_cells = r.integer("max_cells", static_cast<int>(o.max_cells), 1, 1'000'000'000);
   o.target_cells = static_cast<std::int64_t>(r.number("target_cells", static_cast<double>(o.target_cells), 1, 1e9));
   r.finish();
   return o;
@@ -107,10 +107,11 @@ PlanResult AStarPlanner::do_plan(const Problem& pb, const World& world, const St
   for (int attempt = 0; attempt < attempts && !found; ++attempt, cell *= 0.5) {
     const Vec3 cell3(cell, cell, layer_height_m(cell, uav.max_climb_rad));
     const double cells = VoxelGrid::cell_count(world.bounds(), cell3);
-    if (attempt > 0 && cells > static_cast<double>(options_.max_cells)) break;
     // A bit per voxel and a search node (16 bytes) per voxel reached.
-    require_grid(cells, 16.125, stop, derived ? "the derived cell of " + fmt_m(cell) : "planner.params.cell_m = " + fmt_m(cell));
-    const VoxelGrid grid = voxelize(world, cell3, rule.inflation_m(), rule.ceiling_m());
+    constexpr double kBytesPerVoxel = 16.125;
+    if (attempt > 0 && (cells > static_cast<double>(options_.max_cells) || !grid_fits(cells, kBytesPerVoxel, stop))) break;
+    require_grid(cells, kBytesPerVoxel, stop, derived ? "the derived cell of " + fmt_m(cell) : "planner.params.cell_m = " + fmt_m(cell));
+    const VoxelGrid grid = voxelize(world, cell3, rule.inflation_m(), rule.ceiling_m(), stop);
     const Vec3 cs = grid.cell();
     GridAStar search(grid.cells(), bounding_box_moves(grid.cells(), cs.x(), cs.y(), cs.z(), uav.max_climb_rad),
                      GridHeuristic::euclidean, cs.x(), cs.y(), cs.z());
@@ -129,6 +130,7 @@ PlanResult AStarPlanner::do_plan(const Problem& pb, const World& world, const St
       const std::int64_t ga = attach(grid, a, rule), gb = attach(grid, b, rule);
       if (ga < 0 || gb < 0) {
         found = false;
+        res.reason = Reason::no_route;
         res.message = leg_name(s, stops.size()) + ": no free cell of the " + fmt_m(cs.x()) + " grid can be reached straight from its " +
                       (ga < 0 ? "start" : "end") + "; a smaller planner.params.cell_m gives cells in narrower room";
         break;
@@ -138,14 +140,16 @@ PlanResult AStarPlanner::do_plan(const Problem& pb, const World& world, const St
       res.stats.open_max = std::max(res.stats.open_max, vp.open_max);
       if (vp.stopped) {
         res.message = "stopped before a route was found";
+        res.reason = Reason::stopped;
         return res;
       }
       if (!vp.found) {
         found = false;
+        res.reason = Reason::no_route;
         res.message = leg_name(s, stops.size()) + ": no route on a " + std::to_string(grid.nx()) + "x" + std::to_string(grid.ny()) +
                       "x" + std::to_string(grid.nz()) + " grid of " + fmt_m(cs.x()) +
                       " cells; a smaller planner.params.cell_m finds narrower gaps" +
-                      (derived ? " (the derived cell was halved while the grid stayed under planner.params.max_cells)" : "");
+                      (derived ? " (the derived cell was halved while the grid stayed under planner.params.max_cells and --max-memory)" : "");
         break;
       }
       for (const std::int64_t c : vp.cells) {

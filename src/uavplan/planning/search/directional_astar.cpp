@@ -24,7 +24,7 @@ DirectionalAStarOptions DirectionalAStarOptions::from_params(const Params& param
   o.directions = r.integer("directions", o.directions, 1, 64);
   o.max_yaw_rad = deg_to_rad(r.number("max_yaw_deg", rad_to_deg(o.max_yaw_rad), 0.0, 180.0));
   o.max_pitch_rad = deg_to_rad(r.number("max_pitch_deg", rad_to_deg(o.max_pitch_rad), 0.0, 90.0));
-  o.max_expansions = static_cast<std::int64_t>(r.number("max_expansions", static_cast<double>(o.max_expansions), 1, 1e9));
+  o.max_expansions = r.integer("max_expansions", static_cast<int>(o.max_expansions), 1, 1'000'000'000);
   o.target_points = static_cast<std::int64_t>(r.number("target_points", static_cast<double>(o.target_points), 1, 1e9));
   o.step_cells_max = r.number("step_cells_max", o.step_cells_max, 0.5, 100.0);
   o.min_turn_radius_m = r.number("min_turn_radius_m", o.min_turn_radius_m, 0.0, 1e9);
@@ -505,6 +505,7 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
       c.parent = e.id;
       open_.push(f >= 0.0 ? f : ng + q.heuristic_weight * h(to), ng, id);
       ++out.generated;
+      out.open_max = std::max<std::uint64_t>(out.open_max, open_.size());
     };
     // Within reach of the goal: try the last segment to the exact goal.
     auto try_goal = [&](const std::optional<Vec3>& heading) {
@@ -638,10 +639,11 @@ PlanResult DirectionalAStarPlanner::do_plan(const Problem& pb, const World& worl
   require_lattice(world, q, 1, stop);
   const DirectionalRoute r = search.run(world, q, stop);
   res.stats.nodes_expanded = r.expanded;
-  res.stats.open_max = r.generated;
+  res.stats.open_max = r.open_max;
   res.stats.cell_m = q.cell_m;
   if (!r.found) {
     res.message = r.stopped ? r.message : leg_name(0, 2) + ": " + r.message;
+    res.reason = r.stopped ? Reason::stopped : r.expanded > static_cast<std::uint64_t>(q.max_expansions) ? Reason::budget : Reason::no_route;
     return res;
   }
   res.route.waypoints = r.waypoints;

@@ -55,6 +55,7 @@ struct DirectionalRoute {
   std::vector<Vec3> waypoints;
   double length_m = 0.0;
   std::uint64_t expanded = 0, generated = 0, dead_zones = 0;
+  std::uint64_t open_max = 0;  // the most entries the open list held at once
   std::string message;
 };
 
