@@ -27,7 +27,7 @@ namespace {
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
 
-// P1-notes sec. 5: the UAV at 5 m/s with T = 1 s (a 5 m step), RRT step 2 m; obstacles of
+// papers.md P1: the UAV at 5 m/s with T = 1 s (a 5 m step), RRT step 2 m; obstacles of
 // radius 2 m at 1-3 m/s crossing the straight line from the window's bottom to its top,
 // inflated to discs of radius T |V_b| + their radius + the UAV's, at their current positions.
 constexpr double kWidth_m = 40, kLength_m = 45, kSpeed_mps = 5, kPeriod_s = 1, kUavRadius_m = 0.5;

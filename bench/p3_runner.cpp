@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "uavplan/coordination/group_planner.h"
+#include "uavplan/coordination/group/group_planner.h"
 #include "uavplan/coordination/mission_planner.h"
 #include "uavplan/core/rng.h"
 #include "uavplan/evaluation/metrics.h"

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "uavplan/coordination/rendezvous.h"
+#include "uavplan/coordination/rendezvous/rendezvous.h"
 #include "uavplan/core/units.h"
 #include "uavplan/io/scenario_io.h"
 #include "uavplan/planning/search/directional_astar.h"

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "uavplan/coordination/formation_group.h"
+#include "uavplan/coordination/formation_mission/formation_group.h"
 #include "uavplan/coordination/mission_planner.h"
-#include "uavplan/coordination/separation.h"
+#include "uavplan/coordination/contract/separation.h"
 #include "uavplan/evaluation/random_worlds.h"
 #include "uavplan/evaluation/verifier.h"
 #include "uavplan/io/scenario_io.h"
@@ -131,7 +131,7 @@ std::string turn_table(bool& ok) {
          "steady nearest spacing m   min nearest spacing m   safety m   centroid's closest pass to the corner m\n" +
          line("%10.2f | ~85            %8.2f | 70.5            50       %8.0f (turning on the arc R tan 15 deg = %.0f m short)\n",
               steady_before, lowest, miss, 150.0 / deg_to_rad(2.2) * std::tan(deg_to_rad(15.0))) +
-         "(P5's 70.5 m depends on its unpublished gains; ours are P5-notes' defaults, consensus.h)\n";
+         "(P5's 70.5 m depends on its unpublished gains; ours are papers.md P5's defaults, consensus.h)\n";
 }
 
 // Missions nobody tuned for (random_formation_mission): how many are solved, and whether every

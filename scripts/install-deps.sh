@@ -20,7 +20,8 @@ PACKAGES=(
   python3-dev pybind11-dev python3-pybind11  # the Python module
   python3-numpy python3-pytest python3-matplotlib  #   its arrays, its tests, its example's plot
   gdal-bin               # tests: ogr2ogr reads the GeoJSON and KML exports back
-  clang-14 libclang-rt-14-dev  # make fuzz: libFuzzer with AddressSanitizer and UBSan
+  clang-14 libclang-rt-14-dev  # make asan, make fuzz: clang with AddressSanitizer, UBSan, libFuzzer
+  clang-format clang-tidy      # scripts/lint.sh: the house style and static checks
   chromium               # tests: the HTML report in a headless browser
   fonts-dejavu-core      #   and a font for it
 )

@@ -37,6 +37,12 @@ out=$("$UAVPLAN" batch "$T/sweep.yaml" -o "$T/dry" --dry-run) || fail "dry run"
 [ "$out" = "18 runs: 2 scenarios x 3 planner settings x 1 parameter settings x 3 seeds" ] || fail "dry run said: $out"
 [ ! -e "$T/dry" ] || fail "dry run wrote $T/dry"
 
+# A dry run of a sweep of 1e8 runs counts them without listing them (that took 37 GB).
+printf 'scenarios: [%s]\nplanners: [astar]\nseeds: 10000\nparams: {"uavs[0].speed": [%s], "uavs[1].speed": [%s]}\n' \
+  "$ROOT/scenarios/demo.yaml" "$(seq -s, 1 100)" "$(seq -s, 1 100)" > "$T/huge.yaml"
+out=$(timeout 60 "$UAVPLAN" batch "$T/huge.yaml" -o "$T/huge" --dry-run) || fail "dry run of 1e8 runs"
+[ "${out%% *}" = 100000000 ] || fail "dry run of 1e8 runs said: $out"
+
 # A glob beside the sweep does not take the sweep file for a scenario.
 mkdir -p "$T/g" && cp "$ROOT/scenarios/demo.yaml" "$T/g/" && printf 'scenarios: ["*.yaml"]\n' > "$T/g/sweep.yaml"
 out=$("$UAVPLAN" batch "$T/g/sweep.yaml" -o "$T/g/out" --dry-run) || fail "glob beside the sweep"

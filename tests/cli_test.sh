@@ -34,6 +34,20 @@ cmp -s "$TMP/a/plan.json" "$TMP/b/plan.json"; check demo.deterministic 0 $?
 "$BIN" plan "$SRC/scenarios/demo.yaml" -o "$TMP/c" --set nonsense=1 >/dev/null 2>"$TMP/stderr"; check unknown.param 2 $?
 grep -q "planner.params.nonsense" "$TMP/stderr" || { echo "FAIL unknown.param message"; fails=$((fails + 1)); }
 "$BIN" plan "$SRC/scenarios/demo.yaml" -o "$TMP/c" --algorithm nope >/dev/null 2>&1; check unknown.algorithm 2 $?
+# Limits on the command line: a huge time limit is no limit (the clock used to overflow into the
+# past); a seed or size that is not what it says is refused, not saturated or wrapped.
+"$BIN" plan "$SRC/scenarios/demo.yaml" -o "$TMP/c" --time-limit 9.3e9 >/dev/null 2>&1; check time_limit.huge 0 $?
+"$BIN" plan "$SRC/scenarios/demo.yaml" -o "$TMP/c" --seed 1e23 >/dev/null 2>&1; check seed.exponent 2 $?
+"$BIN" plan "$SRC/scenarios/demo.yaml" -o "$TMP/c" --seed 18446744073709551616 >/dev/null 2>&1; check seed.overflow 2 $?
+"$BIN" plan "$SRC/scenarios/demo.yaml" -o "$TMP/c" --max-memory -1 >/dev/null 2>&1; check max_memory.negative 2 $?
+"$BIN" plan "$SRC/scenarios/p4_table3.yaml" -o "$TMP/c" --set max_expansions=1.5 >/dev/null 2>&1; check count.fraction 2 $?
+"$BIN" plan "$SRC/scenarios/p4_table3.yaml" -o "$TMP/c" --set max_expansions=1e6 >/dev/null 2>&1; check count.exponent 0 $?
+# A plan whose rows start before 0 s (once exported as a speed of 0) is bad input.
+"$BIN" plan "$SRC/scenarios/demo.yaml" -o "$TMP/neg" >/dev/null 2>&1
+python3 -c 'import json, sys; p = json.load(open(sys.argv[1])); p["uavs"][0]["trajectory"][0][0] = -1e300; json.dump(p, open(sys.argv[2], "w"))' \
+  "$TMP/neg/plan.json" "$TMP/neg/bad.json"
+"$BIN" verify "$SRC/scenarios/demo.yaml" "$TMP/neg/bad.json" >/dev/null 2>"$TMP/stderr"; check plan.negative_time 2 $?
+grep -q "from 0 to 1e9" "$TMP/stderr" || { echo "FAIL plan.negative_time message: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
 # --algorithm is the planner the mission is checked against (the file's astar cannot plan a group).
 "$BIN" plan "$SRC/scenarios/demo.yaml" -o "$TMP/c" --set mission.type=group --algorithm apf >/dev/null 2>"$TMP/stderr"
 rc=$?; [ $rc != 2 ] && pass=$((pass + 1)) || { echo "FAIL algorithm.wins: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }

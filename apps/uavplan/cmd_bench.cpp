@@ -1,4 +1,5 @@
 // uavplan bench SET: benchmark sets that print tables (ours beside the references).
+#include <filesystem>
 #include <iostream>
 
 #include "commands.h"
@@ -82,18 +83,37 @@ void add_movingai(CLI::App* cmd, std::function<int()>& run) {
   });
 }
 
+// The bundled scenarios' folder when --scenarios is not given: ./scenarios when it holds `file`,
+// else beside the binary (build/uavplan -> scenarios/; bin/uavplan -> share/uavplan/scenarios/),
+// so the tables run from any folder.
+std::string bundled_scenarios(const std::string& file) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::is_regular_file(fs::path("scenarios") / file, ec)) return "scenarios";
+  const fs::path exe = fs::canonical("/proc/self/exe", ec);
+  if (!ec)
+    for (const fs::path& dir : {exe.parent_path().parent_path() / "scenarios",
+                                exe.parent_path().parent_path() / "share" / "uavplan" / "scenarios"})
+      if (fs::is_regular_file(dir / file, ec)) return dir.string();
+  return "scenarios";  // the error then names ./scenarios
+}
+
 // A paper's tables from scenarios in a folder (--scenarios): exit 0 when its targets are met,
 // 2 on a bad scenario file.
 CLI::App* add_tables(CLI::App* cmd, std::function<int()>& run, const std::string& name, const std::string& what,
                      const std::string& files, std::function<std::string(const std::string&, bool*)> tables) {
-  auto dir = std::make_shared<std::string>("scenarios");
+  auto dir = std::make_shared<std::string>();
   CLI::App* sub = cmd->add_subcommand(name, what);
-  sub->add_option("--scenarios", *dir, "Folder holding " + files + " (default: scenarios)");
-  sub->callback([dir, tables, &run] {
-    run = [dir, tables] {
+  sub->add_option("--scenarios", *dir,
+                  "Folder holding " + files +
+                      " (default: ./scenarios, else the bundled ones beside the binary: ../scenarios from build/uavplan, "
+                      "../share/uavplan/scenarios when installed)");
+  const std::string first = files.substr(0, files.find(' '));
+  sub->callback([dir, tables, first, &run] {
+    run = [dir, tables, first] {
       try {
         bool ok = false;
-        std::cout << tables(*dir, &ok);
+        std::cout << tables(dir->empty() ? bundled_scenarios(first) : *dir, &ok);
         return ok ? kExitOk : kExitNotSolved;
       } catch (const InputError& e) {
         std::cerr << e.what() << "\n";

@@ -1,9 +1,11 @@
 // uavplan info SCENARIO: a summary of a scenario's world, UAVs, mission and planner.
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <map>
 
 #include "commands.h"
+#include "uavplan/coordination/mission.h"
 #include "uavplan/core/units.h"
 #include "uavplan/io/input_error.h"
 #include "uavplan/io/scenario_io.h"
@@ -21,14 +23,7 @@ const char* shape_name(const Obstacle& o) {
   }
 }
 
-int run_info(const std::string& path) {
-  Scenario sc;
-  try {
-    sc = load_scenario(path);
-  } catch (const InputError& e) {
-    std::cerr << e.what() << "\n";
-    return kExitBadInput;
-  }
+void print_world(const Scenario& sc) {
   const World& w = sc.world;
   const Vec3 lo = w.bounds().min, hi = w.bounds().max;
   std::printf("scenario  %s (version %d)\n", sc.name.c_str(), sc.version);
@@ -44,20 +39,75 @@ int run_info(const std::string& path) {
     std::printf("terrain   none\n");
   std::printf("moving    %zu\n", w.moving().size());
   if (sc.origin) std::printf("origin    lat %.7f lon %.7f alt %.2f m\n", sc.origin->lat_deg, sc.origin->lon_deg, sc.origin->alt_m);
-  std::printf("mission   %s, separation %g m, %zu waypoints\n", std::string(to_string(sc.mission.type)).c_str(),
-              sc.mission.separation_m, sc.mission.waypoints.size());
+}
+
+// What the mission type itself holds: via points, a shape, an airfield and task points.
+void print_mission(const MissionSpec& m) {
+  std::printf("mission   %s, separation %g m", std::string(to_string(m.type)).c_str(), m.separation_m);
+  if (m.type == MissionType::route) std::printf(", %zu via points", m.waypoints.size());
+  if (m.type == MissionType::rendezvous && m.arrival_tolerance_m)
+    std::printf(", route lengths within %g m", *m.arrival_tolerance_m);
+  if (m.type == MissionType::formation || m.type == MissionType::formation_mission) {
+    std::printf(", shape of %zu slots", m.shape.size());
+    if (m.type == MissionType::formation) std::printf(", arrivals within %g s", m.arrival_tolerance_s);
+  }
+  std::printf("\n");
+  if (m.airfield)
+    std::printf("airfield  threshold (%g, %g, %g), runway %g m heading %g deg\n", m.airfield->position.x(),
+                m.airfield->position.y(), m.airfield->position.z(), m.airfield->runway_length_m,
+                rad_to_deg(m.airfield->runway_heading_rad));
+  for (std::size_t k = 0; k < m.task_points.size(); ++k) {
+    const TaskPoint& t = m.task_points[k];
+    std::printf("task %-4zu (%g, %g, %g) within %g m", k, t.position.x(), t.position.y(), t.position.z(), t.radius_m);
+    if (t.entry_heading_rad) std::printf(", entered at %g deg", rad_to_deg(*t.entry_heading_rad));
+    std::printf("\n");
+  }
+}
+
+// A UAV's line: where, how fast, its limits, what it senses and how it flies.
+void print_uav(const UavSpec& u) {
+  std::printf("  %-10s start (%g, %g, %g)", u.id.c_str(), u.start.x(), u.start.y(), u.start.z());
+  if (u.goal) std::printf(" goal (%g, %g, %g)", u.goal->x(), u.goal->y(), u.goal->z());
+  std::printf("\n             r %g m, speed %g..%g..%g m/s, turn %g deg, climb %g deg", u.radius_m, u.speed.min_mps,
+              u.speed.cruise_mps, u.speed.max_mps, rad_to_deg(u.max_turn_rad), rad_to_deg(u.max_climb_rad));
+  if (u.ceiling_m) std::printf(", ceiling %g m", *u.ceiling_m);
+  if (u.min_agl_m > 0.0) std::printf(", min_agl %g m", u.min_agl_m);
+  if (u.clearance_m > 0.0) std::printf(", clearance %g m", u.clearance_m);
+  if (u.sensor_range_m) std::printf(", sensor %g m", *u.sensor_range_m);
+  if (u.max_turn_rate_rad_s) std::printf(", turn rate %g deg/s", rad_to_deg(*u.max_turn_rate_rad_s));
+  if (u.max_climb_rate_mps) std::printf(", climb rate %g m/s", *u.max_climb_rate_mps);
+  std::printf(", %s\n", u.model ? "autopilot model" : "point mass");
+}
+
+// The planners that can plan this mission (a group plans only with the fields; a route only
+// with planners that pass via points).
+void print_planners(const Scenario& sc) {
   std::printf("planner   %s", sc.planner.algorithm.c_str());
   for (const auto& [k, v] : sc.planner.params) std::printf(" %s=%s", k.c_str(), v.c_str());
-  std::printf("\nuavs      %zu\n", sc.uavs.size());
-  for (const auto& u : sc.uavs) {
-    std::printf("  %-10s start (%g, %g, %g)", u.id.c_str(), u.start.x(), u.start.y(), u.start.z());
-    if (u.goal) std::printf(" goal (%g, %g, %g)", u.goal->x(), u.goal->y(), u.goal->z());
-    std::printf(" r %g m, %g m/s, turn %g deg, climb %g deg\n", u.radius_m, u.speed.cruise_mps,
-                rad_to_deg(u.max_turn_rad), rad_to_deg(u.max_climb_rad));
+  const Mission* mission = find_mission(sc.mission.type);
+  const std::vector<std::string> allowed = mission ? mission->algorithms() : std::vector<std::string>{};
+  std::printf("\nplanners for this mission:");
+  for (const auto& p : planner_catalog()) {
+    if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), p.name) == allowed.end()) continue;
+    if (sc.mission.type == MissionType::route && !p.via_points) continue;
+    std::printf(" %s", p.name.c_str());
   }
-  std::printf("planners available:");
-  for (const auto& p : planner_catalog()) std::printf(" %s", p.name.c_str());
   std::printf("\n");
+}
+
+int run_info(const std::string& path) {
+  Scenario sc;
+  try {
+    sc = load_scenario(path);
+  } catch (const InputError& e) {
+    std::cerr << e.what() << "\n";
+    return kExitBadInput;
+  }
+  print_world(sc);
+  print_mission(sc.mission);
+  std::printf("uavs      %zu\n", sc.uavs.size());
+  for (const auto& u : sc.uavs) print_uav(u);
+  print_planners(sc);
   return kExitOk;
 }
 

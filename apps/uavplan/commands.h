@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "uavplan/coordination/plan.h"
-#include "uavplan/coordination/scenario.h"
+#include "uavplan/coordination/contract/plan.h"
+#include "uavplan/coordination/contract/scenario.h"
 #include "uavplan/core/stop.h"
 #include "uavplan/io/export.h"
 

@@ -125,7 +125,9 @@ def test_export_writes_the_clis_files(root, exe, tmp_path, demo, demo_plan):
 def test_planners_lists_names_and_parameters(root, exe):
     names = [p["name"] for p in uavplan.planners()]
     info = subprocess.run([exe, "info", str(root / "scenarios/demo.yaml")], capture_output=True, text=True).stdout
-    assert info.split("planners available:")[1].split() == names
+    assert info.split("planners for this mission:")[1].split() == names  # an independent mission takes any
+    group = subprocess.run([exe, "info", str(root / "scenarios/p3_group9.yaml")], capture_output=True, text=True).stdout
+    assert group.split("planners for this mission:")[1].split() == ["apf", "apf_traditional"]
     rrt = next(p for p in uavplan.planners() if p["name"] == "rrt")
     assert "goal_bias" in rrt["params"] and rrt["description"]
 

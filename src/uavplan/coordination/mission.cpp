@@ -5,11 +5,11 @@
 #include <stdexcept>
 #include <utility>
 
-#include "uavplan/coordination/formation_mission.h"
-#include "uavplan/coordination/group_mission.h"
-#include "uavplan/coordination/phased_formation_mission.h"
-#include "uavplan/coordination/rendezvous_mission.h"
-#include "uavplan/coordination/routes_mission.h"
+#include "uavplan/coordination/formation/formation_mission.h"
+#include "uavplan/coordination/group/group_mission.h"
+#include "uavplan/coordination/formation_mission/phased_formation_mission.h"
+#include "uavplan/coordination/rendezvous/rendezvous_mission.h"
+#include "uavplan/coordination/routes/routes_mission.h"
 #include "uavplan/planning/registry.h"
 
 namespace uavplan {
@@ -35,6 +35,14 @@ const Mission* find_mission(MissionType type) {
   for (const auto& [t, m] : registry())
     if (t == type) return m.get();
   return nullptr;
+}
+
+std::string mission_type_list() {
+  const auto& table = registry();
+  std::string list;
+  for (std::size_t i = 0; i < table.size(); ++i)
+    list += (i == 0 ? "" : i + 1 == table.size() ? " or " : ", ") + std::string(to_string(table[i].first));
+  return list;
 }
 
 std::string mission_algorithm(const Scenario& sc, const std::optional<std::string>& asked_cli) {

@@ -9,8 +9,8 @@
 #include <string_view>
 #include <vector>
 
-#include "uavplan/coordination/plan.h"
-#include "uavplan/coordination/scenario.h"
+#include "uavplan/coordination/contract/plan.h"
+#include "uavplan/coordination/contract/scenario.h"
 #include "uavplan/core/stop.h"
 
 namespace uavplan {
@@ -64,6 +64,9 @@ class Mission {
 
 // The mission registered for a type, or nullptr when none is.
 const Mission* find_mission(MissionType type);
+// The registered mission types' names in registry order ("independent, route, ... or X"), for
+// messages that list them.
+std::string mission_type_list();
 
 // The planner a mission plans with: the one asked for (--algorithm, else the scenario's when it
 // names one), else the mission's default. Throws std::invalid_argument when the one asked for

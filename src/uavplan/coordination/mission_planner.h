@@ -3,7 +3,7 @@
 #pragma once
 
 #include "uavplan/coordination/mission.h"
-#include "uavplan/coordination/separation.h"
+#include "uavplan/coordination/contract/separation.h"
 
 namespace uavplan {
 

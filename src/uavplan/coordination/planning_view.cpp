@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "uavplan/coordination/arrival_points.h"
+#include "uavplan/coordination/contract/arrival_points.h"
 #include "uavplan/core/text.h"
 
 namespace uavplan {

@@ -20,8 +20,8 @@
 #include <vector>
 
 #include "uavplan/coordination/mission.h"
-#include "uavplan/coordination/plan.h"
-#include "uavplan/coordination/scenario.h"
+#include "uavplan/coordination/contract/plan.h"
+#include "uavplan/coordination/contract/scenario.h"
 
 namespace uavplan {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "uavplan/coordination/separation.h"
+#include "uavplan/coordination/contract/separation.h"
 #include "uavplan/simulation/vehicle_flight.h"
 
 namespace uavplan {

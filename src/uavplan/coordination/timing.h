@@ -6,8 +6,8 @@
 #include <utility>
 #include <vector>
 
-#include "uavplan/coordination/plan.h"
-#include "uavplan/coordination/scenario.h"
+#include "uavplan/coordination/contract/plan.h"
+#include "uavplan/coordination/contract/scenario.h"
 #include "uavplan/core/stop.h"
 
 namespace uavplan {

@@ -23,7 +23,7 @@ inline constexpr bool kSanitizedBuild = false;
 // How many of a sweep's `full` cases to run here: all of them, or under a sanitizer every
 // eighth (at least `least`): what the sanitizers look for (memory and thread errors) shows on
 // a sample, what the sweep measures is measured in release.
-inline std::uint64_t sweep_cases(std::uint64_t full, std::uint64_t least = 3) {
+inline std::uint64_t sweep_cases(std::uint64_t full, std::uint64_t least = 2) {
   return kSanitizedBuild ? std::min(full, std::max<std::uint64_t>(least, full / 8)) : full;
 }
 

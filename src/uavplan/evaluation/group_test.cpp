@@ -5,7 +5,7 @@
 
 #include "uavplan/core/rng.h"
 
-#include "uavplan/coordination/group_planner.h"
+#include "uavplan/coordination/group/group_planner.h"
 #include "uavplan/coordination/mission_planner.h"
 #include "uavplan/evaluation/metrics.h"
 #include "uavplan/evaluation/verifier.h"

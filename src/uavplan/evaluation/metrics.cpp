@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "uavplan/coordination/separation.h"
+#include "uavplan/coordination/contract/separation.h"
 #include "uavplan/core/units.h"
 #include "uavplan/evaluation/ground_legs.h"
 
@@ -135,7 +135,7 @@ void compute_metrics(const Scenario& sc, Plan& plan) {
     }
   }
   plan.metrics["total_length_m"] = total;
-  plan.metrics["p3_group_score"] = p3_total;
+  if (sc.mission.type == MissionType::group) plan.metrics["p3_group_score"] = p3_total;  // P3's score, of a group
   plan.metrics["arrival_spread_s"] = t_max - t_min;
   plan.metrics["length_spread_m"] = l_max - l_min;
   if (std::isfinite(min_sep)) plan.metrics["min_separation_m"] = min_sep;

@@ -3,8 +3,8 @@
 
 #include <span>
 
-#include "uavplan/coordination/plan.h"
-#include "uavplan/coordination/scenario.h"
+#include "uavplan/coordination/contract/plan.h"
+#include "uavplan/coordination/contract/scenario.h"
 
 namespace uavplan {
 

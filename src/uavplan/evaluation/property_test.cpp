@@ -109,7 +109,8 @@ TEST_P(PlannerProperties, EnclosedGoalFailsWithinTheStop) {
     const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     EXPECT_EQ(plan.uavs[0].status, Status::failed) << name;
     EXPECT_FALSE(plan.uavs[0].message.empty()) << name;
-    EXPECT_LT(took, kLimit_s * 1.25 + 0.2) << name;
+    // A sanitizer's run is several times slower between two stop checks: a wider margin there.
+    EXPECT_LT(took, kLimit_s * 1.25 + (kSanitizedBuild ? 1.0 : 0.2)) << name;
   }
 }
 

@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-#include "uavplan/coordination/scenario.h"
+#include "uavplan/coordination/contract/scenario.h"
 
 namespace uavplan {
 

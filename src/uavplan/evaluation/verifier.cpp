@@ -5,9 +5,9 @@
 #include <cstdio>
 
 #include "uavplan/core/text.h"
-#include "uavplan/coordination/arrival_points.h"
-#include "uavplan/coordination/separation.h"
-#include "uavplan/coordination/task_points.h"
+#include "uavplan/coordination/contract/arrival_points.h"
+#include "uavplan/coordination/contract/separation.h"
+#include "uavplan/coordination/contract/task_points.h"
 #include "uavplan/core/geometry.h"
 #include "uavplan/core/units.h"
 #include "uavplan/evaluation/ground_legs.h"
@@ -63,6 +63,25 @@ using Out = std::vector<Violation>;
 void add(Out& out, ViolationKind k, const std::string& uav, std::optional<double> t, std::optional<Vec3> p,
          std::string msg) {
   out.push_back({k, uav, t, p, std::move(msg)});
+}
+
+// What the clearance at p is measured to, by name: "obstacle hangar" (its id), "obstacle 3 (box)"
+// when it has none, or "the terrain".
+std::string nearest_thing(const World& w, const Vec3& p) {
+  static constexpr const char* kShapes[] = {"sphere", "cylinder", "box", "prism"};
+  const auto& obstacles = w.obstacles();
+  const auto& ids = w.spec().obstacle_ids;
+  double best = World::kInf;
+  std::string what = "an obstacle";
+  for (std::size_t k = 0; k < obstacles.size(); ++k) {
+    const double d = point_distance(obstacles[k], p);
+    if (d >= best) continue;
+    best = d;
+    what = k < ids.size() && !ids[k].empty() ? "obstacle " + ids[k]
+                                             : "obstacle " + std::to_string(k) + " (" + kShapes[obstacles[k].index()] + ")";
+  }
+  if (const TerrainGrid* t = w.terrain(); t && t->point_distance(p, best) < best) what = "the terrain";
+  return what;
 }
 
 // Where along a segment the clearance is smallest (for the report only).
@@ -127,8 +146,9 @@ void check_uav(const Scenario& sc, const UavSpec& u, const UavPlan& up, double a
     const double c = on_leg ? sc.world.ground_leg_clearance(a.p, b.p, keep, leg_ground) : sc.world.segment_clearance(a.p, b.p, keep);
     if (c < keep - kDistanceTolerance_m) {
       const double f = worst_param(sc.world, a.p, b.p);
-      add(out, ViolationKind::obstacle, id, a.t_s + f * dt, Vec3(a.p + f * (b.p - a.p)),
-          "clearance " + num(c) + " m to an obstacle or the terrain, below " + keep_text);
+      const Vec3 at(a.p + f * (b.p - a.p));
+      add(out, ViolationKind::obstacle, id, a.t_s + f * dt, at,
+          "clearance " + num(c) + " m to " + nearest_thing(sc.world, at) + ", below " + keep_text);
     }
     if (u.min_agl_m > 0.0 && !on_leg) {
       const double h = sc.world.lowest_height_above_ground(a.p, b.p);

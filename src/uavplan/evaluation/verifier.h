@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "uavplan/coordination/plan.h"
-#include "uavplan/coordination/scenario.h"
+#include "uavplan/coordination/contract/plan.h"
+#include "uavplan/coordination/contract/scenario.h"
 
 namespace uavplan {
 

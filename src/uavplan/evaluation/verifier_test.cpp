@@ -4,7 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "uavplan/coordination/arrival_points.h"
+#include "uavplan/coordination/contract/arrival_points.h"
 
 namespace uavplan {
 namespace {
@@ -86,6 +86,7 @@ TEST(Verifier, StaticObstacleWithTimeAndPlace) {
   EXPECT_EQ(v[0].uav, "a");
   ASSERT_TRUE(v[0].t_s && v[0].where);
   EXPECT_NEAR(v[0].where->x(), v[0].where->y(), 1e-6);  // on the diagonal into the box
+  EXPECT_NE(v[0].message.find("to obstacle 0 (box)"), std::string::npos) << v[0].message;  // which one
 }
 
 TEST(Verifier, Terrain) {
@@ -94,7 +95,7 @@ TEST(Verifier, Terrain) {
   fly(p, 0, {{10, 10, 20}, {40, 20, 5.2}, {70, 20, 5.2}, {30, 10, 20}});  // 5.2 m over a 10 m plateau
   bool terrain_hit = false;
   for (const auto& v : verify_plan(sc, p))
-    terrain_hit |= v.kind == K::obstacle && v.where && v.where->x() >= 49.0;
+    terrain_hit |= v.kind == K::obstacle && v.where && v.where->x() >= 49.0 && v.message.find("the terrain") != std::string::npos;
   EXPECT_TRUE(terrain_hit);
 }
 

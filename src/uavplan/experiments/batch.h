@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "uavplan/coordination/scenario.h"
+#include "uavplan/coordination/contract/scenario.h"
 #include "uavplan/experiments/sweep.h"
 
 namespace uavplan {

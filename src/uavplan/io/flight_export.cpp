@@ -8,7 +8,7 @@
 #include "uavplan/core/text.h"
 #include "uavplan/core/units.h"
 #include "uavplan/evaluation/ground_legs.h"
-#include "uavplan/coordination/separation.h"
+#include "uavplan/coordination/contract/separation.h"
 
 namespace uavplan {
 namespace {
@@ -72,7 +72,7 @@ Vec3 ground_along(const World& w, const Vec3& air, const Vec3& dir, double angle
 
 class Builder {
  public:
-  Builder(const Scenario& sc, const ExportOptions& opt) : sc_(sc), w_(sc.world), opt_(opt) {}
+  Builder(const Scenario& sc, const ExportOptions& opt) : w_(sc.world), opt_(opt) {}
 
   // The UAV's exported flight, or why it cannot be.
   std::string build(const UavSpec& u, const UavPlan& up, ExportedUav& e) const {
@@ -200,7 +200,6 @@ class Builder {
     return what + " (" + num_text(r) + " m) comes within " + num_text(clear - r) + " m of an obstacle or the terrain";
   }
 
-  const Scenario& sc_;
   const World& w_;
   const ExportOptions& opt_;
 };

@@ -25,8 +25,8 @@
 #include <string_view>
 #include <vector>
 
-#include "uavplan/coordination/plan.h"
-#include "uavplan/coordination/scenario.h"
+#include "uavplan/coordination/contract/plan.h"
+#include "uavplan/coordination/contract/scenario.h"
 #include "uavplan/evaluation/verifier.h"
 
 namespace uavplan {

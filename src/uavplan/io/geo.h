@@ -1,7 +1,7 @@
 // The scenario's local frame (x east, y north, z up, metres) tied to WGS84 through its `origin`.
 #pragma once
 
-#include "uavplan/coordination/scenario.h"
+#include "uavplan/coordination/contract/scenario.h"
 #include "uavplan/core/vec.h"
 
 namespace uavplan {

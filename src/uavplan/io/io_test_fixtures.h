@@ -4,8 +4,8 @@
 #include <utility>
 #include <vector>
 
-#include "uavplan/coordination/plan.h"
-#include "uavplan/coordination/scenario.h"
+#include "uavplan/coordination/contract/plan.h"
+#include "uavplan/coordination/contract/scenario.h"
 
 namespace uavplan::test {
 

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "uavplan/coordination/plan.h"
+#include "uavplan/coordination/contract/plan.h"
 
 namespace uavplan {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "uavplan/coordination/separation.h"
+#include "uavplan/coordination/contract/separation.h"
 #include "uavplan/evaluation/metrics.h"
 #include "uavplan/io/palette.h"
 #include "uavplan/io/report_assets.h"

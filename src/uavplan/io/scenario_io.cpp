@@ -18,7 +18,7 @@
 #include "uavplan/io/osm_buildings.h"
 #include "uavplan/io/text_input.h"
 #include "uavplan/io/tree_check.h"
-#include "uavplan/coordination/consensus.h"
+#include "uavplan/coordination/formation_mission/consensus.h"
 #include "uavplan/coordination/mission.h"
 #include "uavplan/coordination/planning_view.h"
 #include "uavplan/planning/registry.h"
@@ -278,7 +278,7 @@ void check_placed(const At& at, const Vec3& p, const World& world, const std::st
   }
 }
 
-// `model: {type: autopilot, tau_v, tau_heading, tau_zdot, tau_z}` (P5 eq. 1; defaults P5-notes
+// `model: {type: autopilot, tau_v, tau_heading, tau_zdot, tau_z}` (P5 eq. 1; defaults papers.md P5
 // section 5) or `{type: point_mass}` (none).
 std::optional<AutopilotParams> read_model(const At& m) {
   m.keys({"type", "tau_v", "tau_heading", "tau_zdot", "tau_z"});
@@ -671,7 +671,7 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
             "arrival_tolerance_s", "airfield", "task_points", "topology"});
     if (m.has("type")) {
       const auto t = mission_type_from_string(m["type"].text());
-      if (!t) m["type"].fail("unknown mission type '" + m["type"].text() + "' (expected independent, route, group, rendezvous, formation or formation_mission)");
+      if (!t) m["type"].fail("unknown mission type '" + m["type"].text() + "' (expected " + mission_type_list() + ")");
       sc.mission.type = *t;
     }
     if (m.has("separation")) sc.mission.separation_m = m["separation"].non_negative();

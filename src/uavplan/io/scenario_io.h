@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "uavplan/coordination/scenario.h"
+#include "uavplan/coordination/contract/scenario.h"
 
 namespace uavplan {
 

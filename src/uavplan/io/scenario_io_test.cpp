@@ -109,6 +109,8 @@ TEST(ScenarioIo, BadInputIsOneClearLine) {
   expect_error("\x89PNG garbage here ::: [[[", {"s.yaml"});
   expect_error("version: 1\nworld: [1, 2\n", {"YAML syntax error"});
   expect_error("version: 1\nworld: " + std::string(2000, '[') + std::string(2000, ']') + "\n", {"s.yaml:2", "nested too deeply"});
+  // Counted before parsing: a tree of 500 bytes a value would exhaust memory first.
+  expect_error("version: 1\nworld: [" + std::string(4'000'001, ',') + "]\n", {"s.yaml", "values", "at most 4000000"});
   expect_error(replace(kGood, "version: 1", "version: 2"), {"s.yaml:1", "version", "unsupported version 2"});
   expect_error(replace(kGood, "    start: [5, 5, 10]\n", ""), {"uavs[0]", "missing required key 'start'"});
   expect_error(replace(kGood, "    radius: 0.5\n", "    radius: 0.5\n    raduis: 3\n"), {"s.yaml:23", "uavs[0].raduis", "unknown key"});

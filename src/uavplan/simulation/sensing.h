@@ -11,7 +11,7 @@
 
 namespace uavplan {
 
-// P1 eq. 7 with the paper's sign corrected (P1-notes sec. 2): relative positions are object -
+// P1 eq. 7 with the paper's sign corrected (papers.md P1): relative positions are object -
 // UAV, so the object's displacement over dt is the change of the relative position plus the
 // UAV's own displacement, D_b = (rel1 - rel0) + (own1 - own0), and V_b = D_b / dt.
 Vec3 ground_velocity(const Vec3& rel0_m, const Vec3& rel1_m, const Vec3& own0_m, const Vec3& own1_m, double dt_s);

@@ -1,4 +1,4 @@
-// P5 eq. 1 as cleaned in P5-notes section 2: a 3-DOF kinematic model with speed, altitude and
+// P5 eq. 1 as cleaned in papers.md P5: a 3-DOF kinematic model with speed, altitude and
 // heading holds (lateral and longitudinal decoupled),
 //   x' = v cos phi,  y' = v sin phi,
 //   z'' = -z'/tau_zdot + (z_c - z)/tau_z,

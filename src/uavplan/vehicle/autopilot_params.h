@@ -3,7 +3,7 @@
 
 namespace uavplan {
 
-// Time constants (s). Defaults: P5-notes section 5 (the classic close-formation autopilot values;
+// Time constants (s). Defaults: papers.md P5 (the classic close-formation autopilot values;
 // P5 gives none).
 struct AutopilotParams {
   double tau_v_s = 5.0;

@@ -13,7 +13,7 @@ namespace {
 AutopilotLimits fixed_wing() {
   AutopilotLimits l;
   l.speed = {70, 150, 200};
-  l.max_turn_rate_rad_s = deg_to_rad(2.2);  // bank 30 deg at 150 m/s (P5-notes section 5)
+  l.max_turn_rate_rad_s = deg_to_rad(2.2);  // bank 30 deg at 150 m/s (papers.md P5)
   l.max_climb_rate_mps = 20;
   return l;
 }

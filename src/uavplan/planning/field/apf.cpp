@@ -226,7 +226,7 @@ ApfRun run_apf(const PotentialField& field, const Vec3& start, const Vec3& goal,
   FieldFlight flight(field, start, goal, 2);
   std::unique_ptr<FieldGuide> own;
   const FieldFlight::Guide own_guide = [&](const Vec3& from, const Vec3& to) {
-    if (!own) own = std::make_unique<FieldGuide>(field.world(), field.uav(), o.step_m);
+    if (!own) own = std::make_unique<FieldGuide>(field.world(), field.uav(), o.step_m, 2'000'000, stop);
     return own->route(from, to, {});
   };
   for (int f = 0; f < max_frames && !flight.arrived(); ++f) {
@@ -257,7 +257,7 @@ PlanResult ApfPlanner::do_plan(const Problem& pb, const World& world, const Stop
   const PotentialField field(world, pb.uav, o);
   std::unique_ptr<FieldGuide> guide_map;  // built at the first stall
   const FieldFlight::Guide guide = [&](const Vec3& from, const Vec3& to) {
-    if (!guide_map) guide_map = std::make_unique<FieldGuide>(world, pb.uav, o.step_m);
+    if (!guide_map) guide_map = std::make_unique<FieldGuide>(world, pb.uav, o.step_m, 2'000'000, stop);
     return guide_map->route(from, to, {});
   };
   std::vector<Vec3> stops = pb.via;

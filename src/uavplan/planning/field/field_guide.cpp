@@ -28,11 +28,11 @@ bool cubic(const VoxelGrid& g) {
 
 }  // namespace
 
-FieldGuide::Level::Level(const World& world, const UavSpec& uav, const Vec3& cell)
+FieldGuide::Level::Level(const World& world, const UavSpec& uav, const Vec3& cell, const StopCondition& stop)
     // A cell is blocked when its centre is within the inflation of an obstacle (voxelize adds
     // the half-diagonal to be conservative; a guide wants the narrow passages too).
     : grid(voxelize(world, cell, std::max(0.0, SegmentRule(world, uav).inflation_m() - 0.5 * cell.norm()),
-                    SegmentRule(world, uav).ceiling_m())),
+                    SegmentRule(world, uav).ceiling_m(), stop)),
       search(grid.cells(),
              bounding_box_moves(grid.cells(), grid.cell().x(), grid.cell().y(), grid.cell().z(), uav.max_climb_rad),
              // Octile: the exact free-space distance on square (2-D) or cubic cells, so the
@@ -41,9 +41,10 @@ FieldGuide::Level::Level(const World& world, const UavSpec& uav, const Vec3& cel
              cubic(grid) ? GridHeuristic::octile : GridHeuristic::euclidean, grid.cell().x(), grid.cell().y(),
              grid.cell().z()) {}
 
-FieldGuide::FieldGuide(const World& world, const UavSpec& uav, double cell_m, std::int64_t max_cells)
-    : world_(&world), uav_(uav), max_cells_(max_cells) {
-  levels_.push_back(std::make_unique<Level>(world, uav, guide_cell(world, uav, cell_m, max_cells)));
+FieldGuide::FieldGuide(const World& world, const UavSpec& uav, double cell_m, std::int64_t max_cells,
+                       const StopCondition& stop)
+    : world_(&world), uav_(uav), max_cells_(max_cells), stop_(stop) {
+  levels_.push_back(std::make_unique<Level>(world, uav, guide_cell(world, uav, cell_m, max_cells), stop_));
 }
 
 namespace {
@@ -77,7 +78,7 @@ std::vector<Vec3> FieldGuide::route(const Vec3& from, const Vec3& goal, std::spa
     const VoxelGrid& g = levels_.back()->grid;
     const Vec3 finer(0.5 * g.cell().x(), 0.5 * g.cell().y(), g.nz() > 1 ? 0.5 * g.cell().z() : g.cell().z());
     if (VoxelGrid::cell_count(world_->bounds(), finer) > static_cast<double>(max_cells_)) break;
-    levels_.push_back(std::make_unique<Level>(*world_, uav_, finer));
+    levels_.push_back(std::make_unique<Level>(*world_, uav_, finer, stop_));
     out = route_on(*levels_.back(), from, goal, keep_out);
   }
   return out;
@@ -103,7 +104,7 @@ std::vector<Vec3> FieldGuide::route_on(Level& level, const Vec3& from, const Vec
   std::vector<Vec3> out;
   const std::int64_t a = attach(g, from), b = attach(g, goal);
   if (a >= 0 && b >= 0) {
-    const GridSearchResult r = level.search.search(a, b);
+    const GridSearchResult r = level.search.search(a, b, stop_);
     if (r.found) {
       for (const std::int64_t c : r.cells) out.push_back(g.center(c));
       out.push_back(goal);

@@ -30,8 +30,10 @@ class FieldGuide {
  public:
   // Cells of about `cell_m` (coarsened so the grid holds at most `max_cells`); when a query
   // finds no route the grid is refined (halved, at most kRefinements times, within max_cells)
-  // for it and the queries after it.
-  FieldGuide(const World& world, const UavSpec& uav, double cell_m, std::int64_t max_cells = 2'000'000);
+  // for it and the queries after it. Building a grid and searching it honour `stop` (a grid
+  // being built throws Stopped, core/stop.h; a search cut short finds no route).
+  FieldGuide(const World& world, const UavSpec& uav, double cell_m, std::int64_t max_cells = 2'000'000,
+             const StopCondition& stop = {});
 
   // Cell centres from near `from` to near `goal`, then `goal` itself; empty when the finest
   // grid has no route (or `from` / `goal` have no free cell nearby).
@@ -43,7 +45,7 @@ class FieldGuide {
 
  private:
   struct Level {
-    Level(const World& world, const UavSpec& uav, const Vec3& cell);
+    Level(const World& world, const UavSpec& uav, const Vec3& cell, const StopCondition& stop);
     VoxelGrid grid;
     GridAStar search;  // reads grid's cells: a Level never moves (held by pointer)
   };
@@ -52,6 +54,7 @@ class FieldGuide {
   const World* world_;
   UavSpec uav_;
   std::int64_t max_cells_;
+  StopCondition stop_;
   std::vector<std::unique_ptr<Level>> levels_;  // coarse to fine; the last is the one in use
   std::vector<std::int64_t> marked_;            // keep-out cells set for one query, cleared after it
 };

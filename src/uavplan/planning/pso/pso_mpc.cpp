@@ -56,7 +56,7 @@ struct LegPlanner {
   }
 
   // The prediction Q -> SP clear of the obstacles, cut where it leaves the bounds and kept within
-  // the airspace's heights (P5-notes: SP may lie outside; only the no-fly zones count).
+  // the airspace's heights (papers.md P5: SP may lie outside; only the no-fly zones count).
   bool prediction_clear(const Vec3& q, const Vec3& sp, const Nearby& n) const {
     const Aabb& b = world.bounds();
     double t = 1.0;
@@ -220,7 +220,7 @@ std::string fly_leg(const LegPlanner& lp, const Vec3& task, const std::optional<
       best.evaluations += shorter.evaluations;
       best.f = shorter.f, best.x = shorter.x;
     }
-    if (best.f == kInf && history.empty()) {  // once more, with a swarm twice as large (P5-notes 4.1)
+    if (best.f == kInf && history.empty()) {  // once more, with a swarm twice as large (papers.md P5)
       PsoOptions wider = options.pso;
       wider.particles *= 2;
       wider.iterations *= 2;

@@ -3,7 +3,7 @@
 // at heading psi + dphi and height h + dh (eq. 3); the PSO minimises
 //   J_sp = |SP - T| + alpha |h_SP - h_T|            (eq. 5, SP = P + (1 + prediction) (Q - P))
 // with both P->Q and its extension Q->SP clear of the no-fly zones (death penalty), and near the
-// target (P5-notes sec. 2): for d_t < d <= d_tar the final-turn term beta |dphi_tar| (deg) is
+// target (papers.md P5): for d_t < d <= d_tar the final-turn term beta |dphi_tar| (deg) is
 // added (eq. 7), for d <= d_t it is taken at Q without prediction (eq. 8); for 2 l <= d < 3 l the
 // last turn and climb are hard (eq. 6); below 2 l the target is the last waypoint. With an entry
 // heading phi_r at a via point, the target is T_tar = T_task - l (cos phi_r, sin phi_r, 0), the
@@ -30,7 +30,7 @@ struct PsoMpcOptions {
   double gamma_per_l = 1.0;
   int prediction_steps = 11;   // 0: P5's J0 (eq. 4), the look-ahead ablation
   double d_tar_l = 15.0, d_t_l = 13.0;
-  // 30 particles, 100 iterations, w 0.9 -> 0.4, c1 = c2 = 2 (P5-notes 4.1); stop after 10
+  // 30 particles, 100 iterations, w 0.9 -> 0.4, c1 = c2 = 2 (papers.md P5); stop after 10
   // iterations without improving by 1e-6 of the cost (about a metre in 1000 km; 20 gave routes
   // within 0.1 %), or after 20 without any feasible point (keys stall, give_up).
   PsoOptions pso{.particles = 30, .iterations = 100, .w_start = 0.9, .w_end = 0.4, .c1 = 2.0, .c2 = 2.0,

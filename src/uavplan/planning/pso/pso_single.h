@@ -1,9 +1,9 @@
 // P5's single-step PSO baseline (sec. 4.1): all of a leg's intermediate waypoints in one swarm.
 // P5 publishes no formulation (it says the constraints were "relaxed" into the objective); ours,
-// after P5-notes 4.2: decision n waypoints (x, y, h), cost
+// after papers.md P5: decision n waypoints (x, y, h), cost
 //   sum of segment lengths + w_turn sum max(0, turn - dphi_max) [deg] + w_climb sum max(0, |dh| - dh_max)
 //   + w_len sum max(0, l - segment) + w_nfz (length inside no-fly zones, sampled every l / 4),
-// n = the straight line's whole steps l less one (P5-notes: the multi-step route's count less one;
+// n = the straight line's whole steps l less one (papers.md P5: the multi-step route's count less one;
 // bench p5-coarse sets that), the straight line a seed particle, the swarm 100 x 500 iterations.
 // The best route is reported as found; the planner calls it solved only when it holds every limit
 // and clears every obstacle (bench p5-coarse shows how often, and by how much, it does not).

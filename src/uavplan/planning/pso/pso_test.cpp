@@ -1,7 +1,9 @@
-// P5's multi-step PSO (P5-notes section 7, claims 1 and 4): every turn within 30 deg, every
+// P5's multi-step PSO (papers.md P5, claims 1 and 4): every turn within 30 deg, every
 // segment l but the last (in [l, 2l)), clear of the cylinder, the entry heading exact; the
 // single-step baseline on the same scene.
 #include <gtest/gtest.h>
+
+#include "uavplan/core/build_info.h"
 
 #include <array>
 #include <cmath>
@@ -14,7 +16,7 @@
 namespace uavplan {
 namespace {
 
-// P5-notes section 5's 4.1 scene: start (0, 0, 5000) heading 45 deg, target (300 km, 300 km),
+// papers.md P5's 4.1 scene: start (0, 0, 5000) heading 45 deg, target (300 km, 300 km),
 // a cylinder of 40 km at (150 km, 150 km).
 World scene() {
   WorldSpec ws;
@@ -194,7 +196,10 @@ TEST(PsoSingle, TheBaselineBreaksALimitOnTheSameScene) {
   const SingleStepRoute single = pso_single_route(problem(), w, o, {});
   EXPECT_TRUE(single.worst_turn_rad > deg_to_rad(30) || single.inside_nfz_m > 0.0)
       << rad_to_deg(single.worst_turn_rad) << " deg, " << single.inside_nfz_m << " m inside";
-  EXPECT_NE(PsoSinglePlanner(o).plan(problem(), w, {}).status, Status::solved);
+  // The same swarm again through the planner (under a sanitizer the swarm above is the check).
+  if (!kSanitizedBuild) {
+    EXPECT_NE(PsoSinglePlanner(o).plan(problem(), w, {}).status, Status::solved);
+  }
 }
 
 }  // namespace

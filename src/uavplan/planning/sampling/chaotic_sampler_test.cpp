@@ -16,7 +16,7 @@ std::array<int, 10> histogram(ChaoticSampler& s, int n) {
 TEST(ChaoticSampler, LogisticMapHasTheArcsineDensityAndTheTransformMakesItUniform) {
   ChaoticSampler raw(11, false), uniform(11, true);
   const auto hr = histogram(raw, 200000), hu = histogram(uniform, 200000);
-  // The arcsine law puts ~20.5 % in each outer tenth and ~6.4 % in each middle one (P1-notes).
+  // The arcsine law puts ~20.5 % in each outer tenth and ~6.4 % in each middle one (papers.md P1).
   EXPECT_GT(hr[0], 38000);
   EXPECT_GT(hr[9], 38000);
   EXPECT_LT(hr[4], 15000);

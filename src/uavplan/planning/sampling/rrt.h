@@ -25,7 +25,7 @@ namespace uavplan {
 struct RrtOptions {
   double step_m = 0.0;          // epsilon; 0 = P1's 2 m, or diagonal / 50 for worlds larger than 100 m
   double goal_bias = 0.5;       // p_s: probability of growing toward the goal
-  int max_nodes = 5000;         // per search (P1-notes: 5000 per replan)
+  int max_nodes = 5000;         // per search (papers.md P1: 5000 per replan)
   bool chaotic = false;         // logistic-map samples (improved)
   bool arcsine_uniform = false; // chaos transformed to uniform
   double lambda = 0.0;          // growth bias: dir = unit(q_rand - q_near) + lambda * V_b / cruise (improved: 1)

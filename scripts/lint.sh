@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Style and static checks, as .ci/run runs them:
+#  - clang-format (.clang-format) on every C++ file: a file that is not formatted fails;
+#  - clang-tidy (.clang-tidy: bugprone-*, performance-*, functions over 80 lines) on the C++
+#    files under src/ and apps/ that the last commit changed, reported, not failing (functions
+#    over 80 lines are still being split into named steps).
+# Usage: scripts/lint.sh [BUILD_DIR with compile_commands.json, default build]
+set -uo pipefail
+cd "$(dirname "$0")/.."
+BUILD=${1:-build}
+status=0
+mapfile -t files < <(git ls-files '*.cpp' '*.h' | grep -v '^tests/fixtures/')
+bad=()
+for f in "${files[@]}"; do
+  clang-format --dry-run --Werror "$f" >/dev/null 2>&1 || bad+=("$f")
+done
+if [ ${#bad[@]} -gt 0 ]; then
+  echo "lint: not formatted (clang-format -i FILE): ${bad[*]}"
+  status=1
+else
+  echo "lint: ${#files[@]} C++ files formatted"
+fi
+if [ -f "$BUILD/compile_commands.json" ] && command -v clang-tidy >/dev/null; then
+  mapfile -t changed < <(git diff --name-only HEAD~1 HEAD 2>/dev/null | grep -E '^(src|apps)/.*\.cpp$' | head -20)
+  for f in "${changed[@]}"; do
+    [ -f "$f" ] || continue
+    clang-tidy -p "$BUILD" --quiet "$f" 2>/dev/null | grep -E 'warning:' | sed 's/^/lint: /'
+  done
+  echo "lint: clang-tidy on ${#changed[@]} changed files"
+fi
+exit $status

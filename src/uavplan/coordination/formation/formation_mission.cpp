@@ -1,0 +1,156 @@
+#include "uavplan/coordination/formation/formation_mission.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <stdexcept>
+
+#include "uavplan/coordination/formation/formation_flight.h"
+#include "uavplan/coordination/routes/local_layer.h"
+#include "uavplan/coordination/timing.h"
+#include "uavplan/planning/registry.h"
+
+namespace uavplan {
+namespace {
+
+Vec3 centroid(const std::vector<Vec3>& pts) {
+  Vec3 c = Vec3::Zero();
+  for (const Vec3& p : pts) c += p / static_cast<double>(pts.size());
+  return c;
+}
+
+// The reference's route: for a body as wide as the shape, else for the widest UAV alone.
+PlanResult reference_route(const Scenario& sc, const MissionContext& ctx, const Vec3& from, const Vec3& to) {
+  const auto planner = make_planner(ctx.algorithm, ctx.params);
+  const Vec3 c = centroid(sc.mission.shape);
+  double body = 0.0, widest = 0.0;
+  for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
+    body = std::max(body, (sc.mission.shape[i] - c).norm() + sc.uavs[i].radius_m);
+    widest = std::max(widest, sc.uavs[i].radius_m);
+  }
+  Problem pb;
+  pb.uav = sc.uavs.front();
+  pb.uav.id = "formation";
+  pb.uav.start = from;
+  pb.goal = to;
+  pb.seed = ctx.options.seed;
+  PlanResult r;
+  for (const double radius : {body, widest}) {
+    pb.uav.radius_m = radius;
+    try {
+      r = planner->plan(pb, sc.world, ctx.options.stop);
+    } catch (const std::invalid_argument& e) {  // the reference's start or goal has no room for the shape
+      r.status = Status::failed;
+      r.message = e.what();
+    }
+    if (r.status == Status::solved) return r;
+  }
+  return r;
+}
+
+std::vector<double> windows_of(const Scenario& sc, const LocalLayer& layer) {
+  std::vector<double> w;
+  for (const UavSpec& u : sc.uavs)
+    w.push_back(layer.window_m > 0.0 ? layer.window_m
+                : u.sensor_range_m ? *u.sensor_range_m
+                                   : 10.0 * sc.mission.step_s * u.speed.cruise_mps);  // known in advance: ten periods ahead
+  return w;
+}
+
+// What they flew must keep clear of everything that moves and of each other, and arrive within
+// the tolerance of one another.
+void check_flown(const Scenario& sc, const FormationFlight& flight, Plan& plan) {
+  Committed all;
+  for (std::size_t i = 0; i < sc.uavs.size(); ++i) all.emplace_back(&sc.uavs[i], &plan.uavs[i]);
+  double first = World::kInf, last = -World::kInf;
+  for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
+    UavPlan& up = plan.uavs[i];
+    if (up.status != Status::solved) continue;
+    Committed others;
+    for (const auto& c : all)
+      if (c.second != &up) others.push_back(c);
+    const Conflict c = find_conflict(sc, sc.uavs[i], up.trajectory, others);
+    if (c.any) {
+      up.status = Status::failed;
+      up.message = "could not avoid " + c.what;
+    }
+    first = std::min(first, up.arrival_s);
+    last = std::max(last, up.arrival_s);
+  }
+  (void)flight;
+  if (last - first <= sc.mission.arrival_tolerance_s + 1e-9) return;
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "arrivals %.1f s apart, more than arrival_tolerance_s = %g s (out of its slot too late to re-form)",
+                last - first, sc.mission.arrival_tolerance_s);
+  for (UavPlan& up : plan.uavs)
+    if (up.status == Status::solved) up.status = Status::failed, up.message = buf;
+}
+
+}  // namespace
+
+void FormationMission::plan(const Scenario& sc, const MissionContext& ctx, Plan& plan) const {
+  const LocalLayer layer = local_layer(ctx);
+  std::vector<Vec3> starts, goals;
+  double cruise = World::kInf, vmax = World::kInf;
+  for (const UavSpec& u : sc.uavs) {
+    if (!u.goal) throw std::invalid_argument("a formation UAV needs a goal ('" + u.id + "' has none)");
+    starts.push_back(u.start);
+    goals.push_back(*u.goal);
+    cruise = std::min(cruise, u.speed.cruise_mps);
+    vmax = std::min(vmax, u.speed.max_mps);
+  }
+  if (sc.mission.shape.size() != sc.uavs.size()) throw std::invalid_argument("a formation mission needs one slot per UAV");
+  const PlanResult ref = reference_route(sc, ctx, centroid(starts), centroid(goals));
+  if (ref.status != Status::solved) return fail_all(sc, "the formation's reference route: " + ref.message, plan);
+  const FormationSchedule sched = formation_schedule(ref.route.waypoints, sc.mission.shape, starts, goals, cruise);
+
+  RollingWindowOptions rw;
+  rw.step_s = sc.mission.step_s;
+  rw.separation_m = sc.mission.separation_m;
+  rw.local = layer.rrt;
+  rw.seed = ctx.options.seed;
+  rw.stop = ctx.options.stop;
+  std::vector<std::string> ids;
+  for (const UavSpec& u : sc.uavs) ids.push_back(u.id);
+  RollingWindow guard(sc.world, rw, windows_of(sc, layer), ids);
+  FormationFlight flight(sched, {sc.mission.step_s, sc.mission.separation_m, sc.mission.reform_after_steps, vmax, cruise}, guard);
+  std::vector<LoopUav> loop;
+  for (std::size_t i = 0; i < sc.uavs.size(); ++i)
+    loop.push_back({&sc.uavs[i], {starts[i], sched.slots[i][1]},
+                    sc.uavs[i].sensor_range_m.value_or(std::numeric_limits<double>::infinity()), 0.0});
+  LoopOptions lo;
+  lo.step_s = sc.mission.step_s;
+  lo.horizon_s = 120.0 + 3.0 * sched.end_s();
+  lo.max_sample_dt_s = ctx.options.max_sample_dt_s;
+  lo.separation_m = sc.mission.separation_m;
+  const LoopResult flown = fly_closed_loop(sc.world, loop, {}, flight, lo, ctx.options.stop);
+
+  double eta = 0.0;
+  for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
+    const FlightState& f = flown.uavs[i];
+    const RollingWindowLog& log = guard.log(i);
+    // Done at the horizon while some UAV is still out of its slot: waiting, not arrived.
+    const bool arrived = f.done && !flight.waiting();
+    UavPlan up = flown_plan(sc.uavs[i].id, arrived, "", trajectory_corners(f.flown), f.flown);
+    up.stats = i == 0 ? ref.stats : PlanStats{};
+    up.stats.plan_ms += log.local_ms;
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "in formation (T = %g s): %d local replans, %d holds, %d escapes", sc.mission.step_s,
+                  log.replans, log.holds, log.escapes);
+    const std::string by = " by t=" + std::to_string(static_cast<int>(lo.horizon_s)) + " s";
+    up.message = arrived  ? std::string(buf)
+                 : f.done ? "waited for the formation to re-form" + by
+                          : "did not reach its goal" + by + (log.trouble.empty() ? "" : ": " + log.trouble);
+    if (arrived) eta = std::max(eta, up.arrival_s);
+    plan.uavs.push_back(std::move(up));
+  }
+  check_flown(sc, flight, plan);
+  FormationLog out;
+  out.eta_s = eta;
+  out.worst_slot_error_m = flight.worst_slot_error_m();
+  out.phases = {{"form_up", std::max(0.0, flight.formed_s())}, {"formation", eta}};
+  for (const FormationBreak& b : flight.breaks())
+    out.breaks.push_back({sc.uavs[b.uav].id, b.from_s, b.to_s >= 0.0 ? b.to_s : eta});
+  plan.formation = std::move(out);
+}
+
+}  // namespace uavplan

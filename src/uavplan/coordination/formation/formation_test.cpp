@@ -1,0 +1,132 @@
+// P1's formation: the schedule's slots, leaving a slot to avoid, re-forming by eq. 8-9, one ETA.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "uavplan/coordination/formation/formation_schedule.h"
+#include "uavplan/coordination/mission_planner.h"
+#include "uavplan/simulation/trajectory.h"
+
+namespace uavplan {
+namespace {
+
+const std::vector<Vec3> kWedge{{0, 0, 0}, {-5, 5, 0}, {-5, -5, 0}};
+
+TEST(FormationSchedule, SlotsTurnWithTheRouteAndShareOneClock) {
+  // An L-shaped route east then north; starts at the first slots, goals at the last.
+  const std::vector<Vec3> route{{0, 0, 0}, {100, 0, 0}, {100, 100, 0}};
+  const Vec3 c(-10.0 / 3.0, 0, 0);  // the wedge's centroid
+  std::vector<Vec3> starts, goals;
+  for (const Vec3& o : kWedge) {
+    starts.push_back(route[0] + (o - c));
+    goals.push_back(route[2] + Vec3(-(o - c).y(), (o - c).x(), 0));  // heading north: forward is +y
+  }
+  const FormationSchedule s = formation_schedule(route, kWedge, starts, goals, 5.0);
+  ASSERT_EQ(s.slots.size(), 3u);
+  for (const auto& p : s.slots) EXPECT_EQ(p.size(), s.knots_s.size());
+  EXPECT_NEAR(s.knots_s[s.form_up_knot], 0.0, 1e-12);  // already in their slots
+  // First segment: every slot flies the route's translate at 5 m/s (20 s).
+  EXPECT_NEAR(s.knots_s[2] - s.knots_s[1], 20.0, 1e-9);
+  for (std::size_t i = 0; i < 3; ++i) EXPECT_NEAR((s.slots[i][2] - s.slots[i][1] - Vec3(100, 0, 0)).norm(), 0.0, 1e-9);
+  // The corner: the shape turns about it as a rigid body in chords of at most 20 deg (90 deg: 5),
+  // the widest chord setting each one's time.
+  const std::size_t turned = 2 + 5;
+  ASSERT_EQ(s.knots_s.size(), turned + 3);  // then the second segment and the (empty) end leg
+  double corner_s = 0.0;
+  for (std::size_t k = 2; k < turned; ++k) {
+    double widest = 0.0;
+    for (std::size_t i = 0; i < 3; ++i) {
+      widest = std::max(widest, (s.slots[i][k + 1] - s.slots[i][k]).norm());
+      EXPECT_NEAR((s.slots[i][k + 1] - Vec3(100, 0, 0)).norm(), (s.slots[i][2] - Vec3(100, 0, 0)).norm(), 1e-9);
+    }
+    EXPECT_NEAR(s.knots_s[k + 1] - s.knots_s[k], widest / 5.0, 1e-9);
+    corner_s += widest / 5.0;
+  }
+  EXPECT_NEAR((s.slots[0][turned] - Vec3(100, 0, 0) - Vec3(0, 10.0 / 3.0, 0)).norm(), 0.0, 1e-9);  // apex ahead, north
+  EXPECT_NEAR(s.end_s(), 20.0 + corner_s + 20.0, 1e-9);  // goals are the last slots: no end leg
+  for (std::size_t i = 0; i < 3; ++i) EXPECT_NEAR((s.at(i, s.end_s()) - goals[i]).norm(), 0.0, 1e-9);
+  // The shape keeps them apart all the way (in a chord, at least cos 10 deg of their distance).
+  for (std::size_t k = 0; k + 1 < s.knots_s.size(); ++k) EXPECT_GE(schedule_gap_m(s, 1, 2, k), 10.0 * std::cos(M_PI / 18.0) - 1e-9);
+}
+
+TEST(FormationSchedule, AColumnTurningRoundNeverRunsThroughItself) {
+  // East, then back west: a column of three turns 180 deg about the corner.
+  const std::vector<Vec3> column{{0, 0, 0}, {-6, 0, 0}, {-12, 0, 0}};
+  const std::vector<Vec3> route{{0, 0, 0}, {100, 0, 0}, {100, 1e-9, 0}, {0, 1e-9, 0}};
+  std::vector<Vec3> starts, goals;
+  for (const Vec3& o : column) starts.push_back(Vec3(6, 0, 0) + o), goals.push_back(Vec3(-6, 0, 0) - o);
+  const FormationSchedule s = formation_schedule(route, column, starts, goals, 5.0);
+  for (std::size_t k = 0; k + 1 < s.knots_s.size(); ++k)
+    for (std::size_t i = 0; i < 3; ++i)
+      for (std::size_t j = i + 1; j < 3; ++j) EXPECT_GE(schedule_gap_m(s, i, j, k), 6.0 * std::cos(M_PI / 18.0) - 1e-9) << k;
+}
+
+Scenario crossing(bool with_obstacle) {
+  Scenario sc;
+  sc.name = "formation_test";
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(300, 120, 0)};
+  if (with_obstacle) ws.moving.push_back(MovingObstacle{"crosser", 2.0, Vec3(150, 0, 0), Vec3(0, 2, 0)});
+  sc.world = World(std::move(ws));
+  const std::vector<Vec3> starts{{20, 60, 0}, {14, 64, 0}, {14, 56, 0}};
+  for (std::size_t i = 0; i < 3; ++i) {
+    UavSpec u;
+    u.id = "u" + std::to_string(i + 1);
+    u.start = starts[i];
+    u.goal = starts[i] + Vec3(250, 0, 0);
+    u.radius_m = 0.5;
+    u.speed = {0, 5, 5};
+    u.sensor_range_m = 20;
+    sc.uavs.push_back(u);
+  }
+  sc.mission.type = MissionType::formation;
+  sc.mission.separation_m = 2;
+  sc.mission.shape = kWedge;
+  sc.planner.algorithm = "aco_voronoi";
+  return sc;
+}
+
+TEST(FormationMission, LeavesItsSlotToAvoidAndReformsWithOneEta) {
+  const Scenario sc = crossing(true);
+  MissionOptions opt;
+  const Plan p = plan_mission(sc, opt);
+  ASSERT_EQ(p.status, Status::solved) << p.uavs[0].message << " | " << p.uavs[1].message << " | " << p.uavs[2].message;
+  for (std::size_t i = 0; i < 3; ++i)
+    for (std::size_t j = i + 1; j < 3; ++j) EXPECT_GE(closest_approach(p.uavs[i].trajectory, p.uavs[j].trajectory).distance_m, 2.0);
+  ASSERT_TRUE(p.formation);
+  ASSERT_FALSE(p.formation->breaks.empty());  // the crosser meets the wedge at about x = 150
+  double last_reform = 0.0;
+  for (const auto& b : p.formation->breaks) {
+    EXPECT_LT(b.from_s, b.to_s);
+    EXPECT_LT(b.to_s, p.formation->eta_s);
+    last_reform = std::max(last_reform, b.to_s);
+  }
+  // Re-formed: once the last break ends they fly the shape again (the wedge's distances).
+  const double t = last_reform + 1.0;
+  const Vec3 a = position_at(p.uavs[0].trajectory, t), b = position_at(p.uavs[1].trajectory, t),
+             c = position_at(p.uavs[2].trajectory, t);
+  EXPECT_NEAR((a - b).norm(), std::hypot(5.0, 5.0), 1e-6);
+  EXPECT_NEAR((b - c).norm(), 10.0, 1e-6);
+  // One ETA: they arrive together, each at its goal; never faster than V_max.
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_NEAR(p.uavs[i].trajectory.back().t_s, p.formation->eta_s, 1e-9);
+    EXPECT_NEAR((p.uavs[i].trajectory.back().p - *sc.uavs[i].goal).norm(), 0.0, 1e-6);
+    const Trajectory& tr = p.uavs[i].trajectory;
+    for (std::size_t k = 1; k < tr.size(); ++k)
+      if (tr[k].t_s > tr[k - 1].t_s) {
+        EXPECT_LE((tr[k].p - tr[k - 1].p).norm() / (tr[k].t_s - tr[k - 1].t_s), 5.0 + 1e-6);
+      }
+  }
+}
+
+TEST(FormationMission, WithNothingToAvoidTheShapeIsNeverBroken) {
+  const Plan p = plan_mission(crossing(false), {});
+  ASSERT_EQ(p.status, Status::solved);
+  ASSERT_TRUE(p.formation);
+  EXPECT_TRUE(p.formation->breaks.empty());
+  // Straight east at 5 m/s: 250 m in 50 s once formed.
+  EXPECT_NEAR(p.formation->eta_s, 50.0 + p.formation->phases.front().end_s, 1.0 + 1e-9);
+}
+
+}  // namespace
+}  // namespace uavplan

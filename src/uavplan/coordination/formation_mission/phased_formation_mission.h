@@ -1,0 +1,39 @@
+// Mission `formation_mission` (P5 sec. 1.2, fig. 1): a formation's whole flight in five phases.
+// 1. Form-up: the UAVs taxi to the threshold and take off in turn, climb to altitude layers
+//    100 m apart, gather under the consensus laws into the shape enlarged x3, converge to the
+//    shape's heights, and shrink to it (each step ends when the shape error is under 5 m).
+// 2. Mission: pso_mpc's waypoints (P5's coarse planning) from the departure point through the task
+//    points with their entry headings, flown by the formation under consensus control (fine
+//    planning: formation_group.h).
+// 3. Return in formation towards the landing cylinder, until within 30 km of the airfield.
+// 4. Dismiss, the reverse of form-up: enlarge x3, then altitude layers.
+// 5. Landing, each UAV in turn (landing.h, eq. 2).
+// Quantities P5 leaves out are papers.md P5's defaults (FormationMissionOptions).
+#pragma once
+
+#include "uavplan/coordination/mission.h"
+
+namespace uavplan {
+
+struct FormationMissionOptions {
+  double layer_spacing_m = 100.0;
+  double enlargement = 3.0;
+  double shape_tolerance_m = 5.0;
+  double scale_rate_per_s = 1.0 / 30.0;    // the shape shrinks / grows by its size in 30 s
+  double form_up_height_m = 1000.0;        // above the airfield (the lowest layer's reference)
+  double departure_after_runway_m = 15000.0;
+  double dismiss_within_m = 30000.0;       // of the airfield (papers.md P5: 20 km; ours leaves room to dismiss)
+  double taxi_mps = 10.0;
+  double takeoff_interval_s = 20.0;        // least time between two lift-offs
+  double join_above_m = 50.0;              // above the airfield a UAV off the runway joins the consensus
+  double step_timeout_s = 1800.0;          // a form-up or dismiss step that takes longer fails
+};
+
+class PhasedFormationMission final : public Mission {
+ public:
+  std::vector<std::string> algorithms() const override { return {"pso_mpc"}; }
+  bool times_ground_legs() const override { return true; }
+  void plan(const Scenario& scenario, const MissionContext& context, Plan& plan) const override;
+};
+
+}  // namespace uavplan

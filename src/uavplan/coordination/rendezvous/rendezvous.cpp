@@ -1,0 +1,482 @@
+#include "uavplan/coordination/rendezvous/rendezvous.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <functional>
+#include <mutex>
+#include <numeric>
+#include <optional>
+#include <thread>
+
+#include "uavplan/core/geometry.h"
+#include "uavplan/planning/segment_rule.h"
+#include "uavplan/vehicle/uav.h"
+
+namespace uavplan {
+
+std::string_view to_string(RendezvousStep s) {
+  switch (s) {
+    case RendezvousStep::none: return "none";
+    case RendezvousStep::preplanned: return "pre-planned";
+    case RendezvousStep::multi_point: return "multi-point search";
+    case RendezvousStep::loiter: return "loiter circle";
+    case RendezvousStep::virtual_adjust_r: return "virtual threat (adjust R)";
+    case RendezvousStep::virtual_move_h: return "virtual threat (move H)";
+    case RendezvousStep::detour: return "detour waypoint";
+  }
+  return "none";
+}
+
+namespace {
+
+// A re-planning search that has not found its route after this many expansions is dropped as a
+// candidate (a pre-planning search on these worlds needs a few thousand).
+constexpr std::int64_t kReplanExpansions = 20'000;
+// The last-resort loiter tries this many of the longest routes found, with up to this many laps.
+constexpr int kLoiterBases = 4;
+constexpr int kMaxLoiterLaps = 16;
+// A detour replaces at most this many consecutive route segments.
+constexpr std::size_t kDetourSpan = 8;
+
+double length(const std::vector<Vec3>& pts) {
+  double l = 0.0;
+  for (std::size_t i = 1; i < pts.size(); ++i) l += (pts[i] - pts[i - 1]).norm();
+  return l;
+}
+
+std::string fmt(const char* f, double a, double b = 0.0, double c = 0.0) {
+  char buf[160];
+  std::snprintf(buf, sizeof buf, f, a, b, c);
+  return buf;
+}
+
+// The loiter of P4 eq. 9-11 as a regular polygon, x0 at the middle of its first side and that
+// side along the heading, so the UAV leaves and rejoins its route with its own heading: [x0,
+// v1, ..., vn, x0], each vertex turning 2 pi / n, perimeter `perimeter_m`. The paper's circle is
+// flown counter-clockwise, its centre to the left, O = X0 - a v'/|v'| with
+// v' = [[0,1,0],[-1,0,0],[0,0,0]] v; `left` false mirrors it (clockwise, centre to the right).
+std::vector<Vec3> loiter_polygon(const Vec3& x0, const Vec3& heading, double perimeter_m, int n, bool left = true) {
+  const Vec3 h = Vec3(heading.x(), heading.y(), 0.0).normalized();
+  const Vec3 side = left ? Vec3(-h.y(), h.x(), 0.0) : Vec3(h.y(), -h.x(), 0.0);
+  const double apothem = perimeter_m / (2.0 * n * std::tan(kPi / n));
+  const double circum = apothem / std::cos(kPi / n);
+  const Vec3 o = x0 + apothem * side;
+  const double a0 = std::atan2(-side.y(), -side.x());  // direction from the centre to x0
+  const double turn = left ? 1.0 : -1.0;
+  std::vector<Vec3> pts{x0};
+  for (int k = 0; k < n; ++k) {
+    const double a = a0 + turn * (2 * k + 1) * kPi / n;
+    pts.push_back(o + circum * Vec3(std::cos(a), std::sin(a), 0.0));
+  }
+  pts.push_back(x0);
+  return pts;
+}
+
+// What a lengthened route must keep: clear of the world after inflation (`rule`), the turn and
+// climb limits of `limits` (its heading the start's), its length inside [lo, hi].
+struct Lengthening {
+  const SegmentRule& rule;
+  const UavSpec& limits;
+  double lo, hi;
+  int sides;  // of the loiter polygon
+
+  bool keeps(const std::vector<Vec3>& route) const {
+    const double l = length(route);
+    return l >= lo && l <= hi && check_route_limits(route, limits).empty();
+  }
+
+  // `base` with `laps` turns of a loiter of `extra` metres in all at route point `at`, entered
+  // and left along the horizontal heading there (the start's own heading at the start).
+  std::optional<std::vector<Vec3>> loiter(const std::vector<Vec3>& base, std::size_t at, double extra, int laps,
+                                          bool left) const {
+    const Vec3 heading = at > 0 ? Vec3(base[at] - base[at - 1])
+                                : (limits.heading_rad ? heading_vector(*limits.heading_rad) : Vec3(base[1] - base[0]));
+    if (heading.head<2>().norm() <= 1e-9 * heading.norm()) return std::nullopt;
+    const auto loop = loiter_polygon(base[at], heading, extra / laps, sides, left);
+    for (std::size_t i = 1; i < loop.size(); ++i)
+      if (!rule(loop[i - 1], loop[i])) return std::nullopt;
+    std::vector<Vec3> route(base.begin(), base.begin() + static_cast<std::ptrdiff_t>(at) + 1);
+    for (int lap = 0; lap < laps; ++lap) route.insert(route.end(), loop.begin() + 1, loop.end() - 1);
+    route.insert(route.end(), base.begin() + static_cast<std::ptrdiff_t>(at), base.end());
+    if (!keeps(route)) return std::nullopt;
+    return route;
+  }
+
+  // `base` with its waypoints i..j replaced by two legs through one waypoint beside the middle of
+  // the chord (horizontally, on the left of i -> j or the right), offset by h so that the route
+  // grows by `extra`: 2 sqrt((D/2)^2 + h^2) = (the replaced part's length) + extra.
+  std::optional<std::vector<Vec3>> detour(const std::vector<Vec3>& base, std::size_t i, std::size_t j, double extra,
+                                          bool left, double* offset_m) const {
+    const Vec3& a = base[i];
+    const Vec3& b = base[j];
+    const double chord = (b - a).norm();
+    double legs = extra;  // the two new legs together
+    for (std::size_t k = i; k < j; ++k) legs += (base[k + 1] - base[k]).norm();
+    const Vec3 across(a.y() - b.y(), b.x() - a.x(), 0.0);  // horizontal, left of a -> b
+    if (across.norm() <= 1e-9 * chord || legs <= chord) return std::nullopt;
+    const double h = std::sqrt(0.25 * legs * legs - 0.25 * chord * chord);
+    const Vec3 m = 0.5 * (a + b) + (left ? h : -h) * across.normalized();
+    if (!rule(a, m) || !rule(m, b)) return std::nullopt;
+    std::vector<Vec3> route(base.begin(), base.begin() + static_cast<std::ptrdiff_t>(i) + 1);
+    route.push_back(m);
+    route.insert(route.end(), base.begin() + static_cast<std::ptrdiff_t>(j), base.end());
+    if (!keeps(route)) return std::nullopt;
+    *offset_m = h;
+    return route;
+  }
+};
+
+// Runs `qs` on one thread per engine, each thread taking the next query in index order.
+// `prepare(i, q)` may tighten query i from the routes finished so far (called under the lock);
+// `ends(i, route)` says whether route i ends the list: no query after the first such index is
+// started. Every query before that index completes, so a choice made afterwards in index order
+// does not depend on the timing or the thread count. Unstarted queries stay empty.
+template <class Prepare, class Ends>
+std::vector<std::optional<DirectionalRoute>> run_ordered(std::vector<DirectionalSearch>& engines, const World& world,
+                                                         std::vector<DirectionalQuery> qs, Prepare&& prepare, Ends&& ends,
+                                                         const StopCondition& stop) {
+  std::vector<std::optional<DirectionalRoute>> routes(qs.size());
+  // A query running past the end of the list is cancelled (its route is never chosen).
+  const std::unique_ptr<std::atomic<bool>[]> cancel(new std::atomic<bool>[qs.size()]);
+  for (std::size_t i = 0; i < qs.size(); ++i) cancel[i] = false;
+  std::mutex m;
+  std::size_t next = 0, end = qs.size();
+  auto worker = [&](DirectionalSearch& engine) {
+    for (;;) {
+      std::size_t i;
+      {
+        const std::lock_guard lock(m);
+        if (next >= end || stop.should_stop()) return;
+        i = next++;
+        prepare(i, qs[i], routes);
+      }
+      DirectionalRoute r = engine.run(world, qs[i], stop | StopCondition::cancel_flag(&cancel[i]));
+      const std::lock_guard lock(m);
+      if (ends(i, r) && i + 1 < end) {
+        end = i + 1;
+        for (std::size_t j = end; j < next; ++j) cancel[j] = true;
+      }
+      routes[i] = std::move(r);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t t = 1; t < std::min(engines.size(), qs.size()); ++t) pool.emplace_back(worker, std::ref(engines[t]));
+  worker(engines.front());
+  for (auto& th : pool) th.join();
+  return routes;
+}
+
+}  // namespace
+
+RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlanner& planner, const StopCondition& stop) {
+  RendezvousResult res;
+  // One search engine per thread (buffers, clearance cache), all on one set of cone tables; the
+  // first serves the sequential steps.
+  const auto cones = std::make_shared<DirectionalCones>();
+  std::vector<DirectionalSearch> engines;
+  for (int t = stop.threads(8); t > 0; --t) engines.emplace_back(cones);
+  DirectionalSearch& engine = engines.front();
+  struct Counting {
+    DirectionalSearch& engine;
+    RendezvousResult& res;
+    DirectionalRoute run(const World& w, const DirectionalQuery& q, const StopCondition& st) {
+      DirectionalRoute r = engine.run(w, q, st);
+      ++res.searches;
+      res.expanded += r.expanded;
+      return r;
+    }
+  } search{engine, res};
+  auto count = [&](const std::vector<std::optional<DirectionalRoute>>& routes) {
+    for (const auto& r : routes)
+      if (r) {
+        ++res.searches;
+        res.expanded += r->expanded;
+      }
+  };
+  const auto keep_query = [](std::size_t, DirectionalQuery&, const auto&) {};  // run_ordered's prepare: none
+  const DirectionalAStarOptions& opt = planner.options();
+  std::vector<DirectionalQuery> queries;
+  for (const UavSpec& u : sc.uavs) queries.push_back(planner.query_for(Problem{u, u.goal.value_or(u.start), {}}, sc.world));
+  if (!queries.empty()) DirectionalAStarPlanner::require_lattice(sc.world, queries.front(), static_cast<int>(engines.size()), stop);
+  // The pre-plans are independent: side by side (a UAV without a goal gets no search). Like
+  // every later search they keep P4's one state per lattice point; a UAV that finds no route
+  // that way is searched again with heading sectors in the state (DirectionalQuery::heading_states).
+  const auto never_ends = [](std::size_t, const DirectionalRoute&) { return false; };
+  std::vector<DirectionalQuery> with_goal;
+  for (std::size_t s = 0; s < sc.uavs.size(); ++s)
+    if (sc.uavs[s].goal) {
+      with_goal.push_back(queries[s]);
+      with_goal.back().heading_states = false;
+    }
+  auto preplans = run_ordered(engines, sc.world, with_goal, keep_query, never_ends, stop);
+  count(preplans);
+  {
+    std::vector<DirectionalQuery> again;
+    std::vector<std::size_t> again_of;
+    for (std::size_t k = 0; k < preplans.size(); ++k)
+      if (preplans[k] && !preplans[k]->found && !preplans[k]->stopped) {
+        again.push_back(with_goal[k]);
+        again.back().heading_states = true;
+        again_of.push_back(k);
+      }
+    auto second = run_ordered(engines, sc.world, std::move(again), keep_query, never_ends, stop);
+    count(second);
+    for (std::size_t m = 0; m < second.size(); ++m)
+      if (second[m]) preplans[again_of[m]] = std::move(second[m]);
+  }
+  for (std::size_t s = 0, k = 0; s < sc.uavs.size(); ++s) {
+    const UavSpec& u = sc.uavs[s];
+    RendezvousUav r;
+    r.id = u.id;
+    if (!u.goal) {
+      r.detail = "no goal given";
+      r.reason = Reason::invalid;
+    } else if (!preplans[k]) {
+      r.detail = "stopped before a route was found";
+      r.reason = Reason::stopped;
+      ++k;
+    } else {
+      const DirectionalRoute& route = *preplans[k++];
+      r.ok = route.found;
+      r.waypoints = route.waypoints;
+      r.preplanned_m = r.final_m = route.length_m;
+      r.step = route.found ? RendezvousStep::preplanned : RendezvousStep::none;
+      if (!route.found) {
+        r.detail = route.message;
+        r.reason = route.stopped ? Reason::stopped : Reason::no_route;
+      }
+    }
+    res.uavs.push_back(std::move(r));
+  }
+  for (const auto& r : res.uavs)
+    if (r.ok) res.target_m = std::max(res.target_m, r.final_m);
+  const double cell = queries.empty() ? 1.0 : queries.front().cell_m;
+  res.epsilon_m = sc.mission.arrival_tolerance_m.value_or(cell);
+  const double lo = res.target_m - res.epsilon_m, hi = res.target_m;
+  const double aim = res.target_m - 0.5 * res.epsilon_m;
+  auto within = [&](double l) { return l >= lo && l <= hi; };
+
+  for (std::size_t s = 0; s < res.uavs.size(); ++s) {
+    RendezvousUav& r = res.uavs[s];
+    if (!r.ok || within(r.final_m)) continue;
+    const UavSpec& u = sc.uavs[s];
+    DirectionalQuery q = queries[s];
+    // The re-planning steps run many searches; each keeps P4's one state per lattice point and
+    // a route that gets stuck is simply not a candidate.
+    q.heading_states = false;
+    q.max_expansions = std::min<std::int64_t>(q.max_expansions, kReplanExpansions);
+    r.ok = false;
+    // Every route found on the way; the loiter may extend any of them.
+    std::vector<std::vector<Vec3>> candidates{r.waypoints};
+    auto accept = [&](const std::vector<Vec3>& route, RendezvousStep step, std::string detail) {
+      r.waypoints = route;
+      r.final_m = length(route);
+      r.step = step;
+      r.detail = std::move(detail);
+      r.ok = true;
+    };
+    // (1) Variable-step multi-point search (P4 table 1): L from 1 to L_max step 0.2, M from 3 to
+    // 6; the first route within the window ends the step, else the closest is kept.
+    // The searches are independent: they run in batches, one per thread, and are taken in
+    // their (L, M) order, so the result does not depend on the thread count.
+    std::vector<Vec3> best = r.waypoints;
+    std::vector<std::pair<double, int>> combos;
+    for (int li = 0; 1.0 + 0.2 * li <= opt.step_cells_max + 1e-9; ++li)
+      for (int m = 3; m <= 6; ++m) combos.emplace_back(1.0 + 0.2 * li, m);
+    {
+      std::vector<DirectionalQuery> qs(combos.size(), q);
+      for (std::size_t c = 0; c < combos.size(); ++c) {
+        qs[c].step_cells = combos[c].first;
+        qs[c].directions = combos[c].second;
+      }
+      const double best0_m = length(best);
+      const auto routes = run_ordered(
+          engines, sc.world, std::move(qs),
+          [&](std::size_t, DirectionalQuery& qi, const std::vector<std::optional<DirectionalRoute>>& done) {
+            // A route longer than this can neither fall in the window nor come closer than the
+            // best so far (any finished subset of the routes gives a safe bound).
+            double off = std::abs(best0_m - aim);
+            for (const auto& d : done)
+              if (d && d->found) off = std::min(off, std::abs(d->length_m - aim));
+            qi.max_length_m = aim + std::max(off, 0.5 * res.epsilon_m);
+          },
+          [&](std::size_t, const DirectionalRoute& route) { return route.found && within(route.length_m); }, stop);
+      count(routes);
+      for (std::size_t c = 0; c < routes.size() && !r.ok; ++c) {
+        if (!routes[c] || !routes[c]->found) continue;
+        const DirectionalRoute& route = *routes[c];
+        candidates.push_back(route.waypoints);
+        if (within(route.length_m))
+          accept(route.waypoints, RendezvousStep::multi_point, fmt("L = %.1f, M = %.0f", combos[c].first, combos[c].second));
+        else if (std::abs(route.length_m - aim) < std::abs(length(best) - aim)) best = route.waypoints;
+      }
+    }
+    if (r.ok) continue;
+    r.waypoints = best;
+    r.final_m = length(best);
+    // (2) Loiter circle at the start (P4 eq. 9-11): R = (P_max - P_i) / (2 pi) >= R_min and the
+    // circle clear of every obstacle.
+    const double r_min = opt.min_turn_radius_m > 0.0 ? opt.min_turn_radius_m : cell;
+    const SegmentRule rule(sc.world, u);
+    const int n = std::max(12, static_cast<int>(std::ceil(2 * kPi / (0.95 * std::min(u.max_turn_rad, q.max_yaw_rad)))));
+    // The limits the lengthened routes must keep (the search's, which are within the UAV's).
+    UavSpec limits = u;
+    limits.max_turn_rad = std::min(u.max_turn_rad, q.max_yaw_rad);
+    limits.max_climb_rad = std::min(u.max_climb_rad, q.max_pitch_rad);
+    const Lengthening lengthen{rule, limits, lo, hi, n};
+    // f(base, extra) on the routes found, longest first, whose missing length `usable` takes
+    // (at most `max_bases` of them); true at the first f that accepts a route.
+    auto on_candidates = [&](auto&& usable, int max_bases, auto&& f) {
+      std::sort(candidates.begin(), candidates.end(), [](const auto& x, const auto& y) { return length(x) > length(y); });
+      int bases = 0;
+      for (const auto& base : candidates) {
+        const double extra = aim - length(base);
+        if (!usable(extra) || base.size() < 2) continue;
+        if (++bases > max_bases) break;
+        if (f(base, extra)) return true;
+      }
+      return false;
+    };
+    const auto loiter_fits = [&](double extra) { return extra / (2 * kPi) >= r_min; };
+    // P4's loiter: one circle at the start, on the left.
+    auto try_loiter = [&]() {
+      return on_candidates(loiter_fits, std::numeric_limits<int>::max(), [&](const std::vector<Vec3>& base, double extra) {
+        auto route = lengthen.loiter(base, 0, extra, 1, true);
+        if (route) accept(*route, RendezvousStep::loiter, fmt("radius %.1f m (R_min %.1f m), %.0f sides", extra / (2 * kPi), r_min, n));
+        return route.has_value();
+      });
+    };
+    // Where that circle does not fit (a boundary, a threat) and no virtual threat helped: the
+    // same extra length as k laps of a circle k times smaller (while R >= R_min), on either side
+    // of the heading, at the start or a later waypoint of the longest routes found; the first
+    // that fits in that order (start first, fewer laps first, left first).
+    auto try_loiter_anywhere = [&]() {
+      return on_candidates(loiter_fits, kLoiterBases, [&](const std::vector<Vec3>& base, double extra) {
+        for (std::size_t at = 0; at + 1 < base.size(); ++at)
+          for (int laps = 1; laps <= kMaxLoiterLaps && extra / (2 * kPi * laps) >= r_min; ++laps)
+            for (const bool left : {true, false})
+              if (auto route = lengthen.loiter(base, at, extra, laps, left)) {
+                accept(*route, RendezvousStep::loiter,
+                       fmt("radius %.1f m (R_min %.1f m), %.0f laps", extra / (2 * kPi * laps), r_min, laps) +
+                           (left ? " on the left" : " on the right") +
+                           (at == 0 ? std::string(" at the start") : fmt(" at waypoint %.0f", static_cast<double>(at))));
+                return true;
+              }
+        return false;
+      });
+    };
+    // A missing length too short for a loiter (R < R_min) that the virtual threat missed: a
+    // detour through one waypoint beside up to kDetourSpan segments, exactly `aim` long; the
+    // longest chords of the longest routes found first.
+    auto try_detour = [&]() {
+      return on_candidates([](double extra) { return extra > 0.0; }, kLoiterBases, [&](const std::vector<Vec3>& base, double extra) {
+        std::vector<std::pair<std::size_t, std::size_t>> spans;
+        for (std::size_t i = 0; i + 1 < base.size(); ++i)
+          for (std::size_t j = i + 1; j < base.size() && j - i <= kDetourSpan; ++j) spans.emplace_back(i, j);
+        std::stable_sort(spans.begin(), spans.end(), [&](const auto& x, const auto& y) {
+          return (base[x.second] - base[x.first]).norm() > (base[y.second] - base[y.first]).norm();
+        });
+        for (const auto& [i, j] : spans)
+          for (const bool left : {true, false}) {
+            double offset_m = 0.0;
+            if (auto route = lengthen.detour(base, i, j, extra, left, &offset_m)) {
+              accept(*route, RendezvousStep::detour,
+                     fmt("%.1f m beside waypoints %.0f to %.0f", offset_m, static_cast<double>(i), static_cast<double>(j)) +
+                         (left ? ", on the left" : ", on the right"));
+              return true;
+            }
+          }
+        return false;
+      });
+    };
+    if (try_loiter()) continue;
+    // (3) Virtual threat (P4 eq. 12-13): a sphere centred on the route point nearest the
+    // start-goal midpoint; its radius stays below the distance to the other UAVs' routes and
+    // leaves the start and the goal outside. adjust-R grows it; move-H keeps R_x and re-centres
+    // it on each new route.
+    const Vec3 mid = 0.5 * (u.start + *u.goal);
+    auto centre_on = [&](const std::vector<Vec3>& pts) {
+      return *std::min_element(pts.begin(), pts.end(), [&](const Vec3& x, const Vec3& y) {
+        return (x - mid).squaredNorm() < (y - mid).squaredNorm();
+      });
+    };
+    auto radius_limit = [&](const Vec3& h) {
+      double lim = std::min((h - u.start).norm(), (h - *u.goal).norm()) - 2 * q.inflation_m - cell;
+      for (std::size_t o = 0; o < res.uavs.size(); ++o) {
+        if (o == s) continue;
+        const auto& w = res.uavs[o].waypoints;
+        for (std::size_t i = 1; i < w.size(); ++i) lim = std::min(lim, point_segment_distance(h, w[i - 1], w[i]) - q.inflation_m);
+      }
+      return lim;
+    };
+    q = queries[s];
+    q.heading_states = false;
+    q.max_expansions = std::min<std::int64_t>(q.max_expansions, kReplanExpansions);
+    const Vec3 h0 = centre_on(best);
+    const double rx_max = radius_limit(h0);
+    // adjust-R: the length grows with R_x (by steps, the lattice being discrete), so R_x doubles
+    // from half a cell until the route is long enough, then bisection narrows it to a quarter cell.
+    double rx_used = 0.0;
+    auto take_radius = [&](double rx, const DirectionalRoute& route) -> double {  // its length, or -1 without a route
+      if (!route.found) return -1.0;
+      candidates.push_back(route.waypoints);
+      if (route.length_m < lo) rx_used = std::max(rx_used, rx);
+      if (within(route.length_m))
+        accept(route.waypoints, RendezvousStep::virtual_adjust_r,
+               fmt("R_x = %.1f m at (%.0f, %.0f", rx, h0.x(), h0.y()) + fmt(", %.0f)", h0.z()));
+      return route.length_m;
+    };
+    double short_rx = 0.0, long_rx = -1.0;
+    {
+      // The doubling radii run side by side; taken in order, they end at the first route
+      // within the window or too long.
+      std::vector<double> radii;
+      for (double rx = 0.5 * cell; rx < rx_max; rx *= 2.0) radii.push_back(rx);
+      std::vector<DirectionalQuery> qs(radii.size(), q);
+      for (std::size_t k = 0; k < radii.size(); ++k) qs[k].virtual_threats = {Sphere{h0, radii[k]}};
+      const auto routes = run_ordered(
+          engines, sc.world, std::move(qs), keep_query,
+          [&](std::size_t, const DirectionalRoute& route) { return route.found && route.length_m >= lo; }, stop);
+      count(routes);
+      for (std::size_t k = 0; k < routes.size() && routes[k] && !r.ok; ++k) {
+        const double len = take_radius(radii[k], *routes[k]);
+        if (len >= 0.0 && len < lo) short_rx = radii[k];
+        if (len > hi) {
+          long_rx = radii[k];
+          break;
+        }
+      }
+    }
+    if (long_rx < 0.0 && !r.ok && rx_max > short_rx) long_rx = rx_max;
+    while (!r.ok && long_rx > 0.0 && long_rx - short_rx > 0.25 * cell && !stop.should_stop()) {
+      const double rx = 0.5 * (short_rx + long_rx);
+      q.virtual_threats = {Sphere{h0, rx}};
+      const double len = take_radius(rx, search.run(sc.world, q, stop));
+      if (len >= 0.0 && len < lo) short_rx = rx;
+      else long_rx = rx;
+    }
+    std::vector<Vec3> current = best;
+    for (int it = 0; it < 15 && !r.ok && rx_used > 0.0 && !stop.should_stop(); ++it) {
+      const Vec3 h = centre_on(current);
+      const double rx = std::min(rx_used, radius_limit(h));
+      if (rx <= 0.0) break;
+      q.virtual_threats = {Sphere{h, rx}};
+      const DirectionalRoute route = search.run(sc.world, q, stop);
+      if (!route.found || route.waypoints == current) break;
+      current = route.waypoints;
+      candidates.push_back(route.waypoints);
+      if (within(route.length_m)) accept(route.waypoints, RendezvousStep::virtual_move_h, fmt("R_x = %.1f m, %.0f moves", rx, it + 1));
+    }
+    if (r.ok) continue;
+    // Last: a loiter on any route found on the way, or a detour.
+    if (try_loiter() || try_loiter_anywhere() || try_detour()) continue;
+    r.detail = fmt("no step brought the length (%.1f m) within [%.1f, %.1f] m", r.final_m, lo, hi);
+  }
+  return res;
+}
+
+}  // namespace uavplan

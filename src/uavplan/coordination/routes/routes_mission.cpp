@@ -1,0 +1,190 @@
+#include "uavplan/coordination/routes/routes_mission.h"
+
+#include <Eigen/Geometry>
+#include <cstdio>
+
+#include "uavplan/coordination/routes/local_layer.h"
+#include "uavplan/coordination/routes/rolling_window.h"
+#include "uavplan/coordination/timing.h"
+#include "uavplan/planning/registry.h"
+#include "uavplan/simulation/vehicle_flight.h"
+
+namespace uavplan {
+namespace {
+
+bool senses(const UavSpec& u) { return u.sensor_range_m.has_value(); }
+
+// Each UAV in the scenario's order: its route by the planner, then its departure: the earliest
+// that keeps the separation from those timed before it (searched up to a minute plus twice the
+// flights so far). UAVs without sensors also keep clear of the moving obstacles (known in advance
+// to them); UAVs with sensors only plan to (they meet the moving obstacles in the loop). Planning
+// and timing go UAV by UAV, so a stop leaves the UAVs done so far complete.
+Committed plan_and_time(const Scenario& sc, const Planner& planner, const MissionOptions& opt, const GroundPoints& ground,
+                        Plan& plan) {
+  plan.uavs.reserve(sc.uavs.size());  // `committed` points into it
+  Committed committed;
+  double horizon_s = 60.0;
+  for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
+    const UavSpec& u = sc.uavs[i];
+    UavPlan& up = plan.uavs.emplace_back();
+    up.id = u.id;
+    if (opt.progress) opt.progress(i, sc.uavs.size());
+    if (!u.goal) {
+      up.message = "no goal given";
+      up.reason = Reason::invalid;
+      continue;
+    }
+    if (opt.stop.should_stop()) {
+      up.message = kStoppedMessage;
+      up.reason = Reason::stopped;
+      continue;
+    }
+    Problem pb{u, *u.goal, {}};
+    if (sc.mission.type == MissionType::route) {
+      pb.via = sc.mission.waypoints;
+      pb.via_entry_heading_rad = sc.mission.waypoint_entry_heading_rad;
+    }
+    pb.seed = opt.seed + i;  // one stream per UAV
+    const PlanResult r = planner.plan(pb, sc.world, opt.stop);
+    up.status = r.status;
+    up.reason = r.reason;
+    up.message = r.message;
+    up.stats = r.stats;
+    up.waypoints = r.route.waypoints;
+    up.length_m = r.route.length_m();
+    if (up.status != Status::solved) continue;
+    if (i < ground.start.size() && ground.start[i]) up.waypoints.insert(up.waypoints.begin(), *ground.start[i]);
+    if (i < ground.goal.size() && ground.goal[i]) up.waypoints.push_back(*ground.goal[i]);
+    up.length_m = Route{up.waypoints}.length_m();
+    if (u.model && fly_route(u, up.waypoints, 0.0, opt.max_sample_dt_s, sc.mission.waypoints).empty()) {
+      up.status = Status::failed;
+      up.message = "its autopilot model cannot fly the route: it circles a waypoint (a turn tighter than its turn radius)";
+      up.reason = Reason::no_route;
+      continue;
+    }
+    horizon_s += 2.0 * up.length_m / u.speed.cruise_mps;
+    Departure d = earliest_departure(sc, u, up.waypoints, horizon_s, committed, opt.delay_step_s, opt.max_sample_dt_s,
+                                     opt.stop, !senses(u));
+    if (d.stopped) {
+      up.status = Status::failed;
+      up.message = kStoppedMessage;
+      up.reason = Reason::stopped;
+      continue;
+    }
+    if (!d.placed && senses(u)) {  // no clear departure planned: it departs at once and sees to it in the loop
+      d.placed = true;
+      d.trajectory = fly_route(u, up.waypoints, 0.0, opt.max_sample_dt_s, sc.mission.waypoints);
+    }
+    if (!d.placed) {
+      up.status = Status::failed;
+      up.reason = Reason::conflict;
+      up.message = "conflicts with " + d.first.what + " for every departure delay up to " +
+                   std::to_string(static_cast<int>(horizon_s)) + " s";
+      continue;
+    }
+    up.trajectory = std::move(d.trajectory);
+    up.arrival_s = up.trajectory.back().t_s;
+    committed.emplace_back(&u, &up);
+  }
+  if (opt.progress) opt.progress(sc.uavs.size(), sc.uavs.size());
+  return committed;
+}
+
+// When a timed UAV departs: the end of its wait at the start.
+double departure_s(const Trajectory& tr) {
+  return tr.size() >= 2 && tr[1].p == tr[0].p ? tr[1].t_s : 0.0;
+}
+
+// The UAVs with sensors fly their routes in the loop, with the timed ones as objects to sense.
+void fly_sensing(const Scenario& sc, const MissionContext& ctx, const Committed& committed, Plan& plan) {
+  const MissionOptions& opt = ctx.options;
+  const LocalLayer layer = local_layer(ctx);
+  RollingWindowOptions rw;
+  rw.step_s = sc.mission.step_s;
+  rw.separation_m = sc.mission.separation_m;
+  rw.local = layer.rrt;
+  rw.seed = opt.seed;
+  rw.stop = opt.stop;
+  std::vector<LoopUav> loop;
+  std::vector<std::size_t> index;  // scenario index of each loop UAV
+  std::vector<double> windows;
+  double horizon_s = 0.0;  // three times the longest planned flight and two minutes more
+  for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
+    const UavSpec& u = sc.uavs[i];
+    if (!senses(u) || plan.uavs[i].status != Status::solved) continue;
+    // In the loop from its lift-off point to its touch-down point, once it has climbed.
+    std::vector<Vec3> route = plan.uavs[i].waypoints;
+    double depart_s = departure_s(plan.uavs[i].trajectory);
+    if (i < ctx.ground.start.size() && ctx.ground.start[i]) {
+      route.erase(route.begin());
+      depart_s += (route.front() - *ctx.ground.start[i]).norm() / u.speed.cruise_mps;
+    }
+    if (i < ctx.ground.goal.size() && ctx.ground.goal[i]) route.pop_back();
+    loop.push_back({&u, std::move(route), *u.sensor_range_m, depart_s});
+    index.push_back(i);
+    windows.push_back(layer.window_m > 0.0 ? layer.window_m : *u.sensor_range_m);
+    horizon_s = std::max(horizon_s, 120.0 + 3.0 * plan.uavs[i].trajectory.back().t_s);
+  }
+  if (loop.empty()) return;
+  std::vector<ScriptedUav> scripted;
+  for (const auto& [spec, up] : committed)
+    if (!senses(*spec)) scripted.push_back({spec, &up->trajectory});
+  std::vector<std::string> ids;
+  for (const std::size_t i : index) ids.push_back(sc.uavs[i].id);
+  RollingWindow controller(sc.world, rw, windows, ids);
+  LoopOptions lo;
+  lo.step_s = sc.mission.step_s;
+  lo.horizon_s = horizon_s;
+  lo.max_sample_dt_s = opt.max_sample_dt_s;
+  lo.separation_m = sc.mission.separation_m;
+  const LoopResult flight = fly_closed_loop(sc.world, loop, scripted, controller, lo, opt.stop);
+  for (std::size_t k = 0; k < loop.size(); ++k) {
+    UavPlan& up = plan.uavs[index[k]];
+    const FlightState& f = flight.uavs[k];
+    const RollingWindowLog& log = controller.log(k);
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "flown in the loop (T = %g s): %d local replans, %d holds, %d escapes",
+                  sc.mission.step_s, log.replans, log.holds, log.escapes);
+    up.stats.plan_ms += log.local_ms;  // wall time stays out of the plan's text (same bytes every run)
+    up.trajectory = f.flown;  // what it flew, also when it failed (the report shows it)
+    if (!f.done) {
+      up.status = Status::failed;
+      up.reason = flight.stopped && opt.stop.should_stop() ? Reason::stopped : Reason::no_route;
+      up.message = "did not reach its goal by t=" + std::to_string(static_cast<int>(lo.horizon_s)) + " s" +
+                   (log.trouble.empty() ? "" : ": " + log.trouble);
+      continue;
+    }
+    up.message = buf;
+    up.waypoints = trajectory_corners(f.flown);
+    up.length_m = Route{up.waypoints}.length_m();
+    up.arrival_s = f.flown.back().t_s;
+  }
+  // Against the truth: what they flew must keep clear of everything that moves.
+  Committed all;
+  for (const auto& c : committed)
+    if (!senses(*c.first)) all.push_back(c);
+  for (const std::size_t i : index)
+    if (!plan.uavs[i].trajectory.empty()) all.emplace_back(&sc.uavs[i], &plan.uavs[i]);
+  for (std::size_t k = 0; k < index.size(); ++k) {
+    UavPlan& up = plan.uavs[index[k]];
+    if (up.status != Status::solved) continue;
+    Committed others;
+    for (const auto& c : all)
+      if (c.second != &up) others.push_back(c);
+    const Conflict c = find_conflict(sc, sc.uavs[index[k]], up.trajectory, others);
+    if (!c.any) continue;
+    const std::string& trouble = controller.log(k).trouble;
+    up.status = Status::failed;
+    up.message = "could not avoid " + c.what + (trouble.empty() ? "" : "; " + trouble);
+  }
+}
+
+}  // namespace
+
+void RoutesMission::plan(const Scenario& sc, const MissionContext& ctx, Plan& plan) const {
+  const auto planner = make_planner(ctx.algorithm, ctx.params);
+  const Committed committed = plan_and_time(sc, *planner, ctx.options, ctx.ground, plan);
+  fly_sensing(sc, ctx, committed, plan);
+}
+
+}  // namespace uavplan
