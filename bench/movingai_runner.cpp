@@ -146,7 +146,8 @@ std::string format_movingai(const MovingAiReport& rep) {
                 rep.load_ms, rep.grid_mb);
   out += buf;
   std::snprintf(buf, sizeof buf, "%-13s %8s %7s %12s %10s %10s %12s %12s %9s\n", "buckets", "problems", "solved",
-                any_angle ? "min_cost/opt" : "max|c-opt|", "median_ms", "p95_ms", "expansions/s", "textbook_ms", "speed-up");
+                any_angle ? "min_cost/opt" : "max|c-opt|", "median_ms", "p95_ms", "expansions/s", "textbook_ms",
+                "speed-up");
   out += buf;
   if (rep.problems.empty()) return out;
   int lo = rep.problems.front().bucket, hi = lo;
@@ -174,10 +175,11 @@ std::string format_movingai(const MovingAiReport& rep) {
   for (const auto& p : rep.problems) all.push_back(&p);
   const Summary s = summarise(all, any_angle);
   row("all", s);
-  std::snprintf(buf, sizeof buf,
-                "summary: %d/%d within the %s, median %.4f ms against the textbook A*'s %.4f ms: %.2fx; peak RSS %.1f MB\n",
-                s.solved, s.problems, any_angle ? "any-angle bounds" : "optimum (1e-4)", s.median_ms, s.ref_median_ms,
-                s.median_ms > 0 ? s.ref_median_ms / s.median_ms : 0.0, rep.peak_rss_mb);
+  std::snprintf(
+      buf, sizeof buf,
+      "summary: %d/%d within the %s, median %.4f ms against the textbook A*'s %.4f ms: %.2fx; peak RSS %.1f MB\n",
+      s.solved, s.problems, any_angle ? "any-angle bounds" : "optimum (1e-4)", s.median_ms, s.ref_median_ms,
+      s.median_ms > 0 ? s.ref_median_ms / s.median_ms : 0.0, rep.peak_rss_mb);
   out += buf;
   return out;
 }

@@ -8,7 +8,9 @@
 int main(int argc, char** argv) {
   try {
     bool ok = false;
-    std::fputs(uavplan::bench::run_p1(argc > 1 ? argv[1] : "scenarios", argc > 2 ? std::atoi(argv[2]) : 20, &ok).c_str(), stdout);
+    std::fputs(
+        uavplan::bench::run_p1(argc > 1 ? argv[1] : "scenarios", argc > 2 ? std::atoi(argv[2]) : 20, &ok).c_str(),
+        stdout);
     return ok ? 0 : 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());

@@ -65,7 +65,9 @@ struct Outcome {
 class Clock {
  public:
   Clock() : t0_(std::chrono::steady_clock::now()) {}
-  double ms() const { return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0_).count(); }
+  double ms() const {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0_).count();
+  }
 
  private:
   std::chrono::steady_clock::time_point t0_;
@@ -99,7 +101,10 @@ class ExactMotion final : public ob::MotionValidator {
   ExactMotion(const ob::SpaceInformationPtr& si, Check check) : ob::MotionValidator(si), check_(check) {}
   bool checkMotion(const ob::State* a, const ob::State* b) const override {
     const bool ok = check_.segment(to_vec(a), to_vec(b));
-    if (ok) ++valid_; else ++invalid_;
+    if (ok)
+      ++valid_;
+    else
+      ++invalid_;
     return ok;
   }
   bool checkMotion(const ob::State* a, const ob::State* b, std::pair<ob::State*, double>& last) const override {
@@ -165,7 +170,8 @@ Outcome run_ompl(const std::string& name, const Check& check, const Vec3& start,
     return o;
   }
   std::vector<Vec3> path;
-  for (const ob::State* st_ : pdef->getSolutionPath()->as<og::PathGeometric>()->getStates()) path.push_back(to_vec(st_));
+  for (const ob::State* st_ : pdef->getSolutionPath()->as<og::PathGeometric>()->getStates())
+    path.push_back(to_vec(st_));
   if (path.back() != goal) path.push_back(goal);
   // The improved RRT's simplification: P1's pruning within one UAV step, then the shortcut.
   const TimedSegmentCheck ok = [&](const Vec3& a, double, const Vec3& c) { return check.segment(a, c); };
@@ -179,8 +185,8 @@ Outcome run_ompl(const std::string& name, const Check& check, const Vec3& start,
   return o;
 }
 
-Outcome run_ours(const RrtOptions& options, const SegmentRule& rule, const Problem1& p, const Vec3& start, const Vec3& goal,
-                 const World& world, std::uint64_t seed) {
+Outcome run_ours(const RrtOptions& options, const SegmentRule& rule, const Problem1& p, const Vec3& start,
+                 const Vec3& goal, const World& world, std::uint64_t seed) {
   Outcome o;
   const Clock clock;
   RrtQuery q;
@@ -281,19 +287,21 @@ std::string format_p1_local(const std::vector<P1LocalRow>& rows, const P1LocalOp
                 "across the route, discs T |V_b| + radii, T = 1 s), seed %llu; cost = local route length (m)\n",
                 opt.problems, static_cast<unsigned long long>(opt.seed));
   s += buf;
-  std::snprintf(buf, sizeof buf, "%-22s %9s %9s %9s %9s %10s %8s %8s %9s %10s\n", "planner", "solved", "mean_ms", "median_ms",
-                "p95_ms", "cost_m", "vs_rrt", "nodes", "paper_ms", "paper_cost");
+  std::snprintf(buf, sizeof buf, "%-22s %9s %9s %9s %9s %10s %8s %8s %9s %10s\n", "planner", "solved", "mean_ms",
+                "median_ms", "p95_ms", "cost_m", "vs_rrt", "nodes", "paper_ms", "paper_cost");
   s += buf;
   double common = 0.0;
   for (const auto& r : rows)
     if (r.planner == "rrt") common = r.mean_cost;
   for (const auto& r : rows) {
-    const std::string name = r.planner == "ompl_rrtstar" ? "ompl_rrtstar (" + std::to_string(static_cast<int>(opt.rrtstar_budget_ms)) + " ms)" : r.planner;
+    const std::string name = r.planner == "ompl_rrtstar"
+                                 ? "ompl_rrtstar (" + std::to_string(static_cast<int>(opt.rrtstar_budget_ms)) + " ms)"
+                                 : r.planner;
     const char* paper_ms = r.planner == "improved_rrt" ? "15.60" : r.planner == "rrt" ? "28.60" : "-";
     const char* paper_cost = r.planner == "improved_rrt" ? "8.33" : r.planner == "rrt" ? "12.56" : "-";
-    std::snprintf(buf, sizeof buf, "%-22s %4d/%-4d %9.3f %9.3f %9.3f %10.2f %8.3f %8.0f %9s %10s\n", name.c_str(), r.solved,
-                  r.problems, r.mean_ms, r.median_ms, r.p95_ms, r.mean_cost, common > 0 ? r.mean_cost / common : 0.0,
-                  r.mean_nodes, paper_ms, paper_cost);
+    std::snprintf(buf, sizeof buf, "%-22s %4d/%-4d %9.3f %9.3f %9.3f %10.2f %8.3f %8.0f %9s %10s\n", name.c_str(),
+                  r.solved, r.problems, r.mean_ms, r.median_ms, r.p95_ms, r.mean_cost,
+                  common > 0 ? r.mean_cost / common : 0.0, r.mean_nodes, paper_ms, paper_cost);
     s += buf;
   }
   s += "(the paper: Matlab, 2.26 GHz; its cost units are not given, its improved/common cost ratio is 0.663)\n";
@@ -318,7 +326,8 @@ bool p1_local_targets_met(const std::vector<P1LocalRow>& rows) {
       if (r.planner == n) return r;
     return P1LocalRow{};
   };
-  const P1LocalRow imp = find("improved_rrt"), rrt = find("rrt"), ompl = find("ompl_rrt"), conn = find("ompl_rrtconnect");
+  const P1LocalRow imp = find("improved_rrt"), rrt = find("rrt"), ompl = find("ompl_rrt"),
+                   conn = find("ompl_rrtconnect");
   return imp.solved == imp.problems && imp.median_ms <= conn.median_ms && imp.mean_cost < rrt.mean_cost &&
          imp.mean_cost < ompl.mean_cost;
 }

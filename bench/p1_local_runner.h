@@ -21,8 +21,8 @@ struct P1LocalRow {
   std::string planner;
   int problems = 0, solved = 0;
   double mean_ms = 0.0, median_ms = 0.0, p95_ms = 0.0;
-  double mean_cost = 0.0;  // local route length (m), over the solved problems
-  double mean_nodes = 0.0; // tree nodes (ours; OMPL's vertices)
+  double mean_cost = 0.0;   // local route length (m), over the solved problems
+  double mean_nodes = 0.0;  // tree nodes (ours; OMPL's vertices)
 };
 
 std::vector<P1LocalRow> run_p1_local(const P1LocalOptions& options);

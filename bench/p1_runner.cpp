@@ -41,7 +41,8 @@ Problem reference_problem(const Scenario& sc) {
 
 std::string global_route(const Scenario& sc) {
   const Problem pb = reference_problem(sc);
-  std::string out = "P1 global route on p1_formation (reference point, 5 m/s; paper: ETA 119.23 s, cost 632.82, 0.40 s Matlab)\n";
+  std::string out =
+      "P1 global route on p1_formation (reference point, 5 m/s; paper: ETA 119.23 s, cost 632.82, 0.40 s Matlab)\n";
   out += "planner             length_m   ETA_s    cost(eq.3)  time_ms(median of 5)  cost/optimum\n";
   double optimum = 0.0;
   for (const char* name : {"voronoi_dijkstra", "aco_voronoi"}) {
@@ -176,8 +177,9 @@ std::string unseen_worlds(int worlds, bool* ok) {
       }
     }
   }
-  std::string out = "\nFormation missions on random fields (400-1000 m, 5-30 radars, 0-4 cylinders, 3-7 UAVs, 20-100 m sensors,\n"
-                    "1-4 crossing / head-on / turning movers; aco_voronoi + improved RRT; target: no bad claim, 90 % solved)\n";
+  std::string out =
+      "\nFormation missions on random fields (400-1000 m, 5-30 radars, 0-4 cylinders, 3-7 UAVs, 20-100 m sensors,\n"
+      "1-4 crossing / head-on / turning movers; aco_voronoi + improved RRT; target: no bad claim, 90 % solved)\n";
   out += "shape          worlds   uavs  solved  solved %  bad claims  median ms\n";
   for (const char* kind : {"wedge", "line abreast", "column", "all"}) {
     Tally& t = by_kind[kind];
@@ -199,27 +201,32 @@ std::string run_p1(const std::string& dir, int runs, bool* all_ok) {
   out += random_fields(&ok);
   out += "\nP1 Table 2: " + std::to_string(runs) +
          " seeded runs of the whole formation mission (global route + flight + local replans), ours | paper\n";
-  out += "method                          solved      plan ms mean (median)       cost/UAV (eq.3)   breaks  out of shape s/UAV  slot err m  min sep m\n";
+  out +=
+      "method                          solved      plan ms mean (median)       cost/UAV (eq.3)   breaks  out of shape "
+      "s/UAV  slot err m  min sep m\n";
   struct Method {
     const char* name;
     const char* algorithm;
     const char* local;
     const char* paper;
   };
-  for (const Method& m : {Method{"A-RRT (aco_voronoi + improved)", "aco_voronoi", "improved_rrt", "20/20 | 529 ms | 642.12"},
-                          Method{"aco_voronoi + common RRT", "aco_voronoi", "rrt", "8/20 | 1407 ms | 718.30"},
-                          Method{"common RRT everywhere", "rrt", "rrt", "(the paper's baseline reading)"}}) {
+  for (const Method& m :
+       {Method{"A-RRT (aco_voronoi + improved)", "aco_voronoi", "improved_rrt", "20/20 | 529 ms | 642.12"},
+        Method{"aco_voronoi + common RRT", "aco_voronoi", "rrt", "8/20 | 1407 ms | 718.30"},
+        Method{"common RRT everywhere", "rrt", "rrt", "(the paper's baseline reading)"}}) {
     const Row r = run_mission(sc, m.algorithm, m.local, runs);
     double mean = 0.0;
     for (const double v : r.ms) mean += v / r.ms.size();
     char buf[300];
-    std::snprintf(buf, sizeof buf, "%-30s %3d/%-3d | %8.2f (%7.2f) | %8.2f      %6d %14.1f %11.3f %10.3f   paper: %s\n", m.name,
-                  r.solved, runs, mean, median(r.ms), r.solved ? r.cost / r.solved : 0.0, r.breaks,
+    std::snprintf(buf, sizeof buf, "%-30s %3d/%-3d | %8.2f (%7.2f) | %8.2f      %6d %14.1f %11.3f %10.3f   paper: %s\n",
+                  m.name, r.solved, runs, mean, median(r.ms), r.solved ? r.cost / r.solved : 0.0, r.breaks,
                   r.solved ? r.out_of_shape_s / r.solved : 0.0, r.slot_error_m, r.min_sep, m.paper);
     out += buf;
     if (std::string(m.local) == "improved_rrt" && (r.solved != runs || median(r.ms) > 50.0)) ok = false;
   }
-  out += "(targets: A-RRT solves every run, median under 50 ms; the colony within 5 % of the optimum on average; the paper's times are Matlab 2012 on 2.26 GHz)\n";
+  out +=
+      "(targets: A-RRT solves every run, median under 50 ms; the colony within 5 % of the optimum on average; the "
+      "paper's times are Matlab 2012 on 2.26 GHz)\n";
   out += unseen_worlds(std::max(runs * 15, 300), &ok);
   if (all_ok) *all_ok = ok;
   return out;

@@ -12,8 +12,8 @@
 namespace uavplan::bench {
 namespace {
 
-std::string fmt(const char* f, double a, double b = 0, double c = 0, double d = 0, double e = 0, double g = 0, double h = 0,
-                double i = 0, double j = 0) {
+std::string fmt(const char* f, double a, double b = 0, double c = 0, double d = 0, double e = 0, double g = 0,
+                double h = 0, double i = 0, double j = 0) {
   char buf[512];
   std::snprintf(buf, sizeof buf, f, a, b, c, d, e, g, h, i, j);
   return buf;
@@ -73,8 +73,9 @@ std::string real_city_row(const std::string& path, const std::string& name, bool
   const double j = cell_route_cost(cw.graph, r.route.waypoints), j_opt = cell_route_cost(cw.graph, opt.route.waypoints);
   const bool clear = route_holds(r.route.waypoints, u, sc.world) && route_holds(opt.route.waypoints, u, sc.world);
   ok = ok && clear;
-  return "| " + name + fmt(" | %.0f | %.2f | %.1f | %.1f | %.4f | %.0f | %.1f | ", double(sc.world.obstacles().size()), cw.map.cell_m(), j,
-                           j_opt, j / j_opt, ms, astar_ms) +
+  return "| " + name +
+         fmt(" | %.0f | %.2f | %.1f | %.1f | %.4f | %.0f | %.1f | ", double(sc.world.obstacles().size()),
+             cw.map.cell_m(), j, j_opt, j / j_opt, ms, astar_ms) +
          (clear ? "yes |\n" : "NO |\n");
 }
 
@@ -99,9 +100,12 @@ std::string run_p2(const std::string& dir, bool* all_ok) {
   const auto opt_times = stop_times(opt.route.waypoints, p);
 
   std::string out = "P2 cellular ant colony, scenario p2_city (400 x 200 m, ceiling 30 m, 2 m/s; cell " +
-                    fmt("%.2f m, %.0f x %.0f x %.0f nodes)\n\n", cw.map.cell_m(), double(cw.map.nx()), double(cw.map.ny()), double(cw.map.levels()));
+                    fmt("%.2f m, %.0f x %.0f x %.0f nodes)\n\n", cw.map.cell_m(), double(cw.map.nx()),
+                        double(cw.map.ny()), double(cw.map.levels()));
   out += "Table 1: times to task 1 / task 2 / finish (s); paper beside ours. J = P2's penalty (eq. 1).\n";
-  out += "| ants | paper t1 / t2 / finish | ours t1 / t2 / finish | J ours | J A* optimum | J / J* | plan ms | verified |\n";
+  out +=
+      "| ants | paper t1 / t2 / finish | ours t1 / t2 / finish | J ours | J A* optimum | J / J* | plan ms | verified "
+      "|\n";
   out += "|---:|---|---|---:|---:|---:|---:|---|\n";
   const int ants[] = {25, 50, 75, 100};
   const double paper[4][3] = {{474, 690, 869}, {342, 613, 778}, {317, 524, 683}, {270, 480, 591}};
@@ -126,11 +130,13 @@ std::string run_p2(const std::string& dir, bool* all_ok) {
                t.size() > 2 ? t[2] : -1, j, j_opt, j / j_opt, ms);
     out += clear ? "yes |\n" : "NO |\n";
   }
-  out += fmt("| A* | | %.0f / %.0f / %.0f | %.1f | %.1f | 1 | %.1f | yes |\n", opt_times.size() > 0 ? opt_times[0] : -1,
-             opt_times.size() > 1 ? opt_times[1] : -1, opt_times.size() > 2 ? opt_times[2] : -1, j_opt, j_opt, astar_ms);
-  out += "\nTarget: with 100 ants J within 5 % of the A* optimum and planning under 1 s. The paper's times are\n"
-         "for its own city and cost weights (not published), so only their trend compares. A correct A*\n"
-         "on the same graph finds the optimum through the concave U (it does not get stuck).\n\n";
+  out +=
+      fmt("| A* | | %.0f / %.0f / %.0f | %.1f | %.1f | 1 | %.1f | yes |\n", opt_times.size() > 0 ? opt_times[0] : -1,
+          opt_times.size() > 1 ? opt_times[1] : -1, opt_times.size() > 2 ? opt_times[2] : -1, j_opt, j_opt, astar_ms);
+  out +=
+      "\nTarget: with 100 ants J within 5 % of the A* optimum and planning under 1 s. The paper's times are\n"
+      "for its own city and cost weights (not published), so only their trend compares. A correct A*\n"
+      "on the same graph finds the optimum through the concave U (it does not get stuck).\n\n";
   out += "Real buildings (OpenStreetMap GeoJSON through world.buildings), the colony at its defaults:\n";
   out += "| scenario | buildings | cell m | J colony | J A* | J / J* | colony ms | A* ms | verified |\n";
   out += "|---|---:|---:|---:|---:|---:|---:|---:|---|\n";

@@ -23,7 +23,8 @@ double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std
 // goals (none within the separation of a goal). Spacing 1.5 m (so that a UAV can still pass
 // between two that have arrived), separation 0.5 m, radius 0.1 m.
 Scenario random_group(int n, std::uint64_t seed, bool three_d) {
-  const int side_n = static_cast<int>(std::ceil(three_d ? std::cbrt(static_cast<double>(n)) : std::sqrt(static_cast<double>(n))));
+  const int side_n =
+      static_cast<int>(std::ceil(three_d ? std::cbrt(static_cast<double>(n)) : std::sqrt(static_cast<double>(n))));
   const double spacing = 1.5, side = spacing * side_n, separation = 0.5, radius = 0.1;
   const double span = 3.0 * side + 10.0, height = three_d ? side + 4.0 : 0.0;
   Scenario sc;
@@ -43,10 +44,12 @@ Scenario random_group(int n, std::uint64_t seed, bool three_d) {
   ws.bounds = Aabb{Vec3(-2, -2, 0), Vec3(span + side + 2, span + side + 2, height)};
   const int obstacles = (three_d ? 2 * n : 2 * side * side / 3) + 5;
   while (static_cast<int>(ws.obstacles.size()) < obstacles) {
-    const Vec3 c(rng.uniform(side + 2.0, span - 2.0), rng.uniform(side + 2.0, span - 2.0), three_d ? rng.uniform(0.0, height) : 0.0);
+    const Vec3 c(rng.uniform(side + 2.0, span - 2.0), rng.uniform(side + 2.0, span - 2.0),
+                 three_d ? rng.uniform(0.0, height) : 0.0);
     const double r = three_d ? rng.uniform(0.2, 0.8) : rng.uniform(0.1, 0.4);
-    const bool on_a_goal = std::any_of(sc.uavs.begin(), sc.uavs.end(),
-                                       [&](const UavSpec& u) { return (*u.goal - c).norm() < r + radius + separation; });
+    const bool on_a_goal = std::any_of(sc.uavs.begin(), sc.uavs.end(), [&](const UavSpec& u) {
+      return (*u.goal - c).norm() < r + radius + separation;
+    });
     if (!on_a_goal) ws.obstacles.push_back(Sphere{c, r});
   }
   sc.world = World(std::move(ws));
@@ -71,11 +74,12 @@ std::string run_p3(const std::string& dir, bool* all_ok) {
     const auto t0 = Clock::now();
     const GroupResult g = plan_group(sc, o, {});
     const double ms = ms_since(t0);
-    std::snprintf(buf, sizeof buf, "P3 Tables 3-4, %s field: path score SC before and after smoothing (lower is better)\n",
+    std::snprintf(buf, sizeof buf,
+                  "P3 Tables 3-4, %s field: path score SC before and after smoothing (lower is better)\n",
                   improved ? "improved" : "traditional");
     out += buf;
-    std::snprintf(buf, sizeof buf, "%-5s %8s %9s %9s %9s %8s %8s %8s %8s\n", "uav", "reached", "before", "paper", "after",
-                  "paper", "Y1_m", "Y2", "Y3");
+    std::snprintf(buf, sizeof buf, "%-5s %8s %9s %9s %9s %8s %8s %8s %8s\n", "uav", "reached", "before", "paper",
+                  "after", "paper", "Y1_m", "Y2", "Y3");
     out += buf;
     double tb = 0, ta = 0, pb = 0, pa = 0;
     for (std::size_t i = 0; i < g.uavs.size(); ++i) {
@@ -89,16 +93,17 @@ std::string run_p3(const std::string& dir, bool* all_ok) {
       out += buf;
       if (improved) ok &= g.uavs[i].reached;
     }
-    std::snprintf(buf, sizeof buf, "%-5s %8s %9.2f %9.1f %9.2f %8.1f   (planning %.1f ms, %d frames of %.2f s)\n\n", "total",
-                  "", tb, pb, ta, pa, ms, g.frames, g.frame_s);
+    std::snprintf(buf, sizeof buf, "%-5s %8s %9.2f %9.1f %9.2f %8.1f   (planning %.1f ms, %d frames of %.2f s)\n\n",
+                  "total", "", tb, pb, ta, pa, ms, g.frames, g.frame_s);
     out += buf;
     if (improved) ok &= ta < tb;
   }
   for (const bool three_d : {false, true}) {
-    out += three_d ? "\nP3 scaling, 3-D: a cube of UAVs through random spheres (0.2-0.8 m) at every height\n"
-                   : "P3 scaling: random obstacle fields, block to block (1.5 m spacing), separation 0.5 m (verified)\n";
-    std::snprintf(buf, sizeof buf, "%6s %10s %9s %12s %12s %12s\n", "uavs", "obstacles", "solved", "plan_ms", "min_sep_m",
-                  "group_SC");
+    out += three_d
+               ? "\nP3 scaling, 3-D: a cube of UAVs through random spheres (0.2-0.8 m) at every height\n"
+               : "P3 scaling: random obstacle fields, block to block (1.5 m spacing), separation 0.5 m (verified)\n";
+    std::snprintf(buf, sizeof buf, "%6s %10s %9s %12s %12s %12s\n", "uavs", "obstacles", "solved", "plan_ms",
+                  "min_sep_m", "group_SC");
     out += buf;
     for (const int n : {9, 25, 100, 400}) {
       const Scenario rs = random_group(n, 100 + n, three_d);
@@ -109,15 +114,16 @@ std::string run_p3(const std::string& dir, bool* all_ok) {
       int solved = 0;
       for (const auto& u : plan.uavs) solved += u.status == Status::solved;
       const auto sep = plan.metrics.find("min_separation_m");
-      std::snprintf(buf, sizeof buf, "%6d %10zu %6d/%-3d %12.1f %12.3f %12.2f\n", n, rs.world.obstacles().size(), solved, n,
-                    ms, sep == plan.metrics.end() ? 0.0 : sep->second,
+      std::snprintf(buf, sizeof buf, "%6d %10zu %6d/%-3d %12.1f %12.3f %12.2f\n", n, rs.world.obstacles().size(),
+                    solved, n, ms, sep == plan.metrics.end() ? 0.0 : sep->second,
                     plan.metrics.count("p3_group_score") ? plan.metrics.at("p3_group_score") : 0.0);
       out += buf;
       if (n == 100) ok &= solved == n;
     }
   }
-  out += "(scores: S1 = Y1 / |goal - start|, S2 = Y2 / points, S3 = Y3, SC = S1 + S2 + S3; the paper leaves its\n"
-         " normalisation open, so only the before/after contrast compares)\n";
+  out +=
+      "(scores: S1 = Y1 / |goal - start|, S2 = Y2 / points, S3 = Y3, SC = S1 + S2 + S3; the paper leaves its\n"
+      " normalisation open, so only the before/after contrast compares)\n";
   if (all_ok) *all_ok = ok;
   return out;
 }

@@ -95,9 +95,10 @@ std::string run_p4(const std::string& dir, bool* all_ok) {
       const RouteStats* rows[2] = {&d, &b};
       const char* names[2] = {"directional A*", "26-neighbour A*"};
       for (int a = 0; a < 2; ++a) {
-        std::snprintf(buf, sizeof buf, "%-6s %-22s %9.3f %9.3f %7llu %7d %9.2f %9.0f %9.1f %9.1f\n", u.id.c_str(), names[a],
-                      rows[a]->km, paper_len[a][i], static_cast<unsigned long long>(rows[a]->open), paper_open[a][i],
-                      rows[a]->ms, 1000 * paper_s[a][i], rows[a]->worst_turn_deg, rows[a]->worst_pitch_deg);
+        std::snprintf(buf, sizeof buf, "%-6s %-22s %9.3f %9.3f %7llu %7d %9.2f %9.0f %9.1f %9.1f\n", u.id.c_str(),
+                      names[a], rows[a]->km, paper_len[a][i], static_cast<unsigned long long>(rows[a]->open),
+                      paper_open[a][i], rows[a]->ms, 1000 * paper_s[a][i], rows[a]->worst_turn_deg,
+                      rows[a]->worst_pitch_deg);
         out += buf;
       }
     }
@@ -123,8 +124,8 @@ std::string run_p4(const std::string& dir, bool* all_ok) {
     const double paper_final[4] = {55.247, 56.131, 55.8, 56.131};
     const char* paper_step[4] = {"virtual threat R_x=2", "loiter R=1.748 km", "multi-point L=3,M=3", "longest"};
     out += "P4 rendezvous (Table 4 starts, goal (37, 28, 25) km, L = 2.5, M = 6, epsilon 1 km)\n";
-    std::snprintf(buf, sizeof buf, "%-6s %8s %8s %-26s %9s %9s  %s\n", "uav", "pre_km", "paper", "step (ours)", "final_km",
-                  "paper", "paper's step");
+    std::snprintf(buf, sizeof buf, "%-6s %8s %8s %-26s %9s %9s  %s\n", "uav", "pre_km", "paper", "step (ours)",
+                  "final_km", "paper", "paper's step");
     out += buf;
     double lo = 1e300, hi = 0.0;
     for (std::size_t i = 0; i < rr.uavs.size(); ++i) {
@@ -140,8 +141,9 @@ std::string run_p4(const std::string& dir, bool* all_ok) {
     std::snprintf(buf, sizeof buf,
                   "target %.3f km, spread %.3f km (epsilon %.3f km): %s; %d directional searches, %llu expansions, "
                   "%.1f ms (median of 5 runs; first %.1f ms, fastest %.1f ms)\n\n",
-                  rr.target_m / 1000, (hi - lo) / 1000, rr.epsilon_m / 1000, hi - lo <= rr.epsilon_m + 1e-6 ? "held" : "MISSED",
-                  rr.searches, static_cast<unsigned long long>(rr.expanded), ms, first_ms, runs_ms.front());
+                  rr.target_m / 1000, (hi - lo) / 1000, rr.epsilon_m / 1000,
+                  hi - lo <= rr.epsilon_m + 1e-6 ? "held" : "MISSED", rr.searches,
+                  static_cast<unsigned long long>(rr.expanded), ms, first_ms, runs_ms.front());
     out += buf;
     ok &= hi - lo <= rr.epsilon_m + 1e-6;
     // Table 5: L x M lengths for UAV3.
@@ -162,8 +164,10 @@ std::string run_p4(const std::string& dir, bool* all_ok) {
       for (int m = 3; m <= 6; ++m) {
         q.directions = m;
         const DirectionalRoute r = search.run(sc.world, q, {});
-        if (r.found) std::snprintf(buf, sizeof buf, " %6.1f|%5.1f", r.length_m / 1000, paper5[li][m - 3]);
-        else std::snprintf(buf, sizeof buf, " %6s|%5.1f", "-", paper5[li][m - 3]);
+        if (r.found)
+          std::snprintf(buf, sizeof buf, " %6.1f|%5.1f", r.length_m / 1000, paper5[li][m - 3]);
+        else
+          std::snprintf(buf, sizeof buf, " %6s|%5.1f", "-", paper5[li][m - 3]);
         out += buf;
       }
       out += "\n";

@@ -8,7 +8,8 @@
 int main(int argc, char** argv) {
   try {
     bool ok = false;
-    std::fputs(uavplan::bench::run_p5_coarse(argc > 1 ? argv[1] : "scenarios", argc > 2 ? std::atoi(argv[2]) : 100, &ok).c_str(),
+    std::fputs(uavplan::bench::run_p5_coarse(argc > 1 ? argv[1] : "scenarios", argc > 2 ? std::atoi(argv[2]) : 100, &ok)
+                   .c_str(),
                stdout);
     return ok ? 0 : 1;
   } catch (const std::exception& e) {

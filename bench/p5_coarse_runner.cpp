@@ -33,7 +33,8 @@ struct Shape {
 Shape shape_of(const std::vector<Vec3>& pts, const World& w, double radius_m) {
   Shape s;
   for (std::size_t k = 2; k < pts.size(); ++k) {
-    const double t = rad_to_deg(std::abs(std::remainder(heading(pts[k] - pts[k - 1]) - heading(pts[k - 1] - pts[k - 2]), 2 * kPi)));
+    const double t =
+        rad_to_deg(std::abs(std::remainder(heading(pts[k] - pts[k - 1]) - heading(pts[k - 1] - pts[k - 2]), 2 * kPi)));
     if (t > s.worst_turn_deg) s.worst_turn_deg = t, s.worst_at = k;
   }
   for (std::size_t k = 1; k < pts.size(); ++k) {
@@ -68,9 +69,11 @@ bool verified(const Scenario& sc, const std::string& algorithm, Plan* out = null
 
 std::string section_41(const Scenario& sc, bool* ok) {
   std::string out =
-      "P5 4.1: formation reference around a 40 km no-fly cylinder (p5_coarse.yaml; paper: multi-step every turn <= 30 deg,\n"
+      "P5 4.1: formation reference around a 40 km no-fly cylinder (p5_coarse.yaml; paper: multi-step every turn <= 30 "
+      "deg,\n"
       "single-step ~50 deg at its 7th segment; l = 5000 m, 30 particles x 100 iterations, the single step 100 x 500)\n";
-  out += "planner        verified  waypoints  length_km  largest_turn_deg(at seg)  inside_nfz_m  plan_ms  ms/waypoint\n";
+  out +=
+      "planner        verified  waypoints  length_km  largest_turn_deg(at seg)  inside_nfz_m  plan_ms  ms/waypoint\n";
   const Problem pb = problem_of(sc);
   const PlanResult multi = PsoMpcPlanner({}).plan(pb, sc.world, {});
   char buf[300];
@@ -91,16 +94,23 @@ std::string section_41(const Scenario& sc, bool* ok) {
     const bool v = name != "pso_single" && verified(sc, name);
     if (name == "pso_mpc" && (!v || s.worst_turn_deg > 30.0 + 1e-6)) *ok = false;
     std::snprintf(buf, sizeof buf, "%-14s %8s %10zu %10.1f %15.1f (%3zu) %16.0f %8.1f %12.3f\n", name.c_str(),
-                  name == "pso_single" ? "-" : v ? "yes" : "NO", pts.size(), Route{pts}.length_m() / 1000.0, s.worst_turn_deg,
-                  s.worst_at, s.inside_m, ms, pts.size() > 1 ? ms / (pts.size() - 1) : 0.0);
+                  name == "pso_single" ? "-"
+                  : v                  ? "yes"
+                                       : "NO",
+                  pts.size(), Route{pts}.length_m() / 1000.0, s.worst_turn_deg, s.worst_at, s.inside_m, ms,
+                  pts.size() > 1 ? ms / (pts.size() - 1) : 0.0);
     out += buf;
   }
-  out += "(pso_single: its best route is reported as found; the planner calls it failed when a turn or the cylinder is broken)\n";
+  out +=
+      "(pso_single: its best route is reported as found; the planner calls it failed when a turn or the cylinder is "
+      "broken)\n";
   return out;
 }
 
 std::string section_42(const Scenario& base, bool* ok) {
-  std::string out = "\nP5 4.2(a): entry headings into one task point beside a cylinder (p5_entry.yaml; paper: enters at 0, 180 and -45 deg)\n";
+  std::string out =
+      "\nP5 4.2(a): entry headings into one task point beside a cylinder (p5_entry.yaml; paper: enters at 0, 180 and "
+      "-45 deg)\n";
   out += "entry_deg  verified  route_entry_err_deg  flown_entry_err_deg  largest_turn_deg  length_km  plan_ms\n";
   for (const double entry : {0.0, 180.0, -45.0}) {
     Scenario sc = base;
@@ -126,8 +136,8 @@ std::string section_42(const Scenario& base, bool* ok) {
       }
     if (!v || route_err > 1.0) *ok = false;
     char buf[200];
-    std::snprintf(buf, sizeof buf, "%9.0f %9s %20.6f %20.3f %17.1f %10.1f %8.1f\n", entry, v ? "yes" : "NO", route_err, flown_err,
-                  shape_of(pts, sc.world, 0.0).worst_turn_deg, r.route.length_m() / 1000.0, ms);
+    std::snprintf(buf, sizeof buf, "%9.0f %9s %20.6f %20.3f %17.1f %10.1f %8.1f\n", entry, v ? "yes" : "NO", route_err,
+                  flown_err, shape_of(pts, sc.world, 0.0).worst_turn_deg, r.route.length_m() / 1000.0, ms);
     out += buf;
   }
   return out;
@@ -166,13 +176,16 @@ std::string section_random(int worlds, bool* ok) {
   double mean = 0.0;
   for (const double v : per_world) mean += v / static_cast<double>(per_world.size());
   char buf[1200];
-  std::snprintf(buf, sizeof buf,
-                "\nRandom large worlds (100-1000 km, 5-20 cylinders of 10-60 km, 1-3 via points with random entry headings, a fixed wing\n"
-                "through P5's model; targets: no bad claim, 95 %% solved, < 50 ms per 1000 km, length within 10 %% of A*)\n"
-                "worlds  solved  solved_%%  bad_claims  ms_per_1000km(mean, median, all km)  length/astar(mean, worst; %d both verified, no headings)\n"
-                "%6d %7d %8.1f %11d %13.1f %7.1f %8.1f %20.3f %8.3f\n",
-                compared, worlds, solved, 100.0 * solved / std::max(worlds, 1), bad, mean, median(per_world), total_km > 0.0 ? total_ms / (total_km / 1000.0) : 0.0, compared ? ratio / compared : 0.0,
-                worst_ratio);
+  std::snprintf(
+      buf, sizeof buf,
+      "\nRandom large worlds (100-1000 km, 5-20 cylinders of 10-60 km, 1-3 via points with random entry headings, a "
+      "fixed wing\n"
+      "through P5's model; targets: no bad claim, 95 %% solved, < 50 ms per 1000 km, length within 10 %% of A*)\n"
+      "worlds  solved  solved_%%  bad_claims  ms_per_1000km(mean, median, all km)  length/astar(mean, worst; %d both "
+      "verified, no headings)\n"
+      "%6d %7d %8.1f %11d %13.1f %7.1f %8.1f %20.3f %8.3f\n",
+      compared, worlds, solved, 100.0 * solved / std::max(worlds, 1), bad, mean, median(per_world),
+      total_km > 0.0 ? total_ms / (total_km / 1000.0) : 0.0, compared ? ratio / compared : 0.0, worst_ratio);
   return buf;
 }
 

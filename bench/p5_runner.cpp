@@ -5,9 +5,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include "uavplan/coordination/contract/separation.h"
 #include "uavplan/coordination/formation_mission/formation_group.h"
 #include "uavplan/coordination/mission_planner.h"
-#include "uavplan/coordination/contract/separation.h"
 #include "uavplan/evaluation/random_worlds.h"
 #include "uavplan/evaluation/verifier.h"
 #include "uavplan/io/scenario_io.h"
@@ -49,7 +49,8 @@ double largest_route_turn_deg(const std::vector<Vec3>& w) {
   double worst = 0.0;
   for (std::size_t k = 1; k + 1 < w.size(); ++k) {
     const Vec2 a = (w[k] - w[k - 1]).head<2>(), b = (w[k + 1] - w[k]).head<2>();
-    if (a.norm() > 0.0 && b.norm() > 0.0) worst = std::max(worst, std::acos(std::clamp(a.dot(b) / (a.norm() * b.norm()), -1.0, 1.0)));
+    if (a.norm() > 0.0 && b.norm() > 0.0)
+      worst = std::max(worst, std::acos(std::clamp(a.dot(b) / (a.norm() * b.norm()), -1.0, 1.0)));
   }
   return rad_to_deg(worst);
 }
@@ -66,7 +67,8 @@ std::string phase_table(const std::string& dir, bool& ok) {
   std::sort(ms.begin(), ms.end());
   const auto violations = finalize_plan(sc, plan);
   std::string out =
-      "P5 4.3: the whole flight of p5_mission.yaml (4 UAVs, 3 task points, 10 cylinders; P5's task points and cylinders are random and\n"
+      "P5 4.3: the whole flight of p5_mission.yaml (4 UAVs, 3 task points, 10 cylinders; P5's task points and "
+      "cylinders are random and\n"
       "unpublished: compare durations, not exact times), ours | P5 Table 2\n"
       "phase      end_s   duration_s | paper end_s  duration_s   min separation in the air (m, safety 50)\n";
   const char* names[] = {"form_up", "mission", "return", "dismiss", "landing"};
@@ -75,19 +77,22 @@ std::string phase_table(const std::string& dir, bool& ok) {
   const bool have = plan.formation && plan.formation->phases.size() == 5;
   for (int k = 0; k < 5; ++k) {
     const double end = have ? plan.formation->phases[k].end_s : NAN;
-    out += line("%-9s %7.0f   %10.0f | %11.0f  %10.0f   %10.1f\n", names[k], end, end - prev, paper[k], paper[k] - paper_prev,
-                have ? min_separation(sc, plan, prev, end) : NAN);
+    out += line("%-9s %7.0f   %10.0f | %11.0f  %10.0f   %10.1f\n", names[k], end, end - prev, paper[k],
+                paper[k] - paper_prev, have ? min_separation(sc, plan, prev, end) : NAN);
     prev = end, paper_prev = paper[k];
   }
   // The UAVs' waypoints: the parking place, the formation's route, the landing stop.
-  const std::vector<Vec3> route = plan.uavs.empty() || plan.uavs[0].waypoints.size() < 3
-                                      ? std::vector<Vec3>{}
-                                      : std::vector<Vec3>(plan.uavs[0].waypoints.begin() + 1, plan.uavs[0].waypoints.end() - 1);
+  const std::vector<Vec3> route =
+      plan.uavs.empty() || plan.uavs[0].waypoints.size() < 3
+          ? std::vector<Vec3>{}
+          : std::vector<Vec3>(plan.uavs[0].waypoints.begin() + 1, plan.uavs[0].waypoints.end() - 1);
   const double turn = largest_route_turn_deg(route);
-  out += line("status %s, verified %s (%zu violations), route %.0f km, largest turn between route segments %.1f deg (limit 30),\n"
-              "whole mission planned and simulated in %.0f ms (median of 3; target < 1000 ms)\n\n",
-              to_string(plan.status).data(), violations.empty() ? "yes" : "no", violations.size(),
-              Route{route}.length_m() / 1000.0, turn, ms[1]);
+  out += line(
+      "status %s, verified %s (%zu violations), route %.0f km, largest turn between route segments %.1f deg (limit "
+      "30),\n"
+      "whole mission planned and simulated in %.0f ms (median of 3; target < 1000 ms)\n\n",
+      to_string(plan.status).data(), violations.empty() ? "yes" : "no", violations.size(),
+      Route{route}.length_m() / 1000.0, turn, ms[1]);
   ok = ok && plan.status == Status::solved && violations.empty() && turn <= 30.0 + 1e-6 && ms[1] < 1000.0;
   return out;
 }
@@ -99,7 +104,8 @@ std::string turn_table(bool& ok) {
   lim.max_turn_rate_rad_s = deg_to_rad(2.2);
   lim.max_climb_rate_mps = 20.0;
   const std::vector<Vec3> diamond{{0, 0, 0}, {-60, 60, 0}, {-60, -60, 0}, {-120, 0, 0}};
-  FormationGroup g(std::vector<AutopilotModel>(4, AutopilotModel(AutopilotParams{}, lim)), diamond, complete_topology(4), {}, 0.0);
+  FormationGroup g(std::vector<AutopilotModel>(4, AutopilotModel(AutopilotParams{}, lim)), diamond,
+                   complete_topology(4), {}, 0.0);
   const auto dir = [](double deg) { return Vec3(std::cos(deg_to_rad(deg)), std::sin(deg_to_rad(deg)), 0.0); };
   const Vec3 a(0, 0, 5000), b = a + 40000.0 * dir(45.0), c = b + 40000.0 * dir(15.0);
   FormationOrder o{150.0, deg_to_rad(45.0), 1.0, std::vector<double>(4, 5000.0)};
@@ -129,8 +135,10 @@ std::string turn_table(bool& ok) {
   ok = ok && lowest > 50.0;
   return "P5 4.2(b): the 45 -> 15 deg turn (diamond of 60 m, 150 m/s, 2.2 deg/s), ours | paper\n"
          "steady nearest spacing m   min nearest spacing m   safety m   centroid's closest pass to the corner m\n" +
-         line("%10.2f | ~85            %8.2f | 70.5            50       %8.0f (turning on the arc R tan 15 deg = %.0f m short)\n",
-              steady_before, lowest, miss, 150.0 / deg_to_rad(2.2) * std::tan(deg_to_rad(15.0))) +
+         line(
+             "%10.2f | ~85            %8.2f | 70.5            50       %8.0f (turning on the arc R tan 15 deg = %.0f m "
+             "short)\n",
+             steady_before, lowest, miss, 150.0 / deg_to_rad(2.2) * std::tan(deg_to_rad(15.0))) +
          "(P5's 70.5 m depends on its unpublished gains; ours are papers.md P5's defaults, consensus.h)\n";
 }
 
@@ -157,15 +165,18 @@ std::string random_table(int missions, bool& ok) {
           why = u.id + ": " + u.message;
           break;
         }
-      failures += line("  seed %d (%zu UAVs, %zu task points): %s\n", s, sc.uavs.size(), sc.mission.task_points.size(), why.c_str());
+      failures += line("  seed %d (%zu UAVs, %zu task points): %s\n", s, sc.uavs.size(), sc.mission.task_points.size(),
+                       why.c_str());
     }
   }
   ok = ok && bad == 0;
-  return line("\nRandom formation missions (300-1000 km, 3-6 UAVs in 4 shapes, 2-5 task points, 5-15 cylinders, any airfield and runway\n"
-              "heading; every solved plan checked by the verifier; target >= 90%% solved, 0 bad claims)\n"
-              "missions  solved  solved_%%  bad_claims  ms_per_mission(mean, worst)\n"
-              "%8d  %6d  %8.1f  %10d  %10.0f %6.0f\n",
-              missions, solved, 100.0 * solved / std::max(missions, 1), bad, ms_sum / std::max(missions, 1), ms_worst) +
+  return line(
+             "\nRandom formation missions (300-1000 km, 3-6 UAVs in 4 shapes, 2-5 task points, 5-15 cylinders, any "
+             "airfield and runway\n"
+             "heading; every solved plan checked by the verifier; target >= 90%% solved, 0 bad claims)\n"
+             "missions  solved  solved_%%  bad_claims  ms_per_mission(mean, worst)\n"
+             "%8d  %6d  %8.1f  %10d  %10.0f %6.0f\n",
+             missions, solved, 100.0 * solved / std::max(missions, 1), bad, ms_sum / std::max(missions, 1), ms_worst) +
          failures;
 }
 

@@ -25,8 +25,8 @@ std::string run_soak(const SoakOptions& opt, bool* all_held) {
   std::snprintf(buf, sizeof buf, "soak: %d random worlds per row, seed %llu, 2 s stop per plan\n", opt.worlds,
                 static_cast<unsigned long long>(opt.seed));
   out += buf;
-  std::snprintf(buf, sizeof buf, "%-20s %-12s %7s %8s %10s %10s %10s\n", "planner", "mission", "uavs", "solved", "bad_claims",
-                "median_ms", "max_ms");
+  std::snprintf(buf, sizeof buf, "%-20s %-12s %7s %8s %10s %10s %10s\n", "planner", "mission", "uavs", "solved",
+                "bad_claims", "median_ms", "max_ms");
   out += buf;
   bool held = true;
   for (const Kind& k : kinds) {

@@ -10,7 +10,7 @@
 namespace uavplan::bench {
 
 struct SoakOptions {
-  int worlds = 1000;         // per planner
+  int worlds = 1000;  // per planner
   std::uint64_t seed = 1;
 };
 

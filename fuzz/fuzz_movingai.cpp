@@ -16,10 +16,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   return uavplan::fuzz::run_reader([&] {
     switch (data[0] % 4) {
-      case 0: uavplan::read_movingai_map(path); break;
-      case 1: uavplan::read_movingai_scen(path); break;
-      case 2: uavplan::read_movingai_3dmap(path); break;
-      default: uavplan::read_movingai_3dscen(path);
+      case 0:
+        uavplan::read_movingai_map(path);
+        break;
+      case 1:
+        uavplan::read_movingai_scen(path);
+        break;
+      case 2:
+        uavplan::read_movingai_3dmap(path);
+        break;
+      default:
+        uavplan::read_movingai_3dscen(path);
     }
   });
 }

@@ -79,7 +79,7 @@ std::shared_ptr<Plan> plan_scenario(const Scenario& sc, const std::optional<std:
     done.wait();
   }
   if (cancel.load()) throw py::error_already_set();  // the KeyboardInterrupt PyErr_CheckSignals set
-  done.get();  // what planning threw
+  done.get();                                        // what planning threw
   return plan;
 }
 
@@ -163,34 +163,42 @@ PYBIND11_MODULE(uavplan, m) {
 
   py::class_<Scenario, std::shared_ptr<Scenario>>(m, "Scenario")
       .def_static(
-          "load", [](const std::string& path, const py::dict& overrides) {
+          "load",
+          [](const std::string& path, const py::dict& overrides) {
             return std::make_shared<Scenario>(load_scenario(path, overrides_of(overrides)));
           },
           py::arg("path"), py::arg("overrides") = py::dict(),
           "Load a scenario file (YAML or JSON); overrides as --set: {'cell_m': 4, 'uavs[0].speed': 8}")
       .def_static(
-          "from_dict", [](const py::dict& d) {
+          "from_dict",
+          [](const py::dict& d) {
             const std::string text = py::module_::import("json").attr("dumps")(d).cast<std::string>();
             return std::make_shared<Scenario>(parse_scenario(text, "<dict>"));
           },
           py::arg("scenario"), "A scenario from a dict of the scenario file's structure")
       .def_property_readonly("name", [](const Scenario& s) { return s.name; })
-      .def_property_readonly("uav_ids", [](const Scenario& s) {
-        std::vector<std::string> ids;
-        for (const auto& u : s.uavs) ids.push_back(u.id);
-        return ids;
-      })
+      .def_property_readonly("uav_ids",
+                             [](const Scenario& s) {
+                               std::vector<std::string> ids;
+                               for (const auto& u : s.uavs) ids.push_back(u.id);
+                               return ids;
+                             })
       .def_property_readonly("mission_type", [](const Scenario& s) { return std::string(to_string(s.mission.type)); })
       .def_property_readonly("algorithm", [](const Scenario& s) { return s.planner.algorithm; })
-      .def_property_readonly("obstacles", [](const Scenario& s) {
-        py::list l;
-        for (const Obstacle& o : s.world.obstacles()) l.append(obstacle_dict(o));
-        return l;
-      }, "The static obstacles as dicts of the scenario file's shape (buildings included)")
-      .def_property_readonly("bounds", [](const Scenario& s) {
-        const Aabb b = s.world.bounds();
-        return std::vector<std::vector<double>>{{b.min.x(), b.min.y(), b.min.z()}, {b.max.x(), b.max.y(), b.max.z()}};
-      })
+      .def_property_readonly(
+          "obstacles",
+          [](const Scenario& s) {
+            py::list l;
+            for (const Obstacle& o : s.world.obstacles()) l.append(obstacle_dict(o));
+            return l;
+          },
+          "The static obstacles as dicts of the scenario file's shape (buildings included)")
+      .def_property_readonly("bounds",
+                             [](const Scenario& s) {
+                               const Aabb b = s.world.bounds();
+                               return std::vector<std::vector<double>>{{b.min.x(), b.min.y(), b.min.z()},
+                                                                       {b.max.x(), b.max.y(), b.max.z()}};
+                             })
       .def_property_readonly("seed", [](const Scenario& s) { return s.seed; })
       .def("__repr__", [](const Scenario& s) {
         return "<uavplan.Scenario '" + s.name + "', " + std::to_string(s.uavs.size()) + " UAVs>";
@@ -199,8 +207,9 @@ PYBIND11_MODULE(uavplan, m) {
   py::class_<UavPlan>(m, "UavPlan")
       .def_property_readonly("id", [](const UavPlan& u) { return u.id; })
       .def_property_readonly("status", [](const UavPlan& u) { return std::string(to_string(u.status)); })
-      .def_property_readonly("reason", [](const UavPlan& u) { return std::string(to_string(u.reason)); },
-                             "Why it is not solved: none, stopped, budget, no_route, invalid, conflict or rejected")
+      .def_property_readonly(
+          "reason", [](const UavPlan& u) { return std::string(to_string(u.reason)); },
+          "Why it is not solved: none, stopped, budget, no_route, invalid, conflict or rejected")
       .def_property_readonly("message", [](const UavPlan& u) { return u.message; })
       .def_property_readonly("length_m", [](const UavPlan& u) { return u.length_m; })
       .def_property_readonly("arrival_s", [](const UavPlan& u) { return u.arrival_s; })
@@ -212,28 +221,32 @@ PYBIND11_MODULE(uavplan, m) {
             UavPlan& u = self.cast<UavPlan&>();
             const auto n = static_cast<py::ssize_t>(u.trajectory.size());
             double* data = n ? &u.trajectory.front().t_s : nullptr;
-            py::array_t<double> a({n, py::ssize_t(4)}, {py::ssize_t(sizeof(TrajectorySample)), py::ssize_t(sizeof(double))},
-                                  data, self);  // a view: `self` (and through it the plan) stays alive
+            py::array_t<double> a({n, py::ssize_t(4)},
+                                  {py::ssize_t(sizeof(TrajectorySample)), py::ssize_t(sizeof(double))}, data,
+                                  self);  // a view: `self` (and through it the plan) stays alive
             py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
             return a;
           },
           "N x 4 numpy array (t_s, x, y, z), a read-only view of the plan's memory")
-      .def_property_readonly("waypoints", [](const UavPlan& u) {
-        py::array_t<double> a({py::ssize_t(u.waypoints.size()), py::ssize_t(3)});
-        auto w = a.mutable_unchecked<2>();
-        for (std::size_t i = 0; i < u.waypoints.size(); ++i)
-          for (int k = 0; k < 3; ++k) w(py::ssize_t(i), k) = u.waypoints[i][k];
-        return a;
-      })
+      .def_property_readonly("waypoints",
+                             [](const UavPlan& u) {
+                               py::array_t<double> a({py::ssize_t(u.waypoints.size()), py::ssize_t(3)});
+                               auto w = a.mutable_unchecked<2>();
+                               for (std::size_t i = 0; i < u.waypoints.size(); ++i)
+                                 for (int k = 0; k < 3; ++k) w(py::ssize_t(i), k) = u.waypoints[i][k];
+                               return a;
+                             })
       .def("__repr__", [](const UavPlan& u) {
         return "<uavplan.UavPlan '" + u.id + "' " + std::string(to_string(u.status)) + ", " +
                std::to_string(u.trajectory.size()) + " rows>";
       });
 
   py::class_<Plan, std::shared_ptr<Plan>>(m, "Plan")
-      .def_static("load", [](const std::string& path) { return std::make_shared<Plan>(load_plan(path)); }, py::arg("path"))
-      .def("save", [](const Plan& p, const std::string& path) { write_file_atomic(path, plan_to_json(p)); }, py::arg("path"),
-           "Write plan.json (the same bytes `uavplan plan` writes)")
+      .def_static(
+          "load", [](const std::string& path) { return std::make_shared<Plan>(load_plan(path)); }, py::arg("path"))
+      .def(
+          "save", [](const Plan& p, const std::string& path) { write_file_atomic(path, plan_to_json(p)); },
+          py::arg("path"), "Write plan.json (the same bytes `uavplan plan` writes)")
       .def("to_json", [](const Plan& p) { return plan_to_json(p); })
       .def_property_readonly("status", [](const Plan& p) { return std::string(to_string(p.status)); })
       .def_property_readonly("message", [](const Plan& p) { return p.message; })
@@ -246,26 +259,30 @@ PYBIND11_MODULE(uavplan, m) {
                              [](py::object self) {
                                Plan& p = self.cast<Plan&>();
                                py::list l;
-                               for (UavPlan& u : p.uavs) l.append(py::cast(&u, py::return_value_policy::reference_internal, self));
+                               for (UavPlan& u : p.uavs)
+                                 l.append(py::cast(&u, py::return_value_policy::reference_internal, self));
                                return l;
                              })
-      .def("uav", [](py::object self, const std::string& id) {
-        Plan& p = self.cast<Plan&>();
-        for (UavPlan& u : p.uavs)
-          if (u.id == id) return py::cast(&u, py::return_value_policy::reference_internal, self);
-        throw py::key_error("no UAV '" + id + "' in the plan");
-      })
+      .def("uav",
+           [](py::object self, const std::string& id) {
+             Plan& p = self.cast<Plan&>();
+             for (UavPlan& u : p.uavs)
+               if (u.id == id) return py::cast(&u, py::return_value_policy::reference_internal, self);
+             throw py::key_error("no UAV '" + id + "' in the plan");
+           })
       .def("__repr__", [](const Plan& p) {
-        return "<uavplan.Plan " + std::string(to_string(p.status)) + ", " + p.algorithm + ", " + std::to_string(p.uavs.size()) + " UAVs>";
+        return "<uavplan.Plan " + std::string(to_string(p.status)) + ", " + p.algorithm + ", " +
+               std::to_string(p.uavs.size()) + " UAVs>";
       });
 
   py::class_<Verdict>(m, "Verdict")
       .def_property_readonly("ok", [](const Verdict& v) { return v.violations.empty(); })
-      .def_property_readonly("violations", [](const Verdict& v) {
-        py::list l;
-        for (const Violation& x : v.violations) l.append(violation_dict(x));
-        return l;
-      })
+      .def_property_readonly("violations",
+                             [](const Verdict& v) {
+                               py::list l;
+                               for (const Violation& x : v.violations) l.append(violation_dict(x));
+                               return l;
+                             })
       .def("__bool__", [](const Verdict& v) { return v.violations.empty(); })
       .def("__repr__", [](const Verdict& v) {
         return v.violations.empty() ? std::string("<uavplan.Verdict ok>")
@@ -275,22 +292,27 @@ PYBIND11_MODULE(uavplan, m) {
   m.def("plan", &plan_scenario, py::arg("scenario"), py::arg("algorithm") = py::none(), py::arg("seed") = py::none(),
         py::arg("params") = py::dict(), py::arg("time_limit_s") = py::none(),
         "Plan and verify a scenario (the GIL is released while planning); a plan that does not hold is never solved");
-  m.def("verify", [](const Scenario& sc, const Plan& p) { return Verdict{verify_plan(sc, p)}; }, py::arg("scenario"), py::arg("plan"),
-        "Every violation of the plan against the scenario");
+  m.def(
+      "verify", [](const Scenario& sc, const Plan& p) { return Verdict{verify_plan(sc, p)}; }, py::arg("scenario"),
+      py::arg("plan"), "Every violation of the plan against the scenario");
   m.def("export", &export_plan, py::arg("scenario"), py::arg("plan"), py::arg("formats"), py::arg("dir"),
-        py::arg("firmware") = "px4", py::arg("vehicle") = "multirotor", py::arg("end") = "land", py::arg("fence") = "bounds",
-        py::arg("force") = false, "Write mission files (qgc, wpl, geojson, kml, csv) of a verified plan; returns the paths");
-  m.def("planners", [] {
-    py::list l;
-    for (const PlannerInfo& p : planner_catalog()) {
-      py::dict d;
-      d["name"] = p.name;
-      d["description"] = p.description;
-      d["complete"] = p.complete;
-      d["via_points"] = p.via_points;
-      d["params"] = planner_parameters(p.name);
-      l.append(d);
-    }
-    return l;
-  }, "Every registered planner: name, description and its parameters with their defaults");
+        py::arg("firmware") = "px4", py::arg("vehicle") = "multirotor", py::arg("end") = "land",
+        py::arg("fence") = "bounds", py::arg("force") = false,
+        "Write mission files (qgc, wpl, geojson, kml, csv) of a verified plan; returns the paths");
+  m.def(
+      "planners",
+      [] {
+        py::list l;
+        for (const PlannerInfo& p : planner_catalog()) {
+          py::dict d;
+          d["name"] = p.name;
+          d["description"] = p.description;
+          d["complete"] = p.complete;
+          d["via_points"] = p.via_points;
+          d["params"] = planner_parameters(p.name);
+          l.append(d);
+        }
+        return l;
+      },
+      "Every registered planner: name, description and its parameters with their defaults");
 }

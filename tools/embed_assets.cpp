@@ -35,8 +35,8 @@ int main(int argc, char** argv) {
       if (i % 24 == 0) out << "\n";
       out << static_cast<unsigned>(static_cast<unsigned char>(bytes[i])) << ",";
     }
-    out << "0};\n}  // namespace\nstd::string_view " << name << "() {\n  return {reinterpret_cast<const char*>(k_" << name
-        << "), " << bytes.size() << "};\n}\n";
+    out << "0};\n}  // namespace\nstd::string_view " << name << "() {\n  return {reinterpret_cast<const char*>(k_"
+        << name << "), " << bytes.size() << "};\n}\n";
   }
   out << "}  // namespace uavplan\n";
   std::ofstream f(argv[1], std::ios::binary);

@@ -39,7 +39,8 @@ std::string MpiSession::gather(const std::string& mine) const {
       offsets[r] = static_cast<int>(total);
       total += sizes[r];
     }
-    if (total > std::numeric_limits<int>::max()) throw std::runtime_error("the batch's results exceed 2 GiB; split the sweep");
+    if (total > std::numeric_limits<int>::max())
+      throw std::runtime_error("the batch's results exceed 2 GiB; split the sweep");
     all.resize(static_cast<std::size_t>(total));
   }
   MPI_Gatherv(mine.data(), n, MPI_CHAR, all.data(), sizes.data(), offsets.data(), MPI_CHAR, 0, MPI_COMM_WORLD);

@@ -80,8 +80,10 @@ std::optional<std::vector<RunRecord>> resumed_runs(const BatchArgs& a, const std
 
 std::string format_eta(double s) {
   char buf[32];
-  if (s >= 3600) std::snprintf(buf, sizeof buf, "%dh%02dm", int(s / 3600), int(s / 60) % 60);
-  else std::snprintf(buf, sizeof buf, "%dm%02ds", int(s / 60), int(s) % 60);
+  if (s >= 3600)
+    std::snprintf(buf, sizeof buf, "%dh%02dm", int(s / 3600), int(s / 60) % 60);
+  else
+    std::snprintf(buf, sizeof buf, "%dm%02ds", int(s / 60), int(s) % 60);
   return buf;
 }
 
@@ -105,7 +107,8 @@ void write_ompl_logs(const BatchArgs& a, const Sweep& sweep, const std::vector<R
     std::vector<RunRecord> mine;
     for (const RunRecord& r : all)
       if (r.spec.scenario == scenarios[i]) mine.push_back(r);
-    std::sort(mine.begin(), mine.end(), [](const RunRecord& x, const RunRecord& y) { return x.spec.index < y.spec.index; });
+    std::sort(mine.begin(), mine.end(),
+              [](const RunRecord& x, const RunRecord& y) { return x.spec.index < y.spec.index; });
     OmplLogHeader h;
     h.experiment = sweep.name + (scenarios.size() > 1 ? "-" + fs::path(scenarios[i]).stem().string() : "");
     h.host = host_name();
@@ -116,8 +119,9 @@ void write_ompl_logs(const BatchArgs& a, const Sweep& sweep, const std::vector<R
     h.total_s = total_s;
     fs::path file = a.ompl_log;
     if (scenarios.size() > 1)
-      file = file.parent_path() / (file.stem().string() + "-" + std::to_string(i) + "-" + fs::path(scenarios[i]).stem().string() +
-                                   (file.extension().empty() ? ".log" : file.extension().string()));
+      file = file.parent_path() /
+             (file.stem().string() + "-" + std::to_string(i) + "-" + fs::path(scenarios[i]).stem().string() +
+              (file.extension().empty() ? ".log" : file.extension().string()));
     write_file_atomic(file.string(), ompl_log(mine, h));
     std::cout << "wrote " << file.string() << "\n";
   }
@@ -141,15 +145,16 @@ int run_batch_command(const BatchArgs& a) {
     if (mpi.root()) {
       std::size_t settings = 0;
       for (const auto& p : sweep.planners) settings += grid_size(p.params);
-      std::printf("%zu runs: %zu scenarios x %zu planner settings x %zu parameter settings x %zu seeds\n", run_count(sweep),
-                  sweep.scenarios.size(), settings, grid_size(sweep.params), sweep.seeds.size());
+      std::printf("%zu runs: %zu scenarios x %zu planner settings x %zu parameter settings x %zu seeds\n",
+                  run_count(sweep), sweep.scenarios.size(), settings, grid_size(sweep.params), sweep.seeds.size());
     }
     return kExitOk;
   }
   const bool exists = fs::exists(journal_dir(a.out_dir));
   if (exists && !a.resume) {
     if (mpi.root())
-      std::cerr << a.sweep << ": " << a.out_dir << " holds a batch already: --resume continues it, or choose another folder\n";
+      std::cerr << a.sweep << ": " << a.out_dir
+                << " holds a batch already: --resume continues it, or choose another folder\n";
     return kExitBadInput;
   }
   mpi.barrier();  // every rank has looked before rank 0 touches the folder
@@ -241,9 +246,10 @@ int run_batch_command(const BatchArgs& a) {
   std::cout << summary_table(all);
   std::size_t solved = 0;
   for (const RunRecord& r : all) solved += r.outcome.status == "solved";
-  std::printf("%zu of %zu runs done (%zu this time, %.1f s, %d rank%s x %d jobs), %zu solved; results in %s/results.csv\n",
-              all.size(), runs.size(), all.size() - previous.size(), total_s, mpi.size(), mpi.size() > 1 ? "s" : "",
-              opt.jobs > 0 ? opt.jobs : int(std::max(1u, std::thread::hardware_concurrency())), solved, a.out_dir.c_str());
+  std::printf(
+      "%zu of %zu runs done (%zu this time, %.1f s, %d rank%s x %d jobs), %zu solved; results in %s/results.csv\n",
+      all.size(), runs.size(), all.size() - previous.size(), total_s, mpi.size(), mpi.size() > 1 ? "s" : "",
+      opt.jobs > 0 ? opt.jobs : int(std::max(1u, std::thread::hardware_concurrency())), solved, a.out_dir.c_str());
   if (!a.ompl_log.empty()) write_ompl_logs(a, sweep, all, total_s, started);
   if (stopped && all.size() < runs.size()) {
     std::cerr << "uavplan: interrupted after the runs under way; --resume continues the " << runs.size() - all.size()
@@ -257,8 +263,10 @@ int run_batch_command(const BatchArgs& a) {
 
 void add_batch_command(CLI::App& app, std::function<int()>& run) {
   auto args = std::make_shared<BatchArgs>();
-  CLI::App* cmd = app.add_subcommand("batch", "Run a sweep (scenarios x planners x parameters x seeds), each run planned and verified");
-  cmd->add_option("sweep", args->sweep, "Sweep file (YAML: scenarios, planners, seeds, params, time_limit_s)")->required();
+  CLI::App* cmd = app.add_subcommand(
+      "batch", "Run a sweep (scenarios x planners x parameters x seeds), each run planned and verified");
+  cmd->add_option("sweep", args->sweep, "Sweep file (YAML: scenarios, planners, seeds, params, time_limit_s)")
+      ->required();
   cmd->add_option("-o,--out", args->out_dir, "Output folder: results.csv, timings.csv, runs/, journal/")->required();
   cmd->add_option("--jobs", args->jobs, "Runs at once (default 0: every core)")->check(non_negative_integer());
   cmd->add_flag("--resume", args->resume, "Continue a batch that was stopped or killed, in the same folder");

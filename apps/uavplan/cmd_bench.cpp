@@ -21,7 +21,8 @@ namespace {
 void add_world(CLI::App* cmd, std::function<int()>& run) {
   auto queries = std::make_shared<int>(2000);
   auto seed = std::make_shared<unsigned long long>(7);
-  CLI::App* world = cmd->add_subcommand("world", "World queries: broad phase against brute force, 100-10,000 obstacles");
+  CLI::App* world =
+      cmd->add_subcommand("world", "World queries: broad phase against brute force, 100-10,000 obstacles");
   world->add_option("--queries", *queries, "Queries per world (default 2000)")->check(CLI::PositiveNumber);
   world->add_option("--seed", *seed, "Seed of the random worlds");
   world->callback([queries, seed, &run] {
@@ -50,8 +51,9 @@ void add_movingai(CLI::App* cmd, std::function<int()>& run) {
   m->add_option("--limit", a->options.limit, "Run this many problems, spread evenly over the file (default all)");
   m->add_flag("--json", a->json, "Print JSON instead of the table");
   m->add_flag("!--no-reference", a->options.reference, "Skip the textbook A*");
-  m->footer("Example: uavplan bench movingai ../shared/data/movingai-2d/Boston_0_256.map "
-            "../shared/data/movingai-2d/Boston_0_256.map.scen --algorithm jps");
+  m->footer(
+      "Example: uavplan bench movingai ../shared/data/movingai-2d/Boston_0_256.map "
+      "../shared/data/movingai-2d/Boston_0_256.map.scen --algorithm jps");
   m->callback([a, &run] {
     run = [a] {
       try {
@@ -67,8 +69,8 @@ void add_movingai(CLI::App* cmd, std::function<int()>& run) {
 
   auto blocked = std::make_shared<long long>(2'000'000);
   auto scratch = std::make_shared<std::string>("/tmp/uavplan-a1-probe.3dmap");
-  CLI::App* mem = cmd->add_subcommand("movingai-memory",
-                                      "Resident memory of loading a Warframe A1-size map (896 x 390 x 255), synthesised");
+  CLI::App* mem = cmd->add_subcommand(
+      "movingai-memory", "Resident memory of loading a Warframe A1-size map (896 x 390 x 255), synthesised");
   mem->add_option("--blocked", *blocked, "Blocked voxels in the synthetic map (default 2,000,000)");
   mem->add_option("--scratch", *scratch, "Where to write the synthetic map (removed afterwards)");
   mem->callback([blocked, scratch, &run] {
@@ -76,8 +78,8 @@ void add_movingai(CLI::App* cmd, std::function<int()>& run) {
       const auto probe = bench::probe_a1_memory(*scratch, *blocked);
       std::printf("synthetic A1 map 896 x 390 x 255, %lld blocked voxels, file %.1f MB\n",
                   static_cast<long long>(probe.blocked), probe.file_mb);
-      std::printf("load %.0f ms, grid %.2f MB, peak resident %.1f MB (target < 50 MB): %s\n", probe.load_ms, probe.grid_mb,
-                  probe.peak_rss_mb, probe.peak_rss_mb < 50.0 ? "met" : "MISSED");
+      std::printf("load %.0f ms, grid %.2f MB, peak resident %.1f MB (target < 50 MB): %s\n", probe.load_ms,
+                  probe.grid_mb, probe.peak_rss_mb, probe.peak_rss_mb < 50.0 ? "met" : "MISSED");
       return probe.peak_rss_mb < 50.0 ? kExitOk : kExitNotSolved;
     };
   });
@@ -104,10 +106,11 @@ CLI::App* add_tables(CLI::App* cmd, std::function<int()>& run, const std::string
                      const std::string& files, std::function<std::string(const std::string&, bool*)> tables) {
   auto dir = std::make_shared<std::string>();
   CLI::App* sub = cmd->add_subcommand(name, what);
-  sub->add_option("--scenarios", *dir,
-                  "Folder holding " + files +
-                      " (default: ./scenarios, else the bundled ones beside the binary: ../scenarios from build/uavplan, "
-                      "../share/uavplan/scenarios when installed)");
+  sub->add_option(
+      "--scenarios", *dir,
+      "Folder holding " + files +
+          " (default: ./scenarios, else the bundled ones beside the binary: ../scenarios from build/uavplan, "
+          "../share/uavplan/scenarios when installed)");
   const std::string first = files.substr(0, files.find(' '));
   sub->callback([dir, tables, first, &run] {
     run = [dir, tables, first] {
@@ -126,32 +129,39 @@ CLI::App* add_tables(CLI::App* cmd, std::function<int()>& run, const std::string
 
 void add_papers(CLI::App* cmd, std::function<int()>& run) {
   add_tables(cmd, run, "p4", "P4 tables: directional A* against grid A*, rendezvous, L x M lengths",
-             "p4_table3.yaml and p4_rendezvous.yaml", [](const std::string& d, bool* ok) { return bench::run_p4(d, ok); });
+             "p4_table3.yaml and p4_rendezvous.yaml",
+             [](const std::string& d, bool* ok) { return bench::run_p4(d, ok); });
   auto runs = std::make_shared<int>(20);
-  add_tables(cmd, run, "p1", "P1 tables: global route, colony vs Dijkstra, Table 2 (whole formation mission, A-RRT vs common RRT)",
+  add_tables(cmd, run, "p1",
+             "P1 tables: global route, colony vs Dijkstra, Table 2 (whole formation mission, A-RRT vs common RRT)",
              "p1_formation.yaml", [runs](const std::string& d, bool* ok) { return bench::run_p1(d, *runs, ok); })
       ->add_option("--runs", *runs, "Seeded runs of the whole mission per method (default: 20)")
       ->check(CLI::Range(1, 100000));
   auto worlds = std::make_shared<int>(100);
-  add_tables(cmd, run, "p5-coarse", "P5 coarse planning: multi- vs single-step PSO (4.1), entry headings (4.2a), random large worlds",
-             "p5_coarse.yaml and p5_entry.yaml", [worlds](const std::string& d, bool* ok) { return bench::run_p5_coarse(d, *worlds, ok); })
+  add_tables(cmd, run, "p5-coarse",
+             "P5 coarse planning: multi- vs single-step PSO (4.1), entry headings (4.2a), random large worlds",
+             "p5_coarse.yaml and p5_entry.yaml",
+             [worlds](const std::string& d, bool* ok) { return bench::run_p5_coarse(d, *worlds, ok); })
       ->add_option("--worlds", *worlds, "Random large worlds (default: 100)")
       ->check(CLI::Range(0, 100000));
-  add_tables(cmd, run, "p5", "P5 whole mission: the phase timetable beside Table 2, separation per phase, the 45 -> 15 deg turn",
+  add_tables(cmd, run, "p5",
+             "P5 whole mission: the phase timetable beside Table 2, separation per phase, the 45 -> 15 deg turn",
              "p5_mission.yaml", [](const std::string& d, bool* ok) { return bench::run_p5(d, ok); });
-  add_tables(cmd, run, "p3", "P3 tables: group scores before/after smoothing, traditional baseline, scaling", "p3_group9.yaml",
-             [](const std::string& d, bool* ok) { return bench::run_p3(d, ok); });
-  add_tables(cmd, run, "p2", "P2 tables: times to the task points for 25-100 ants, ant colony vs the A* optimum", "p2_city.yaml",
-             [](const std::string& d, bool* ok) { return bench::run_p2(d, ok); });
+  add_tables(cmd, run, "p3", "P3 tables: group scores before/after smoothing, traditional baseline, scaling",
+             "p3_group9.yaml", [](const std::string& d, bool* ok) { return bench::run_p3(d, ok); });
+  add_tables(cmd, run, "p2", "P2 tables: times to the task points for 25-100 ants, ant colony vs the A* optimum",
+             "p2_city.yaml", [](const std::string& d, bool* ok) { return bench::run_p2(d, ok); });
 }
 
 void add_p1_local(CLI::App* cmd, std::function<int()>& run) {
   auto opt = std::make_shared<bench::P1LocalOptions>();
   auto json = std::make_shared<bool>(false);
-  CLI::App* p = cmd->add_subcommand("p1-local", "P1 Table 1: improved vs common RRT vs OMPL RRT/RRTConnect/RRT* in the 40 m x 45 m window");
+  CLI::App* p = cmd->add_subcommand(
+      "p1-local", "P1 Table 1: improved vs common RRT vs OMPL RRT/RRTConnect/RRT* in the 40 m x 45 m window");
   p->add_option("--problems", opt->problems, "Seeded local problems (default 200)")->check(CLI::PositiveNumber);
   p->add_option("--seed", opt->seed, "Seed of the problems (default 1)");
-  p->add_option("--rrtstar-ms", opt->rrtstar_budget_ms, "RRT*'s time budget per problem (default 25 ms)")->check(CLI::PositiveNumber);
+  p->add_option("--rrtstar-ms", opt->rrtstar_budget_ms, "RRT*'s time budget per problem (default 25 ms)")
+      ->check(CLI::PositiveNumber);
   p->add_flag("--json", *json, "Print one JSON object per planner instead of the table");
   p->callback([opt, json, &run] {
     run = [opt, json] {
@@ -164,7 +174,8 @@ void add_p1_local(CLI::App* cmd, std::function<int()>& run) {
 
 void add_soak(CLI::App* cmd, std::function<int()>& run) {
   auto opt = std::make_shared<bench::SoakOptions>();
-  CLI::App* s = cmd->add_subcommand("soak", "Random worlds per planner and mission: every claimed solution must verify");
+  CLI::App* s =
+      cmd->add_subcommand("soak", "Random worlds per planner and mission: every claimed solution must verify");
   s->add_option("--worlds", opt->worlds, "Random worlds per row (default 1000)")->check(CLI::PositiveNumber);
   s->add_option("--seed", opt->seed, "Seed of the worlds (default 1)");
   s->callback([opt, &run] {

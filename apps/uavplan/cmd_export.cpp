@@ -10,7 +10,8 @@ namespace uavplan::cli {
 
 std::optional<std::string> export_request_problem(const Scenario& sc, const ExportArgs& a) {
   if (a.formats.empty()) {
-    if (a.options_given) return std::string("--firmware, --vehicle, --end, --fence and --force apply to --export: give the formats too");
+    if (a.options_given)
+      return std::string("--firmware, --vehicle, --end, --fence and --force apply to --export: give the formats too");
     return std::nullopt;
   }
   for (const std::string& f : a.formats)
@@ -39,8 +40,9 @@ void add_export_options(CLI::App& cmd, ExportArgs& a, bool formats_required) {
                  "rtl (back to home, verified), loiter (at the goal) or none")
       ->check(CLI::IsMember({"land", "rtl", "loiter", "none"}))
       ->each(given);
-  cmd.add_option("--fence", a.fence,
-                 "Geofence of the .plan: none, bounds (the world's bounds and the 16 largest exclusions; default) or all")
+  cmd.add_option(
+         "--fence", a.fence,
+         "Geofence of the .plan: none, bounds (the world's bounds and the 16 largest exclusions; default) or all")
       ->check(CLI::IsMember({"none", "bounds", "all"}))
       ->each(given);
   cmd.add_flag("--force", a.force, "Write the UAVs that hold even when others do not (those are named on stderr)")
@@ -56,11 +58,11 @@ int prepare_exports(const std::string& scenario_path, const Scenario& sc, const 
     if (flights.uavs.empty() || (!flights.holds() && !a.force)) {
       const std::size_t bad = plan.uavs.size() - flights.uavs.size();
       std::cerr << scenario_path << ": export refused: "
-                << (bad ? std::to_string(bad) + " of " + std::to_string(plan.uavs.size()) + " UAVs do not hold" : "the plan does not hold")
+                << (bad ? std::to_string(bad) + " of " + std::to_string(plan.uavs.size()) + " UAVs do not hold"
+                        : "the plan does not hold")
                 << "; nothing written\n";
       for (const std::string& why : flights.left_out) std::cerr << "  " << why << "\n";
-      if (!flights.uavs.empty())
-        std::cerr << "  (--force writes the " << flights.uavs.size() << " UAVs that hold)\n";
+      if (!flights.uavs.empty()) std::cerr << "  (--force writes the " << flights.uavs.size() << " UAVs that hold)\n";
       return kExitNotSolved;
     }
     for (const std::string& name : a.formats) {

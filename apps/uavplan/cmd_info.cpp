@@ -16,10 +16,14 @@ namespace {
 
 const char* shape_name(const Obstacle& o) {
   switch (o.index()) {
-    case 0: return "sphere";
-    case 1: return "cylinder";
-    case 2: return "box";
-    default: return "prism";
+    case 0:
+      return "sphere";
+    case 1:
+      return "cylinder";
+    case 2:
+      return "box";
+    default:
+      return "prism";
   }
 }
 
@@ -38,7 +42,8 @@ void print_world(const Scenario& sc) {
   else
     std::printf("terrain   none\n");
   std::printf("moving    %zu\n", w.moving().size());
-  if (sc.origin) std::printf("origin    lat %.7f lon %.7f alt %.2f m\n", sc.origin->lat_deg, sc.origin->lon_deg, sc.origin->alt_m);
+  if (sc.origin)
+    std::printf("origin    lat %.7f lon %.7f alt %.2f m\n", sc.origin->lat_deg, sc.origin->lon_deg, sc.origin->alt_m);
 }
 
 // What the mission type itself holds: via points, a shape, an airfield and task points.

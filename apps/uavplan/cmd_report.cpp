@@ -30,7 +30,8 @@ int run_report(const Args& a) {
 
 void add_report_command(CLI::App& app, std::function<int()>& run) {
   auto args = std::make_shared<Args>();
-  CLI::App* cmd = app.add_subcommand("report", "Write a self-contained HTML report: 3-D view, charts, metrics, verification");
+  CLI::App* cmd =
+      app.add_subcommand("report", "Write a self-contained HTML report: 3-D view, charts, metrics, verification");
   cmd->add_option("scenario", args->scenario, "Scenario file")->required();
   cmd->add_option("plan", args->plan, "Plan file (plan.json)")->required();
   cmd->add_option("-o,--out", args->out, "Report file (default: out/report.html)");

@@ -8,9 +8,7 @@
 
 namespace uavplan::cli {
 namespace {
-double now_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
+double now_s() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 }  // namespace
 
 Progress::Progress() : started_s_(now_s()), tty_(::isatty(STDERR_FILENO) == 1) {}

@@ -4,8 +4,8 @@
 #include <unistd.h>
 
 #include <atomic>
-#include <csignal>
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
 #include <string>
 
@@ -32,8 +32,9 @@ CLI::Validator positive_number() {
   return CLI::Validator(
       [](std::string& v) {
         double x = 0.0;
-        return CLI::detail::lexical_cast(v, x) && x > 0.0 && std::isfinite(x) ? std::string()
-                                                                             : "must be a positive number, got '" + v + "'";
+        return CLI::detail::lexical_cast(v, x) && x > 0.0 && std::isfinite(x)
+                   ? std::string()
+                   : "must be a positive number, got '" + v + "'";
       },
       "POSITIVE");
 }
@@ -51,7 +52,7 @@ CLI::Validator non_negative_integer() {
 }
 
 void install_interrupt_handlers() {
-  struct sigaction sa{};
+  struct sigaction sa {};
   sa.sa_handler = on_interrupt;
   sigemptyset(&sa.sa_mask);
   sigaction(SIGINT, &sa, nullptr);
@@ -85,13 +86,15 @@ std::uint64_t default_memory_cap_bytes() {
 void add_run_options(CLI::App& cmd, RunArgs& a) {
   cmd.add_option("--time-limit", a.time_limit_s, "Stop after this many seconds of wall time (the whole command)")
       ->check(positive_number());
-  cmd.add_option("--threads", a.threads, "Threads the planners may use (default 0: every core); plans are the same for any count")
+  cmd.add_option("--threads", a.threads,
+                 "Threads the planners may use (default 0: every core); plans are the same for any count")
       ->check(non_negative_integer());
   cmd.add_option("--max-memory", a.max_memory_bytes,
                  "Memory a planner's grids may take, e.g. 512M or 8G (default half the machine's RAM; 0: no cap)")
       ->check(CLI::Validator(
           [](std::string& v) {
-            return v.find('-') == std::string::npos ? std::string() : "must be a size such as 512M or 8G, got '" + v + "'";
+            return v.find('-') == std::string::npos ? std::string()
+                                                    : "must be a size such as 512M or 8G, got '" + v + "'";
           },
           "SIZE"))
       ->transform(CLI::AsSizeValue(false));

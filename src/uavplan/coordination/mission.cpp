@@ -6,8 +6,8 @@
 #include <utility>
 
 #include "uavplan/coordination/formation/formation_mission.h"
-#include "uavplan/coordination/group/group_mission.h"
 #include "uavplan/coordination/formation_mission/phased_formation_mission.h"
+#include "uavplan/coordination/group/group_mission.h"
 #include "uavplan/coordination/rendezvous/rendezvous_mission.h"
 #include "uavplan/coordination/routes/routes_mission.h"
 #include "uavplan/planning/registry.h"
@@ -48,13 +48,16 @@ std::string mission_type_list() {
 std::string mission_algorithm(const Scenario& sc, const std::optional<std::string>& asked_cli) {
   const Mission* mission = find_mission(sc.mission.type);
   const std::vector<std::string> allowed = mission ? mission->algorithms() : std::vector<std::string>{};
-  const std::optional<std::string> asked =
-      asked_cli ? asked_cli : sc.planner.algorithm_given ? std::optional<std::string>(sc.planner.algorithm) : std::nullopt;
+  const std::optional<std::string> asked = asked_cli ? asked_cli
+                                           : sc.planner.algorithm_given
+                                               ? std::optional<std::string>(sc.planner.algorithm)
+                                               : std::nullopt;
   const std::string type(to_string(sc.mission.type));
   if (!asked) return mission ? mission->default_algorithm() : std::string("astar");
   if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), *asked) == allowed.end()) {
     std::string list;
-    for (std::size_t i = 0; i < allowed.size(); ++i) list += (i ? (i + 1 == allowed.size() ? " or " : ", ") : "") + allowed[i];
+    for (std::size_t i = 0; i < allowed.size(); ++i)
+      list += (i ? (i + 1 == allowed.size() ? " or " : ", ") : "") + allowed[i];
     throw std::invalid_argument("a " + type + " mission plans with " + list + ", not '" + *asked + "'");
   }
   if (sc.mission.type == MissionType::route)
@@ -63,7 +66,8 @@ std::string mission_algorithm(const Scenario& sc, const std::optional<std::strin
         std::string list;
         for (const PlannerInfo& q : planner_catalog())
           if (q.via_points) list += (list.empty() ? "" : ", ") + q.name;
-        throw std::invalid_argument("'" + *asked + "' does not plan through via points; a route mission plans with " + list);
+        throw std::invalid_argument("'" + *asked + "' does not plan through via points; a route mission plans with " +
+                                    list);
       }
   return *asked;
 }

@@ -20,8 +20,8 @@ struct MissionOptions {
   Params params;                         // merged over the scenario's planner params
   std::uint64_t seed = 1;
   StopCondition stop;
-  double max_sample_dt_s = 1.0;          // longest time between trajectory samples
-  double delay_step_s = 1.0;             // departure delays are tried in these steps
+  double max_sample_dt_s = 1.0;  // longest time between trajectory samples
+  double delay_step_s = 1.0;     // departure delays are tried in these steps
   std::function<void(std::size_t done, std::size_t total)> progress;
 };
 

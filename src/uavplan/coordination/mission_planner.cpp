@@ -27,7 +27,8 @@ void sort_params(const Mission* mission, MissionContext& ctx, std::vector<std::s
     }
     std::string others;
     for (const PlannerInfo& p : planner_catalog())
-      if (p.name != ctx.algorithm && planner_accepts(p.name, key, value)) others += (others.empty() ? "" : ", ") + p.name;
+      if (p.name != ctx.algorithm && planner_accepts(p.name, key, value))
+        others += (others.empty() ? "" : ", ") + p.name;
     if (others.empty()) {
       kept[key] = value;  // nobody's: the planner names it as unknown
       continue;

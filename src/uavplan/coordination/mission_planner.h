@@ -2,8 +2,8 @@
 // planner, and collects the UAVs' plans into one Plan with its status.
 #pragma once
 
-#include "uavplan/coordination/mission.h"
 #include "uavplan/coordination/contract/separation.h"
+#include "uavplan/coordination/mission.h"
 
 namespace uavplan {
 

@@ -20,7 +20,8 @@ World raised(const World& w, double by_m) {
       for (int i = 0; i < s.terrain->nx(); ++i) h.push_back(s.terrain->height(i, j) + by_m);
     s.terrain = TerrainGrid(s.terrain->origin(), s.terrain->cell_m(), s.terrain->nx(), s.terrain->ny(), std::move(h));
   }
-  s.obstacles.push_back(Box{Vec3(b.min.x() - 1, b.min.y() - 1, b.min.z() - 1), Vec3(b.max.x() + 1, b.max.y() + 1, b.min.z() + by_m)});
+  s.obstacles.push_back(
+      Box{Vec3(b.min.x() - 1, b.min.y() - 1, b.min.z() - 1), Vec3(b.max.x() + 1, b.max.y() + 1, b.min.z() + by_m)});
   return World(std::move(s));
 }
 
@@ -49,7 +50,8 @@ double lift_height_m(const Scenario& sc, const UavSpec& u) { return planning_min
 std::string ground_column_problem(const Scenario& sc, const UavSpec& u, const Vec3& p) {
   const double keep = keep_off_m(u), ground = sc.world.ground_z(p.x(), p.y());
   const Vec3 foot(p.x(), p.y(), ground), top(p.x(), p.y(), ground + lift_height_m(sc, u));
-  if (!sc.world.in_bounds(top)) return "the world is not high enough to lift off there (" + num_text(top.z() - ground) + " m needed)";
+  if (!sc.world.in_bounds(top))
+    return "the world is not high enough to lift off there (" + num_text(top.z() - ground) + " m needed)";
   const double c = sc.world.ground_leg_clearance(foot, top, keep, ground);
   if (c >= keep - 1e-6) return {};  // touching the ground it stands on at exactly keep_m above it
   return "its vertical column up to " + num_text(top.z() - ground) + " m above the ground comes within " + num_text(c) +
@@ -62,7 +64,8 @@ std::vector<PlacementProblem> placement_problems(const Scenario& sc) {
   const Scenario& planned = v.identity ? sc : v.scenario;
   const double agl = planning_min_agl_m(sc);
   auto check = [&](const UavSpec& u, const UavSpec& pu, const Vec3& p, const Vec3& pp) -> std::string {
-    if (sc.world.on_ground(p)) return ground_column_problem(sc, u, Vec3(pp.x(), pp.y(), sc.world.ground_z(pp.x(), pp.y())));
+    if (sc.world.on_ground(p))
+      return ground_column_problem(sc, u, Vec3(pp.x(), pp.y(), sc.world.ground_z(pp.x(), pp.y())));
     const double keep = keep_off_m(u);
     const double h = sc.world.lowest_height_above_ground(p, p);
     if (agl > 0.0 && h < agl + keep)
@@ -115,8 +118,9 @@ PlanningView planning_view(const Scenario& sc, bool shift_for_takeoff) {
       v.ground.goal[i] = Vec3(goal[i]->x(), goal[i]->y(), g);
     }
   }
-  const bool lifted = std::any_of(v.lift_off.begin(), v.lift_off.end(), [](const auto& p) { return p.has_value(); }) ||
-                      std::any_of(v.touch_down.begin(), v.touch_down.end(), [](const auto& p) { return p.has_value(); });
+  const bool lifted =
+      std::any_of(v.lift_off.begin(), v.lift_off.end(), [](const auto& p) { return p.has_value(); }) ||
+      std::any_of(v.touch_down.begin(), v.touch_down.end(), [](const auto& p) { return p.has_value(); });
   if (agl <= 0.0 && !bodies && !lifted && !moved) return v;
   v.identity = false;
   v.scenario = sc;
@@ -144,7 +148,8 @@ void fly_to(Trajectory& tr, const Vec3& to, double v_mps, double max_dt_s) {
   const Vec3 from = tr.back().p;
   const double t0 = tr.back().t_s, dur = (to - from).norm() / v_mps;
   const int pieces = std::max(1, static_cast<int>(std::ceil(dur / max_dt_s - 1e-9)));
-  for (int k = 1; k <= pieces; ++k) tr.push_back({t0 + dur * k / pieces, k == pieces ? to : Vec3(from + (to - from) * k / pieces)});
+  for (int k = 1; k <= pieces; ++k)
+    tr.push_back({t0 + dur * k / pieces, k == pieces ? to : Vec3(from + (to - from) * k / pieces)});
 }
 
 // The take-off of a trajectory that begins at its lift-off point: a wait there long enough is

@@ -19,16 +19,16 @@
 #include <string>
 #include <vector>
 
-#include "uavplan/coordination/mission.h"
 #include "uavplan/coordination/contract/plan.h"
 #include "uavplan/coordination/contract/scenario.h"
+#include "uavplan/coordination/mission.h"
 
 namespace uavplan {
 
 struct PlanningView {
-  bool identity = true;                     // nothing to change: plan the scenario as it is
-  Scenario scenario;                        // what is planned (when not the identity)
-  double takeoff_s = 0.0;                   // the planning's t = 0 in the plan's time
+  bool identity = true;                         // nothing to change: plan the scenario as it is
+  Scenario scenario;                            // what is planned (when not the identity)
+  double takeoff_s = 0.0;                       // the planning's t = 0 in the plan's time
   std::vector<std::optional<Vec3>> lift_off;    // per UAV, for a start on the ground
   std::vector<std::optional<Vec3>> touch_down;  // per UAV, for a goal on the ground
   GroundPoints ground;                          // where those legs begin and end on the ground

@@ -31,9 +31,9 @@ Conflict find_conflict(const Scenario& sc, const UavSpec& uav, const Trajectory&
   return {};
 }
 
-Departure earliest_departure(const Scenario& sc, const UavSpec& u, const std::vector<Vec3>& waypoints, double max_delay_s,
-                             const Committed& committed, double delay_step_s, double max_sample_dt_s,
-                             const StopCondition& stop, bool moving_obstacles) {
+Departure earliest_departure(const Scenario& sc, const UavSpec& u, const std::vector<Vec3>& waypoints,
+                             double max_delay_s, const Committed& committed, double delay_step_s,
+                             double max_sample_dt_s, const StopCondition& stop, bool moving_obstacles) {
   Departure d;
   for (int k = 0; k == 0 || (delay_step_s > 0.0 && k * delay_step_s <= max_delay_s + 1e-9); ++k) {
     if (stop.should_stop()) {
@@ -58,7 +58,8 @@ void fail_all(const Scenario& sc, const std::string& why, Plan& plan) {
   for (const UavSpec& u : sc.uavs) plan.uavs.push_back(flown_plan(u.id, false, why, {}, {}));
 }
 
-UavPlan flown_plan(const std::string& id, bool ok, std::string message, std::vector<Vec3> waypoints, Trajectory trajectory) {
+UavPlan flown_plan(const std::string& id, bool ok, std::string message, std::vector<Vec3> waypoints,
+                   Trajectory trajectory) {
   UavPlan up;
   up.id = id;
   up.status = ok ? Status::solved : Status::failed;

@@ -37,9 +37,9 @@ struct Departure {
   Trajectory trajectory;
   Conflict first;
 };
-Departure earliest_departure(const Scenario& sc, const UavSpec& u, const std::vector<Vec3>& waypoints, double max_delay_s,
-                             const Committed& committed, double delay_step_s, double max_sample_dt_s,
-                             const StopCondition& stop, bool moving_obstacles = true);
+Departure earliest_departure(const Scenario& sc, const UavSpec& u, const std::vector<Vec3>& waypoints,
+                             double max_delay_s, const Committed& committed, double delay_step_s,
+                             double max_sample_dt_s, const StopCondition& stop, bool moving_obstacles = true);
 
 // A UAV's entry in the plan: solved with its route and trajectory, or failed with the message.
 UavPlan flown_plan(const std::string& id, bool ok, std::string message, std::vector<Vec3> waypoints,

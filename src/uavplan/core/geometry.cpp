@@ -94,15 +94,14 @@ double cross2(const Vec2& o, const Vec2& a, const Vec2& b) {
   return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
 }
 bool on_segment(const Vec2& a, const Vec2& b, const Vec2& p) {
-  return std::min(a.x(), b.x()) <= p.x() && p.x() <= std::max(a.x(), b.x()) &&
-         std::min(a.y(), b.y()) <= p.y() && p.y() <= std::max(a.y(), b.y());
+  return std::min(a.x(), b.x()) <= p.x() && p.x() <= std::max(a.x(), b.x()) && std::min(a.y(), b.y()) <= p.y() &&
+         p.y() <= std::max(a.y(), b.y());
 }
 }  // namespace
 
 bool segments_intersect_2d(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
   const double d1 = cross2(c, d, a), d2 = cross2(c, d, b), d3 = cross2(a, b, c), d4 = cross2(a, b, d);
-  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0)))
-    return true;
+  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return true;
   if (d1 == 0 && on_segment(c, d, a)) return true;
   if (d2 == 0 && on_segment(c, d, b)) return true;
   if (d3 == 0 && on_segment(a, b, c)) return true;
@@ -129,8 +128,7 @@ std::optional<std::pair<std::size_t, std::size_t>> polygon_self_intersection(std
 double polygon_signed_area(std::span<const Vec2> poly) {
   double a = 0.0;
   const std::size_t n = poly.size();
-  for (std::size_t i = 0, j = n - 1; i < n; j = i++)
-    a += poly[j].x() * poly[i].y() - poly[i].x() * poly[j].y();
+  for (std::size_t i = 0, j = n - 1; i < n; j = i++) a += poly[j].x() * poly[i].y() - poly[i].x() * poly[j].y();
   return 0.5 * a;
 }
 

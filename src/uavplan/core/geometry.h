@@ -28,12 +28,16 @@ double golden_section_min(F&& f, double lo, double hi) {
   double best = std::min({f(lo), f(hi), fc, fd});
   for (int i = 0; i < 64 && best > 0.0 && b - a > 1e-13 * (hi - lo); ++i) {
     if (fc <= fd) {
-      b = d; d = c; fd = fc;
+      b = d;
+      d = c;
+      fd = fc;
       c = b - kInvPhi * (b - a);
       fc = f(c);
       best = std::min(best, fc);
     } else {
-      a = c; c = d; fc = fd;
+      a = c;
+      c = d;
+      fc = fd;
       d = a + kInvPhi * (b - a);
       fd = f(d);
       best = std::min(best, fd);

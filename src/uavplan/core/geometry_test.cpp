@@ -77,11 +77,13 @@ TEST(Geometry, PolygonSelfIntersection) {
   const auto bowtie = polygon_self_intersection(std::vector<Vec2>{{200, 200}, {260, 260}, {260, 200}, {200, 262}});
   ASSERT_TRUE(bowtie);
   EXPECT_EQ(*bowtie, std::make_pair(std::size_t{0}, std::size_t{2}));
-  const auto spike = polygon_self_intersection(std::vector<Vec2>{{0, 0}, {10, 0}, {10, 10}, {10, 20}, {10, 5}, {0, 10}});
+  const auto spike =
+      polygon_self_intersection(std::vector<Vec2>{{0, 0}, {10, 0}, {10, 10}, {10, 20}, {10, 5}, {0, 10}});
   ASSERT_TRUE(spike);
   // A large simple polygon (a 20,000-gon) is accepted quickly; the same with two vertices swapped is not.
   std::vector<Vec2> round;
-  for (int k = 0; k < 20000; ++k) round.emplace_back(100 * std::cos(2 * kPi * k / 20000), 100 * std::sin(2 * kPi * k / 20000));
+  for (int k = 0; k < 20000; ++k)
+    round.emplace_back(100 * std::cos(2 * kPi * k / 20000), 100 * std::sin(2 * kPi * k / 20000));
   EXPECT_FALSE(polygon_self_intersection(round));
   std::swap(round[10], round[5000]);
   EXPECT_TRUE(polygon_self_intersection(round));

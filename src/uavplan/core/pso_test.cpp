@@ -33,7 +33,9 @@ TEST(Pso, StaysInTheBoxAndStopsWhenStalled) {
 
 TEST(Pso, DeathPenaltyKeepsToTheFeasibleSetAndASeedIsNeverLost) {
   // Feasible: x0 <= 0 only. Seeded with a feasible point.
-  const auto f = [](std::span<const double> x) { return x[0] > 0.0 ? std::numeric_limits<double>::infinity() : sphere_at(x); };
+  const auto f = [](std::span<const double> x) {
+    return x[0] > 0.0 ? std::numeric_limits<double>::infinity() : sphere_at(x);
+  };
   const std::array<double, 2> lo{-10, -10}, hi{10, 10}, seed{-5, 5};
   PsoOptions o;
   o.iterations = 0;  // the seed alone may be the best of a random first swarm

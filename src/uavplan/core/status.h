@@ -10,9 +10,12 @@ enum class Status { solved, partial, failed };
 
 constexpr std::string_view to_string(Status s) {
   switch (s) {
-    case Status::solved: return "solved";
-    case Status::partial: return "partial";
-    case Status::failed: return "failed";
+    case Status::solved:
+      return "solved";
+    case Status::partial:
+      return "partial";
+    case Status::failed:
+      return "failed";
   }
   return "failed";
 }
@@ -21,24 +24,31 @@ constexpr std::string_view to_string(Status s) {
 // batch's status column and the plan file branch on. The message says it in words for people;
 // nothing reads an outcome from a message.
 enum class Reason {
-  none,        // solved, or nothing more to say
-  stopped,     // the stop condition (a time limit, an interrupt) ended planning first
-  budget,      // the planner's own budget ran out (max_nodes, max_expansions, iterations, memory)
-  no_route,    // the search ended without a route (none exists, or none at this resolution)
-  invalid,     // the problem cannot be posed (no goal, a start the mission cannot use)
-  conflict,    // the other UAVs or the moving obstacles leave it no way (separation, departure)
-  rejected,    // the verifier found a violation in what was planned
+  none,      // solved, or nothing more to say
+  stopped,   // the stop condition (a time limit, an interrupt) ended planning first
+  budget,    // the planner's own budget ran out (max_nodes, max_expansions, iterations, memory)
+  no_route,  // the search ended without a route (none exists, or none at this resolution)
+  invalid,   // the problem cannot be posed (no goal, a start the mission cannot use)
+  conflict,  // the other UAVs or the moving obstacles leave it no way (separation, departure)
+  rejected,  // the verifier found a violation in what was planned
 };
 
 constexpr std::string_view to_string(Reason r) {
   switch (r) {
-    case Reason::none: return "none";
-    case Reason::stopped: return "stopped";
-    case Reason::budget: return "budget";
-    case Reason::no_route: return "no_route";
-    case Reason::invalid: return "invalid";
-    case Reason::conflict: return "conflict";
-    case Reason::rejected: return "rejected";
+    case Reason::none:
+      return "none";
+    case Reason::stopped:
+      return "stopped";
+    case Reason::budget:
+      return "budget";
+    case Reason::no_route:
+      return "no_route";
+    case Reason::invalid:
+      return "invalid";
+    case Reason::conflict:
+      return "conflict";
+    case Reason::rejected:
+      return "rejected";
   }
   return "none";
 }

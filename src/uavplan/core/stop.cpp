@@ -35,12 +35,13 @@ StopCondition StopCondition::operator|(const StopCondition& other) const {
   StopCondition c = *this;
   if (other.deadline_) c.deadline_ = c.deadline_ ? std::min(*c.deadline_, *other.deadline_) : *other.deadline_;
   if (other.max_iterations_)
-    c.max_iterations_ = c.max_iterations_ ? std::min(*c.max_iterations_, *other.max_iterations_)
-                                          : *other.max_iterations_;
+    c.max_iterations_ =
+        c.max_iterations_ ? std::min(*c.max_iterations_, *other.max_iterations_) : *other.max_iterations_;
   c.cancel_flags_.insert(c.cancel_flags_.end(), other.cancel_flags_.begin(), other.cancel_flags_.end());
   if (other.threads_ > 0) c.threads_ = c.threads_ > 0 ? std::min(c.threads_, other.threads_) : other.threads_;
   if (other.memory_cap_bytes_ > 0)
-    c.memory_cap_bytes_ = c.memory_cap_bytes_ > 0 ? std::min(c.memory_cap_bytes_, other.memory_cap_bytes_) : other.memory_cap_bytes_;
+    c.memory_cap_bytes_ =
+        c.memory_cap_bytes_ > 0 ? std::min(c.memory_cap_bytes_, other.memory_cap_bytes_) : other.memory_cap_bytes_;
   return c;
 }
 

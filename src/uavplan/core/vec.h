@@ -17,16 +17,18 @@ struct Aabb {
 
   static Aabb of(const Vec3& a, const Vec3& b) { return {a.cwiseMin(b), a.cwiseMax(b)}; }
   bool empty() const { return (min.array() > max.array()).any(); }
-  void extend(const Vec3& p) { min = min.cwiseMin(p); max = max.cwiseMax(p); }
-  void extend(const Aabb& b) { min = min.cwiseMin(b.min); max = max.cwiseMax(b.max); }
-  Aabb inflated(double margin) const {
-    return {min.array() - margin, max.array() + margin};
+  void extend(const Vec3& p) {
+    min = min.cwiseMin(p);
+    max = max.cwiseMax(p);
   }
+  void extend(const Aabb& b) {
+    min = min.cwiseMin(b.min);
+    max = max.cwiseMax(b.max);
+  }
+  Aabb inflated(double margin) const { return {min.array() - margin, max.array() + margin}; }
   Vec3 center() const { return 0.5 * (min + max); }
   Vec3 extent() const { return max - min; }
-  bool contains(const Vec3& p) const {
-    return (p.array() >= min.array()).all() && (p.array() <= max.array()).all();
-  }
+  bool contains(const Vec3& p) const { return (p.array() >= min.array()).all() && (p.array() <= max.array()).all(); }
   bool overlaps(const Aabb& b) const {
     return (min.array() <= b.max.array()).all() && (b.min.array() <= max.array()).all();
   }

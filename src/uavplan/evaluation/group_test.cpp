@@ -16,10 +16,13 @@ namespace {
 Scenario p3_group(bool three_d) {
   WorldSpec ws;
   ws.bounds = Aabb{Vec3(-2, -2, 0), Vec3(20, 20, three_d ? 8 : 0)};
-  const double obs[11][2] = {{4, 3}, {4, 4}, {4, 5}, {5, 3.5}, {5, 4.5}, {5, 5.5}, {5.5, 4}, {5.5, 5}, {6, 4}, {6, 5}, {6, 6}};
+  const double obs[11][2] = {{4, 3},   {4, 4},   {4, 5}, {5, 3.5}, {5, 4.5}, {5, 5.5},
+                             {5.5, 4}, {5.5, 5}, {6, 4}, {6, 5},   {6, 6}};
   for (const auto& o : obs) {
-    if (three_d) ws.obstacles.push_back(Cylinder{Vec2(o[0], o[1]), 0.15, 0, 8});
-    else ws.obstacles.push_back(Sphere{Vec3(o[0], o[1], 0), 0.15});
+    if (three_d)
+      ws.obstacles.push_back(Cylinder{Vec2(o[0], o[1]), 0.15, 0, 8});
+    else
+      ws.obstacles.push_back(Sphere{Vec3(o[0], o[1], 0), 0.15});
   }
   Scenario sc;
   sc.name = "p3";

@@ -130,7 +130,8 @@ void compute_metrics(const Scenario& sc, Plan& plan) {
       // formation_mission: in the air (on the ground only bodies count, and a landed UAV is gone)
       min_sep = std::min(min_sep, sc.mission.type == MissionType::formation_mission
                                       ? airfield_encounter(sc, *sc.find_uav(flown[pr.i]->id), *trs[pr.i],
-                                                           *sc.find_uav(flown[pr.j]->id), *trs[pr.j]).airborne_min_m
+                                                           *sc.find_uav(flown[pr.j]->id), *trs[pr.j])
+                                            .airborne_min_m
                                       : closest_approach(*trs[pr.i], *trs[pr.j]).distance_m);
     }
   }

@@ -29,12 +29,12 @@ P3Score p3_score(std::span<const Vec3> points, const World& world, const P3Weigh
 
 struct UavMetrics {
   double length_m = 0.0;
-  double flight_time_s = 0.0;   // from departure to arrival
+  double flight_time_s = 0.0;  // from departure to arrival
   // Off the take-off and landing legs (ground_legs.h), as the verifier checks them:
   double max_turn_deg = 0.0;
   double max_climb_deg = 0.0;
-  double min_clearance_m = 0.0; // to static obstacles and terrain (+inf when there are none)
-  double min_agl_m = 0.0;       // lowest height above the ground (+inf in a flat world)
+  double min_clearance_m = 0.0;  // to static obstacles and terrain (+inf when there are none)
+  double min_agl_m = 0.0;        // lowest height above the ground (+inf in a flat world)
   double p1_cost = 0.0;
   P3Score p3;
 };

@@ -38,8 +38,7 @@ void expect_claims_hold(const Scenario& sc, const Plan& plan, const std::string&
       EXPECT_FALSE(u.message.empty()) << what << " " << u.id << ": failed without a reason";
       continue;
     }
-    for (const Violation& v : violations)
-      EXPECT_TRUE(v.uav != u.id) << what << ": solved but " << describe(v);
+    for (const Violation& v : violations) EXPECT_TRUE(v.uav != u.id) << what << ": solved but " << describe(v);
   }
 }
 
@@ -61,8 +60,10 @@ TEST_P(PlannerProperties, RandomWorldsClaimsHoldAndRepeat) {
   // 200 worlds a planner; the ant colony (100 ants by default) takes 80 to stay within a minute,
   // the single-step swarm (100 particles x 500 iterations over every waypoint) 20, the multi-step
   // one 100 (a route that fails or comes out long is planned twice).
-  const std::uint64_t worlds =
-      sweep_cases(name == "cellular_aco" ? 80 : name == "pso_single" ? 20 : name == "pso_mpc" ? 100 : 200);
+  const std::uint64_t worlds = sweep_cases(name == "cellular_aco" ? 80
+                                           : name == "pso_single" ? 20
+                                           : name == "pso_mpc"    ? 100
+                                                                  : 200);
   int solved = 0, uavs = 0;
   for (std::uint64_t seed = 1; seed <= worlds; ++seed) {
     const Scenario sc = random_world(seed * 7919 + name.size());
@@ -154,7 +155,6 @@ TEST(MissionProperties, GroupRendezvousAndSensingClaimsHold) {
   }
 }
 
-
 // P1's formation on random fields (3-7 UAVs, radars, cylinders, crossing, head-on and turning
 // movers, 20-100 m sensors): what is called solved holds, and nearly every UAV is solved (a UAV
 // out of its slot at goals that are the slots waits there for the others; a re-forming that
@@ -196,7 +196,8 @@ TEST(MissionProperties, FormationMissionClaimsHoldOnRandomMissions) {
     expect_claims_hold(sc, plan, "formation_mission seed " + std::to_string(seed));
     if (plan.status != Status::solved) continue;
     ++solved;
-    for (const Violation& v : verify_plan(sc, plan)) ADD_FAILURE() << "formation_mission seed " << seed << ": solved but " << describe(v);
+    for (const Violation& v : verify_plan(sc, plan))
+      ADD_FAILURE() << "formation_mission seed " << seed << ": solved but " << describe(v);
   }
   if (!kSanitizedBuild) {
     EXPECT_GE(solved, 0.8 * static_cast<double>(missions)) << solved << " of " << missions << " missions solved";

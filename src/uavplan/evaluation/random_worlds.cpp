@@ -16,13 +16,22 @@ Obstacle random_obstacle(Rng& r, const Aabb& b) {
   const double s = r.uniform(0.04, 0.12) * std::max(e.x(), e.y());
   const Vec3 c(r.uniform(b.min.x(), b.max.x()), r.uniform(b.min.y(), b.max.y()),
                e.z() > 0.0 ? r.uniform(b.min.z(), b.max.z()) : b.min.z());
-  const double z0 = e.z() > 0.0 ? b.min.z() : b.min.z() - 1.0, z1 = e.z() > 0.0 ? r.uniform(c.z(), b.max.z()) + 1.0 : b.min.z() + 1.0;
+  const double z0 = e.z() > 0.0 ? b.min.z() : b.min.z() - 1.0,
+               z1 = e.z() > 0.0 ? r.uniform(c.z(), b.max.z()) + 1.0 : b.min.z() + 1.0;
   switch (r.uniform_int(0, 3)) {
-    case 0: return Sphere{c, s};
-    case 1: return Cylinder{c.head<2>(), s, z0, z1};
-    case 2: return Box{Vec3(c.x() - s, c.y() - 0.6 * s, z0), Vec3(c.x() + s, c.y() + 0.6 * s, z1)};
+    case 0:
+      return Sphere{c, s};
+    case 1:
+      return Cylinder{c.head<2>(), s, z0, z1};
+    case 2:
+      return Box{Vec3(c.x() - s, c.y() - 0.6 * s, z0), Vec3(c.x() + s, c.y() + 0.6 * s, z1)};
     default:
-      return Prism{{{c.x() - s, c.y() - s}, {c.x() + s, c.y() - 0.5 * s}, {c.x() + 0.3 * s, c.y() + s}, {c.x() - s, c.y() + 0.2 * s}}, z0, z1};
+      return Prism{{{c.x() - s, c.y() - s},
+                    {c.x() + s, c.y() - 0.5 * s},
+                    {c.x() + 0.3 * s, c.y() + s},
+                    {c.x() - s, c.y() + 0.2 * s}},
+                   z0,
+                   z1};
   }
 }
 
@@ -61,7 +70,8 @@ Scenario random_world(std::uint64_t seed, const RandomWorldOptions& opt) {
   const double size = r.uniform(60, 200), height = flat ? 0.0 : r.uniform(20, 60);
   WorldSpec ws;
   ws.bounds = Aabb{Vec3::Zero(), Vec3(size, r.uniform(0.6, 1.0) * size, height)};
-  for (int k = static_cast<int>(r.uniform_int(0, 12)); k > 0; --k) ws.obstacles.push_back(random_obstacle(r, ws.bounds));
+  for (int k = static_cast<int>(r.uniform_int(0, 12)); k > 0; --k)
+    ws.obstacles.push_back(random_obstacle(r, ws.bounds));
   if (!flat && r.uniform01() < 0.3) {
     const int n = 6;
     std::vector<double> h(n * n);
@@ -87,7 +97,8 @@ Scenario random_world(std::uint64_t seed, const RandomWorldOptions& opt) {
       for (const UavSpec& o : sc.uavs)
         if (start && (o.start - *start).norm() < 3 * sc.mission.separation_m + o.radius_m + u.radius_m) start.reset();
     }
-    const std::optional<Vec3> goal = opt.mission == MissionType::rendezvous ? common_goal : free_point(r, sc.world, u.radius_m + 2);
+    const std::optional<Vec3> goal =
+        opt.mission == MissionType::rendezvous ? common_goal : free_point(r, sc.world, u.radius_m + 2);
     if (!start || !goal) continue;  // a crowded world: fewer UAVs
     u.start = *start;
     u.goal = *goal;
@@ -96,7 +107,8 @@ Scenario random_world(std::uint64_t seed, const RandomWorldOptions& opt) {
       u.min_agl_m = min_agl_m;
       if (!place_for_margins(r, sc, u, u.start) || !place_for_margins(r, sc, u, *u.goal)) continue;
       bool apart = true;
-      for (const UavSpec& o : sc.uavs) apart = apart && (o.start - u.start).norm() >= 3 * sc.mission.separation_m + o.radius_m + u.radius_m;
+      for (const UavSpec& o : sc.uavs)
+        apart = apart && (o.start - u.start).norm() >= 3 * sc.mission.separation_m + o.radius_m + u.radius_m;
       if (!apart) continue;
     }
     const double v = r.uniform(2, 10);
@@ -124,9 +136,12 @@ std::vector<Vec3> formation_shape(int kind, int n, double gap_m) {
   std::vector<Vec3> shape;
   for (int k = 0; k < n; ++k) {
     const double rank = std::ceil(k / 2.0), side = k % 2 == 1 ? 1.0 : -1.0;
-    if (kind == 0) shape.emplace_back(-gap_m * rank, side * gap_m * rank, 0.0);
-    else if (kind == 1) shape.emplace_back(0.0, side * gap_m * rank, 0.0);
-    else shape.emplace_back(-gap_m * k, 0.0, 0.0);
+    if (kind == 0)
+      shape.emplace_back(-gap_m * rank, side * gap_m * rank, 0.0);
+    else if (kind == 1)
+      shape.emplace_back(0.0, side * gap_m * rank, 0.0);
+    else
+      shape.emplace_back(-gap_m * k, 0.0, 0.0);
   }
   return shape;
 }
@@ -176,7 +191,8 @@ Scenario random_formation_world(std::uint64_t seed) {
   sc.mission.type = MissionType::formation;
   sc.mission.separation_m = r.uniform(1.5, 4.0);
   const int n = static_cast<int>(r.uniform_int(3, 7));
-  sc.mission.shape = formation_shape(static_cast<int>(r.uniform_int(0, 2)), n, r.uniform(2.5, 4.0) * sc.mission.separation_m);
+  sc.mission.shape =
+      formation_shape(static_cast<int>(r.uniform_int(0, 2)), n, r.uniform(2.5, 4.0) * sc.mission.separation_m);
   const Vec3 dir = (to - from).normalized(), left(-dir.y(), dir.x(), 0.0);
   const double v = r.uniform(3, 8), sensor = r.uniform(20, 100);
   for (int i = 0; i < n; ++i) {
@@ -209,7 +225,8 @@ Scenario random_p5_world(std::uint64_t seed) {
   const Vec3 start(r.uniform(0.03, 0.1) * size, r.uniform(0.03, 0.1) * size, 5000);
   std::vector<Vec3> keep{start};  // places no cylinder may come near
   const int vias = static_cast<int>(r.uniform_int(1, 3));
-  for (int k = 0; k <= vias; ++k) keep.emplace_back(r.uniform(0.2, 0.9) * size, r.uniform(0.2, 0.9) * size, r.uniform(3000, 7000));
+  for (int k = 0; k <= vias; ++k)
+    keep.emplace_back(r.uniform(0.2, 0.9) * size, r.uniform(0.2, 0.9) * size, r.uniform(3000, 7000));
   const double l = std::min(5000.0, size / 40.0);
   for (int k = static_cast<int>(r.uniform_int(5, 20)); k > 0; --k) {
     const double radius = std::min(r.uniform(10000, 60000), 0.08 * size);
@@ -260,7 +277,8 @@ std::vector<Vec3> parking(Rng& r, const Airfield& af, std::size_t n, double gap_
   const double side = (r.uniform01() < 0.5 ? 1.0 : -1.0) * r.uniform(150.0, 400.0), first = r.uniform(-300.0, 500.0);
   for (std::size_t k = 0; k < n; ++k) {
     const double at = static_cast<double>(k) * gap_m;
-    out.push_back(beside ? Vec3(af.position + (first + at) * dir + side * left) : Vec3(af.position - (200.0 + at) * dir));
+    out.push_back(beside ? Vec3(af.position + (first + at) * dir + side * left)
+                         : Vec3(af.position - (200.0 + at) * dir));
   }
   return out;
 }
@@ -276,7 +294,8 @@ Scenario random_formation_mission(std::uint64_t seed) {
   af.runway_length_m = r.uniform(2000, 4000);
   const Vec3 dir(std::cos(af.runway_heading_rad), std::sin(af.runway_heading_rad), 0.0);
   // Places no cylinder may come near: the airfield, its landing cylinder and departure point.
-  std::vector<std::pair<Vec3, double>> keep{{af.position, 40000.0}, {af.position - 10000.0 * dir, 30000.0},
+  std::vector<std::pair<Vec3, double>> keep{{af.position, 40000.0},
+                                            {af.position - 10000.0 * dir, 30000.0},
                                             {af.position + (af.runway_length_m + 15000.0) * dir, 30000.0}};
   Scenario sc;
   sc.name = "p5_mission_random" + std::to_string(seed);
@@ -320,7 +339,8 @@ Scenario random_formation_mission(std::uint64_t seed) {
     u.start = starts[i];
     u.heading_rad = af.runway_heading_rad;
     u.radius_m = 5.0;
-    u.speed = own_model ? SpeedLimits{70, 150, 200} : SpeedLimits{r.uniform(55, 75), r.uniform(120, 170), r.uniform(190, 230)};
+    u.speed = own_model ? SpeedLimits{70, 150, 200}
+                        : SpeedLimits{r.uniform(55, 75), r.uniform(120, 170), r.uniform(190, 230)};
     u.max_turn_rad = deg_to_rad(30);
     if (own_model) u.max_turn_rate_rad_s = deg_to_rad(2.2);
     u.max_climb_rate_mps = 20;

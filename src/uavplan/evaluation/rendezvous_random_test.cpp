@@ -21,8 +21,10 @@ Scenario random_rendezvous(std::uint64_t seed) {
   for (int k = 0; k < threats; ++k) {
     const double radius = r.uniform(0.04, 0.1) * std::min(sx, sy);
     const Vec2 c(r.uniform(0.25, 0.75) * sx, r.uniform(0.25, 0.75) * sy);
-    if (r.uniform01() < 0.5) ws.obstacles.push_back(Sphere{Vec3(c.x(), c.y(), r.uniform(0.2, 0.8) * sz), radius});
-    else ws.obstacles.push_back(Cylinder{c, radius, 0, r.uniform(0.3, 1.0) * sz});
+    if (r.uniform01() < 0.5)
+      ws.obstacles.push_back(Sphere{Vec3(c.x(), c.y(), r.uniform(0.2, 0.8) * sz), radius});
+    else
+      ws.obstacles.push_back(Cylinder{c, radius, 0, r.uniform(0.3, 1.0) * sz});
   }
   Scenario sc;
   sc.name = "random";
@@ -56,7 +58,8 @@ TEST(RendezvousRandom, SolvedUavsHoldAndMostWorldsAreSolved) {
   for (std::uint64_t seed = 1; seed <= 16; ++seed) {
     const Scenario sc = random_rendezvous(seed);
     bool clear_start = true;
-    for (const auto& u : sc.uavs) clear_start = clear_start && !sc.world.point_collides(u.start, 50) && !sc.world.point_collides(*u.goal, 50);
+    for (const auto& u : sc.uavs)
+      clear_start = clear_start && !sc.world.point_collides(u.start, 50) && !sc.world.point_collides(*u.goal, 50);
     if (!clear_start) continue;
     ++worlds;
     Plan plan = plan_mission(sc, {});
@@ -77,7 +80,8 @@ TEST(RendezvousRandom, SolvedUavsHoldAndMostWorldsAreSolved) {
       if (v.kind != ViolationKind::not_planned) ADD_FAILURE() << "seed " << seed << ": " << describe(v);
     solved += plan.status == Status::solved;
     if (plan.status != Status::solved)
-      for (const auto& u : plan.uavs) std::printf("seed %d %s: %s\n", static_cast<int>(seed), u.id.c_str(), u.message.c_str());
+      for (const auto& u : plan.uavs)
+        std::printf("seed %d %s: %s\n", static_cast<int>(seed), u.id.c_str(), u.message.c_str());
   }
   ASSERT_GE(worlds, 12);
   EXPECT_GE(solved, worlds - 2) << solved << " of " << worlds;

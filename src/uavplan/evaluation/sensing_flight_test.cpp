@@ -45,11 +45,18 @@ Scenario random_world(std::uint64_t seed) {
     m.id = "m" + std::to_string(k);
     m.radius_m = radius;
     switch (k % 4) {
-      case 0: m.velocity_mps = v * side; break;                        // crossing
-      case 1: m.velocity_mps = -v * d; break;                          // head-on
-      case 2: m.velocity_mps = 1.5 * u.speed.cruise_mps * d; break;   // overtaking
-      default:                                                         // turning
-        m.path = {{t_meet - 40.0 / v, meet + 40 * side + 10 * d}, {t_meet, meet}, {t_meet + 40.0 / v, meet - 40 * side}};
+      case 0:
+        m.velocity_mps = v * side;
+        break;  // crossing
+      case 1:
+        m.velocity_mps = -v * d;
+        break;  // head-on
+      case 2:
+        m.velocity_mps = 1.5 * u.speed.cruise_mps * d;
+        break;  // overtaking
+      default:  // turning
+        m.path = {
+            {t_meet - 40.0 / v, meet + 40 * side + 10 * d}, {t_meet, meet}, {t_meet + 40.0 / v, meet - 40 * side}};
     }
     if (m.path.empty()) m.position = meet - t_meet * m.velocity_mps;
     bool clear_start = true;
@@ -72,8 +79,7 @@ TEST(SensingFlight, SolvedPlansHoldAgainstTheTrueMotionAndMostAreSolved) {
       ++uavs;
       if (u.status != Status::solved) continue;
       ++solved;
-      for (const Violation& v : violations)
-        EXPECT_NE(v.uav, u.id) << "seed " << seed << ": solved but " << describe(v);
+      for (const Violation& v : violations) EXPECT_NE(v.uav, u.id) << "seed " << seed << ": solved but " << describe(v);
     }
   }
   EXPECT_GE(solved, uavs * 9 / 10) << solved << " of " << uavs;
@@ -83,7 +89,7 @@ TEST(SensingFlight, SolvedPlansHoldAgainstTheTrueMotionAndMostAreSolved) {
 TEST(SensingFlight, AnObstacleFasterThanTheUavHeadOnInACorridorFailsItWithTheReason) {
   WorldSpec ws;
   ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(300, 40, 0)};
-  ws.obstacles.push_back(Box{Vec3(0, -1, -1), Vec3(300, 17, 1)});   // a corridor 6 m wide
+  ws.obstacles.push_back(Box{Vec3(0, -1, -1), Vec3(300, 17, 1)});  // a corridor 6 m wide
   ws.obstacles.push_back(Box{Vec3(0, 23, -1), Vec3(300, 41, 1)});
   ws.moving.push_back({"bullet", 2.5, Vec3(290, 20, 0), Vec3(-15, 0, 0)});
   Scenario sc;

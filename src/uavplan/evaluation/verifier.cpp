@@ -4,11 +4,11 @@
 #include <cmath>
 #include <cstdio>
 
-#include "uavplan/core/text.h"
 #include "uavplan/coordination/contract/arrival_points.h"
 #include "uavplan/coordination/contract/separation.h"
 #include "uavplan/coordination/contract/task_points.h"
 #include "uavplan/core/geometry.h"
+#include "uavplan/core/text.h"
 #include "uavplan/core/units.h"
 #include "uavplan/evaluation/ground_legs.h"
 #include "uavplan/evaluation/metrics.h"
@@ -17,23 +17,40 @@ namespace uavplan {
 
 std::string_view to_string(ViolationKind k) {
   switch (k) {
-    case ViolationKind::not_planned: return "not_planned";
-    case ViolationKind::unknown_uav: return "unknown_uav";
-    case ViolationKind::trajectory: return "trajectory";
-    case ViolationKind::start: return "start";
-    case ViolationKind::goal: return "goal";
-    case ViolationKind::bounds: return "bounds";
-    case ViolationKind::ceiling: return "ceiling";
-    case ViolationKind::obstacle: return "obstacle";
-    case ViolationKind::low_altitude: return "low_altitude";
-    case ViolationKind::moving_obstacle: return "moving_obstacle";
-    case ViolationKind::separation: return "separation";
-    case ViolationKind::turn: return "turn";
-    case ViolationKind::climb: return "climb";
-    case ViolationKind::speed: return "speed";
-    case ViolationKind::via_point: return "via_point";
-    case ViolationKind::length_spread: return "length_spread";
-    case ViolationKind::arrival_spread: return "arrival_spread";
+    case ViolationKind::not_planned:
+      return "not_planned";
+    case ViolationKind::unknown_uav:
+      return "unknown_uav";
+    case ViolationKind::trajectory:
+      return "trajectory";
+    case ViolationKind::start:
+      return "start";
+    case ViolationKind::goal:
+      return "goal";
+    case ViolationKind::bounds:
+      return "bounds";
+    case ViolationKind::ceiling:
+      return "ceiling";
+    case ViolationKind::obstacle:
+      return "obstacle";
+    case ViolationKind::low_altitude:
+      return "low_altitude";
+    case ViolationKind::moving_obstacle:
+      return "moving_obstacle";
+    case ViolationKind::separation:
+      return "separation";
+    case ViolationKind::turn:
+      return "turn";
+    case ViolationKind::climb:
+      return "climb";
+    case ViolationKind::speed:
+      return "speed";
+    case ViolationKind::via_point:
+      return "via_point";
+    case ViolationKind::length_spread:
+      return "length_spread";
+    case ViolationKind::arrival_spread:
+      return "arrival_spread";
   }
   return "?";
 }
@@ -77,8 +94,9 @@ std::string nearest_thing(const World& w, const Vec3& p) {
     const double d = point_distance(obstacles[k], p);
     if (d >= best) continue;
     best = d;
-    what = k < ids.size() && !ids[k].empty() ? "obstacle " + ids[k]
-                                             : "obstacle " + std::to_string(k) + " (" + kShapes[obstacles[k].index()] + ")";
+    what = k < ids.size() && !ids[k].empty()
+               ? "obstacle " + ids[k]
+               : "obstacle " + std::to_string(k) + " (" + kShapes[obstacles[k].index()] + ")";
   }
   if (const TerrainGrid* t = w.terrain(); t && t->point_distance(p, best) < best) what = "the terrain";
   return what;
@@ -111,8 +129,9 @@ void check_uav(const Scenario& sc, const UavSpec& u, const UavPlan& up, double a
     add(out, ViolationKind::start, id, tr.front().t_s, tr.front().p, "trajectory does not begin at the start");
   if (u.goal && (tr.back().p - *u.goal).norm() > arrival_tolerance_m + kPositionTolerance_m)
     add(out, ViolationKind::goal, id, tr.back().t_s, tr.back().p,
-        arrival_tolerance_m > 0.0 ? "trajectory does not end within " + num(arrival_tolerance_m) + " m of its shared goal"
-                                  : "trajectory does not end at the goal");
+        arrival_tolerance_m > 0.0
+            ? "trajectory does not end within " + num(arrival_tolerance_m) + " m of its shared goal"
+            : "trajectory does not end at the goal");
   const double ceiling = u.ceiling_m ? std::min(*u.ceiling_m, sc.world.bounds().max.z()) : sc.world.bounds().max.z();
   const Aabb bounds = sc.world.bounds().inflated(kDistanceTolerance_m);
   bool reported_bounds = false, reported_ceiling = false;
@@ -143,7 +162,8 @@ void check_uav(const Scenario& sc, const UavSpec& u, const UavPlan& up, double a
           "speed " + num(len / dt) + " m/s above the maximum " + num(u.speed.max_mps) + " m/s");
     const bool on_leg = legs.covers(i);
     const double leg_ground = i <= legs.takeoff_end && legs.takeoff ? tr.front().p.z() : tr.back().p.z();
-    const double c = on_leg ? sc.world.ground_leg_clearance(a.p, b.p, keep, leg_ground) : sc.world.segment_clearance(a.p, b.p, keep);
+    const double c =
+        on_leg ? sc.world.ground_leg_clearance(a.p, b.p, keep, leg_ground) : sc.world.segment_clearance(a.p, b.p, keep);
     if (c < keep - kDistanceTolerance_m) {
       const double f = worst_param(sc.world, a.p, b.p);
       const Vec3 at(a.p + f * (b.p - a.p));
@@ -215,7 +235,8 @@ void check_uav(const Scenario& sc, const UavSpec& u, const UavPlan& up, double a
 
 // formation_mission: the task points reached by the formation's reference in order at their
 // entry headings, every UAV ending stopped on the runway.
-void check_formation_mission(const Scenario& sc, const std::vector<std::pair<const UavSpec*, const UavPlan*>>& flown, Out& out) {
+void check_formation_mission(const Scenario& sc, const std::vector<std::pair<const UavSpec*, const UavPlan*>>& flown,
+                             Out& out) {
   std::vector<const Trajectory*> trs;
   for (const auto& f : flown) trs.push_back(&f.second->trajectory);
   const std::vector<TaskVisit> visits = task_visits(sc, formation_reference(sc, trs));
@@ -224,7 +245,8 @@ void check_formation_mission(const Scenario& sc, const std::vector<std::pair<con
     if (k < visits.size() && visits[k].reached) continue;
     std::string why = "task point " + std::to_string(k) + " not reached in order by the formation's reference";
     if (k < visits.size() && std::isfinite(visits[k].miss_m))
-      why += " (within " + num(tp.radius_m) + " m only " + num(rad_to_deg(visits[k].heading_error_rad)) + " deg off its entry heading)";
+      why += " (within " + num(tp.radius_m) + " m only " + num(rad_to_deg(visits[k].heading_error_rad)) +
+             " deg off its entry heading)";
     add(out, ViolationKind::via_point, "", std::nullopt, tp.position, why);
     break;
   }
@@ -235,7 +257,8 @@ void check_formation_mission(const Scenario& sc, const std::vector<std::pair<con
     const Vec3 end = up->trajectory.back().p;
     const Vec2 rel = (end - af.position).head<2>();
     const double a = rel.dot(along), off = std::abs(rel.x() * along.y() - rel.y() * along.x());
-    if (std::abs(end.z() - af.position.z()) > 1.0 || a < -kPositionTolerance_m || a > af.runway_length_m + kPositionTolerance_m || off > 100.0)
+    if (std::abs(end.z() - af.position.z()) > 1.0 || a < -kPositionTolerance_m ||
+        a > af.runway_length_m + kPositionTolerance_m || off > 100.0)
       add(out, ViolationKind::goal, u->id, up->trajectory.back().t_s, end,
           "does not end on the runway (" + num(a) + " m along it, " + num(off) + " m off its centreline, " +
               num(end.z() - af.position.z()) + " m above it)");
@@ -293,21 +316,25 @@ std::vector<Violation> verify_plan(const Scenario& sc, const Plan& plan) {
     double lo = World::kInf, hi = 0.0;
     for (const auto& [u, up] : flown) {
       double len = 0.0;
-      for (std::size_t k = 1; k < up->trajectory.size(); ++k) len += (up->trajectory[k].p - up->trajectory[k - 1].p).norm();
+      for (std::size_t k = 1; k < up->trajectory.size(); ++k)
+        len += (up->trajectory[k].p - up->trajectory[k - 1].p).norm();
       lo = std::min(lo, len);
       hi = std::max(hi, len);
     }
     if (hi - lo > *sc.mission.arrival_tolerance_m + kDistanceTolerance_m)
       add(out, ViolationKind::length_spread, "", std::nullopt, std::nullopt,
-          "route lengths differ by " + num(hi - lo) + " m, above the tolerance " + num(*sc.mission.arrival_tolerance_m) + " m");
+          "route lengths differ by " + num(hi - lo) + " m, above the tolerance " +
+              num(*sc.mission.arrival_tolerance_m) + " m");
   }
   if (sc.mission.type == MissionType::formation_mission) check_formation_mission(sc, flown, out);
   if (sc.mission.type == MissionType::formation && flown.size() > 1) {
     double lo = World::kInf, hi = -World::kInf;
-    for (const auto& f : flown) lo = std::min(lo, f.second->trajectory.back().t_s), hi = std::max(hi, f.second->trajectory.back().t_s);
+    for (const auto& f : flown)
+      lo = std::min(lo, f.second->trajectory.back().t_s), hi = std::max(hi, f.second->trajectory.back().t_s);
     if (hi - lo > sc.mission.arrival_tolerance_s + 1e-6)
       add(out, ViolationKind::arrival_spread, "", std::nullopt, std::nullopt,
-          "arrival times differ by " + num(hi - lo) + " s, above arrival_tolerance_s " + num(sc.mission.arrival_tolerance_s) + " s");
+          "arrival times differ by " + num(hi - lo) + " s, above arrival_tolerance_s " +
+              num(sc.mission.arrival_tolerance_s) + " s");
   }
   return out;
 }

@@ -95,7 +95,8 @@ TEST(Verifier, Terrain) {
   fly(p, 0, {{10, 10, 20}, {40, 20, 5.2}, {70, 20, 5.2}, {30, 10, 20}});  // 5.2 m over a 10 m plateau
   bool terrain_hit = false;
   for (const auto& v : verify_plan(sc, p))
-    terrain_hit |= v.kind == K::obstacle && v.where && v.where->x() >= 49.0 && v.message.find("the terrain") != std::string::npos;
+    terrain_hit |=
+        v.kind == K::obstacle && v.where && v.where->x() >= 49.0 && v.message.find("the terrain") != std::string::npos;
   EXPECT_TRUE(terrain_hit);
 }
 

@@ -24,9 +24,15 @@ World random_world(int n, Rng& rng) {
     const Vec3 c(rng.uniform(0, side), rng.uniform(0, side), rng.uniform(0, 100));
     const double s = rng.uniform(2, 10);
     switch (i % 4) {
-      case 0: ws.obstacles.push_back(Sphere{c, s}); break;
-      case 1: ws.obstacles.push_back(Cylinder{c.head<2>(), s, c.z() - s, c.z() + s}); break;
-      case 2: ws.obstacles.push_back(Box{c.array() - s, c.array() + s}); break;
+      case 0:
+        ws.obstacles.push_back(Sphere{c, s});
+        break;
+      case 1:
+        ws.obstacles.push_back(Cylinder{c.head<2>(), s, c.z() - s, c.z() + s});
+        break;
+      case 2:
+        ws.obstacles.push_back(Box{c.array() - s, c.array() + s});
+        break;
       default: {
         Prism p;
         const int k = 3 + static_cast<int>(rng.uniform_int(0, 5));
@@ -63,7 +69,8 @@ std::vector<WorldBenchRow> run_world_bench(const std::vector<int>& counts, int q
     row.queries = queries;
     std::vector<char> fast(segs.size());
     auto t0 = std::chrono::steady_clock::now();
-    for (std::size_t q = 0; q < segs.size(); ++q) fast[q] = w.segment_collides(segs[q].first, segs[q].second, kRadius_m);
+    for (std::size_t q = 0; q < segs.size(); ++q)
+      fast[q] = w.segment_collides(segs[q].first, segs[q].second, kRadius_m);
     row.segment_us = 1e6 * seconds_since(t0) / queries;
     t0 = std::chrono::steady_clock::now();
     for (std::size_t q = 0; q < segs.size(); ++q) {

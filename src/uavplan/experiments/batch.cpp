@@ -39,8 +39,10 @@ bool scenario_key(const std::string& key) { return key.find_first_of(".[") != st
 
 void split_params(const ParamSetting& all, ParamSetting& scenario_overrides, Params& planner_params) {
   for (const auto& [k, v] : all) {
-    if (scenario_key(k)) scenario_overrides.emplace_back(k, v);
-    else planner_params[k] = v;
+    if (scenario_key(k))
+      scenario_overrides.emplace_back(k, v);
+    else
+      planner_params[k] = v;
   }
 }
 
@@ -103,7 +105,8 @@ std::string run_plan_file(std::size_t index) {
   return buf;
 }
 
-RunOutcome run_in_process(const RunSpec& run, const ScenarioCache& cache, const BatchOptions& options, std::string& plan_json) {
+RunOutcome run_in_process(const RunSpec& run, const ScenarioCache& cache, const BatchOptions& options,
+                          std::string& plan_json) {
   const double time_limit_s = options.time_limit_s;
   const auto t0 = Clock::now();
   plan_json.clear();
@@ -134,13 +137,15 @@ RunOutcome run_in_process(const RunSpec& run, const ScenarioCache& cache, const 
   return o;
 }
 
-RunOutcome run_isolated(const RunSpec& run, const ScenarioCache& cache, const BatchOptions& options, std::string& plan_json) {
+RunOutcome run_isolated(const RunSpec& run, const ScenarioCache& cache, const BatchOptions& options,
+                        std::string& plan_json) {
   const auto t0 = Clock::now();
   plan_json.clear();
   const fs::path dir = fs::path(options.work_dir) / ("run-" + std::to_string(run.index));
   fs::create_directories(dir);
-  std::vector<std::string> args = {options.uavplan_exe, "plan", run.scenario, "-o", dir.string(), "--seed",
-                                   std::to_string(run.seed), "--threads", "1", "--timing"};
+  std::vector<std::string> args = {
+      options.uavplan_exe,      "plan",      run.scenario, "-o",      dir.string(), "--seed",
+      std::to_string(run.seed), "--threads", "1",          "--timing"};
   if (!run.planner.empty()) args.insert(args.end(), {"--algorithm", run.planner});
   for (const auto& [k, v] : run.params) args.insert(args.end(), {"--set", k + "=" + v});
   if (options.time_limit_s > 0.0) {
@@ -228,7 +233,8 @@ RunOutcome run_isolated(const RunSpec& run, const ScenarioCache& cache, const Ba
     }
   } else {
     o.status = "error";
-    o.message = first_line(err.empty() ? "the run's process ended with exit " + std::to_string(WEXITSTATUS(wstatus)) : err);
+    o.message =
+        first_line(err.empty() ? "the run's process ended with exit " + std::to_string(WEXITSTATUS(wstatus)) : err);
   }
   std::error_code ec;
   fs::remove_all(dir, ec);

@@ -24,10 +24,10 @@ struct RunOutcome {
   bool verified = false;  // the plan holds under the verifier (every planned UAV)
   std::size_t violations = 0;
   std::size_t uavs = 0, uavs_solved = 0;
-  double length_m = std::numeric_limits<double>::quiet_NaN();         // all UAVs' routes together
-  double flight_time_s = std::numeric_limits<double>::quiet_NaN();    // the last arrival
+  double length_m = std::numeric_limits<double>::quiet_NaN();       // all UAVs' routes together
+  double flight_time_s = std::numeric_limits<double>::quiet_NaN();  // the last arrival
   double min_separation_m = std::numeric_limits<double>::quiet_NaN();
-  std::uint64_t expansions = 0;                                        // search nodes, all UAVs
+  std::uint64_t expansions = 0;  // search nodes, all UAVs
   std::string message;
   // Wall-clock (not reproducible; kept out of results.csv).
   double plan_ms = 0.0, wall_ms = 0.0;
@@ -53,11 +53,11 @@ class ScenarioCache {
 };
 
 struct BatchOptions {
-  int jobs = 0;                   // threads; 0: every core
-  double time_limit_s = 0.0;      // per run; 0: none
-  bool isolate = false;           // each run in its own process
-  std::string uavplan_exe;        // isolate: the command-line tool to run
-  std::string work_dir;           // isolate: where the processes write their plans
+  int jobs = 0;                        // threads; 0: every core
+  double time_limit_s = 0.0;           // per run; 0: none
+  bool isolate = false;                // each run in its own process
+  std::string uavplan_exe;             // isolate: the command-line tool to run
+  std::string work_dir;                // isolate: where the processes write their plans
   std::uint64_t max_memory_bytes = 0;  // per run (a planner's grids); 0: no cap
   // Once set (an interrupt), no new run starts and those under way are stopped; a run cut short
   // is not reported (a later --resume runs it again).
@@ -69,11 +69,13 @@ struct BatchOptions {
 inline constexpr const char* kParentPidVariable = "UAVPLAN_BATCH_PID";
 
 // One run in this process: the plan's file text goes to `plan_json` (empty when none).
-RunOutcome run_in_process(const RunSpec& run, const ScenarioCache& cache, const BatchOptions& options, std::string& plan_json);
+RunOutcome run_in_process(const RunSpec& run, const ScenarioCache& cache, const BatchOptions& options,
+                          std::string& plan_json);
 // One run as `uavplan plan` in its own process (process group of its own, so a terminal's
 // Ctrl-C reaches only the batch, which passes it on); killed when still going at twice the time
 // limit plus 5 s, and when the batch dies.
-RunOutcome run_isolated(const RunSpec& run, const ScenarioCache& cache, const BatchOptions& options, std::string& plan_json);
+RunOutcome run_isolated(const RunSpec& run, const ScenarioCache& cache, const BatchOptions& options,
+                        std::string& plan_json);
 
 // Runs every spec on options.jobs threads; `done` is called once per finished run, one call at a
 // time, with the record and the plan's text. Runs not started or cut short because of

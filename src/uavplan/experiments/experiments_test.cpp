@@ -78,7 +78,9 @@ TEST(Results, RowsByRunNumberWithQuotedFieldsAndEmptyMissingNumbers) {
   const std::string csv = results_csv({record(1, "failed", std::nan("")), record(0, "solved", 100.0)});
   const auto second_line = csv.substr(csv.find('\n') + 1);
   EXPECT_EQ(second_line.substr(0, 2), "0,");
-  EXPECT_NE(csv.find(",solved,1,0,2,0,100.000,,0,,runs/000000.plan.json,\"a, \"\"quoted\"\" message\"\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",solved,1,0,2,0,100.000,,0,,runs/000000.plan.json,\"a, \"\"quoted\"\" message\"\n"),
+            std::string::npos)
+      << csv;
   EXPECT_NE(csv.find("\n1,a.yaml,astar,2,cell_m=5,failed,0,"), std::string::npos) << csv;
   EXPECT_EQ(csv.find("12.5"), std::string::npos);  // timing stays out
   EXPECT_NE(timings_csv({record(0, "solved", 1.0)}).find("0,12.500,"), std::string::npos);
@@ -99,7 +101,8 @@ TEST(Results, JournalLinesRoundTripAndACutLineIsDropped) {
 }
 
 TEST(OmplLog, FollowsTheGrammar) {
-  std::vector<RunRecord> runs = {record(0, "solved", 10.0), record(1, "failed", std::nan("")), record(2, "solved", 12.0)};
+  std::vector<RunRecord> runs = {record(0, "solved", 10.0), record(1, "failed", std::nan("")),
+                                 record(2, "solved", 12.0)};
   runs[2].spec.planner = "rrt";
   OmplLogHeader h;
   h.experiment = "my sweep";
@@ -113,11 +116,14 @@ TEST(OmplLog, FollowsTheGrammar) {
   EXPECT_NE(log.find("\nExperiment my_sweep\n"), std::string::npos);
   EXPECT_NE(log.find("\n<<<|\nline one\nline two\n|>>>\n1 is the random seed\n5 seconds per run\n"), std::string::npos);
   EXPECT_EQ(log.find("runs per planner"), std::string::npos);  // 2 and 1 runs: no common count
-  EXPECT_NE(log.find("\n2 planners\nastar[cell_m=5]\n1 common properties\ncell_m = 5\n9 properties for each run\ntime REAL\n"),
-            std::string::npos)
+  EXPECT_NE(
+      log.find(
+          "\n2 planners\nastar[cell_m=5]\n1 common properties\ncell_m = 5\n9 properties for each run\ntime REAL\n"),
+      std::string::npos)
       << log;
   // The failed run has no length: an empty field.
-  EXPECT_NE(log.find("\n2 runs\n0.0125; 1; 1; 10; 0; 1; 0; ; ; \n0.0135; 0; ; ; 0; 2; 0; ; ; \n.\n"), std::string::npos) << log;
+  EXPECT_NE(log.find("\n2 runs\n0.0125; 1; 1; 10; 0; 1; 0; ; ; \n0.0135; 0; ; ; 0; 2; 0; ; ; \n.\n"), std::string::npos)
+      << log;
   EXPECT_EQ(log.substr(log.size() - 3), "\n.\n");
 }
 
@@ -161,9 +167,9 @@ TEST(Results, AnEditedScenarioIsAnotherRun) {
 
 // A scenario named twice (by two globs, or a name and a glob) is run once.
 TEST(Sweep, AScenarioNamedTwiceRunsOnce) {
-  const Sweep s = parse_sweep("scenarios: [" + kDemo + ", " + kDemo + ", \"" + std::string(UAVPLAN_SOURCE_DIR) +
-                                  "/scenarios/dem?.yaml\"]\n",
-                              "/tmp/s.yaml");
+  const Sweep s = parse_sweep(
+      "scenarios: [" + kDemo + ", " + kDemo + ", \"" + std::string(UAVPLAN_SOURCE_DIR) + "/scenarios/dem?.yaml\"]\n",
+      "/tmp/s.yaml");
   EXPECT_EQ(s.scenarios.size(), 1u);
 }
 

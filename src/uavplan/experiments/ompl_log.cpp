@@ -20,9 +20,9 @@ std::string real(double x) {
   return buf;
 }
 
-const char* kRunProperties[] = {"time REAL",         "solved BOOLEAN", "correct solution BOOLEAN",
-                                "solution length REAL", "graph states INTEGER", "seed INTEGER",
-                                "violations INTEGER", "flight time REAL", "min separation REAL"};
+const char* kRunProperties[] = {
+    "time REAL",    "solved BOOLEAN",     "correct solution BOOLEAN", "solution length REAL", "graph states INTEGER",
+    "seed INTEGER", "violations INTEGER", "flight time REAL",         "min separation REAL"};
 
 std::string measurement(const RunRecord& r) {
   const RunOutcome& o = r.outcome;

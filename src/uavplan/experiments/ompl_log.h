@@ -13,9 +13,9 @@ namespace uavplan {
 struct OmplLogHeader {
   std::string experiment;  // whitespace becomes '_'
   std::string host;
-  std::string date;        // "Starting at" (the batch's start)
-  std::string setup;       // multi-line text (the sweep and the scenario)
-  double time_limit_s = 0.0;    // 0: none ("inf seconds per run")
+  std::string date;           // "Starting at" (the batch's start)
+  std::string setup;          // multi-line text (the sweep and the scenario)
+  double time_limit_s = 0.0;  // 0: none ("inf seconds per run")
   double memory_limit_mb = 0.0;
   double total_s = 0.0;
 };

@@ -83,7 +83,8 @@ std::string results_csv(const std::vector<RunRecord>& records) {
 std::string timings_csv(const std::vector<RunRecord>& records) {
   std::string out = "run,plan_ms,wall_ms\n";
   for (const RunRecord* r : by_run(records))
-    out += std::to_string(r->spec.index) + "," + number(r->outcome.plan_ms, 3) + "," + number(r->outcome.wall_ms, 3) + "\n";
+    out += std::to_string(r->spec.index) + "," + number(r->outcome.plan_ms, 3) + "," + number(r->outcome.wall_ms, 3) +
+           "\n";
   return out;
 }
 
@@ -125,7 +126,8 @@ std::optional<RunRecord> parse_journal_line(const std::string& line) {
     r.spec.scenario_fingerprint = j.value("scenario_fingerprint", std::string());
     r.spec.planner = j.at("planner").get<std::string>();
     r.spec.seed = j.at("seed").get<std::uint64_t>();
-    for (const auto& p : j.at("params")) r.spec.params.emplace_back(p.at(0).get<std::string>(), p.at(1).get<std::string>());
+    for (const auto& p : j.at("params"))
+      r.spec.params.emplace_back(p.at(0).get<std::string>(), p.at(1).get<std::string>());
     RunOutcome& o = r.outcome;
     o.status = j.at("status").get<std::string>();
     o.algorithm = j.at("algorithm").get<std::string>();
@@ -177,8 +179,8 @@ std::string summary_table(const std::vector<RunRecord>& records) {
                 "verified", "median_ms", "p95_ms", "mean_length_m");
   out += buf;
   for (const auto& [key, g] : groups) {
-    std::snprintf(buf, sizeof buf, "%-16s %-28s %6zu %7zu %8zu %10.2f %10.2f %14s\n", key.first.c_str(), key.second.c_str(),
-                  g.runs, g.solved, g.verified, quantile(g.ms, 0.5), quantile(g.ms, 0.95),
+    std::snprintf(buf, sizeof buf, "%-16s %-28s %6zu %7zu %8zu %10.2f %10.2f %14s\n", key.first.c_str(),
+                  key.second.c_str(), g.runs, g.solved, g.verified, quantile(g.ms, 0.5), quantile(g.ms, 0.95),
                   g.lengths ? number(g.length_sum / double(g.lengths), 1).c_str() : "-");
     out += buf;
   }

@@ -106,9 +106,12 @@ void read_planners(const Reader& r, const YAML::Node& n, Sweep& s) {
     } else if (p.IsMap()) {
       for (const auto& kv : p) {
         const std::string k = r.scalar(kv.first, key);
-        if (k == "name") sp.name = r.scalar(kv.second, key + ".name");
-        else if (k == "params") sp.params = r.grid(kv.second, key + ".params");
-        else r.fail(kv.first, key + "." + k, "unknown key (expected name, params)");
+        if (k == "name")
+          sp.name = r.scalar(kv.second, key + ".name");
+        else if (k == "params")
+          sp.params = r.grid(kv.second, key + ".params");
+        else
+          r.fail(kv.first, key + "." + k, "unknown key (expected name, params)");
       }
       if (sp.name.empty()) r.fail(p, key, "a planner with params needs a name");
     } else {
@@ -174,7 +177,8 @@ Sweep parse_sweep(const std::string& text, const std::string& source_path) {
   static const std::set<std::string> known = {"name", "scenarios", "planners", "seeds", "params", "time_limit_s"};
   for (const auto& kv : root) {
     const std::string k = r.scalar(kv.first, "");
-    if (!known.count(k)) r.fail(kv.first, k, "unknown key (expected name, scenarios, planners, seeds, params, time_limit_s)");
+    if (!known.count(k))
+      r.fail(kv.first, k, "unknown key (expected name, scenarios, planners, seeds, params, time_limit_s)");
   }
   Sweep s;
   s.source = source_path;
@@ -189,11 +193,13 @@ Sweep parse_sweep(const std::string& text, const std::string& source_path) {
     } catch (const YAML::Exception&) {
       r.fail(t, "time_limit_s", "expected a number of seconds");
     }
-    if (!(s.time_limit_s > 0.0 && s.time_limit_s < 1e7)) r.fail(t, "time_limit_s", "must be a positive number of seconds");
+    if (!(s.time_limit_s > 0.0 && s.time_limit_s < 1e7))
+      r.fail(t, "time_limit_s", "must be a positive number of seconds");
   }
   std::size_t per_scenario = 0;
   for (const SweepPlanner& p : s.planners) per_scenario += grid_size(p.params);
-  const double total = double(s.scenarios.size()) * double(per_scenario) * double(grid_size(s.params)) * double(s.seeds.size());
+  const double total =
+      double(s.scenarios.size()) * double(per_scenario) * double(grid_size(s.params)) * double(s.seeds.size());
   if (total == 0.0) throw InputError(source_path, 0, "", "the sweep's product is empty: no run to do");
   if (total > double(kMaxRuns)) throw InputError(source_path, 0, "", "the sweep has over 100000000 runs");
   return s;
@@ -273,7 +279,8 @@ void check_sweep(const Sweep& sweep) {
       try {
         algorithm = mission_algorithm(sc, p.name.empty() ? std::nullopt : std::optional<std::string>(p.name));
       } catch (const std::invalid_argument& e) {
-        throw InputError(sweep.source, p.line, "planners[" + std::to_string(pi) + "]", sweep.scenarios[si] + ": " + e.what());
+        throw InputError(sweep.source, p.line, "planners[" + std::to_string(pi) + "]",
+                         sweep.scenarios[si] + ": " + e.what());
       }
       auto check = [&](const GridEntry& g, const std::string& key) {
         for (const std::string& v : g.values) {
@@ -284,8 +291,9 @@ void check_sweep(const Sweep& sweep) {
               throw InputError(sweep.source, g.line, key, e.what());
             }
           } else if (!planner_accepts(algorithm, g.key, v) && !mission_reads(sc, g.key)) {
-            throw InputError(sweep.source, g.line, key,
-                             "'" + v + "' is not a value of a parameter of " + algorithm + " (on " + sweep.scenarios[si] + ")");
+            throw InputError(
+                sweep.source, g.line, key,
+                "'" + v + "' is not a value of a parameter of " + algorithm + " (on " + sweep.scenarios[si] + ")");
           }
         }
       };

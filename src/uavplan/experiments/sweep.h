@@ -43,16 +43,16 @@ struct Sweep {
   std::vector<SweepPlanner> planners;
   std::vector<std::uint64_t> seeds;
   ParamGrid params;
-  double time_limit_s = 0.0;           // 0: none
+  double time_limit_s = 0.0;  // 0: none
 };
 
 struct RunSpec {
   std::size_t index = 0;
-  std::string scenario;  // path
+  std::string scenario;              // path
   std::string scenario_fingerprint;  // of the file's content when the runs were listed (files.h)
-  std::string planner;   // empty: the scenario's own
+  std::string planner;               // empty: the scenario's own
   std::uint64_t seed = 1;
-  ParamSetting params;   // shared grid first, then the planner's own
+  ParamSetting params;  // shared grid first, then the planner's own
 };
 
 // Throws InputError (file, line, key, what) for a malformed sweep, a scenario file that is

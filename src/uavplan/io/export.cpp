@@ -73,18 +73,24 @@ std::string unique_stem(std::string_view id, std::set<std::string>& taken_lower)
 }  // namespace
 
 std::optional<ExportFormat> export_format_from_string(std::string_view s) {
-  for (ExportFormat f : {ExportFormat::qgc, ExportFormat::wpl, ExportFormat::geojson, ExportFormat::kml, ExportFormat::csv})
+  for (ExportFormat f :
+       {ExportFormat::qgc, ExportFormat::wpl, ExportFormat::geojson, ExportFormat::kml, ExportFormat::csv})
     if (to_string(f) == s) return f;
   return std::nullopt;
 }
 
 std::string_view to_string(ExportFormat f) {
   switch (f) {
-    case ExportFormat::qgc: return "qgc";
-    case ExportFormat::wpl: return "wpl";
-    case ExportFormat::geojson: return "geojson";
-    case ExportFormat::kml: return "kml";
-    case ExportFormat::csv: return "csv";
+    case ExportFormat::qgc:
+      return "qgc";
+    case ExportFormat::wpl:
+      return "wpl";
+    case ExportFormat::geojson:
+      return "geojson";
+    case ExportFormat::kml:
+      return "kml";
+    case ExportFormat::csv:
+      return "csv";
   }
   return "?";
 }
@@ -97,17 +103,28 @@ ExportOptions export_options(std::string_view firmware, std::string_view vehicle
     return ExportError(std::string(what) + ": '" + std::string(v) + "' is not one of " + choices);
   };
   ExportOptions o;
-  if (firmware == "ardupilot") o.firmware = Firmware::ardupilot;
-  else if (firmware != "px4") throw bad("firmware", firmware, "px4, ardupilot");
-  if (vehicle == "fixedwing") o.vehicle = VehicleKind::fixed_wing;
-  else if (vehicle != "multirotor") throw bad("vehicle", vehicle, "multirotor, fixedwing");
-  if (end == "rtl") o.end = MissionEnd::rtl;
-  else if (end == "loiter") o.end = MissionEnd::loiter;
-  else if (end == "none") o.end = MissionEnd::none;
-  else if (end != "land") throw bad("end", end, "land, rtl, loiter, none");
-  if (fence == "none") o.fence = FenceMode::none;
-  else if (fence == "all") o.fence = FenceMode::all;
-  else if (fence != "bounds") throw bad("fence", fence, "none, bounds, all");
+  if (firmware == "ardupilot")
+    o.firmware = Firmware::ardupilot;
+  else if (firmware != "px4")
+    throw bad("firmware", firmware, "px4, ardupilot");
+  if (vehicle == "fixedwing")
+    o.vehicle = VehicleKind::fixed_wing;
+  else if (vehicle != "multirotor")
+    throw bad("vehicle", vehicle, "multirotor, fixedwing");
+  if (end == "rtl")
+    o.end = MissionEnd::rtl;
+  else if (end == "loiter")
+    o.end = MissionEnd::loiter;
+  else if (end == "none")
+    o.end = MissionEnd::none;
+  else if (end != "land")
+    throw bad("end", end, "land, rtl, loiter, none");
+  if (fence == "none")
+    o.fence = FenceMode::none;
+  else if (fence == "all")
+    o.fence = FenceMode::all;
+  else if (fence != "bounds")
+    throw bad("fence", fence, "none, bounds, all");
   return o;
 }
 
@@ -126,8 +143,12 @@ std::vector<ExportFile> export_files(const Scenario& sc, const VerifiedExport& f
     throw ExportError("scenario '" + sc.name + "' has no origin: add origin: {lat, lon, alt} to export to WGS84");
   std::vector<ExportFile> files;
   switch (format) {
-    case ExportFormat::geojson: files.push_back({"plan.geojson", plan_geojson(sc, flights), ""}); break;
-    case ExportFormat::kml: files.push_back({"plan.kml", plan_kml(sc, flights), ""}); break;
+    case ExportFormat::geojson:
+      files.push_back({"plan.geojson", plan_geojson(sc, flights), ""});
+      break;
+    case ExportFormat::kml:
+      files.push_back({"plan.kml", plan_kml(sc, flights), ""});
+      break;
     default: {
       std::set<std::string> taken;
       for (const ExportedUav& e : flights.uavs) {
@@ -149,8 +170,9 @@ std::vector<ExportFile> export_files(const Scenario& sc, const VerifiedExport& f
 
 void write_export(const std::string& dir, const std::vector<ExportFile>& files, const std::vector<ExportFile>& with) {
   std::set<std::string> names;
-  std::string list = "# files of the last uavplan export in this folder: name, fingerprint, UAV (the next export\n"
-                     "# removes those that still hold what was written)\n";
+  std::string list =
+      "# files of the last uavplan export in this folder: name, fingerprint, UAV (the next export\n"
+      "# removes those that still hold what was written)\n";
   StagedFiles staged(dir);
   for (const ExportFile& f : files) {
     if (!names.insert(f.name).second) throw std::logic_error("export file " + f.name + " written twice");

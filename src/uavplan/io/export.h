@@ -29,7 +29,7 @@ bool needs_origin(ExportFormat f);
 struct ExportFile {
   std::string name;  // file name inside the output directory
   std::string content;
-  std::string uav;   // the UAV whose mission it is; empty for a file of the whole plan
+  std::string uav;  // the UAV whose mission it is; empty for a file of the whole plan
 };
 
 // Every file of one format: qgc, wpl and csv one per exported UAV (named by its id made safe,
@@ -51,7 +51,8 @@ std::string file_stem(std::string_view id);
 // folder as it was. Throws OutputError. clear_export() removes the last export's files (a new
 // plan makes them stale).
 inline constexpr const char* kExportManifest = ".uavplan-export";
-void write_export(const std::string& dir, const std::vector<ExportFile>& files, const std::vector<ExportFile>& with = {});
+void write_export(const std::string& dir, const std::vector<ExportFile>& files,
+                  const std::vector<ExportFile>& with = {});
 void clear_export(const std::string& dir);
 
 }  // namespace uavplan

@@ -5,8 +5,8 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
-#include <set>
 #include <fstream>
+#include <set>
 
 #include "uavplan/io/geo.h"
 #include "uavplan/io/gis_export.h"
@@ -70,7 +70,8 @@ TEST(Export, MissionFollowsTheTrajectory) {
   const Scenario sc = scenario_with();
   const auto items = mission_items(sc, exported(sc), {});
   // takeoff, the 4 s hold, one waypoint for the collinear east legs, the speed change, north, land.
-  EXPECT_EQ(commands(items), (std::vector<int>{kCmdTakeoff, kCmdLoiterTime, kCmdWaypoint, kCmdChangeSpeed, kCmdWaypoint, kCmdLand}));
+  EXPECT_EQ(commands(items),
+            (std::vector<int>{kCmdTakeoff, kCmdLoiterTime, kCmdWaypoint, kCmdChangeSpeed, kCmdWaypoint, kCmdLand}));
   EXPECT_DOUBLE_EQ(items[1].params[0], 4.0);
   EXPECT_DOUBLE_EQ(items[3].params[1], 10.0);
   EXPECT_NEAR(items[0].params[6], 10.0, 1e-3);  // takeoff to the start's height above home
@@ -91,9 +92,13 @@ TEST(Export, MissionFollowsTheTrajectory) {
 TEST(Export, SpeedChangesBelowTenPercentMerge) {
   const Scenario sc = scenario_with();
   UavPlan u = sample_uav();  // east at 5, 5.4 and 4.7 m/s, then north at 5.2 m/s
-  u.trajectory = {{0.0, Vec3(0, 0, 10)}, {10.0, Vec3(50, 0, 10)}, {20.0, Vec3(104, 0, 10)}, {30.0, Vec3(151, 0, 10)},
+  u.trajectory = {{0.0, Vec3(0, 0, 10)},
+                  {10.0, Vec3(50, 0, 10)},
+                  {20.0, Vec3(104, 0, 10)},
+                  {30.0, Vec3(151, 0, 10)},
                   {40.0, Vec3(151, 52, 10)}};
-  EXPECT_EQ(commands(mission_items(sc, exported(sc, {}, u), {})), (std::vector<int>{kCmdTakeoff, kCmdWaypoint, kCmdWaypoint, kCmdLand}));
+  EXPECT_EQ(commands(mission_items(sc, exported(sc, {}, u), {})),
+            (std::vector<int>{kCmdTakeoff, kCmdWaypoint, kCmdWaypoint, kCmdLand}));
   u.trajectory.back() = {40.0, Vec3(151, 60, 10)};  // 6 m/s: 20 % faster
   EXPECT_EQ(commands(mission_items(sc, exported(sc, {}, u), {})),
             (std::vector<int>{kCmdTakeoff, kCmdWaypoint, kCmdChangeSpeed, kCmdWaypoint, kCmdLand}));
@@ -133,12 +138,12 @@ TEST(Export, FixedWingLandsOnAGlideOrCircles) {
   opt.vehicle = VehicleKind::fixed_wing;
   ExportedUav e = exported(sc, opt);
   const auto items = mission_items(sc, e, opt);
-  EXPECT_EQ(commands(items), (std::vector<int>{kCmdTakeoff, kCmdLoiterTime, kCmdWaypoint, kCmdChangeSpeed, kCmdLandStart,
-                                               kCmdWaypoint, kCmdLand}));
+  EXPECT_EQ(commands(items), (std::vector<int>{kCmdTakeoff, kCmdLoiterTime, kCmdWaypoint, kCmdChangeSpeed,
+                                               kCmdLandStart, kCmdWaypoint, kCmdLand}));
   ASSERT_TRUE(e.touchdown && e.approach);
   EXPECT_EQ(*e.approach, Vec3(100, 100, 10));
   EXPECT_NEAR(e.touchdown->y() - 100, 10.0 / std::tan(deg_to_rad(5.0)), 1e-6);  // straight on, 5 degrees
-  EXPECT_NEAR(e.home.x(), -10.0 / std::tan(deg_to_rad(10.0)), 1e-6);             // climb-out behind the start
+  EXPECT_NEAR(e.home.x(), -10.0 / std::tan(deg_to_rad(10.0)), 1e-6);            // climb-out behind the start
   EXPECT_NEAR(e.home.y(), 0.0, 1e-9);
   opt.end = MissionEnd::loiter;
   EXPECT_EQ(mission_items(sc, exported(sc, opt), opt).back().params[2], 80.0);
@@ -217,7 +222,8 @@ TEST(Export, FenceKeepsTheLargestExclusionsAndSaysWhatItDropped) {
   ASSERT_EQ(notes.size(), 1u);
   EXPECT_NE(notes[0].find("16 largest of 20"), std::string::npos) << notes[0];
   const GeoFrame f(*sc.origin);  // the smallest kept is tower 4 (footprint 14 x 14)
-  EXPECT_NEAR(j["geoFence"]["polygons"][16]["polygon"][0][1].get<double>(), f.to_wgs84(Vec3(320, 500, 0)).lon_deg, 1e-9);
+  EXPECT_NEAR(j["geoFence"]["polygons"][16]["polygon"][0][1].get<double>(), f.to_wgs84(Vec3(320, 500, 0)).lon_deg,
+              1e-9);
   opt.fence = FenceMode::all;
   notes.clear();
   j = nlohmann::json::parse(qgc_plan_json(sc, exported(sc, opt), opt, &notes));
@@ -240,7 +246,8 @@ TEST(Export, WplRowsMatchTheMission) {
 }
 
 TEST(Export, GeoJsonIsLonLatAltWithIds) {
-  Scenario sc = scenario_with({Prism{{{0, 500}, {0, 510}, {10, 510}, {10, 500}}, 0, 5}, Box{Vec3(300, 300, 0), Vec3(320, 320, 60)}});
+  Scenario sc = scenario_with(
+      {Prism{{{0, 500}, {0, 510}, {10, 510}, {10, 500}}, 0, 5}, Box{Vec3(300, 300, 0), Vec3(320, 320, 60)}});
   WorldSpec ws = sc.world.spec();
   ws.obstacle_ids = {"", "tower"};
   sc.world = World(std::move(ws));
@@ -259,7 +266,8 @@ TEST(Export, GeoJsonIsLonLatAltWithIds) {
   EXPECT_EQ(ring.front(), ring.back());
   double area2 = 0;
   for (std::size_t i = 0; i + 1 < ring.size(); ++i)
-    area2 += ring[i][0].get<double>() * ring[i + 1][1].get<double>() - ring[i + 1][0].get<double>() * ring[i][1].get<double>();
+    area2 += ring[i][0].get<double>() * ring[i + 1][1].get<double>() -
+             ring[i + 1][0].get<double>() * ring[i][1].get<double>();
   EXPECT_GT(area2, 0.0);  // counter-clockwise although given clockwise
   EXPECT_NE(plan_kml(sc, v).find("<name>tower (box"), std::string::npos);
 }
@@ -294,7 +302,8 @@ TEST(Export, FileNamesAreSafeAndDistinct) {
 // and only while the file still holds what was written; nothing a manifest was made to name.
 TEST(Export, FolderManifestRemovesStaleFilesOnly) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("uavplan_manifest_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  const fs::path dir = fs::temp_directory_path() /
+                       ("uavplan_manifest_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
   fs::remove_all(dir);
   fs::create_directories(dir / "sub");
   std::ofstream(dir / "mine.txt") << "user file";
@@ -325,7 +334,8 @@ TEST(Export, FolderManifestRemovesStaleFilesOnly) {
 // numbered name, or differ only in case) get names no other UAV has; long ids stay short enough.
 TEST(Export, FileStemsAreDistinctByConstruction) {
   Scenario sc = scenario_with();
-  const std::vector<std::string> ids = {"a_b_2", "a_b", "a b", "A B", "a?b", std::string(300, 'x'), std::string(300, 'x') + "?"};
+  const std::vector<std::string> ids = {
+      "a_b_2", "a_b", "a b", "A B", "a?b", std::string(300, 'x'), std::string(300, 'x') + "?"};
   std::vector<UavPlan> plans;
   sc.uavs.resize(1);
   const UavSpec first = sc.uavs[0];
@@ -379,7 +389,8 @@ struct ModelFlown {
 };
 
 std::size_t waypoints(const std::vector<MissionItem>& items) {
-  return static_cast<std::size_t>(std::count_if(items.begin(), items.end(), [](const MissionItem& i) { return i.command == kCmdWaypoint; }));
+  return static_cast<std::size_t>(
+      std::count_if(items.begin(), items.end(), [](const MissionItem& i) { return i.command == kCmdWaypoint; }));
 }
 
 TEST(ExportSimplify, AModelFlownTrajectoryIsFlownAsVerifiedChords) {

@@ -47,7 +47,8 @@ void remove_stale_temporaries(const fs::path& dir, const std::string& target_nam
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(dir, ec)) {
     const std::string name = entry.path().filename().string();
-    const auto at = target_name.empty() ? name.rfind(".tmp.") : (name.rfind(prefix, 0) == 0 ? target_name.size() : std::string::npos);
+    const auto at = target_name.empty() ? name.rfind(".tmp.")
+                                        : (name.rfind(prefix, 0) == 0 ? target_name.size() : std::string::npos);
     if (at == std::string::npos) continue;
     const long pid = temporary_pid(name, at);
     std::error_code st;
@@ -93,13 +94,15 @@ void write_all(int fd, std::string_view content, const std::string& tmp, const s
 
 std::string read_text_file(const std::string& path) {
   struct stat st {};
-  if (::stat(path.c_str(), &st) != 0) throw InputError(path, 0, "", "cannot open: " + std::string(std::strerror(errno)));
+  if (::stat(path.c_str(), &st) != 0)
+    throw InputError(path, 0, "", "cannot open: " + std::string(std::strerror(errno)));
   if (S_ISDIR(st.st_mode)) throw InputError(path, 0, "", "is a directory, not a file");
   // A FIFO would block, a device (/dev/zero) would never end.
   if (!S_ISREG(st.st_mode)) throw InputError(path, 0, "", "is not a regular file (a device, FIFO or socket)");
   if (static_cast<std::uint64_t>(st.st_size) > kMaxInputBytes)
-    throw InputError(path, 0, "", "is " + std::to_string(st.st_size >> 20) + " MiB; input files are at most " +
-                                      std::to_string(kMaxInputBytes >> 20) + " MiB");
+    throw InputError(path, 0, "",
+                     "is " + std::to_string(st.st_size >> 20) + " MiB; input files are at most " +
+                         std::to_string(kMaxInputBytes >> 20) + " MiB");
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (!f) throw InputError(path, 0, "", "cannot open: " + std::string(std::strerror(errno)));
   std::string text;

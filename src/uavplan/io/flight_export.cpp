@@ -4,17 +4,17 @@
 #include <cmath>
 #include <set>
 
+#include "uavplan/coordination/contract/separation.h"
 #include "uavplan/core/geometry.h"
 #include "uavplan/core/text.h"
 #include "uavplan/core/units.h"
 #include "uavplan/evaluation/ground_legs.h"
-#include "uavplan/coordination/contract/separation.h"
 
 namespace uavplan {
 namespace {
 
-constexpr double kSampleDt_s = 1.0;     // rows of the added legs, at most this far apart
-constexpr double kTurnStep_s = 2.0;     // a turn back flies legs this long (at cruise speed)
+constexpr double kSampleDt_s = 1.0;  // rows of the added legs, at most this far apart
+constexpr double kTurnStep_s = 2.0;  // a turn back flies legs this long (at cruise speed)
 constexpr double kClearTolerance_m = 1e-6;
 
 // `pts` flown at v_mps from the last row.
@@ -52,7 +52,8 @@ double signed_angle(const Vec3& from, const Vec3& to) {
 }
 
 // A straight leg to or from the ground at height ground_z: why it is not clear, or empty.
-std::string leg_problem(const World& w, const Vec3& a, const Vec3& b, double keep, double ground_z, const std::string& what) {
+std::string leg_problem(const World& w, const Vec3& a, const Vec3& b, double keep, double ground_z,
+                        const std::string& what) {
   if (!w.in_bounds(a) || !w.in_bounds(b)) return what + " leaves the world bounds";
   const double c = w.ground_leg_clearance(a, b, keep, ground_z);
   if (c >= keep - kClearTolerance_m) return {};
@@ -106,7 +107,8 @@ class Builder {
     }
     const double climb = std::min(u.max_climb_rad, deg_to_rad(kFixedWingClimbOut_deg));
     e.home = ground_along(w_, s, -first_heading(tr, u), climb);
-    return leg_problem(w_, e.home, s, keep, e.home.z(), "its climb-out to its start (" + num_text(rad_to_deg(climb)) + " deg)");
+    return leg_problem(w_, e.home, s, keep, e.home.z(),
+                       "its climb-out to its start (" + num_text(rad_to_deg(climb)) + " deg)");
   }
 
   std::string ending(const UavSpec& u, const GroundLegs& legs, ExportedUav& e) const {
@@ -114,7 +116,8 @@ class Builder {
     e.body_end = tr.size() - 1;
     if (legs.landing) {  // the plan lands at its goal: that is its end, whatever --end says
       if (fixed_wing())
-        return "a fixed-wing UAV cannot fly its planned vertical landing: give it a goal in the air (the landing pattern "
+        return "a fixed-wing UAV cannot fly its planned vertical landing: give it a goal in the air (the landing "
+               "pattern "
                "follows it) or export it as a multirotor";
       e.end = MissionEnd::land;
       e.body_end = legs.landing_begin;
@@ -125,7 +128,8 @@ class Builder {
     const Vec3 f = tr.back().p;
     const double v = u.speed.cruise_mps;
     switch (opt_.end) {
-      case MissionEnd::none: return {};
+      case MissionEnd::none:
+        return {};
       case MissionEnd::land:
         if (fixed_wing()) return glide(u, e);
         e.touchdown = Vec3(f.x(), f.y(), w_.ground_z(f.x(), f.y()));
@@ -135,7 +139,8 @@ class Builder {
         if (!fixed_wing()) return {};
         e.loiter_radius_m = fixed_wing_loiter_radius_m(opt_.firmware);
         return circle_problem(u, f, e.loiter_radius_m, "its loiter circle");
-      case MissionEnd::rtl: return return_home(u, e);
+      case MissionEnd::rtl:
+        return return_home(u, e);
     }
     return {};
   }
@@ -158,8 +163,8 @@ class Builder {
       }
       if (first.empty()) first = why;
     }
-    return "no clear " + num_text(kFixedWingGlide_deg) + "-degree landing glide from its goal within its turn limit (" + first +
-           "): use --end loiter or --end rtl, or a goal with room ahead of it";
+    return "no clear " + num_text(kFixedWingGlide_deg) + "-degree landing glide from its goal within its turn limit (" +
+           first + "): use --end loiter or --end rtl, or a goal with room ahead of it";
   }
 
   // Back within the turn limit, straight to above home at the goal's height, then down
@@ -249,10 +254,14 @@ std::vector<Violation> verify_flights(const Scenario& sc, const std::vector<Expo
 
 std::string_view to_string(MissionEnd e) {
   switch (e) {
-    case MissionEnd::land: return "land";
-    case MissionEnd::rtl: return "rtl";
-    case MissionEnd::loiter: return "loiter";
-    case MissionEnd::none: return "none";
+    case MissionEnd::land:
+      return "land";
+    case MissionEnd::rtl:
+      return "rtl";
+    case MissionEnd::loiter:
+      return "loiter";
+    case MissionEnd::none:
+      return "none";
   }
   return "?";
 }
@@ -344,7 +353,8 @@ VerifiedExport verified_export(const Scenario& sc, const Plan& plan, const Expor
     if (v.uav.empty()) out.left_out.push_back("the plan: " + describe(v));
   // Model-flown trajectories flown as chords, when the chords hold with everything else.
   // (Copied only when some UAV is to be simplified: most plans have none.)
-  if (std::any_of(out.uavs.begin(), out.uavs.end(), [&](const ExportedUav& e) { return simplify_tolerance_m(e, opt) > 0.0; })) {
+  if (std::any_of(out.uavs.begin(), out.uavs.end(),
+                  [&](const ExportedUav& e) { return simplify_tolerance_m(e, opt) > 0.0; })) {
     std::vector<ExportedUav> chords = out.uavs;
     bool changed = false;
     for (ExportedUav& e : chords)
@@ -354,7 +364,8 @@ VerifiedExport verified_export(const Scenario& sc, const Plan& plan, const Expor
   // The added legs, with everything else that flies: a UAV whose legs do not hold goes.
   std::set<std::string> failed;
   for (Violation& v : verify_flights(sc, out.uavs)) {
-    if (failed.insert(v.uav).second) out.left_out.push_back(v.uav + ": with its " + std::string(to_string(opt.end)) + " legs: " + describe(v));
+    if (failed.insert(v.uav).second)
+      out.left_out.push_back(v.uav + ": with its " + std::string(to_string(opt.end)) + " legs: " + describe(v));
     out.violations.push_back(std::move(v));
   }
   for (const ExportedUav& e : out.uavs)

@@ -34,7 +34,7 @@ namespace uavplan {
 enum class Firmware { px4, ardupilot };             // QGC firmwareType 12 / 3
 enum class VehicleKind { multirotor, fixed_wing };  // MAV_TYPE 2 / 1
 enum class MissionEnd { land, rtl, loiter, none };
-enum class FenceMode { none, bounds, all };          // bounds: plus the largest exclusions
+enum class FenceMode { none, bounds, all };  // bounds: plus the largest exclusions
 std::string_view to_string(MissionEnd e);
 
 // Thrown when a plan cannot be exported (no origin, a plan UAV unknown to the scenario).
@@ -61,22 +61,22 @@ struct ExportOptions {
   double simplify_m = -1.0;
 };
 
-inline constexpr double kFixedWingGlide_deg = 5.0;     // PX4 FW_LND_ANG default
+inline constexpr double kFixedWingGlide_deg = 5.0;      // PX4 FW_LND_ANG default
 inline constexpr double kFixedWingClimbOut_deg = 10.0;  // PX4 FW_TKO_PITCH_MIN default
 double fixed_wing_loiter_radius_m(Firmware f);          // NAV_LOITER_RAD 80 m / WP_LOITER_RAD 60 m
 
 struct ExportedUav {
   const UavSpec* spec = nullptr;
-  UavPlan plan;                // the trajectory it flies: the plan's, and its end legs
-  std::size_t body_begin = 0;  // first row after a vertical take-off in the plan (0: none)
-  std::size_t body_end = 0;    // last row before the end legs (and before a landing in the plan)
-  Vec3 home = Vec3::Zero();    // on the ground: where it takes off
+  UavPlan plan;                    // the trajectory it flies: the plan's, and its end legs
+  std::size_t body_begin = 0;      // first row after a vertical take-off in the plan (0: none)
+  std::size_t body_end = 0;        // last row before the end legs (and before a landing in the plan)
+  Vec3 home = Vec3::Zero();        // on the ground: where it takes off
   Vec3 takeoff_to = Vec3::Zero();  // the top of its take-off
   MissionEnd end = MissionEnd::none;
-  std::optional<Vec3> approach;      // fixed-wing landing: where the glide begins
-  std::optional<Vec3> touchdown;     // land: where it touches down
-  std::vector<Vec3> return_points;   // rtl: the turn back and the point above home
-  double loiter_radius_m = 0.0;      // loiter (and fixed-wing rtl at home)
+  std::optional<Vec3> approach;     // fixed-wing landing: where the glide begins
+  std::optional<Vec3> touchdown;    // land: where it touches down
+  std::vector<Vec3> return_points;  // rtl: the turn back and the point above home
+  double loiter_radius_m = 0.0;     // loiter (and fixed-wing rtl at home)
 };
 
 struct VerifiedExport {

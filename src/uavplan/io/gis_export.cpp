@@ -26,8 +26,10 @@ std::vector<Vec3> flown_points(const Trajectory& tr) {
   std::vector<Vec3> pts;
   for (const auto& s : tr) {
     if (!pts.empty() && (s.p - pts.back()).norm() <= kHoldMove_m) continue;
-    if (pts.size() >= 2 && on_the_way(pts[pts.size() - 2], pts.back(), s.p)) pts.back() = s.p;
-    else pts.push_back(s.p);
+    if (pts.size() >= 2 && on_the_way(pts[pts.size() - 2], pts.back(), s.p))
+      pts.back() = s.p;
+    else
+      pts.push_back(s.p);
   }
   return pts;
 }
@@ -46,16 +48,28 @@ std::string xml_escape(std::string_view s) {
   std::string out;
   for (char c : s) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
       // XML 1.0 has no way to write C0 controls but tab, newline and return, not even as
       // references: such a character from a name becomes U+FFFD.
       default:
-        if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r') out += "\xEF\xBF\xBD";
-        else out += c;
+        if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r')
+          out += "\xEF\xBF\xBD";
+        else
+          out += c;
     }
   }
   return out;
@@ -67,7 +81,8 @@ std::string kml_coord(const GeoFrame& f, const Vec3& p) {
 }
 
 const GeoOrigin& origin_of(const Scenario& sc) {
-  if (!sc.origin) throw ExportError("scenario '" + sc.name + "' has no origin: add origin: {lat, lon, alt} to export to WGS84");
+  if (!sc.origin)
+    throw ExportError("scenario '" + sc.name + "' has no origin: add origin: {lat, lon, alt} to export to WGS84");
   return *sc.origin;
 }
 
@@ -107,9 +122,11 @@ std::string plan_geojson(const Scenario& sc, const VerifiedExport& flights) {
   }
   const auto& radars = sc.world.radars();
   for (std::size_t k = 0; k < radars.size(); ++k)
-    features.push_back(ojson{{"type", "Feature"},
-                             {"properties", {{"kind", "threat"}, {"id", radar_name(sc.world, k)}, {"index", k}, {"weight", radars[k].weight}}},
-                             {"geometry", {{"type", "Point"}, {"coordinates", lonlatalt(frame, radars[k].position)}}}});
+    features.push_back(
+        ojson{{"type", "Feature"},
+              {"properties",
+               {{"kind", "threat"}, {"id", radar_name(sc.world, k)}, {"index", k}, {"weight", radars[k].weight}}},
+              {"geometry", {{"type", "Point"}, {"coordinates", lonlatalt(frame, radars[k].position)}}}});
   ojson j{{"type", "FeatureCollection"}, {"name", sc.name}, {"features", std::move(features)}};
   return j.dump(1) + "\n";
 }
@@ -122,7 +139,10 @@ std::string plan_kml(const Scenario& sc, const VerifiedExport& flights) {
   for (std::size_t c = 0; c < kUavPalette.size(); ++c)
     out += "<Style id=\"route" + std::to_string(c) + "\"><LineStyle><color>" + kml_colour(c) +
            "</color><width>3</width></LineStyle></Style>\n";
-  out += "<Style id=\"obstacle\"><LineStyle><color>ff404040</color></LineStyle><PolyStyle><color>80808080</color></PolyStyle></Style>\n";
+  out +=
+      "<Style "
+      "id=\"obstacle\"><LineStyle><color>ff404040</color></LineStyle><PolyStyle><color>80808080</color></PolyStyle></"
+      "Style>\n";
   out += "<Folder><name>routes</name>\n";
   for (const ExportedUav& e : flights.uavs) {
     std::size_t colour = 0;  // the UAV's colour in the report: its index in the scenario
@@ -142,10 +162,12 @@ std::string plan_kml(const Scenario& sc, const VerifiedExport& flights) {
     const auto [lo, hi] = z_range(obstacles[k]);
     std::vector<Vec2> ring = footprint(obstacles[k]);
     ring.push_back(ring.front());
-    out += "<Placemark><name>" + xml_escape(obstacle_name(sc.world, k)) + " (" + std::string(shape_name(obstacles[k])) + ", " +
-           short_num(lo) + " to " + short_num(hi) +
-           " m)</name><styleUrl>#obstacle</styleUrl>\n<Polygon><extrude>1</extrude><altitudeMode>absolute</altitudeMode><outerBoundaryIs><LinearRing><coordinates>";
-    for (std::size_t i = 0; i < ring.size(); ++i) out += (i ? " " : "") + kml_coord(frame, Vec3(ring[i].x(), ring[i].y(), hi));
+    out += "<Placemark><name>" + xml_escape(obstacle_name(sc.world, k)) + " (" + std::string(shape_name(obstacles[k])) +
+           ", " + short_num(lo) + " to " + short_num(hi) +
+           " m)</name><styleUrl>#obstacle</styleUrl>\n<Polygon><extrude>1</extrude><altitudeMode>absolute</"
+           "altitudeMode><outerBoundaryIs><LinearRing><coordinates>";
+    for (std::size_t i = 0; i < ring.size(); ++i)
+      out += (i ? " " : "") + kml_coord(frame, Vec3(ring[i].x(), ring[i].y(), hi));
     out += "</coordinates></LinearRing></outerBoundaryIs></Polygon></Placemark>\n";
   }
   out += "</Folder>\n</Document>\n</kml>\n";

@@ -32,8 +32,11 @@ inline UavPlan sample_uav() {
   UavPlan u;
   u.id = "a/1";
   u.status = Status::solved;
-  u.trajectory = {{0.0, Vec3(0, 0, 10)},   {4.0, Vec3(0, 0, 10)},    {14.0, Vec3(50, 0, 10)},
-                  {24.0, Vec3(100, 0, 10)}, {34.0, Vec3(100, 100, 10)}};
+  u.trajectory = {{0.0, Vec3(0, 0, 10)},
+                  {4.0, Vec3(0, 0, 10)},
+                  {14.0, Vec3(50, 0, 10)},
+                  {24.0, Vec3(100, 0, 10)},
+                  {34.0, Vec3(100, 100, 10)}};
   return u;
 }
 

@@ -29,8 +29,13 @@ class Items {
     const LatLonAlt g = frame_.to_wgs84(p);
     MissionItem it;
     it.command = command;
-    it.params = {round_m(head[0]), round_m(head[1]), round_m(head[2]), round_m(head[3]),
-                 round_deg(g.lat_deg), round_deg(g.lon_deg), round_m(g.alt_m - home_amsl_m_)};
+    it.params = {round_m(head[0]),
+                 round_m(head[1]),
+                 round_m(head[2]),
+                 round_m(head[3]),
+                 round_deg(g.lat_deg),
+                 round_deg(g.lon_deg),
+                 round_m(g.alt_m - home_amsl_m_)};
     items_.push_back(it);
   }
   void command(int command, std::array<double, 4> head = {}) {
@@ -90,7 +95,8 @@ class Items {
 }  // namespace
 
 std::vector<MissionItem> mission_items(const Scenario& sc, const ExportedUav& e, const ExportOptions& opt) {
-  if (!sc.origin) throw ExportError("scenario '" + sc.name + "' has no origin: add origin: {lat, lon, alt} to export to WGS84");
+  if (!sc.origin)
+    throw ExportError("scenario '" + sc.name + "' has no origin: add origin: {lat, lon, alt} to export to WGS84");
   const GeoFrame frame(*sc.origin);
   const Trajectory& tr = e.plan.trajectory;
   const double cruise = e.spec->speed.cruise_mps;
@@ -126,7 +132,8 @@ std::vector<MissionItem> mission_items(const Scenario& sc, const ExportedUav& e,
     case MissionEnd::loiter:
       m.at(kCmdLoiterUnlimited, tr[e.body_end].p, {0, 0, e.loiter_radius_m, 0});
       break;
-    case MissionEnd::none: break;
+    case MissionEnd::none:
+      break;
   }
   return std::move(m.items());
 }

@@ -44,9 +44,11 @@ template <class T>
 T parse_num(const std::string& s, const std::string& path, int line, const char* what) {
   T v{};
   const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (ec != std::errc() || p != s.data() + s.size()) throw InputError(path, line, what, "expected a number, got '" + s + "'");
+  if (ec != std::errc() || p != s.data() + s.size())
+    throw InputError(path, line, what, "expected a number, got '" + s + "'");
   if constexpr (std::is_floating_point_v<T>)
-    if (!std::isfinite(v) || std::abs(v) > 1e15) throw InputError(path, line, what, "must be a finite number below 1e15, got '" + s + "'");
+    if (!std::isfinite(v) || std::abs(v) > 1e15)
+      throw InputError(path, line, what, "must be a finite number below 1e15, got '" + s + "'");
   return v;
 }
 
@@ -67,7 +69,8 @@ BitGrid read_movingai_map(const std::string& path) {
     if (f[0] == "height" && f.size() == 2) height = parse_num<int>(f[1], path, lineno, "height");
     if (f[0] == "width" && f.size() == 2) width = parse_num<int>(f[1], path, lineno, "width");
   }
-  if (width <= 0 || height <= 0) throw InputError(path, lineno, "header", "missing or bad 'height'/'width' before 'map'");
+  if (width <= 0 || height <= 0)
+    throw InputError(path, lineno, "header", "missing or bad 'height'/'width' before 'map'");
   // Every cell is a character of the file: a header claiming more is refused before allocating.
   std::error_code ec;
   const auto bytes = std::filesystem::file_size(path, ec);
@@ -77,11 +80,13 @@ BitGrid read_movingai_map(const std::string& path) {
                          std::to_string(bytes) + " bytes can hold");
   BitGrid g(width, height, 1);
   for (int y = 0; y < height; ++y) {
-    if (!std::getline(in, line)) throw InputError(path, lineno + 1, "map", "expected " + std::to_string(height) + " rows");
+    if (!std::getline(in, line))
+      throw InputError(path, lineno + 1, "map", "expected " + std::to_string(height) + " rows");
     ++lineno;
     strip_cr(line);
     if (static_cast<int>(line.size()) < width)
-      throw InputError(path, lineno, "map", "row has " + std::to_string(line.size()) + " cells, expected " + std::to_string(width));
+      throw InputError(path, lineno, "map",
+                       "row has " + std::to_string(line.size()) + " cells, expected " + std::to_string(width));
     for (int x = 0; x < width; ++x) {
       const char c = line[x];
       if (c != '.' && c != 'G' && c != 'S') g.set_blocked(g.index(x, y, 0));
@@ -101,7 +106,8 @@ std::vector<MovingAiProblem> read_movingai_scen(const std::string& path) {
     if (line.empty() || line.rfind("version", 0) == 0) continue;
     auto f = fields(line, '\t');
     if (f.size() != 9) f = fields(line);
-    if (f.size() != 9) throw InputError(path, lineno, "", "expected 9 fields: bucket map width height sx sy gx gy optimal");
+    if (f.size() != 9)
+      throw InputError(path, lineno, "", "expected 9 fields: bucket map width height sx sy gx gy optimal");
     MovingAiProblem p;
     p.bucket = parse_num<int>(f[0], path, lineno, "bucket");
     p.start[0] = parse_num<int>(f[4], path, lineno, "start x");
@@ -124,10 +130,12 @@ BitGrid read_movingai_3dmap(const std::string& path) {
     if (std::sscanf(buf, "voxel %d %d %d", &dims[0], &dims[1], &dims[2]) == 3) break;
     if (buf[strspn(buf, " \t\r\n")] != '\0') throw InputError(path, lineno, "header", "expected 'voxel X Y Z'");
   }
-  if (dims[0] <= 0 || dims[1] <= 0 || dims[2] <= 0) throw InputError(path, lineno, "header", "bad or missing 'voxel X Y Z'");
+  if (dims[0] <= 0 || dims[1] <= 0 || dims[2] <= 0)
+    throw InputError(path, lineno, "header", "bad or missing 'voxel X Y Z'");
   if (static_cast<double>(dims[0]) * dims[1] * dims[2] > kMaxMovingAiVoxels)
-    throw InputError(path, lineno, "header", "more than " + std::to_string(static_cast<long long>(kMaxMovingAiVoxels)) +
-                                                 " voxels (a grid of 128 MiB)");
+    throw InputError(
+        path, lineno, "header",
+        "more than " + std::to_string(static_cast<long long>(kMaxMovingAiVoxels)) + " voxels (a grid of 128 MiB)");
   BitGrid g(dims[0], dims[1], dims[2]);
   while (std::fgets(buf, sizeof buf, f.get())) {
     ++lineno;

@@ -51,8 +51,8 @@ TEST(MovingAi, Reads3dMapsAndScenarios) {
   EXPECT_EQ(p[0].goal[2], 1);
   EXPECT_EQ(p[0].bucket, 12);
   // Costs no bucket can hold (found by fuzzing: the cast overflowed).
-  const auto odd = read_movingai_3dscen(
-      write_temp("odd.3dscen", "version 1\nt.3dmap\n0 0 0 1 1 1 1e14 1\n0 0 0 1 1 1 -5 1\n"));
+  const auto odd =
+      read_movingai_3dscen(write_temp("odd.3dscen", "version 1\nt.3dmap\n0 0 0 1 1 1 1e14 1\n0 0 0 1 1 1 -5 1\n"));
   ASSERT_EQ(odd.size(), 2u);
   for (const auto& q : odd) EXPECT_EQ(q.bucket, -1);
 }

@@ -50,7 +50,9 @@ struct Reader {
   BuildingCounts& counts;
   std::vector<Prism>& out;
 
-  [[noreturn]] void fail(const std::string& place, const std::string& what) const { throw InputError(file, 0, place, what); }
+  [[noreturn]] void fail(const std::string& place, const std::string& what) const {
+    throw InputError(file, 0, place, what);
+  }
 
   Vec2 position(const json& p, const std::string& place) const {
     if (!p.is_array() || p.size() < 2 || !p[0].is_number() || !p[1].is_number())
@@ -95,10 +97,12 @@ struct Reader {
   }
 
   void geometry(const json& g, const std::string& place, const json& props) const {
-    if (!g.is_object() || !g.contains("type") || !g["type"].is_string()) fail(place, "expected a GeoJSON geometry with a type");
+    if (!g.is_object() || !g.contains("type") || !g["type"].is_string())
+      fail(place, "expected a GeoJSON geometry with a type");
     const std::string type = g["type"].get<std::string>();
     if (type == "GeometryCollection") {
-      if (!g.contains("geometries") || !g["geometries"].is_array()) fail(place, "a GeometryCollection needs 'geometries'");
+      if (!g.contains("geometries") || !g["geometries"].is_array())
+        fail(place, "a GeometryCollection needs 'geometries'");
       for (std::size_t i = 0; i < g["geometries"].size(); ++i)
         geometry(g["geometries"][i], place + ".geometries[" + std::to_string(i) + "]", props);
       return;
@@ -112,7 +116,8 @@ struct Reader {
     if (const auto h = props.contains("height") ? non_negative(props["height"]) : std::nullopt; h && *h > 0.0) {
       top = *h;
       ++counts.from_height;
-    } else if (const auto lv = props.contains("building:levels") ? non_negative(props["building:levels"]) : std::nullopt;
+    } else if (const auto lv =
+                   props.contains("building:levels") ? non_negative(props["building:levels"]) : std::nullopt;
                lv && *lv > 0.0) {
       const auto roof = props.contains("roof:levels") ? non_negative(props["roof:levels"]) : std::nullopt;
       top = (*lv + roof.value_or(0.0)) * opt.level_height_m;
@@ -124,12 +129,14 @@ struct Reader {
     double bottom = 0.0;
     if (const auto mh = props.contains("min_height") ? non_negative(props["min_height"]) : std::nullopt) {
       bottom = *mh;
-    } else if (const auto ml = props.contains("building:min_level") ? non_negative(props["building:min_level"]) : std::nullopt) {
+    } else if (const auto ml =
+                   props.contains("building:min_level") ? non_negative(props["building:min_level"]) : std::nullopt) {
       bottom = *ml * opt.level_height_m;
     }
     if (!(top > bottom)) {  // a part that starts at or above its own top is a tagging error: say so
       char buf[160];
-      std::snprintf(buf, sizeof buf, "the building's bottom (min_height or building:min_level: %g m) is not below its top (%g m)",
+      std::snprintf(buf, sizeof buf,
+                    "the building's bottom (min_height or building:min_level: %g m) is not below its top (%g m)",
                     bottom, top);
       fail(place, buf);
     }
@@ -186,7 +193,8 @@ std::vector<Prism> buildings_from_geojson(const std::string& text, const std::st
   }
   const std::string type = doc["type"].get<std::string>();
   if (type == "FeatureCollection") {
-    if (!doc.contains("features") || !doc["features"].is_array()) r.fail("features", "a FeatureCollection needs a 'features' list");
+    if (!doc.contains("features") || !doc["features"].is_array())
+      r.fail("features", "a FeatureCollection needs a 'features' list");
     const json& fs = doc["features"];
     for (std::size_t i = 0; i < fs.size(); ++i) r.feature(fs[i], "features[" + std::to_string(i) + "]");
   } else if (type == "Feature") {

@@ -2,9 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
 
 #include "uavplan/core/geometry.h"
 #include "uavplan/io/files.h"
@@ -94,10 +94,13 @@ TEST(OsmBuildings, BadInputNamesTheFileAndFeature) {
   const std::string m = message(projected);
   EXPECT_NE(m.find("features[0].geometry.coordinates[0][0]"), std::string::npos) << m;
   EXPECT_NE(m.find("WGS84"), std::string::npos) << m;
-  const std::string mercator = R"({"type": "FeatureCollection", "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::3857"}}, "features": []})";
+  const std::string mercator =
+      R"({"type": "FeatureCollection", "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::3857"}}, "features": []})";
   EXPECT_NE(message(mercator).find("crs"), std::string::npos);
-  EXPECT_NE(message(R"({"type": "FeatureCollection", "features": [{"type": "Feature", "geometry": {"type": "Polygon"}}]})").find("coordinates"),
-            std::string::npos);
+  EXPECT_NE(
+      message(R"({"type": "FeatureCollection", "features": [{"type": "Feature", "geometry": {"type": "Polygon"}}]})")
+          .find("coordinates"),
+      std::string::npos);
   // A part whose bottom is above its top is a tagging error, named (it was dropped without a word).
   const std::string upside_down = R"({"type": "FeatureCollection", "features": [{"type": "Feature",
     "properties": {"height": 20, "min_height": 30},
@@ -147,7 +150,8 @@ class ScenarioBuildings : public ::testing::Test {
 };
 
 TEST_F(ScenarioBuildings, LoadsRelativeToTheScenarioAndClipsToBounds) {
-  const std::string head = "version: 1\norigin: {lat: 40.0, lon: -74.0}\nworld:\n  bounds: {min: [-100, -20, 0], max: [100, 150, 60]}\n";
+  const std::string head =
+      "version: 1\norigin: {lat: 40.0, lon: -74.0}\nworld:\n  bounds: {min: [-100, -20, 0], max: [100, 150, 60]}\n";
   const std::string tail = "uavs: [{id: u, start: [50, -10, 5], goal: [-50, -10, 5]}]\n";
   // The MultiPolygon lies 85 and 171 m west: only its first prism is within x >= -100; the
   // building part 222 m north is outside y <= 150.
@@ -173,13 +177,16 @@ TEST_F(ScenarioBuildings, ErrorsNameTheScenarioKey) {
   };
   const std::string world = "world:\n  bounds: {min: [-100, -20, 0], max: [100, 150, 60]}\n";
   const std::string uav = "uavs: [{id: u, start: [50, -10, 5]}]\n";
-  EXPECT_NE(message("version: 1\n" + world + "  buildings: data/c.geojson\n" + uav).find("world.buildings: placing lon/lat footprints needs the scenario's 'origin'"),
+  EXPECT_NE(message("version: 1\n" + world + "  buildings: data/c.geojson\n" + uav)
+                .find("world.buildings: placing lon/lat footprints needs the scenario's 'origin'"),
             std::string::npos);
   const std::string origin = "version: 1\norigin: {lat: 40.0, lon: -74.0}\n";
-  EXPECT_NE(message(origin + world + "  buildings: data/missing.geojson\n" + uav).find("world.buildings: cannot read the buildings file"),
+  EXPECT_NE(message(origin + world + "  buildings: data/missing.geojson\n" + uav)
+                .find("world.buildings: cannot read the buildings file"),
             std::string::npos);
-  EXPECT_NE(message(origin + world + "  buildings: {file: data/c.geojson, levels: 3}\n" + uav).find("unknown key 'levels'"),
-            std::string::npos);
+  EXPECT_NE(
+      message(origin + world + "  buildings: {file: data/c.geojson, levels: 3}\n" + uav).find("unknown key 'levels'"),
+      std::string::npos);
 }
 
 }  // namespace

@@ -93,16 +93,19 @@ void expect_bad(const std::string& text, const std::string& part) {
 
 TEST(P5Mission, BadInputIsOneLineNamingThePlace) {
   const std::string good = text_of(kScenario);
-  expect_bad(replaced(good, "  airfield: {position: [50000, 50000, 0], runway_heading_deg: 0, runway_length: 3000}\n", ""),
-             "airfield");
+  expect_bad(
+      replaced(good, "  airfield: {position: [50000, 50000, 0], runway_heading_deg: 0, runway_length: 3000}\n", ""),
+      "airfield");
   expect_bad(replaced(good, "[409000, 271000, 5000]", "[173000, 455000, 5000]"), "inside an obstacle");
   expect_bad(replaced(good, "[409000, 271000, 5000]", "[409000, 271000, 50000]"), "outside the world bounds");
   expect_bad(replaced(good, "start: [50200, 49800, 0]", "start: [50030, 49800, 0]"), "at least the separation");
   expect_bad(replaced(good, "start: [50400, 49800, 0]", "start: [51400, 50020, 0]"), "parked on the runway");
   expect_bad(replaced(good, "[-120, 0, 0]]", "[-120, 0, 0], [-180, 0, 0]]"), "slots for 4 UAVs");
-  expect_bad(replaced(good, "  task_points:", "  topology: [[0, 1, 0, 0], [1, 0, 0, 0], [0, 0, 0, 1], [0, 0, 1, 0]]\n  task_points:"),
+  expect_bad(replaced(good, "  task_points:",
+                      "  topology: [[0, 1, 0, 0], [1, 0, 0, 0], [0, 0, 0, 1], [0, 0, 1, 0]]\n  task_points:"),
              "connected");
-  expect_bad(replaced(good, "start: [50000, 49800, 0]", "start: [50000, 49800, 0], goal: [60000, 60000, 5000]"), "no goal");
+  expect_bad(replaced(good, "start: [50000, 49800, 0]", "start: [50000, 49800, 0], goal: [60000, 60000, 5000]"),
+             "no goal");
 }
 
 }  // namespace

@@ -1,13 +1,13 @@
 #include "uavplan/io/plan_io.h"
 
+#include <yaml-cpp/yaml.h>
 #include <algorithm>
 #include <cmath>
-#include <yaml-cpp/yaml.h>
 
-#include <nlohmann/json.hpp>
-#include <limits>
 #include <functional>
+#include <limits>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <set>
 
 #include "uavplan/core/text.h"
@@ -153,8 +153,10 @@ struct Reader {
     if (!v.is_object()) fail(place, "expected an object");
     std::map<std::string, double> out;
     for (const auto& [k, x] : v.items()) {
-      if (x.is_null()) out[k] = std::numeric_limits<double>::infinity();
-      else out[k] = number(x, place + "." + k);
+      if (x.is_null())
+        out[k] = std::numeric_limits<double>::infinity();
+      else
+        out[k] = number(x, place + "." + k);
     }
     return out;
   }
@@ -196,9 +198,12 @@ std::string plan_to_json(const Plan& plan, const PlanWriteOptions& options) {
   if (plan.formation) {
     Json phases = Json::array(), breaks = Json::array();
     for (const auto& ph : plan.formation->phases) phases.push_back({{"name", ph.name}, {"end_s", r6(ph.end_s)}});
-    for (const auto& b : plan.formation->breaks) breaks.push_back({{"uav", b.uav}, {"from_s", r6(b.from_s)}, {"to_s", r6(b.to_s)}});
-    j["formation"] = {{"eta_s", r6(plan.formation->eta_s)}, {"phases", std::move(phases)}, {"breaks", std::move(breaks)}};
-    if (plan.formation->worst_slot_error_m) j["formation"]["worst_slot_error_m"] = r6(*plan.formation->worst_slot_error_m);
+    for (const auto& b : plan.formation->breaks)
+      breaks.push_back({{"uav", b.uav}, {"from_s", r6(b.from_s)}, {"to_s", r6(b.to_s)}});
+    j["formation"] = {
+        {"eta_s", r6(plan.formation->eta_s)}, {"phases", std::move(phases)}, {"breaks", std::move(breaks)}};
+    if (plan.formation->worst_slot_error_m)
+      j["formation"]["worst_slot_error_m"] = r6(*plan.formation->worst_slot_error_m);
   }
   j["metrics"] = metrics_json(plan.metrics);
   j["timing"] = Json::object();
@@ -210,7 +215,9 @@ std::string plan_to_json(const Plan& plan, const PlanWriteOptions& options) {
   for (const UavPlan& u : plan.uavs) rows += u.trajectory.size() + u.waypoints.size();
   std::string out;
   out.reserve(2048 + 96 * rows);  // a row is about 80 characters
-  write_json(j, 0, out, [&](std::uint64_t k, std::size_t depth, std::string& o) { write_rows(plan.uavs[k].trajectory, depth, o); });
+  write_json(j, 0, out, [&](std::uint64_t k, std::size_t depth, std::string& o) {
+    write_rows(plan.uavs[k].trajectory, depth, o);
+  });
   out += '\n';
   return out;
 }
@@ -223,7 +230,8 @@ Plan parse_plan(const std::string& raw, const std::string& file) {
   const Json::parser_callback_t cb = [&](int, Json::parse_event_t ev, Json& parsed) {
     if (ev == Json::parse_event_t::object_start) keys.emplace_back();
     if (ev == Json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
-    if (ev == Json::parse_event_t::key && !keys.empty()) duplicate |= !keys.back().insert(parsed.get<std::string>()).second;
+    if (ev == Json::parse_event_t::key && !keys.empty())
+      duplicate |= !keys.back().insert(parsed.get<std::string>()).second;
     return true;
   };
   try {
@@ -244,7 +252,8 @@ Plan parse_plan(const std::string& raw, const std::string& file) {
   if (!j.is_object()) r.fail("", "the top level must be a JSON object");
   if (r.text(r.req(j, "format", ""), "format") != "uavplan-plan") r.fail("format", "expected \"uavplan-plan\"");
   const Json& ver = r.req(j, "version", "");
-  if (!ver.is_number_integer() || ver.get<long long>() != 1) r.fail("version", "unsupported version (this build reads version 1)");
+  if (!ver.is_number_integer() || ver.get<long long>() != 1)
+    r.fail("version", "unsupported version (this build reads version 1)");
   Plan p;
   if (j.contains("scenario")) p.scenario = r.text(j["scenario"], "scenario");
   if (j.contains("algorithm")) p.algorithm = r.text(j["algorithm"], "algorithm");
@@ -319,7 +328,8 @@ Plan parse_plan(const std::string& raw, const std::string& file) {
     const Json& f = j["formation"];
     FormationLog log;
     log.eta_s = r.number(r.req(f, "eta_s", "formation"), "formation.eta_s");
-    if (f.contains("worst_slot_error_m")) log.worst_slot_error_m = r.number(f["worst_slot_error_m"], "formation.worst_slot_error_m");
+    if (f.contains("worst_slot_error_m"))
+      log.worst_slot_error_m = r.number(f["worst_slot_error_m"], "formation.worst_slot_error_m");
     for (const char* key : {"phases", "breaks"}) {
       if (!f.contains(key)) continue;
       const std::string at = std::string("formation.") + key;
@@ -328,9 +338,11 @@ Plan parse_plan(const std::string& raw, const std::string& file) {
         const Json& e = f[key][k];
         const std::string place = at + "[" + std::to_string(k) + "]";
         if (std::string(key) == "phases")
-          log.phases.push_back({r.text(r.req(e, "name", place), place + ".name"), r.number(r.req(e, "end_s", place), place + ".end_s")});
+          log.phases.push_back(
+              {r.text(r.req(e, "name", place), place + ".name"), r.number(r.req(e, "end_s", place), place + ".end_s")});
         else
-          log.breaks.push_back({r.text(r.req(e, "uav", place), place + ".uav"), r.number(r.req(e, "from_s", place), place + ".from_s"),
+          log.breaks.push_back({r.text(r.req(e, "uav", place), place + ".uav"),
+                                r.number(r.req(e, "from_s", place), place + ".from_s"),
                                 r.number(r.req(e, "to_s", place), place + ".to_s")});
       }
     }

@@ -74,11 +74,14 @@ TEST(PlanIo, MalformedPlansNameThePlace) {
 
 TEST(PlanIo, ErrorsCarryTheLineAndDuplicateKeysAreRefused) {
   const std::string head = "{\"format\": \"uavplan-plan\", \"version\": 1, \"status\": \"solved\",\n\"uavs\": [\n";
-  expect_error(head + "{\"id\": \"a\", \"status\": \"solved\",\n\"trajectory\": [[0, 1, 2, 3],\n[1, 2, 3]]}]}", "p.json:5: uavs[0].trajectory[1]");
+  expect_error(head + "{\"id\": \"a\", \"status\": \"solved\",\n\"trajectory\": [[0, 1, 2, 3],\n[1, 2, 3]]}]}",
+               "p.json:5: uavs[0].trajectory[1]");
   expect_error(head + "{\"id\": \"a\", \"status\": \"solved\", \"status\": \"failed\", \"trajectory\": []}]}",
                "p.json:3: uavs[0].status: duplicate key 'status'");
-  expect_error(head + "{\"id\": \"a\\u0000\xff\", \"status\": \"solved\", \"trajectory\": []}]}", "p.json:3: not valid UTF-8");
-  expect_error(head + "{\"id\": \"a\", \"status\": \"solved\", \"trajectory\": [[1e400, 0, 0, 0]]}]}", "p.json:3: not valid JSON");
+  expect_error(head + "{\"id\": \"a\\u0000\xff\", \"status\": \"solved\", \"trajectory\": []}]}",
+               "p.json:3: not valid UTF-8");
+  expect_error(head + "{\"id\": \"a\", \"status\": \"solved\", \"trajectory\": [[1e400, 0, 0, 0]]}]}",
+               "p.json:3: not valid JSON");
 }
 
 }  // namespace

@@ -6,8 +6,8 @@
 
 #include "uavplan/core/geometry.h"
 #include "uavplan/core/text.h"
-#include "uavplan/io/geo.h"
 #include "uavplan/io/export_common.h"
+#include "uavplan/io/geo.h"
 #include "uavplan/io/mission_items.h"
 
 namespace uavplan {
@@ -70,7 +70,9 @@ ojson fence_json(const Scenario& sc, const ExportedUav& e, const GeoFrame& frame
   }
   std::stable_sort(walls.begin(), walls.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
   const std::size_t keep_n =
-      opt.fence == FenceMode::all ? walls.size() : std::min(walls.size(), static_cast<std::size_t>(std::max(0, opt.max_fence_exclusions)));
+      opt.fence == FenceMode::all
+          ? walls.size()
+          : std::min(walls.size(), static_cast<std::size_t>(std::max(0, opt.max_fence_exclusions)));
   if (notes && keep_n < walls.size())
     notes->push_back("geofence: the " + std::to_string(keep_n) + " largest of " + std::to_string(walls.size()) +
                      " exclusion zones (" + std::to_string(walls.size() - keep_n) +
@@ -92,7 +94,8 @@ ojson fence_json(const Scenario& sc, const ExportedUav& e, const GeoFrame& frame
 
 }  // namespace
 
-std::string qgc_plan_json(const Scenario& sc, const ExportedUav& e, const ExportOptions& opt, std::vector<std::string>* notes) {
+std::string qgc_plan_json(const Scenario& sc, const ExportedUav& e, const ExportOptions& opt,
+                          std::vector<std::string>* notes) {
   const std::vector<MissionItem> items = mission_items(sc, e, opt);
   const GeoFrame frame(*sc.origin);
   const LatLonAlt home = rounded(frame.to_wgs84(e.home));
@@ -109,8 +112,9 @@ std::string qgc_plan_json(const Scenario& sc, const ExportedUav& e, const Export
                   {"plannedHomePosition", ojson::array({home.lat_deg, home.lon_deg, home.alt_m})},
                   {"vehicleType", opt.vehicle == VehicleKind::multirotor ? 2 : 1},
                   {"version", 2}};
-  j["rallyPoints"] = {{"points", ojson::array({ojson::array({rally.lat_deg, rally.lon_deg, round_m(rally.alt_m - home.alt_m)})})},
-                      {"version", 2}};
+  j["rallyPoints"] = {
+      {"points", ojson::array({ojson::array({rally.lat_deg, rally.lon_deg, round_m(rally.alt_m - home.alt_m)})})},
+      {"version", 2}};
   j["version"] = 1;
   return j.dump(4) + "\n";
 }
@@ -121,7 +125,8 @@ std::string qgc_wpl(const Scenario& sc, const ExportedUav& e, const ExportOption
   const LatLonAlt home = rounded(frame.to_wgs84(e.home));
   std::string out = "QGC WPL 110\n";
   // Row 0 is home, absolute altitude (frame 0), as QGroundControl and ArduPilot write it.
-  out += "0\t1\t0\t16\t0\t0\t0\t0\t" + short_num(home.lat_deg) + "\t" + short_num(home.lon_deg) + "\t" + short_num(home.alt_m) + "\t1\n";
+  out += "0\t1\t0\t16\t0\t0\t0\t0\t" + short_num(home.lat_deg) + "\t" + short_num(home.lon_deg) + "\t" +
+         short_num(home.alt_m) + "\t1\n";
   int index = 1;
   for (const MissionItem& it : items) {
     out += std::to_string(index++) + "\t0\t" + std::to_string(it.frame) + "\t" + std::to_string(it.command);

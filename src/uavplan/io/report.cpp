@@ -24,8 +24,11 @@ ojson obstacle_json(const Obstacle& o) {
         if constexpr (std::is_same_v<T, Sphere>) {
           return {{"shape", "sphere"}, {"center", vec(s.center)}, {"radius", s.radius_m}};
         } else if constexpr (std::is_same_v<T, Cylinder>) {
-          return {{"shape", "cylinder"}, {"center", {s.center.x(), s.center.y()}}, {"radius", s.radius_m},
-                  {"z_min", s.z_min_m}, {"z_max", s.z_max_m}};
+          return {{"shape", "cylinder"},
+                  {"center", {s.center.x(), s.center.y()}},
+                  {"radius", s.radius_m},
+                  {"z_min", s.z_min_m},
+                  {"z_max", s.z_max_m}};
         } else if constexpr (std::is_same_v<T, Box>) {
           return {{"shape", "box"}, {"min", vec(s.min)}, {"max", vec(s.max)}};
         } else {
@@ -50,13 +53,18 @@ ojson terrain_json(const TerrainGrid& t, int max_cells) {
         for (int i = bi * s; i < std::min(t.nx(), (bi + 1) * s); ++i) m = std::max(m, t.height(i, j));
       h.push_back(m);
     }
-  return {{"origin", {t.origin().x(), t.origin().y()}}, {"cell", t.cell_m() * s}, {"nx", nx}, {"ny", ny}, {"heights", std::move(h)}};
+  return {{"origin", {t.origin().x(), t.origin().y()}},
+          {"cell", t.cell_m() * s},
+          {"nx", nx},
+          {"ny", ny},
+          {"heights", std::move(h)}};
 }
 
 // Speed on the trajectory piece that holds t (0 while holding, before departure and after arrival).
 double speed_at(const Trajectory& tr, double t) {
   if (tr.size() < 2 || t < tr.front().t_s || t >= tr.back().t_s) return 0.0;
-  const auto it = std::upper_bound(tr.begin(), tr.end(), t, [](double v, const TrajectorySample& s) { return v < s.t_s; });
+  const auto it =
+      std::upper_bound(tr.begin(), tr.end(), t, [](double v, const TrajectorySample& s) { return v < s.t_s; });
   const auto& b = *it;
   const auto& a = *(it - 1);
   const double dt = b.t_s - a.t_s;
@@ -142,12 +150,19 @@ std::string report_data_json(const Scenario& sc, const Plan& plan_in, const std:
     ojson metrics = ojson::object();
     for (const auto& [key, v] : u.metrics) metrics[key] = round6(v);
     const bool has_height = w.bounds().extent().z() > 0.0;
-    j["uavs"].push_back({{"id", u.id}, {"status", to_string(u.status)}, {"message", u.message}, {"colour", uav_colour(k)},
-                         {"radius", spec ? spec->radius_m : 0.0}, {"min_agl", spec ? spec->min_agl_m : 0.0},
-                         {"length_m", u.length_m}, {"arrival_s", u.arrival_s}, {"trajectory", std::move(traj)},
-                         {"metrics", std::move(metrics)},
-                         {"profile", has_height && u.trajectory.size() >= 2 ? profile_json(w, u.trajectory, opt.profile_samples)
-                                                                            : ojson(nullptr)}});
+    j["uavs"].push_back(
+        {{"id", u.id},
+         {"status", to_string(u.status)},
+         {"message", u.message},
+         {"colour", uav_colour(k)},
+         {"radius", spec ? spec->radius_m : 0.0},
+         {"min_agl", spec ? spec->min_agl_m : 0.0},
+         {"length_m", u.length_m},
+         {"arrival_s", u.arrival_s},
+         {"trajectory", std::move(traj)},
+         {"metrics", std::move(metrics)},
+         {"profile", has_height && u.trajectory.size() >= 2 ? profile_json(w, u.trajectory, opt.profile_samples)
+                                                            : ojson(nullptr)}});
     if (u.trajectory.size() >= 2) {
       flown.push_back(&u);
       t_end = std::max(t_end, u.trajectory.back().t_s);
@@ -184,7 +199,9 @@ std::string report_data_json(const Scenario& sc, const Plan& plan_in, const std:
         if (o != k && counts(k, o, i)) d = std::min(d, (pos[k][i] - pos[o][i]).norm());
       nearest.push_back(std::isfinite(d) ? ojson(round6(d)) : ojson(nullptr));
     }
-    series.push_back({{"id", flown[k]->id}, {"altitude_m", std::move(alt)}, {"speed_mps", std::move(speed)},
+    series.push_back({{"id", flown[k]->id},
+                      {"altitude_m", std::move(alt)},
+                      {"speed_mps", std::move(speed)},
                       {"nearest_m", std::move(nearest)}});
   }
   j["series"] = {{"t_s", std::move(times)}, {"uavs", std::move(series)}};
@@ -214,8 +231,7 @@ std::string escape_for_element(std::string s, std::string_view closing) {
   std::string out;
   out.reserve(s.size());
   for (std::size_t i = 0; i < s.size(); ++i) {
-    if (s[i] == '<' && i + 1 < s.size() && s[i + 1] == '/' &&
-        s.compare(i + 2, closing.size(), closing) == 0) {
+    if (s[i] == '<' && i + 1 < s.size() && s[i + 1] == '/' && s.compare(i + 2, closing.size(), closing) == 0) {
       out += "<\\/";
       ++i;
       continue;
@@ -231,8 +247,10 @@ std::string json_for_script(std::string_view json) {
   std::string out;
   out.reserve(json.size());
   for (char c : json) {
-    if (c == '<') out += "\\u003c";
-    else out += c;
+    if (c == '<')
+      out += "\\u003c";
+    else
+      out += c;
   }
   return out;
 }
@@ -240,11 +258,16 @@ std::string json_for_script(std::string_view json) {
 std::string html_escape(std::string_view s) {
   std::string out;
   for (char c : s) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else if (c == '"') out += "&quot;";
-    else out += c;
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else if (c == '"')
+      out += "&quot;";
+    else
+      out += c;
   }
   return out;
 }

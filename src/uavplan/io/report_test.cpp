@@ -37,7 +37,6 @@ TEST(Report, PageCarriesDataAndViewer) {
   EXPECT_GT(html.size(), 100'000u);  // the bundled viewer is inline
 }
 
-
 TEST(Report, MetricsAreThoseOfTheTrajectoriesShown) {
   const Scenario sc = scenario_with({Box{Vec3(300, 300, 0), Vec3(320, 320, 60)}});
   Plan plan = sample_plan();

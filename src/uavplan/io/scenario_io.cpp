@@ -6,10 +6,13 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
-#include <nlohmann/json.hpp>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <set>
 
+#include "uavplan/coordination/formation_mission/consensus.h"
+#include "uavplan/coordination/mission.h"
+#include "uavplan/coordination/planning_view.h"
 #include "uavplan/core/geometry.h"
 #include "uavplan/core/units.h"
 #include "uavplan/io/files.h"
@@ -18,9 +21,6 @@
 #include "uavplan/io/osm_buildings.h"
 #include "uavplan/io/text_input.h"
 #include "uavplan/io/tree_check.h"
-#include "uavplan/coordination/formation_mission/consensus.h"
-#include "uavplan/coordination/mission.h"
-#include "uavplan/coordination/planning_view.h"
 #include "uavplan/planning/registry.h"
 
 namespace uavplan {
@@ -71,7 +71,8 @@ struct At {
       if (std::none_of(allowed.begin(), allowed.end(), [&](const char* a) { return k == a; })) {
         std::string list;
         for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-        At{kv.first, path.empty() ? k : path + "." + k, file, applied}.fail("unknown key '" + k + "' (expected one of: " + list + ")");
+        At{kv.first, path.empty() ? k : path + "." + k, file, applied}.fail("unknown key '" + k +
+                                                                            "' (expected one of: " + list + ")");
       }
     }
   }
@@ -148,7 +149,8 @@ Obstacle read_obstacle(const At& o) {
   }
   if (type == "cylinder") {
     o.keys({"type", "id", "center", "radius", "z_min", "z_max"});
-    Cylinder c{o.req("center").vec2(), o.req("radius").positive(), o.req("z_min").coordinate(), o.req("z_max").coordinate()};
+    Cylinder c{o.req("center").vec2(), o.req("radius").positive(), o.req("z_min").coordinate(),
+               o.req("z_max").coordinate()};
     if (!(c.z_min_m < c.z_max_m)) o["z_max"].fail("must be above z_min");
     return c;
   }
@@ -168,11 +170,12 @@ Obstacle read_obstacle(const At& o) {
     if (p.polygon.size() < 3) poly.fail("a prism needs at least 3 distinct vertices");
     if (polygon_signed_area(p.polygon) == 0.0) poly.fail("polygon has zero area");
     if (const auto x = polygon_self_intersection(p.polygon))
-      poly.fail(x->first == x->second ? std::string("self-intersecting polygon: its boundary touches or folds over itself (list "
-                                                   "the vertices in order around the footprint)")
-                                     : "self-intersecting polygon: the edge from vertex " + std::to_string(x->first) +
-                                           " crosses the edge from vertex " + std::to_string(x->second) +
-                                           " (list the vertices in order around the footprint)");
+      poly.fail(x->first == x->second
+                    ? std::string("self-intersecting polygon: its boundary touches or folds over itself (list "
+                                  "the vertices in order around the footprint)")
+                    : "self-intersecting polygon: the edge from vertex " + std::to_string(x->first) +
+                          " crosses the edge from vertex " + std::to_string(x->second) +
+                          " (list the vertices in order around the footprint)");
     p.z_min_m = o.req("z_min").coordinate();
     p.z_max_m = o.req("z_max").coordinate();
     if (!(p.z_min_m < p.z_max_m)) o["z_max"].fail("must be above z_min");
@@ -204,7 +207,8 @@ TerrainGrid read_terrain(const At& t) {
     if (row.size() == 0) row.fail("empty row");
     if (j == 0) nx = row.size();
     if (row.size() != nx)
-      row.fail("has " + std::to_string(row.size()) + " heights, row 0 has " + std::to_string(nx) + " (rows must be equal)");
+      row.fail("has " + std::to_string(row.size()) + " heights, row 0 has " + std::to_string(nx) +
+               " (rows must be equal)");
     for (std::size_t i = 0; i < nx; ++i) h.push_back(row.item(i).coordinate());
   }
   return TerrainGrid(origin, cell, static_cast<int>(nx), static_cast<int>(rows.size()), std::move(h));
@@ -213,7 +217,8 @@ TerrainGrid read_terrain(const At& t) {
 // world.buildings: one GeoJSON file (a path, or {file, level_height, default_height}) or a
 // list of them; paths are relative to the scenario file. Footprints outside the bounds in x, y
 // are dropped.
-void read_buildings(const At& b, const std::optional<GeoOrigin>& origin, const Aabb& bounds, std::vector<Obstacle>& out) {
+void read_buildings(const At& b, const std::optional<GeoOrigin>& origin, const Aabb& bounds,
+                    std::vector<Obstacle>& out) {
   if (!origin) b.fail("placing lon/lat footprints needs the scenario's 'origin'");
   const GeoFrame frame(*origin);
   const auto one = [&](const At& e) {
@@ -258,7 +263,8 @@ std::vector<TimedPoint> read_timed_path(const At& list) {
   for (std::size_t k = 0; k < list.size(); ++k) {
     const At row = list.item(k);
     if (!row.node.IsSequence() || row.size() != 4) row.fail("expected a row [t, x, y, z]");
-    TimedPoint r{row.item(0).coordinate(), Vec3(row.item(1).coordinate(), row.item(2).coordinate(), row.item(3).coordinate())};
+    TimedPoint r{row.item(0).coordinate(),
+                 Vec3(row.item(1).coordinate(), row.item(2).coordinate(), row.item(3).coordinate())};
     if (!rows.empty() && !(r.t_s > rows.back().t_s))
       row.item(0).fail("times must increase: t = " + At::fmt(r.t_s) + " is not after the previous row's " +
                        At::fmt(rows.back().t_s));
@@ -357,7 +363,8 @@ void check_single_document(const std::string& text, const std::string& file) {
       ended = true;
     } else if (!blank && !(l[0] == '%' && !content)) {
       if (ended)
-        throw InputError(file, line + 1, "", "content after the document's end ('...'): a scenario file holds one document");
+        throw InputError(file, line + 1, "",
+                         "content after the document's end ('...'): a scenario file holds one document");
       content = true;
     }
   }
@@ -382,7 +389,8 @@ void check_uavs_fit(const At& uavs, const Scenario& sc) {
     const UavSpec& u = sc.uavs[i];
     const At ui = uavs.item(i);
     if (goals_needed && !u.goal)
-      ui.fail("missing required key 'goal' (a " + std::string(to_string(sc.mission.type)) + " mission needs every UAV's goal)");
+      ui.fail("missing required key 'goal' (a " + std::string(to_string(sc.mission.type)) +
+              " mission needs every UAV's goal)");
     for (const MovingObstacle& m : w.moving())
       if ((m.position_at(0.0) - u.start).norm() < m.radius_m + u.radius_m)
         ui["start"].fail("inside moving obstacle '" + m.id + "' at t = 0");
@@ -404,15 +412,17 @@ void check_uavs_fit(const At& uavs, const Scenario& sc) {
 void read_shape(const At& list, Scenario& sc) {
   list.expect_seq();
   if (list.size() != sc.uavs.size())
-    list.fail("has " + std::to_string(list.size()) + " slots for " + std::to_string(sc.uavs.size()) + " UAVs (one slot per UAV, in scenario order)");
+    list.fail("has " + std::to_string(list.size()) + " slots for " + std::to_string(sc.uavs.size()) +
+              " UAVs (one slot per UAV, in scenario order)");
   for (std::size_t i = 0; i < list.size(); ++i) sc.mission.shape.push_back(list.item(i).vec3());
   for (std::size_t i = 0; i < sc.mission.shape.size(); ++i)
     for (std::size_t j = 0; j < i; ++j) {
       const double d = (sc.mission.shape[i] - sc.mission.shape[j]).norm();
       const double need = std::max(sc.mission.separation_m, sc.uavs[i].radius_m + sc.uavs[j].radius_m);
       if (d < need)
-        list.item(i).fail("is " + At::fmt(d) + " m from slot " + std::to_string(j) + " (" + sc.uavs[j].id + "); slots must be at least " +
-                          At::fmt(need) + " m apart (the separation, and the UAVs' bodies)");
+        list.item(i).fail("is " + At::fmt(d) + " m from slot " + std::to_string(j) + " (" + sc.uavs[j].id +
+                          "); slots must be at least " + At::fmt(need) +
+                          " m apart (the separation, and the UAVs' bodies)");
     }
 }
 
@@ -427,8 +437,10 @@ void read_formation_mission(const At& m, const At& uavs, Scenario& sc) {
   if (a.has("runway_heading_deg")) af.runway_heading_rad = deg_to_rad(a["runway_heading_deg"].number());
   if (a.has("runway_length")) af.runway_length_m = a["runway_length"].positive();
   check_placed(a["position"], af.position, sc.world, "the airfield");
-  if (!sc.world.on_ground(af.position)) a["position"].fail("the airfield must lie on the ground (z = the ground there)");
-  const Vec3 end = af.position + af.runway_length_m * Vec3(std::cos(af.runway_heading_rad), std::sin(af.runway_heading_rad), 0.0);
+  if (!sc.world.on_ground(af.position))
+    a["position"].fail("the airfield must lie on the ground (z = the ground there)");
+  const Vec3 end =
+      af.position + af.runway_length_m * Vec3(std::cos(af.runway_heading_rad), std::sin(af.runway_heading_rad), 0.0);
   if (!sc.world.in_bounds(end)) a["runway_length"].fail("the runway leaves the world bounds");
   ms.airfield = af;
   const At list = m.req("task_points");
@@ -447,7 +459,8 @@ void read_formation_mission(const At& m, const At& uavs, Scenario& sc) {
   if (m.has("topology")) {
     const At t = m["topology"];
     t.expect_seq();
-    if (t.size() != sc.uavs.size()) t.fail("needs a row a_ij per UAV (" + std::to_string(sc.uavs.size()) + "), got " + std::to_string(t.size()));
+    if (t.size() != sc.uavs.size())
+      t.fail("needs a row a_ij per UAV (" + std::to_string(sc.uavs.size()) + "), got " + std::to_string(t.size()));
     for (std::size_t i = 0; i < t.size(); ++i) {
       const At row = t.item(i);
       row.expect_seq();
@@ -456,20 +469,23 @@ void read_formation_mission(const At& m, const At& uavs, Scenario& sc) {
       for (std::size_t j = 0; j < row.size(); ++j) r.push_back(row.item(j).non_negative());
       ms.topology.push_back(std::move(r));
     }
-    if (!topology_connected(ms.topology)) t.fail("leaves a UAV out: the UAVs must all be connected, through the others");
+    if (!topology_connected(ms.topology))
+      t.fail("leaves a UAV out: the UAVs must all be connected, through the others");
   }
   if (!m.has("shape")) m.req("shape").fail("a formation_mission needs a slot per UAV");
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
     const UavSpec& u = sc.uavs[i];
     const At ui = uavs.item(i);
     if (u.goal) ui["goal"].fail("a formation_mission UAV has no goal: it lands on the runway");
-    if (!sc.world.on_ground(u.start)) ui["start"].fail("a formation_mission UAV starts parked on the ground at the airfield");
+    if (!sc.world.on_ground(u.start))
+      ui["start"].fail("a formation_mission UAV starts parked on the ground at the airfield");
     // The take-off rolls and climb-outs pass over the runway: nobody may wait on it.
     const Vec3 along = Vec3(std::cos(ms.airfield->runway_heading_rad), std::sin(ms.airfield->runway_heading_rad), 0.0);
     const Vec3 rel = u.start - ms.airfield->position;
     const double s_m = rel.dot(along), off_m = std::abs(along.x() * rel.y() - along.y() * rel.x());
     if (s_m > 0.0 && s_m <= ms.airfield->runway_length_m && off_m < ms.separation_m)
-      ui["start"].fail("is parked on the runway (" + At::fmt(std::round(off_m)) + " m from its centreline), where the others take off; park it at least the separation " +
+      ui["start"].fail("is parked on the runway (" + At::fmt(std::round(off_m)) +
+                       " m from its centreline), where the others take off; park it at least the separation " +
                        At::fmt(ms.separation_m) + " m beside the runway or behind its threshold");
     for (std::size_t j = 0; j < i; ++j)
       if ((sc.uavs[j].start - u.start).norm() < ms.separation_m)
@@ -489,9 +505,10 @@ std::size_t written_values_bound(std::string_view text) {
 YAML::Node parse_yaml(const std::string& raw, const std::string& file) {
   const std::string text = checked_text(raw, file);
   if (const std::size_t n = written_values_bound(text); n > kMaxWrittenValues)
-    throw InputError(file, 0, "", "holds about " + std::to_string(n) + " values; a scenario holds at most " +
-                                      std::to_string(kMaxWrittenValues) +
-                                      " (an inline terrain of about 2000 x 2000 cells), so that it loads in bounded memory");
+    throw InputError(file, 0, "",
+                     "holds about " + std::to_string(n) + " values; a scenario holds at most " +
+                         std::to_string(kMaxWrittenValues) +
+                         " (an inline terrain of about 2000 x 2000 cells), so that it loads in bounded memory");
   const bool json = file.size() >= 5 && file.compare(file.size() - 5, 5, ".json") == 0;
   if (json) {
     try {
@@ -509,7 +526,8 @@ YAML::Node parse_yaml(const std::string& raw, const std::string& file) {
     root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
     // yaml-cpp says "bad file" when its parser's depth guard trips (about 500 nested levels).
-    const std::string what = e.msg == "bad file" ? "nested too deeply (a scenario needs a few levels, not hundreds)" : e.msg;
+    const std::string what =
+        e.msg == "bad file" ? "nested too deeply (a scenario needs a few levels, not hundreds)" : e.msg;
     throw InputError(file, e.mark.line >= 0 ? e.mark.line + 1 : 0, "", "YAML syntax error: " + what);
   }
   check_tree(root, file, kMaxScenarioValues);
@@ -533,7 +551,10 @@ std::pair<std::string, std::string> apply_override(YAML::Node& root, const std::
   cur.reset(root);
   std::size_t i = 0;
   while (i < path.size()) {
-    if (path[i] == '.') { ++i; continue; }
+    if (path[i] == '.') {
+      ++i;
+      continue;
+    }
     YAML::Node next;
     if (path[i] == '[') {
       const auto close = path.find(']', i);
@@ -541,7 +562,8 @@ std::pair<std::string, std::string> apply_override(YAML::Node& root, const std::
       std::size_t idx = 0;
       const auto [p, ec] = std::from_chars(path.data() + i + 1, path.data() + close, idx);
       if (ec != std::errc() || p != path.data() + close) throw InputError(file, 0, place, "bad list index");
-      if (!cur.IsSequence() || idx >= cur.size()) throw InputError(file, 0, place, "no list element " + std::to_string(idx));
+      if (!cur.IsSequence() || idx >= cur.size())
+        throw InputError(file, 0, place, "no list element " + std::to_string(idx));
       next.reset(cur[idx]);
       i = close + 1;
     } else {
@@ -573,7 +595,8 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
 
   Scenario sc;
   const std::int64_t version = top.req("version").integer();
-  if (version != 1) top["version"].fail("unsupported version " + std::to_string(version) + " (this build reads version 1)");
+  if (version != 1)
+    top["version"].fail("unsupported version " + std::to_string(version) + " (this build reads version 1)");
   sc.name = top.has("name") ? top["name"].text() : std::string();
   if (top.has("seed")) {
     const std::int64_t seed = top["seed"].integer();
@@ -667,8 +690,8 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
   // Mission.
   if (top.has("mission")) {
     const At m = top["mission"];
-    m.keys({"type", "separation", "waypoints", "arrival_tolerance", "step_s", "goal_spacing", "shape", "reform_after_steps",
-            "arrival_tolerance_s", "airfield", "task_points", "topology"});
+    m.keys({"type", "separation", "waypoints", "arrival_tolerance", "step_s", "goal_spacing", "shape",
+            "reform_after_steps", "arrival_tolerance_s", "airfield", "task_points", "topology"});
     if (m.has("type")) {
       const auto t = mission_type_from_string(m["type"].text());
       if (!t) m["type"].fail("unknown mission type '" + m["type"].text() + "' (expected " + mission_type_list() + ")");
@@ -702,7 +725,8 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
       m.req("waypoints").fail("a route mission needs at least one waypoint");
     if (m.has("reform_after_steps")) {
       const std::int64_t n = m["reform_after_steps"].integer();
-      if (n < 1 || n > 1000000) m["reform_after_steps"].fail("expected at least 1 clear step before re-forming, got " + std::to_string(n));
+      if (n < 1 || n > 1000000)
+        m["reform_after_steps"].fail("expected at least 1 clear step before re-forming, got " + std::to_string(n));
       sc.mission.reform_after_steps = static_cast<int>(n);
     }
     if (m.has("arrival_tolerance_s")) sc.mission.arrival_tolerance_s = m["arrival_tolerance_s"].non_negative();

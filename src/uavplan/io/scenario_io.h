@@ -14,14 +14,14 @@ namespace uavplan {
 
 // What a scenario may hold, so that no file that loads can exhaust the machine (each is an
 // error at load, naming the key):
-inline constexpr double kMaxCoordinate_m = 1e9;             // |any coordinate|, velocity, range
-inline constexpr double kMaxFlight_s = 1e6;                  // straight route / cruise speed
-inline constexpr std::size_t kMaxTerrainCells = 16'777'216;  // 4096 x 4096
+inline constexpr double kMaxCoordinate_m = 1e9;                // |any coordinate|, velocity, range
+inline constexpr double kMaxFlight_s = 1e6;                    // straight route / cruise speed
+inline constexpr std::size_t kMaxTerrainCells = 16'777'216;    // 4096 x 4096
 inline constexpr std::size_t kMaxScenarioValues = 20'000'000;  // values the file expands to (YAML aliases)
 // Values written in the file, counted before it is parsed: the YAML tree takes about 500 bytes
 // a value, so this keeps a scenario under about 2 GB (an inline terrain of 2000 x 2000 cells).
 inline constexpr std::size_t kMaxWrittenValues = 4'000'000;
-inline constexpr double kMinStep_s = 1e-3;                   // mission.step_s
+inline constexpr double kMinStep_s = 1e-3;  // mission.step_s
 
 // "key=value" overrides from the command line: a bare key sets planner.params.KEY; a dotted
 // path (a.b[2].c) sets that place of the scenario; the value is read as YAML.

@@ -94,7 +94,8 @@ TEST(ScenarioIo, JsonIsTheSameStructure) {
 }
 
 TEST(ScenarioIo, Overrides) {
-  const Scenario sc = parse_scenario(kGood, "s.yaml", {{"cell_m", "7"}, {"uavs[0].speed", "3"}, {"mission.separation", "9"}});
+  const Scenario sc =
+      parse_scenario(kGood, "s.yaml", {{"cell_m", "7"}, {"uavs[0].speed", "3"}, {"mission.separation", "9"}});
   EXPECT_EQ(sc.planner.params.at("cell_m"), "7");
   EXPECT_DOUBLE_EQ(sc.uavs[0].speed.cruise_mps, 3);
   EXPECT_DOUBLE_EQ(sc.mission.separation_m, 9);
@@ -105,16 +106,22 @@ TEST(ScenarioIo, Overrides) {
 
 TEST(ScenarioIo, BadInputIsOneClearLine) {
   expect_error("", {"empty"});
-  expect_error(std::string("\x7f" "ELF\0\0\x01\x02", 8), {"not a text file"});
+  expect_error(std::string("\x7f"
+                           "ELF\0\0\x01\x02",
+                           8),
+               {"not a text file"});
   expect_error("\x89PNG garbage here ::: [[[", {"s.yaml"});
   expect_error("version: 1\nworld: [1, 2\n", {"YAML syntax error"});
-  expect_error("version: 1\nworld: " + std::string(2000, '[') + std::string(2000, ']') + "\n", {"s.yaml:2", "nested too deeply"});
+  expect_error("version: 1\nworld: " + std::string(2000, '[') + std::string(2000, ']') + "\n",
+               {"s.yaml:2", "nested too deeply"});
   // Counted before parsing: a tree of 500 bytes a value would exhaust memory first.
   expect_error("version: 1\nworld: [" + std::string(4'000'001, ',') + "]\n", {"s.yaml", "values", "at most 4000000"});
   expect_error(replace(kGood, "version: 1", "version: 2"), {"s.yaml:1", "version", "unsupported version 2"});
   expect_error(replace(kGood, "    start: [5, 5, 10]\n", ""), {"uavs[0]", "missing required key 'start'"});
-  expect_error(replace(kGood, "    radius: 0.5\n", "    radius: 0.5\n    raduis: 3\n"), {"s.yaml:23", "uavs[0].raduis", "unknown key"});
-  expect_error(replace(kGood, "max_turn_deg: 60", "max_turn_deg: sixty"), {"s.yaml:24", "uavs[0].max_turn_deg", "expected a number"});
+  expect_error(replace(kGood, "    radius: 0.5\n", "    radius: 0.5\n    raduis: 3\n"),
+               {"s.yaml:23", "uavs[0].raduis", "unknown key"});
+  expect_error(replace(kGood, "max_turn_deg: 60", "max_turn_deg: sixty"),
+               {"s.yaml:24", "uavs[0].max_turn_deg", "expected a number"});
   expect_error(replace(kGood, "max_turn_deg: 60", "max_turn_deg: \"60\""), {"uavs[0].max_turn_deg", "quoted string"});
   expect_error(replace(kGood, "start: [5, 5, 10]", "start: [5, 5]"), {"uavs[0].start", "3 numbers"});
   expect_error(replace(kGood, "radius: 5}", "radius: .nan}"), {"world.obstacles[0].radius", "finite"});
@@ -122,25 +129,31 @@ TEST(ScenarioIo, BadInputIsOneClearLine) {
   expect_error(replace(kGood, "radius: 5}", "radius: -5}"), {"world.obstacles[0].radius", "positive"});
   expect_error(replace(kGood, "    radius: 0.5\n", "    radius: -0.5\n"), {"uavs[0].radius", "negative"});
   expect_error(replace(kGood, "cell: 50", "cell: -50"), {"world.terrain.cell", "positive"});
-  expect_error(replace(kGood, "heights: [[0, 1], [2, 3]]", "heights: [[0, 1], [2]]"), {"world.terrain.heights[1]", "rows must be equal"});
-  expect_error(replace(kGood, "start: [5, 5, 10]", "start: [50, 50, 20]"), {"s.yaml:19", "uavs[0].start", "inside an obstacle"});
-  expect_error(replace(kGood, "goal: [95, 95, 10]", "goal: [95, 195, 10]"), {"uavs[0].goal", "outside the world bounds"});
+  expect_error(replace(kGood, "heights: [[0, 1], [2, 3]]", "heights: [[0, 1], [2]]"),
+               {"world.terrain.heights[1]", "rows must be equal"});
+  expect_error(replace(kGood, "start: [5, 5, 10]", "start: [50, 50, 20]"),
+               {"s.yaml:19", "uavs[0].start", "inside an obstacle"});
+  expect_error(replace(kGood, "goal: [95, 95, 10]", "goal: [95, 195, 10]"),
+               {"uavs[0].goal", "outside the world bounds"});
   expect_error(replace(kGood, "start: [5, 5, 10]", "start: [60, 60, 2]"), {"uavs[0].start", "below the terrain"});
   expect_error(replace(kGood, "type: sphere", "type: cone"), {"world.obstacles[0].type", "unknown obstacle type"});
   expect_error(replace(kGood, "type: route", "type: swarm"), {"mission.type", "unknown mission type"});
-  expect_error(replace(kGood, "bounds: {min: [0, 0, 0], max: [100, 100, 50]}", "bounds: {min: [0, 0, 0], max: [-100, 100, 50]}"),
-               {"world.bounds.max"});
+  expect_error(
+      replace(kGood, "bounds: {min: [0, 0, 0], max: [100, 100, 50]}", "bounds: {min: [0, 0, 0], max: [-100, 100, 50]}"),
+      {"world.bounds.max"});
   expect_error("- a\n- b\n", {"top level must be a mapping"});
-  expect_error(replace(kGood, "uavs:\n  - id: u1", "uavs:\n  - id: u1\n    start: [1, 1, 10]\n    goal: [2, 2, 10]\n  - id: u1"),
-               {"duplicate UAV id"});
+  expect_error(
+      replace(kGood, "uavs:\n  - id: u1", "uavs:\n  - id: u1\n    start: [1, 1, 10]\n    goal: [2, 2, 10]\n  - id: u1"),
+      {"duplicate UAV id"});
 }
 
 TEST(ScenarioIo, SensingAndPathObstacles) {
-  const std::string text = replace(replace(replace(kGood, "    - {id: m1, radius: 1, position: [0, 50, 10], velocity: [1, 0, 0]}\n",
-                                                   "    - {id: m1, radius: 1, position: [0, 50, 10], velocity: [1, 0, 0]}\n"
-                                                   "    - {id: m2, radius: 2, trajectory: [[0, 0, 0, 10], [10, 50, 0, 10], [20, 50, 50, 10]]}\n"),
-                                           "    max_climb_deg: 30\n", "    max_climb_deg: 30\n    sensor_range: 40\n"),
-                                   "  separation: 2\n", "  separation: 2\n  step_s: 0.5\n");
+  const std::string text = replace(
+      replace(replace(kGood, "    - {id: m1, radius: 1, position: [0, 50, 10], velocity: [1, 0, 0]}\n",
+                      "    - {id: m1, radius: 1, position: [0, 50, 10], velocity: [1, 0, 0]}\n"
+                      "    - {id: m2, radius: 2, trajectory: [[0, 0, 0, 10], [10, 50, 0, 10], [20, 50, 50, 10]]}\n"),
+              "    max_climb_deg: 30\n", "    max_climb_deg: 30\n    sensor_range: 40\n"),
+      "  separation: 2\n", "  separation: 2\n  step_s: 0.5\n");
   const Scenario sc = parse_scenario(text, "s.yaml");
   ASSERT_EQ(sc.world.moving().size(), 2u);
   EXPECT_EQ(sc.world.moving()[1].path.size(), 3u);
@@ -150,14 +163,16 @@ TEST(ScenarioIo, SensingAndPathObstacles) {
 
   const std::string m1 = "{id: m1, radius: 1, position: [0, 50, 10], velocity: [1, 0, 0]}";
   auto with_m = [&](const std::string& m) { return replace(kGood, m1, m); };
-  expect_error(with_m("{id: m1, radius: 1, trajectory: [[0, 0, 0, 10]]}"), {"world.moving_obstacles[0].trajectory", "at least 2 rows"});
+  expect_error(with_m("{id: m1, radius: 1, trajectory: [[0, 0, 0, 10]]}"),
+               {"world.moving_obstacles[0].trajectory", "at least 2 rows"});
   expect_error(with_m("{id: m1, radius: 1, trajectory: [[0, 0, 0, 10], [0, 5, 0, 10]]}"),
                {"world.moving_obstacles[0].trajectory[1][0]", "times must increase"});
   expect_error(with_m("{id: m1, radius: 1, trajectory: [[5, 0, 0, 10], [2, 5, 0, 10]]}"), {"times must increase"});
   expect_error(with_m("{id: m1, radius: 1, trajectory: [[0, 0, 0, 10], [1, .nan, 0, 10]]}"),
                {"world.moving_obstacles[0].trajectory[1][1]", "finite"});
   expect_error(with_m("{id: m1, radius: 1, trajectory: [[0, 0, 0, 10], [.inf, 1, 0, 10]]}"), {"finite"});
-  expect_error(with_m("{id: m1, radius: 1, trajectory: [[0, 0, 0, 10], [1, 0, 10]]}"), {"trajectory[1]", "[t, x, y, z]"});
+  expect_error(with_m("{id: m1, radius: 1, trajectory: [[0, 0, 0, 10], [1, 0, 10]]}"),
+               {"trajectory[1]", "[t, x, y, z]"});
   expect_error(with_m("{id: m1, radius: 1, velocity: [1, 0, 0], trajectory: [[0, 0, 0, 10], [1, 1, 0, 10]]}"),
                {"world.moving_obstacles[0].velocity", "not both"});
   expect_error(with_m("{id: m1, radius: 1, position: [0, 0, 10], trajectory: [[0, 0, 0, 10], [1, 1, 0, 10]]}"),
@@ -172,9 +187,11 @@ TEST(ScenarioIo, SensingAndPathObstacles) {
 
 TEST(ScenarioIo, DuplicateKeysAndSecondDocumentsAreErrors) {
   // yaml-cpp would take the first radius, a JSON reader the last: one file, two worlds.
-  expect_error(replace(kGood, "{type: sphere, center: [50, 50, 20], radius: 5}", "{type: sphere, center: [50, 50, 20], radius: 1, radius: 10}"),
+  expect_error(replace(kGood, "{type: sphere, center: [50, 50, 20], radius: 5}",
+                       "{type: sphere, center: [50, 50, 20], radius: 1, radius: 10}"),
                {"s.yaml:8", "world.obstacles[0].radius", "duplicate key 'radius'"});
-  expect_error(replace(kGood, "name: t\n", "name: t\nname: u\n"), {"s.yaml:3", "duplicate key 'name' (first at line 2)"});
+  expect_error(replace(kGood, "name: t\n", "name: t\nname: u\n"),
+               {"s.yaml:3", "duplicate key 'name' (first at line 2)"});
   const std::string json = R"({"version": 1, "world": {"bounds": {"min": [0, 0, 0], "max": [10, 10, 5]}},
     "uavs": [{"id": "a", "start": [1, 1, 1], "goal": [9, 9, 1], "goal": [2, 2, 1]}]})";
   expect_error(json, {"s.json:2", "uavs[0].goal", "duplicate key"}, "s.json");
@@ -200,8 +217,12 @@ TEST(ScenarioIo, ErrorsStayOneEscapedLineNamingTheFile) {
   }
   // 1e400 in JSON, invalid UTF-8 in an id: the file and the line.
   expect_error(R"({"version": 1,
-    "world": {"bounds": {"min": [0, 0, 0], "max": [1e400, 10, 5]}}})", {"s.json:2", "1e400"}, "s.json");
-  expect_error(replace(kGood, "  - id: u1", "  - id: u\xff" "1"), {"s.yaml:18", "not valid UTF-8"});
+    "world": {"bounds": {"min": [0, 0, 0], "max": [1e400, 10, 5]}}})",
+               {"s.json:2", "1e400"}, "s.json");
+  expect_error(replace(kGood, "  - id: u1",
+                       "  - id: u\xff"
+                       "1"),
+               {"s.yaml:18", "not valid UTF-8"});
   // CR-only line endings read like any other.
   std::string cr = kGood;
   for (char& c : cr)
@@ -216,8 +237,9 @@ TEST(ScenarioIo, SizesAreCheckedBeforeTheyAreBuilt) {
   // Rows that are aliases of one row: 4200 x 4200 cells (17.6 M) from a few kilobytes, refused
   // before a height is read; 20 000 x 20 000 (400 M) is refused as an expansion.
   const auto terrain = [](int n) {
-    std::string t = "version: 1\nworld:\n  bounds: {min: [0, 0, 0], max: [10, 10, 5]}\n  terrain:\n    type: grid\n"
-                    "    origin: [0, 0]\n    cell: 1\n    heights:\n      - &row [0";
+    std::string t =
+        "version: 1\nworld:\n  bounds: {min: [0, 0, 0], max: [10, 10, 5]}\n  terrain:\n    type: grid\n"
+        "    origin: [0, 0]\n    cell: 1\n    heights:\n      - &row [0";
     for (int i = 1; i < n; ++i) t += ", 0";
     t += "]\n";
     for (int i = 1; i < n; ++i) t += "      - *row\n";
@@ -228,7 +250,9 @@ TEST(ScenarioIo, SizesAreCheckedBeforeTheyAreBuilt) {
   expect_error(terrain(20000), {"expands", "values"});
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5.0);
   // Nested aliases: a list of lists of lists ... (billions of values).
-  std::string laughs = "version: 1\nname: x\nworld:\n  bounds: {min: [0, 0, 0], max: [10, 10, 5]}\n  a0: &a0 [1, 1, 1, 1, 1, 1, 1, 1, 1, 1]\n";
+  std::string laughs =
+      "version: 1\nname: x\nworld:\n  bounds: {min: [0, 0, 0], max: [10, 10, 5]}\n  a0: &a0 [1, 1, 1, 1, 1, 1, 1, 1, "
+      "1, 1]\n";
   for (int i = 1; i < 10; ++i) {
     laughs += "  a" + std::to_string(i) + ": &a" + std::to_string(i) + " [";
     for (int k = 0; k < 10; ++k) laughs += std::string(k ? ", " : "") + "*a" + std::to_string(i - 1);
@@ -236,7 +260,8 @@ TEST(ScenarioIo, SizesAreCheckedBeforeTheyAreBuilt) {
   }
   expect_error(laughs, {"expands", "values"});
   // A speed that would need ten million trajectory rows.
-  expect_error(replace(kGood, "speed: {min: 1, cruise: 4, max: 6}", "speed: 1e-6"), {"uavs[0].speed", "at most 1e+06 s"});
+  expect_error(replace(kGood, "speed: {min: 1, cruise: 4, max: 6}", "speed: 1e-6"),
+               {"uavs[0].speed", "at most 1e+06 s"});
   expect_error(replace(kGood, "speed: {min: 1, cruise: 4, max: 6}", "speed: 1e-300"), {"uavs[0].speed"});
 }
 
@@ -245,7 +270,8 @@ TEST(ScenarioIo, SetErrorsNameTheArgument) {
     parse_scenario(kGood, "s.yaml", {{"uavs[0].speed", "-3"}});
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("s.yaml: --set uavs[0].speed=-3: must be positive"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("s.yaml: --set uavs[0].speed=-3: must be positive"), std::string::npos)
+        << e.what();
   }
   expect_error(kGood, {"--set uavs[0].radius=x", "expected a number"}, "s.yaml", {{"uavs[0].radius", "x"}});
 }
@@ -253,10 +279,11 @@ TEST(ScenarioIo, SetErrorsNameTheArgument) {
 // Margins, the ground and shared goals (issue: outputs a user can trust, items 11, 12, 15, 16).
 TEST(ScenarioIo, ClearanceMinAglGroundStartsAndGoalSpacing) {
   const std::string climb = "    max_climb_deg: 30\n";
-  const Scenario sc = parse_scenario(replace(replace(replace(kGood, climb, climb + "    clearance: 1.5\n    min_agl: 4\n"),
-                                                     "start: [5, 5, 10]", "start: [5, 5, 0]"),
-                                             "  separation: 2\n", "  separation: 2\n  goal_spacing: 6\n"),
-                                     "s.yaml");
+  const Scenario sc =
+      parse_scenario(replace(replace(replace(kGood, climb, climb + "    clearance: 1.5\n    min_agl: 4\n"),
+                                     "start: [5, 5, 10]", "start: [5, 5, 0]"),
+                             "  separation: 2\n", "  separation: 2\n  goal_spacing: 6\n"),
+                     "s.yaml");
   EXPECT_DOUBLE_EQ(sc.uavs[0].clearance_m, 1.5);
   EXPECT_DOUBLE_EQ(sc.uavs[0].min_agl_m, 4);
   EXPECT_DOUBLE_EQ(*sc.mission.goal_spacing_m, 6);
@@ -265,13 +292,18 @@ TEST(ScenarioIo, ClearanceMinAglGroundStartsAndGoalSpacing) {
   EXPECT_NO_THROW(parse_scenario(replace(kGood, "start: [5, 5, 10]", "start: [60, 60, 3]"), "s.yaml"));
   expect_error(replace(kGood, "start: [5, 5, 10]", "start: [60, 60, 2]"), {"uavs[0].start", "below the terrain"});
   expect_error(replace(kGood, "start: [5, 5, 10]", "start: [20, 70, 0]"), {"uavs[0].start", "inside an obstacle"});
-  expect_error(replace(kGood, "start: [5, 5, 10]", "start: [69.8, 15, 1]"), {"uavs[0].start", "vertical column", "0.5 m"});
-  expect_error(replace(kGood, climb, climb + "    min_agl: 12\n"), {"uavs[0].start", "10 m above the ground, below min_agl"});
+  expect_error(replace(kGood, "start: [5, 5, 10]", "start: [69.8, 15, 1]"),
+               {"uavs[0].start", "vertical column", "0.5 m"});
+  expect_error(replace(kGood, climb, climb + "    min_agl: 12\n"),
+               {"uavs[0].start", "10 m above the ground, below min_agl"});
   expect_error(replace(kGood, climb, climb + "    clearance: -1\n"), {"uavs[0].clearance", "negative"});
-  expect_error(replace(kGood, "  separation: 2\n", "  separation: 2\n  goal_spacing: -1\n"), {"mission.goal_spacing", "negative"});
-  const std::string flat = replace(replace(kGood, "max: [100, 100, 50]", "max: [100, 100, 0]"),
-                                   "  terrain: {type: grid, origin: [0, 0], cell: 50, heights: [[0, 1], [2, 3]]}\n", "");
-  expect_error(replace(replace(replace(replace(flat, climb, climb + "    min_agl: 3\n"), "[5, 5, 10]", "[5, 5, 0]"), "[95, 95, 10]", "[95, 95, 0]"),
+  expect_error(replace(kGood, "  separation: 2\n", "  separation: 2\n  goal_spacing: -1\n"),
+               {"mission.goal_spacing", "negative"});
+  const std::string flat =
+      replace(replace(kGood, "max: [100, 100, 50]", "max: [100, 100, 0]"),
+              "  terrain: {type: grid, origin: [0, 0], cell: 50, heights: [[0, 1], [2, 3]]}\n", "");
+  expect_error(replace(replace(replace(replace(flat, climb, climb + "    min_agl: 3\n"), "[5, 5, 10]", "[5, 5, 0]"),
+                               "[95, 95, 10]", "[95, 95, 0]"),
                        "[[50, 10, 10]]", "[[50, 10, 0]]"),
                {"uavs[0].min_agl", "flat world"});
 }
@@ -280,15 +312,17 @@ TEST(ScenarioIo, ClearanceMinAglGroundStartsAndGoalSpacing) {
 TEST(ScenarioIo, ProblemsPlanningWouldMeetAreLoadErrors) {
   const std::string second = "uavs:\n  - id: u2\n    start: [5.3, 5, 10]\n    goal: [90, 90, 10]\n";
   expect_error(replace(kGood, "uavs:\n", second), {"uavs[1].start", "closer to u2's start", "radii"});
-  expect_error(replace(kGood, "start: [5, 5, 10]", "start: [0.5, 50, 10]"), {"uavs[0].start", "moving obstacle 'm1' at t = 0"});
+  expect_error(replace(kGood, "start: [5, 5, 10]", "start: [0.5, 50, 10]"),
+               {"uavs[0].start", "moving obstacle 'm1' at t = 0"});
   expect_error(replace(replace(kGood, "    goal: [95, 95, 10]\n", ""), "type: route", "type: independent"),
                {"uavs[0]", "missing required key 'goal'", "independent"});
   expect_error(replace(kGood, "    - {type: sphere, center: [50, 50, 20], radius: 5}\n",
                        "    - {type: box, min: [-5, -5, -5], max: [105, 105, 60]}\n"),
                {"world.obstacles[0]", "covers the whole world"});
   expect_error(replace(kGood, "type: route", "type: group"), {"planner.algorithm", "apf"});
-  expect_error(replace(kGood, "polygon: [[10, 40], [20, 40], [15, 50]]", "polygon: [[10, 40], [20, 50], [20, 40], [10, 52]]"),
-               {"world.obstacles[3].polygon", "self-intersecting", "vertex 0", "vertex 2"});
+  expect_error(
+      replace(kGood, "polygon: [[10, 40], [20, 40], [15, 50]]", "polygon: [[10, 40], [20, 50], [20, 40], [10, 52]]"),
+      {"world.obstacles[3].polygon", "self-intersecting", "vertex 0", "vertex 2"});
 }
 
 }  // namespace

@@ -29,7 +29,8 @@ class TreeCheck {
         const std::string at = path.empty() ? k : path + "." + k;
         const int line = kv.first.Mark().line + 1;
         if (const auto [it, fresh] = seen.emplace(k, line); !fresh)
-          throw InputError(file_, line, at, "duplicate key '" + k + "' (first at line " + std::to_string(it->second) + ")");
+          throw InputError(file_, line, at,
+                           "duplicate key '" + k + "' (first at line " + std::to_string(it->second) + ")");
         add(values(kv.first, at));
         add(values(kv.second, at));
       }
@@ -48,8 +49,8 @@ class TreeCheck {
 
 void check_tree(const YAML::Node& root, const std::string& file, std::size_t max_values) {
   if (TreeCheck(file, max_values).values(root, "") > max_values)
-    throw InputError(file, 0, "", "the file expands (through YAML aliases) to more than " + std::to_string(max_values) +
-                                      " values");
+    throw InputError(file, 0, "",
+                     "the file expands (through YAML aliases) to more than " + std::to_string(max_values) + " values");
 }
 
 int line_of(const YAML::Node& root, const std::string& path) {

@@ -34,8 +34,8 @@ double ParamReader::number(const std::string& key, double fallback, double lo, d
   if (ec != std::errc() || ptr != end || !std::isfinite(v))
     throw std::invalid_argument("planner.params." + key + ": expected a finite number, got '" + *s + "'");
   if (v < lo || v > hi)
-    throw std::invalid_argument("planner.params." + key + ": " + *s + " is outside [" + std::to_string(lo) +
-                                ", " + std::to_string(hi) + "]");
+    throw std::invalid_argument("planner.params." + key + ": " + *s + " is outside [" + std::to_string(lo) + ", " +
+                                std::to_string(hi) + "]");
   return v;
 }
 
@@ -49,8 +49,8 @@ int ParamReader::integer(const std::string& key, int fallback, int lo, int hi) {
   if (ec != std::errc() || ptr != end || !std::isfinite(x) || x != std::floor(x))
     throw std::invalid_argument("planner.params." + key + ": expected a whole number, got '" + *s + "'");
   if (x < lo || x > hi)
-    throw std::invalid_argument("planner.params." + key + ": " + *s + " is outside [" + std::to_string(lo) +
-                                ", " + std::to_string(hi) + "]");
+    throw std::invalid_argument("planner.params." + key + ": " + *s + " is outside [" + std::to_string(lo) + ", " +
+                                std::to_string(hi) + "]");
   return static_cast<int>(x);
 }
 

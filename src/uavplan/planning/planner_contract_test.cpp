@@ -12,7 +12,7 @@ namespace {
 World contract_world() {
   WorldSpec ws;
   ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(100, 100, 40)};
-  ws.obstacles.push_back(Box{Vec3(45, 0, 0), Vec3(55, 70, 40)});    // wall, gap at y > 70
+  ws.obstacles.push_back(Box{Vec3(45, 0, 0), Vec3(55, 70, 40)});  // wall, gap at y > 70
   const Vec3 c(85, 85, 20);
   const double in = 5, out = 7;
   ws.obstacles.push_back(Box{c + Vec3(-out, -out, -out), c + Vec3(out, out, -in)});  // floor
@@ -102,7 +102,8 @@ TEST_P(PlannerContract, UnreachableGoalFailsWithAReason) {
 
 TEST_P(PlannerContract, HonoursACancelledStop) {
   std::atomic<bool> cancel{true};
-  const PlanResult r = planner->plan(problem(Vec3(10, 10, 10), Vec3(90, 10, 10)), world, StopCondition::cancel_flag(&cancel));
+  const PlanResult r =
+      planner->plan(problem(Vec3(10, 10, 10), Vec3(90, 10, 10)), world, StopCondition::cancel_flag(&cancel));
   EXPECT_NE(r.status, Status::solved);
   EXPECT_EQ(r.reason, Reason::stopped) << r.message;  // the batch's `timeout` reads this
 }
@@ -146,8 +147,9 @@ TEST(Registry, ListsEveryPlannersParametersWithTheirDefaults) {
   for (const PlannerInfo& info : planner_catalog()) {
     const auto params = planner_parameters(info.name);
     EXPECT_FALSE(params.empty()) << info.name;
-    for (const auto& [key, value] : params) EXPECT_TRUE(planner_accepts(info.name, key, value) || value == "nan" || value == "inf")
-        << info.name << " " << key << "=" << value;
+    for (const auto& [key, value] : params)
+      EXPECT_TRUE(planner_accepts(info.name, key, value) || value == "nan" || value == "inf")
+          << info.name << " " << key << "=" << value;
   }
   EXPECT_EQ(planner_parameters("rrt").count("goal_bias"), 1u);
   EXPECT_THROW(planner_parameters("nosuch"), std::invalid_argument);

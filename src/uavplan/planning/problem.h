@@ -13,13 +13,13 @@
 namespace uavplan {
 
 struct Problem {
-  UavSpec uav;              // start, start heading and limits
+  UavSpec uav;  // start, start heading and limits
   Vec3 goal = Vec3::Zero();
-  std::vector<Vec3> via;    // visited in order between start and goal
+  std::vector<Vec3> via;  // visited in order between start and goal
   // Required entry heading at each via point (0 = east, pi/2 = north), by index; shorter or
   // empty: none. Planners that do not take entry headings ignore them (registry: entry_headings).
   std::vector<std::optional<double>> via_entry_heading_rad = {};
-  std::uint64_t seed = 1;   // for randomised planners: the same seed gives the same route
+  std::uint64_t seed = 1;  // for randomised planners: the same seed gives the same route
 };
 
 // Names for failure messages, one-based as a user counts: stop s of n (start, via point k, goal)
@@ -34,9 +34,9 @@ struct Route {
 
 struct PlanStats {
   std::uint64_t nodes_expanded = 0;
-  std::uint64_t open_max = 0;       // largest open list seen
-  std::uint64_t grid_cells = 0;     // size of the search grid, when there is one
-  double cell_m = 0.0;              // horizontal grid resolution used
+  std::uint64_t open_max = 0;    // largest open list seen
+  std::uint64_t grid_cells = 0;  // size of the search grid, when there is one
+  double cell_m = 0.0;           // horizontal grid resolution used
   double plan_ms = 0.0;
 };
 

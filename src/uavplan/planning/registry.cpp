@@ -25,28 +25,44 @@ const std::vector<Entry>& entries() {
   static const std::vector<Entry> list = {
       {{"astar", "grid A* on a voxelised world, 26 neighbours, shortcut and turn shaping"},
        [](const Params& p) { return std::make_unique<AStarPlanner>(AStarOptions::from_params(p)); }},
-      {{"directional_astar", "P4 directional A*: a cone of M yaw x M pitch directions at step L, turn and climb limits held",
-        true, false},
-       [](const Params& p) { return std::make_unique<DirectionalAStarPlanner>(DirectionalAStarOptions::from_params(p)); }},
-      {{"cellular_aco", "P2 cellular ant colony on the digital cell map: around or over buildings by the penalty J", false},
+      {{"directional_astar",
+        "P4 directional A*: a cone of M yaw x M pitch directions at step L, turn and climb limits held", true, false},
+       [](const Params& p) {
+         return std::make_unique<DirectionalAStarPlanner>(DirectionalAStarOptions::from_params(p));
+       }},
+      {{"cellular_aco", "P2 cellular ant colony on the digital cell map: around or over buildings by the penalty J",
+        false},
        [](const Params& p) { return std::make_unique<CellularAcoPlanner>(CellularAcoOptions::from_params(p)); }},
       {{"cell_astar", "A* on P2's cell graph with the same penalty J (optimal for it; the ant colony's baseline)"},
        [](const Params& p) { return std::make_unique<CellAStarPlanner>(CellAStarOptions::from_params(p)); }},
       {{"rrt", "P1's common RRT: goal bias 0.5, fixed step, uniform samples, no pruning (the baseline)", false},
        [](const Params& p) { return std::make_unique<RrtPlanner>("rrt", RrtOptions::from_params(p, false)); }},
-      {{"improved_rrt", "P1's improved RRT: chaotic samples, obstacle-velocity growth bias, 5-look-ahead pruning, shortcut", false},
+      {{"improved_rrt",
+        "P1's improved RRT: chaotic samples, obstacle-velocity growth bias, 5-look-ahead pruning, shortcut", false},
        [](const Params& p) { return std::make_unique<RrtPlanner>("improved_rrt", RrtOptions::from_params(p, true)); }},
-      {{"aco_voronoi", "P1 ant colony on the threat Voronoi roadmap: tabu lists, tau^alpha eta^beta, Q / L_k deposits", false},
-       [](const Params& p) { return std::make_unique<AcoVoronoiPlanner>(AcoVoronoiOptions::from_params(p, true), true); }},
-      {{"voronoi_dijkstra", "Dijkstra on P1's threat Voronoi roadmap with the same cost (optimal on it; the colony's baseline)", false},
-       [](const Params& p) { return std::make_unique<AcoVoronoiPlanner>(AcoVoronoiOptions::from_params(p, false), false); }},
-      {{"pso_mpc", "P5 multi-step PSO: one waypoint l on per step, (dphi, dh) within the limits, 11-step look-ahead, terminal and entry-heading terms", false},
+      {{"aco_voronoi", "P1 ant colony on the threat Voronoi roadmap: tabu lists, tau^alpha eta^beta, Q / L_k deposits",
+        false},
+       [](const Params& p) {
+         return std::make_unique<AcoVoronoiPlanner>(AcoVoronoiOptions::from_params(p, true), true);
+       }},
+      {{"voronoi_dijkstra",
+        "Dijkstra on P1's threat Voronoi roadmap with the same cost (optimal on it; the colony's baseline)", false},
+       [](const Params& p) {
+         return std::make_unique<AcoVoronoiPlanner>(AcoVoronoiOptions::from_params(p, false), false);
+       }},
+      {{"pso_mpc",
+        "P5 multi-step PSO: one waypoint l on per step, (dphi, dh) within the limits, 11-step look-ahead, terminal and "
+        "entry-heading terms",
+        false},
        [](const Params& p) { return std::make_unique<PsoMpcPlanner>(PsoMpcOptions::from_params(p)); }},
-      {{"pso_single", "P5's single-step PSO baseline: all waypoints in one swarm, the constraints relaxed into the cost", false, true, true},
+      {{"pso_single",
+        "P5's single-step PSO baseline: all waypoints in one swarm, the constraints relaxed into the cost", false, true,
+        true},
        [](const Params& p) { return std::make_unique<PsoSinglePlanner>(PsoSingleOptions::from_params(p)); }},
       {{"apf", "P3 improved potential field: capped attraction, sqrt(R)-faded repulsion, 15-degree sector rule", false},
        [](const Params& p) { return std::make_unique<ApfPlanner>(ApfOptions::from_params(p, true)); }},
-      {{"apf_traditional", "the traditional potential field (P3's baseline): no cap, no sqrt(R), no sector rule", false},
+      {{"apf_traditional", "the traditional potential field (P3's baseline): no cap, no sqrt(R), no sector rule",
+        false},
        [](const Params& p) { return std::make_unique<ApfPlanner>(ApfOptions::from_params(p, false)); }},
   };
   return list;

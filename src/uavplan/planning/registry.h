@@ -19,7 +19,7 @@ std::unique_ptr<Planner> make_planner(std::string_view name, const Params& param
 struct PlannerInfo {
   std::string name;
   std::string description;
-  bool complete = true;  // finds a route whenever the grid it searches has one; local methods do not
+  bool complete = true;    // finds a route whenever the grid it searches has one; local methods do not
   bool via_points = true;  // plans through via points (route missions)
   // A baseline whose constraints are penalties in its cost (P5's single-step PSO): it may fail
   // any problem, saying why, and never calls a route that breaks them solved.

@@ -20,7 +20,8 @@ class SegmentRule {
         inflation_m_(uav.radius_m + kPlanningMargin_m),
         max_climb_rad_(uav.max_climb_rad),
         // |pitch| <= limit + tolerance as |dz| <= horizontal * tan(limit + tolerance): no atan2 per segment.
-        tan_climb_(max_climb_rad_ + kAngleTolerance_rad < kPi / 2 ? std::tan(max_climb_rad_ + kAngleTolerance_rad) : -1.0),
+        tan_climb_(max_climb_rad_ + kAngleTolerance_rad < kPi / 2 ? std::tan(max_climb_rad_ + kAngleTolerance_rad)
+                                                                  : -1.0),
         ceiling_m_(uav.ceiling_m ? std::min(*uav.ceiling_m, world.bounds().max.z()) : world.bounds().max.z()) {}
 
   // Keeps points this far inside the bounds' sides (a body or a turn's overshoot that must stay in).
@@ -33,7 +34,9 @@ class SegmentRule {
   bool point_ok(const Vec3& p) const {
     return inside(p) && p.z() <= ceiling_m_ && !world_->point_collides(p, inflation_m_);
   }
-  bool operator()(const Vec3& a, const Vec3& b) const { return limits_ok(a, b) && !world_->segment_collides(a, b, inflation_m_); }
+  bool operator()(const Vec3& a, const Vec3& b) const {
+    return limits_ok(a, b) && !world_->segment_collides(a, b, inflation_m_);
+  }
   // Everything but the obstacles and terrain: inside, under the ceiling, within the climb limit.
   bool limits_ok(const Vec3& a, const Vec3& b) const {
     if (!inside(a) || !inside(b)) return false;
@@ -50,8 +53,8 @@ class SegmentRule {
   bool inside(const Vec3& p) const {
     if (!world_->in_bounds(p)) return false;
     const Aabb& b = world_->bounds();
-    return edge_m_ <= 0.0 || (p.x() >= b.min.x() + edge_m_ && p.x() <= b.max.x() - edge_m_ && p.y() >= b.min.y() + edge_m_ &&
-                              p.y() <= b.max.y() - edge_m_);
+    return edge_m_ <= 0.0 || (p.x() >= b.min.x() + edge_m_ && p.x() <= b.max.x() - edge_m_ &&
+                              p.y() >= b.min.y() + edge_m_ && p.y() <= b.max.y() - edge_m_);
   }
 
   const World* world_;

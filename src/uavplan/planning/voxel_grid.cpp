@@ -35,7 +35,8 @@ void VoxelGrid::cell_of(const Vec3& p, int& i, int& j, int& k) const {
   }
 }
 
-VoxelGrid voxelize(const World& world, const Vec3& cell, double inflation_m, double ceiling_m, const StopCondition& stop) {
+VoxelGrid voxelize(const World& world, const Vec3& cell, double inflation_m, double ceiling_m,
+                   const StopCondition& stop) {
   VoxelGrid g(world.bounds(), cell);
   const Vec3 half = 0.5 * g.cell();
   // A cell is unsafe when its centre is closer than inflation + half-diagonal to an obstacle:

@@ -12,8 +12,10 @@ World test_world(Rng& r) {
   ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(100, 80, 30)};
   for (int i = 0; i < 40; ++i) {
     const Vec3 c(r.uniform(0, 100), r.uniform(0, 80), r.uniform(0, 30));
-    if (i % 2) ws.obstacles.push_back(Sphere{c, r.uniform(1, 6)});
-    else ws.obstacles.push_back(Prism{{{c.x(), c.y()}, {c.x() + 5, c.y() + 1}, {c.x() + 1, c.y() + 6}}, 0, c.z()});
+    if (i % 2)
+      ws.obstacles.push_back(Sphere{c, r.uniform(1, 6)});
+    else
+      ws.obstacles.push_back(Prism{{{c.x(), c.y()}, {c.x() + 5, c.y() + 1}, {c.x() + 1, c.y() + 6}}, 0, c.z()});
   }
   std::vector<double> h(10 * 8);
   for (auto& x : h) x = r.uniform(0, 6);

@@ -103,8 +103,10 @@ LoopResult fly_closed_loop(const World& world, std::span<const LoopUav> uavs, st
     s.route.assign(u.route.begin() + (u.route.empty() ? 0 : 1), u.route.end());
     s.speed_mps = u.spec->speed.cruise_mps;
     s.depart_s = u.depart_s;
-    if (u.spec->heading_rad) s.direction = heading_vector(*u.spec->heading_rad);
-    else if (!s.route.empty() && s.route.front() != s.position) s.direction = (s.route.front() - s.position).normalized();
+    if (u.spec->heading_rad)
+      s.direction = heading_vector(*u.spec->heading_rad);
+    else if (!s.route.empty() && s.route.front() != s.position)
+      s.direction = (s.route.front() - s.position).normalized();
     s.flown.push_back({0.0, s.position});
     s.done = s.route.empty();
     sensors[res.uavs.size()].range_m = u.sensor_range_m;
@@ -125,7 +127,8 @@ LoopResult fly_closed_loop(const World& world, std::span<const LoopUav> uavs, st
       break;
     }
     for (std::size_t m = 0; m < n_moving; ++m) truth[m].position = world.moving()[m].position_at(t);
-    for (std::size_t m = 0; m < scripted.size(); ++m) truth[n_moving + m].position = position_at(*scripted[m].trajectory, t);
+    for (std::size_t m = 0; m < scripted.size(); ++m)
+      truth[n_moving + m].position = position_at(*scripted[m].trajectory, t);
     for (std::size_t i = 0; i < uavs.size(); ++i) truth[first_uav + i].position = res.uavs[i].position;
     for (std::size_t i = 0; i < uavs.size(); ++i) sense(sensors[i], truth, first_uav + i, res.uavs[i].position, t);
     controller.control(t, res.uavs, sensors);

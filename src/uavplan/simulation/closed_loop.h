@@ -20,9 +20,9 @@ namespace uavplan {
 
 struct LoopUav {
   const UavSpec* spec = nullptr;
-  std::vector<Vec3> route;   // the route it sets out on; the first point is where it starts
+  std::vector<Vec3> route;  // the route it sets out on; the first point is where it starts
   double sensor_range_m = std::numeric_limits<double>::infinity();
-  double depart_s = 0.0;     // it waits at its start until the first period from then
+  double depart_s = 0.0;  // it waits at its start until the first period from then
 };
 
 // A UAV that flies a fixed trajectory (planned before, not in the loop): an object to sense.
@@ -34,12 +34,12 @@ struct ScriptedUav {
 struct FlightState {
   const UavSpec* spec = nullptr;
   Vec3 position = Vec3::Zero();
-  Vec3 direction = Vec3::UnitX();   // of the last motion (the start heading before it moves)
-  bool moved = false;               // has it moved yet (whether `direction` is a flown one)
-  std::vector<Vec3> route;          // ahead of it: route[0] is the next point it flies to
-  double speed_mps = 0.0;           // commanded; flown within [min, max] (0 hovers when min is 0)
-  double depart_s = 0.0;            // it does not move before (a controller may move it earlier)
-  bool done = false;                // flew its whole route (it stays there, keeping watch)
+  Vec3 direction = Vec3::UnitX();  // of the last motion (the start heading before it moves)
+  bool moved = false;              // has it moved yet (whether `direction` is a flown one)
+  std::vector<Vec3> route;         // ahead of it: route[0] is the next point it flies to
+  double speed_mps = 0.0;          // commanded; flown within [min, max] (0 hovers when min is 0)
+  double depart_s = 0.0;           // it does not move before (a controller may move it earlier)
+  bool done = false;               // flew its whole route (it stays there, keeping watch)
   Trajectory flown;
 };
 
@@ -58,16 +58,16 @@ class FlightController {
 // touching distance of one of them again (a moving obstacle: the radii; a UAV flying a fixed
 // trajectory: the separation, at least the radii), or at the horizon.
 struct LoopOptions {
-  double step_s = 1.0;          // T
-  double horizon_s = 3600.0;    // UAVs not done by then stop where they are
-  double max_sample_dt_s = 1.0; // longest time between trajectory rows
+  double step_s = 1.0;           // T
+  double horizon_s = 3600.0;     // UAVs not done by then stop where they are
+  double max_sample_dt_s = 1.0;  // longest time between trajectory rows
   double separation_m = 0.0;
 };
 
 struct LoopResult {
   std::vector<FlightState> uavs;  // in the order given; `flown` is what each flew
   int steps = 0;
-  bool stopped = false;           // by the stop condition or the horizon
+  bool stopped = false;  // by the stop condition or the horizon
 };
 
 LoopResult fly_closed_loop(const World& world, std::span<const LoopUav> uavs, std::span<const ScriptedUav> scripted,

@@ -25,14 +25,14 @@ struct ObjectState {
 };
 
 struct Track {
-  std::size_t object = 0;              // index into the truth snapshot
+  std::size_t object = 0;  // index into the truth snapshot
   std::string id;
   double radius_m = 0.0;
   bool is_uav = false;
-  double seen_s = 0.0;                 // the latest observation
-  Vec3 relative_m = Vec3::Zero();      // object - UAV then
-  Vec3 own_m = Vec3::Zero();           // the UAV's position then
-  std::optional<Vec3> velocity_mps;    // eq. 7, once seen twice in a row
+  double seen_s = 0.0;               // the latest observation
+  Vec3 relative_m = Vec3::Zero();    // object - UAV then
+  Vec3 own_m = Vec3::Zero();         // the UAV's position then
+  std::optional<Vec3> velocity_mps;  // eq. 7, once seen twice in a row
   // Seen for the first time: it was out of range at the previous refresh, so it moved at least
   // this fast since (range + its radius - its distance now from where the UAV was then) / dt.
   double entered_speed_mps = 0.0;

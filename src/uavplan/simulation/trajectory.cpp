@@ -1,5 +1,5 @@
-#include <Eigen/Geometry>
 #include "uavplan/simulation/trajectory.h"
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
@@ -33,7 +33,8 @@ void append_straight_run(Trajectory& tr, const Vec3& to, double v0, double v1, d
   const double len = (to - from).norm(), t0 = tr.back().t_s;
   if (len <= 0.0) return;
   const double dur = 2.0 * len / std::max(v0 + v1, 1e-9), acc = (v1 - v0) / dur;
-  for (double t = sample_s; t < dur - 1e-9; t += sample_s) tr.push_back({t0 + t, from + (v0 * t + 0.5 * acc * t * t) / len * (to - from)});
+  for (double t = sample_s; t < dur - 1e-9; t += sample_s)
+    tr.push_back({t0 + t, from + (v0 * t + 0.5 * acc * t * t) / len * (to - from)});
   tr.push_back({t0 + dur, to});
 }
 
@@ -41,8 +42,8 @@ Vec3 position_at(const Trajectory& tr, double t) {
   if (tr.empty()) return Vec3::Zero();
   if (t <= tr.front().t_s) return tr.front().p;
   if (t >= tr.back().t_s) return tr.back().p;
-  const auto it = std::upper_bound(tr.begin(), tr.end(), t,
-                                   [](double x, const TrajectorySample& s) { return x < s.t_s; });
+  const auto it =
+      std::upper_bound(tr.begin(), tr.end(), t, [](double x, const TrajectorySample& s) { return x < s.t_s; });
   const TrajectorySample& b = *it;
   const TrajectorySample& a = *(it - 1);
   const double span = b.t_s - a.t_s;
@@ -103,8 +104,10 @@ Encounter closest_approach(const Trajectory& a, const Trajectory& b, double t_ma
       cut = true;
     }
     const Vec3 pa = ca.at(t), pb = cb.at(t);
-    if (first) consider(t, pa, pb, t, pa, pb);
-    else consider(t_prev, pa_prev, pb_prev, t, pa, pb);
+    if (first)
+      consider(t, pa, pb, t, pa, pb);
+    else
+      consider(t_prev, pa_prev, pb_prev, t, pa, pb);
     first = false;
     t_prev = t;
     pa_prev = pa;

@@ -18,8 +18,7 @@ TEST(Trajectory, TimesARouteAtConstantSpeed) {
     if (tr[i].p != tr[i - 1].p) {
       EXPECT_LE(tr[i].t_s - tr[i - 1].t_s, 1.0 + 1e-12);
     }
-  EXPECT_TRUE(
-              (position_at(tr, 9.0) - Vec3(10, 2, 0)).norm() < 1e-12);
+  EXPECT_TRUE((position_at(tr, 9.0) - Vec3(10, 2, 0)).norm() < 1e-12);
   EXPECT_EQ(position_at(tr, -5), pts[0]);
   EXPECT_EQ(position_at(tr, 1e9), pts[2]);
 }
@@ -37,7 +36,8 @@ TEST(Trajectory, ClosestApproachAgainstSampling) {
     const Encounter e = closest_approach(ta, tb);
     double sampled = 1e300;
     const double t_end = std::max(ta.back().t_s, tb.back().t_s) + 1;
-    for (double t = 0; t <= t_end; t += 0.001) sampled = std::min(sampled, (position_at(ta, t) - position_at(tb, t)).norm());
+    for (double t = 0; t <= t_end; t += 0.001)
+      sampled = std::min(sampled, (position_at(ta, t) - position_at(tb, t)).norm());
     ASSERT_LE(e.distance_m, sampled + 1e-9);
     ASSERT_NEAR(e.distance_m, sampled, 0.02);
     ASSERT_NEAR((position_at(ta, e.t_s) - position_at(tb, e.t_s)).norm(), e.distance_m, 1e-9);

@@ -100,7 +100,8 @@ FollowResult follow_waypoints(const AutopilotModel& model, AutopilotState s, con
     const bool over = k < o.fly_over.size() && o.fly_over[k];
     if (!last && over && d <= 2.0 * cruise_mps * h) {  // flown over: on to the closest approach, a row there
       const Vec3 vel(s.speed_mps * std::cos(s.heading_rad), s.speed_mps * std::sin(s.heading_rad), s.climb_rate_mps);
-      const double dt = vel.squaredNorm() > 0.0 ? std::clamp((to - s.position).dot(vel) / vel.squaredNorm(), 0.0, 2.0 * h) : 0.0;
+      const double dt =
+          vel.squaredNorm() > 0.0 ? std::clamp((to - s.position).dot(vel) / vel.squaredNorm(), 0.0, 2.0 * h) : 0.0;
       if (dt > 0.0) {
         const Vec3 aim = to - s.position;
         model.advance(s, {cruise_mps, to.z(), std::atan2(aim.y(), aim.x())}, dt);

@@ -54,7 +54,7 @@ class AutopilotModel {
 };
 
 struct FollowOptions {
-  double sample_s = 1.0;   // one row of the flown path per this much time (and at the end)
+  double sample_s = 1.0;  // one row of the flown path per this much time (and at the end)
   double max_time_s = 1e6;
   // A waypoint is passed when within this distance, or when the UAV is past it along the leg
   // into it; 0: where an arc of the turn radius R at cruise through the corner begins,

@@ -78,7 +78,8 @@ TEST(Autopilot, FollowsARouteWithinItsLimits) {
   }
   for (std::size_t k = 1; k < r.samples.size(); ++k) {
     const double dt = r.samples[k].t_s - r.samples[k - 1].t_s;
-    const double turn = std::abs(std::remainder(r.samples[k].state.heading_rad - r.samples[k - 1].state.heading_rad, 2 * kPi));
+    const double turn =
+        std::abs(std::remainder(r.samples[k].state.heading_rad - r.samples[k - 1].state.heading_rad, 2 * kPi));
     EXPECT_LE(turn, deg_to_rad(2.2) * dt + 1e-9);
     EXPECT_LE(std::abs(r.samples[k].state.position.z() - r.samples[k - 1].state.position.z()), 20.0 * dt + 1e-9);
     EXPECT_GE(r.samples[k].state.speed_mps, 70.0 - 1e-9);

@@ -33,8 +33,7 @@ bool turn_within(const Vec3& from, const Vec3& to, double limit_rad) {
   const double c = std::cos(limit_rad);  // both angles lie in [0, pi], where cos falls
   if (from.dot(to) < c * n1 * n2) return false;
   const double h1 = from.head<2>().norm(), h2 = to.head<2>().norm();
-  if (h1 > kTinyLength_m * n1 && h2 > kTinyLength_m * n2)
-    return from.head<2>().dot(to.head<2>()) >= c * h1 * h2;
+  if (h1 > kTinyLength_m * n1 && h2 > kTinyLength_m * n2) return from.head<2>().dot(to.head<2>()) >= c * h1 * h2;
   return true;
 }
 
@@ -48,8 +47,7 @@ std::vector<LimitViolation> check_route_limits(std::span<const Vec3> pts, const 
     if (seg.norm() <= kTinyLength_m) continue;
     vertex = i;
     const double pitch = std::abs(pitch_rad(seg));
-    if (pitch > uav.max_climb_rad + kAngleTolerance_rad)
-      out.push_back({LimitViolation::Kind::climb, i, pitch});
+    if (pitch > uav.max_climb_rad + kAngleTolerance_rad) out.push_back({LimitViolation::Kind::climb, i, pitch});
     if (prev) {
       const double turn = turn_rad(*prev, seg);
       if (turn > uav.max_turn_rad + kAngleTolerance_rad) out.push_back({LimitViolation::Kind::turn, vertex, turn});

@@ -22,14 +22,14 @@ struct UavSpec {
   std::string id;
   Vec3 start = Vec3::Zero();
   std::optional<Vec3> goal;
-  std::optional<double> heading_rad;   // initial yaw, 0 = east, pi/2 = north
-  double radius_m = 0.5;               // obstacles are inflated by it
-  double clearance_m = 0.0;            // extra distance kept from obstacles and terrain
-  double min_agl_m = 0.0;              // least height above the ground (but taking off and landing)
+  std::optional<double> heading_rad;  // initial yaw, 0 = east, pi/2 = north
+  double radius_m = 0.5;              // obstacles are inflated by it
+  double clearance_m = 0.0;           // extra distance kept from obstacles and terrain
+  double min_agl_m = 0.0;             // least height above the ground (but taking off and landing)
   SpeedLimits speed;
-  double max_turn_rad = kPi;           // heading change between consecutive segments
-  double max_climb_rad = kPi / 2;      // |pitch| of any segment
-  std::optional<double> ceiling_m;     // highest altitude allowed, below the world's top
+  double max_turn_rad = kPi;        // heading change between consecutive segments
+  double max_climb_rad = kPi / 2;   // |pitch| of any segment
+  std::optional<double> ceiling_m;  // highest altitude allowed, below the world's top
   // Moving obstacles and other UAVs are known to it only within this range, sensed every
   // mission step; absent: moving obstacles are known in advance.
   std::optional<double> sensor_range_m;

@@ -33,7 +33,8 @@ TEST(Uav, TurnWithinAgreesWithTurnRad) {
   };
   int checked = 0;
   for (int k = 0; k < 20000; ++k) {
-    const Vec3 a(uniform(), uniform(), 0.3 * uniform()), b(uniform(), uniform(), k % 5 == 0 ? 3.0 * uniform() : 0.3 * uniform());
+    const Vec3 a(uniform(), uniform(), 0.3 * uniform()),
+        b(uniform(), uniform(), k % 5 == 0 ? 3.0 * uniform() : 0.3 * uniform());
     const double limit = 0.05 + 1.5 * (0.5 + 0.5 * uniform());
     const double turn = turn_rad(a, b);
     if (std::abs(turn - limit) < 1e-9) continue;  // rounding decides there
@@ -41,9 +42,9 @@ TEST(Uav, TurnWithinAgreesWithTurnRad) {
     ++checked;
   }
   EXPECT_GT(checked, 19000);
-  EXPECT_TRUE(turn_within(Vec3(1, 0, 1), Vec3(0, 1, 1), kPi / 2 + 1e-9));   // the yaw change counts
+  EXPECT_TRUE(turn_within(Vec3(1, 0, 1), Vec3(0, 1, 1), kPi / 2 + 1e-9));  // the yaw change counts
   EXPECT_FALSE(turn_within(Vec3(1, 0, 1), Vec3(0, 1, 1), kPi / 2 - 1e-3));
-  EXPECT_TRUE(turn_within(Vec3(1, 0, 0), Vec3(0, 0, 0), 0.0));               // no segment, no turn
+  EXPECT_TRUE(turn_within(Vec3(1, 0, 0), Vec3(0, 0, 0), 0.0));  // no segment, no turn
 }
 
 TEST(Uav, RouteLimitsIncludeTheStartHeading) {

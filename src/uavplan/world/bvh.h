@@ -34,8 +34,7 @@ class Bvh {
     std::int32_t left = -1, right = -1;  // children, -1 for a leaf
     std::int32_t first = 0, count = 0;   // leaf range in indices_
   };
-  std::int32_t build(std::span<const Aabb> boxes, std::vector<Vec3>& centers, std::int32_t first,
-                     std::int32_t count);
+  std::int32_t build(std::span<const Aabb> boxes, std::vector<Vec3>& centers, std::int32_t first, std::int32_t count);
 
   std::vector<Node> nodes_;
   std::vector<std::int32_t> indices_;

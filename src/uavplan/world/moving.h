@@ -19,9 +19,9 @@ struct TimedPoint {
 struct MovingObstacle {
   std::string id;
   double radius_m = 0.0;
-  Vec3 position = Vec3::Zero();      // at t = 0 (constant velocity)
+  Vec3 position = Vec3::Zero();  // at t = 0 (constant velocity)
   Vec3 velocity_mps = Vec3::Zero();
-  std::vector<TimedPoint> path = {}; // when not empty, the motion (position and velocity unused)
+  std::vector<TimedPoint> path = {};  // when not empty, the motion (position and velocity unused)
 
   Vec3 position_at(double t_s) const;
   // The velocity at t (the later piece's at a row; zero before and after the path).

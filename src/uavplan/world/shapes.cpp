@@ -9,9 +9,7 @@ namespace uavplan {
 namespace {
 
 struct BoundsVisitor {
-  Aabb operator()(const Sphere& s) const {
-    return {s.center.array() - s.radius_m, s.center.array() + s.radius_m};
-  }
+  Aabb operator()(const Sphere& s) const { return {s.center.array() - s.radius_m, s.center.array() + s.radius_m}; }
   Aabb operator()(const Cylinder& c) const {
     return {Vec3(c.center.x() - c.radius_m, c.center.y() - c.radius_m, c.z_min_m),
             Vec3(c.center.x() + c.radius_m, c.center.y() + c.radius_m, c.z_max_m)};
@@ -27,9 +25,7 @@ struct BoundsVisitor {
   }
 };
 
-double vertical_gap(double z, double z_min, double z_max) {
-  return std::max({0.0, z_min - z, z - z_max});
-}
+double vertical_gap(double z, double z_min, double z_max) { return std::max({0.0, z_min - z, z - z_max}); }
 
 // The gap between the height ranges [lo, hi] and [z_min, z_max].
 double vertical_gap_range(double lo, double hi, double z_min, double z_max) {
@@ -129,8 +125,7 @@ struct SegmentVisitor {
       const Vec3 lo_j(pr.polygon[j].x(), pr.polygon[j].y(), pr.z_min_m);
       const Vec3 lo_i(pr.polygon[i].x(), pr.polygon[i].y(), pr.z_min_m);
       const Vec3 hi_j(lo_j.x(), lo_j.y(), pr.z_max_m), hi_i(lo_i.x(), lo_i.y(), pr.z_max_m);
-      best = std::min({best, segment_segment_distance(a, b, lo_j, lo_i),
-                       segment_segment_distance(a, b, hi_j, hi_i),
+      best = std::min({best, segment_segment_distance(a, b, lo_j, lo_i), segment_segment_distance(a, b, hi_j, hi_i),
                        segment_segment_distance(a, b, lo_i, hi_i)});
     }
     return best;

@@ -8,9 +8,7 @@ namespace uavplan {
 namespace {
 
 std::vector<Obstacle> sample_shapes() {
-  return {Sphere{Vec3(0, 0, 0), 2.0},
-          Cylinder{Vec2(1, 1), 1.5, -1.0, 2.0},
-          Box{Vec3(-1, -2, -1), Vec3(2, 1, 0.5)},
+  return {Sphere{Vec3(0, 0, 0), 2.0}, Cylinder{Vec2(1, 1), 1.5, -1.0, 2.0}, Box{Vec3(-1, -2, -1), Vec3(2, 1, 0.5)},
           Prism{{{0, 0}, {4, 0}, {4, 1}, {1, 1}, {1, 4}, {0, 4}}, -1.0, 1.0}};  // non-convex L
 }
 
@@ -67,7 +65,8 @@ TEST(Shapes, SegmentDistanceWithACapIsExactBelowItAndABoundAbove) {
     for (int k = 0; k < 2000; ++k) {
       const Vec3 a(r.uniform(-9, 9), r.uniform(-9, 9), r.uniform(-7, 7));
       const Vec3 b(r.uniform(-9, 9), r.uniform(-9, 9), r.uniform(-7, 7));
-      const double cap = r.uniform(0.0, 4.0), exact = segment_distance(o, a, b), capped = segment_distance(o, a, b, cap);
+      const double cap = r.uniform(0.0, 4.0), exact = segment_distance(o, a, b),
+                   capped = segment_distance(o, a, b, cap);
       if (exact < cap) {
         ASSERT_NEAR(capped, exact, 1e-9) << "shape " << o.index() << " case " << k;
       } else {

@@ -33,7 +33,8 @@ void validate(const WorldSpec& s) {
       if (!std::isfinite(m.path[k].t_s) || !finite(m.path[k].p))
         throw std::invalid_argument("moving obstacle '" + m.id + "': non-finite path row " + std::to_string(k));
       if (k > 0 && !(m.path[k].t_s > m.path[k - 1].t_s))
-        throw std::invalid_argument("moving obstacle '" + m.id + "': path times must increase (row " + std::to_string(k) + ")");
+        throw std::invalid_argument("moving obstacle '" + m.id + "': path times must increase (row " +
+                                    std::to_string(k) + ")");
     }
   }
   for (const auto& r : s.radars)
@@ -99,8 +100,10 @@ double World::ground_leg_clearance(const Vec3& a, const Vec3& b, double keep, do
   double s0 = 0.0, s1 = 1.0;
   if (b.z() != a.z()) {
     const double s = (above - a.z()) / (b.z() - a.z());
-    if (b.z() > a.z()) s0 = std::max(s0, s);
-    else s1 = std::min(s1, s);
+    if (b.z() > a.z())
+      s0 = std::max(s0, s);
+    else
+      s1 = std::min(s1, s);
   } else if (a.z() < above) {
     return c;
   }

@@ -85,8 +85,7 @@ class World {
 
   // Smallest gap between the surface of any moving obstacle and a UAV flying straight from a
   // (at t_a) to b (at t_b); +inf without moving obstacles. `index_out` names the closest.
-  double moving_clearance(const Vec3& a, double t_a_s, const Vec3& b, double t_b_s,
-                          int* index_out = nullptr) const;
+  double moving_clearance(const Vec3& a, double t_a_s, const Vec3& b, double t_b_s, int* index_out = nullptr) const;
 
   double threat_density(const Vec3& p) const { return uavplan::threat_density(p, spec_.radars); }
   double p1_threat_cost(const Vec3& a, const Vec3& b) const { return uavplan::p1_threat_cost(a, b, spec_.radars); }

@@ -14,10 +14,17 @@ World random_world(int n, Rng& r, bool with_terrain) {
     const Vec3 c(r.uniform(0, 200), r.uniform(0, 200), r.uniform(0, 60));
     const double s = r.uniform(1, 8);
     switch (i % 4) {
-      case 0: ws.obstacles.push_back(Sphere{c, s}); break;
-      case 1: ws.obstacles.push_back(Cylinder{c.head<2>(), s, c.z() - s, c.z() + s}); break;
-      case 2: ws.obstacles.push_back(Box{c.array() - s, c.array() + 0.5 * s}); break;
-      default: ws.obstacles.push_back(Prism{{{c.x(), c.y()}, {c.x() + s, c.y()}, {c.x(), c.y() + s}}, c.z(), c.z() + s});
+      case 0:
+        ws.obstacles.push_back(Sphere{c, s});
+        break;
+      case 1:
+        ws.obstacles.push_back(Cylinder{c.head<2>(), s, c.z() - s, c.z() + s});
+        break;
+      case 2:
+        ws.obstacles.push_back(Box{c.array() - s, c.array() + 0.5 * s});
+        break;
+      default:
+        ws.obstacles.push_back(Prism{{{c.x(), c.y()}, {c.x() + s, c.y()}, {c.x(), c.y() + s}}, c.z(), c.z() + s});
     }
   }
   if (with_terrain) {
@@ -96,7 +103,8 @@ TEST(World, MovingObstacleClearanceIsExactInTime) {
 
 TEST(World, PathObstacleIsPiecewiseLinearAndItsClearanceExact) {
   // A turning obstacle: east for 10 s, then north for 10 s, then it stays.
-  MovingObstacle m{"turn", 1.0, Vec3::Zero(), Vec3::Zero(), {{0, Vec3(0, 0, 5)}, {10, Vec3(50, 0, 5)}, {20, Vec3(50, 50, 5)}}};
+  MovingObstacle m{
+      "turn", 1.0, Vec3::Zero(), Vec3::Zero(), {{0, Vec3(0, 0, 5)}, {10, Vec3(50, 0, 5)}, {20, Vec3(50, 50, 5)}}};
   EXPECT_EQ(m.position_at(-3), Vec3(0, 0, 5));
   EXPECT_EQ(m.position_at(15), Vec3(50, 25, 5));
   EXPECT_EQ(m.position_at(99), Vec3(50, 50, 5));

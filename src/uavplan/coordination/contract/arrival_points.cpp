@@ -5,8 +5,8 @@
 #include <numbers>
 #include <numeric>
 
-#include "uavplan/coordination/planning_view.h"
 #include "uavplan/coordination/contract/separation.h"
+#include "uavplan/coordination/planning_view.h"
 #include "uavplan/core/text.h"
 
 namespace uavplan {
@@ -70,7 +70,8 @@ std::vector<Vec3> ring(const Scenario& sc, const std::vector<std::size_t>& membe
   Vec3 c = Vec3::Zero();
   for (std::size_t i : members) c += *sc.uavs[i].goal;
   c /= static_cast<double>(k);
-  const bool ground = std::all_of(members.begin(), members.end(), [&](std::size_t i) { return w.on_ground(*sc.uavs[i].goal); });
+  const bool ground =
+      std::all_of(members.begin(), members.end(), [&](std::size_t i) { return w.on_ground(*sc.uavs[i].goal); });
   const double r = std::max(chord_m, chord_m / (2.0 * std::sin(std::numbers::pi / static_cast<double>(k))));
   std::vector<double> wish;
   for (std::size_t i : members) {

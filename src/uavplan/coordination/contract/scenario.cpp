@@ -4,12 +4,18 @@ namespace uavplan {
 
 std::string_view to_string(MissionType t) {
   switch (t) {
-    case MissionType::independent: return "independent";
-    case MissionType::route: return "route";
-    case MissionType::group: return "group";
-    case MissionType::rendezvous: return "rendezvous";
-    case MissionType::formation: return "formation";
-    case MissionType::formation_mission: return "formation_mission";
+    case MissionType::independent:
+      return "independent";
+    case MissionType::route:
+      return "route";
+    case MissionType::group:
+      return "group";
+    case MissionType::rendezvous:
+      return "rendezvous";
+    case MissionType::formation:
+      return "formation";
+    case MissionType::formation_mission:
+      return "formation_mission";
   }
   return "independent";
 }

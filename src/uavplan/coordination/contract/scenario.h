@@ -36,8 +36,8 @@ inline constexpr double kTaskHeadingTolerance_deg = 15.0;
 
 struct MissionSpec {
   MissionType type = MissionType::independent;
-  double separation_m = 0.0;                  // between any two UAVs at any time
-  std::vector<Vec3> waypoints;                // route: via points, in order
+  double separation_m = 0.0;    // between any two UAVs at any time
+  std::vector<Vec3> waypoints;  // route: via points, in order
   // The entry heading required at each via point (0 = east, pi/2 = north), by index; shorter or
   // empty: none (pso_mpc plans them; the verifier checks them within kEntryHeadingTolerance_deg).
   std::vector<std::optional<double>> waypoint_entry_heading_rad;

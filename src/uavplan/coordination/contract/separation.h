@@ -20,10 +20,10 @@ inline constexpr double kAirborneAbove_m = 10.0;
 struct AirfieldEncounter {
   bool conflict = false;
   double t_s = 0.0, distance_m = 0.0, need_m = 0.0;
-  Vec3 where = Vec3::Zero();  // a's position then
+  Vec3 where = Vec3::Zero();            // a's position then
   double airborne_min_m = World::kInf;  // their smallest distance while either is in the air
 };
-AirfieldEncounter airfield_encounter(const Scenario& scenario, const UavSpec& ua, const Trajectory& a, const UavSpec& ub,
-                                     const Trajectory& b, double from_s = -1e300);
+AirfieldEncounter airfield_encounter(const Scenario& scenario, const UavSpec& ua, const Trajectory& a,
+                                     const UavSpec& ub, const Trajectory& b, double from_s = -1e300);
 
 }  // namespace uavplan

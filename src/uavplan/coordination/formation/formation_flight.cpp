@@ -28,7 +28,8 @@ Intent commanded(double t, const FlightState& s, double step_s) {
   const Vec3 end = pts.back(), chord = end - s.position;
   double slack = 0.0;
   for (const Vec3& q : pts) {
-    const double f = chord.squaredNorm() > 0.0 ? std::clamp((q - s.position).dot(chord) / chord.squaredNorm(), 0.0, 1.0) : 0.0;
+    const double f =
+        chord.squaredNorm() > 0.0 ? std::clamp((q - s.position).dot(chord) / chord.squaredNorm(), 0.0, 1.0) : 0.0;
     slack = std::max(slack, (q - s.position - f * chord).norm());
   }
   return {Vec3(chord / step_s), slack};
@@ -36,7 +37,8 @@ Intent commanded(double t, const FlightState& s, double step_s) {
 
 }  // namespace
 
-FormationFlight::FormationFlight(const FormationSchedule& schedule, FormationFlightOptions options, RollingWindow& guard)
+FormationFlight::FormationFlight(const FormationSchedule& schedule, FormationFlightOptions options,
+                                 RollingWindow& guard)
     : sched_(schedule), opt_(options), guard_(guard), members_(schedule.slots.size()) {}
 
 // The tracks UAV i guards against: all but those of UAVs that, like it, are in their slots and
@@ -244,7 +246,8 @@ void FormationFlight::control(double t, std::span<FlightState> uavs, std::span<c
     // every other UAV as well.
     members_[i].mode = Mode::broken;
     guard_.guard(t, i, s, trusted_out(i, sensors[i].tracks, uavs));
-    const bool open = std::any_of(breaks_.begin(), breaks_.end(), [&](const FormationBreak& b) { return b.uav == i && b.to_s < 0.0; });
+    const bool open = std::any_of(breaks_.begin(), breaks_.end(),
+                                  [&](const FormationBreak& b) { return b.uav == i && b.to_s < 0.0; });
     if (!open) breaks_.push_back({i, t, -1.0});
     m.mode = Mode::broken;
     m.tau_s = tau_before;

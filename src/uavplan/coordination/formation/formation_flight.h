@@ -24,8 +24,8 @@ struct FormationFlightOptions {
   double step_s = 1.0;
   double separation_m = 0.0;
   int reform_after_steps = 5;
-  double max_speed_mps = 0.0;   // V_max: the slowest UAV's top speed
-  double cruise_mps = 0.0;      // the schedule's speed
+  double max_speed_mps = 0.0;  // V_max: the slowest UAV's top speed
+  double cruise_mps = 0.0;     // the schedule's speed
 };
 
 // A UAV's command for the coming period as its mates hear it: a straight line at a velocity, and
@@ -56,11 +56,11 @@ class FormationFlight final : public FlightController {
   enum class Mode { formed, broken, reforming };
   struct Member {
     Mode mode = Mode::formed;
-    double tau_s = 0.0;       // its place on the shared clock
-    double rate = 1.0;        // clock seconds per second while re-forming
+    double tau_s = 0.0;  // its place on the shared clock
+    double rate = 1.0;   // clock seconds per second while re-forming
     int clear_steps = 0;
-    bool on_path = false;     // a broken UAV back on its own path (tau_s then valid)
-    std::size_t knot = 0;     // the knot its path position was last found before
+    bool on_path = false;  // a broken UAV back on its own path (tau_s then valid)
+    std::size_t knot = 0;  // the knot its path position was last found before
   };
   std::vector<Track> trusted_out(std::size_t i, std::vector<Track> tracks, std::span<const FlightState> uavs) const;
   void fly_slot(double t_s, std::size_t i, FlightState& s, double hold_s);
@@ -75,7 +75,7 @@ class FormationFlight final : public FlightController {
   RollingWindow& guard_;
   std::vector<Member> members_;
   std::vector<FormationBreak> breaks_;
-  std::vector<double> period_tau_;            // the clocks as the period began
+  std::vector<double> period_tau_;             // the clocks as the period began
   std::vector<std::optional<Intent>> intent_;  // this period's commands of the UAVs that have had their turn
   double reform_end_s_ = -1.0;
   double formed_s_ = -1.0;

@@ -51,8 +51,9 @@ std::vector<double> windows_of(const Scenario& sc, const LocalLayer& layer) {
   std::vector<double> w;
   for (const UavSpec& u : sc.uavs)
     w.push_back(layer.window_m > 0.0 ? layer.window_m
-                : u.sensor_range_m ? *u.sensor_range_m
-                                   : 10.0 * sc.mission.step_s * u.speed.cruise_mps);  // known in advance: ten periods ahead
+                : u.sensor_range_m
+                    ? *u.sensor_range_m
+                    : 10.0 * sc.mission.step_s * u.speed.cruise_mps);  // known in advance: ten periods ahead
   return w;
 }
 
@@ -79,7 +80,8 @@ void check_flown(const Scenario& sc, const FormationFlight& flight, Plan& plan) 
   (void)flight;
   if (last - first <= sc.mission.arrival_tolerance_s + 1e-9) return;
   char buf[200];
-  std::snprintf(buf, sizeof buf, "arrivals %.1f s apart, more than arrival_tolerance_s = %g s (out of its slot too late to re-form)",
+  std::snprintf(buf, sizeof buf,
+                "arrivals %.1f s apart, more than arrival_tolerance_s = %g s (out of its slot too late to re-form)",
                 last - first, sc.mission.arrival_tolerance_s);
   for (UavPlan& up : plan.uavs)
     if (up.status == Status::solved) up.status = Status::failed, up.message = buf;
@@ -98,7 +100,8 @@ void FormationMission::plan(const Scenario& sc, const MissionContext& ctx, Plan&
     cruise = std::min(cruise, u.speed.cruise_mps);
     vmax = std::min(vmax, u.speed.max_mps);
   }
-  if (sc.mission.shape.size() != sc.uavs.size()) throw std::invalid_argument("a formation mission needs one slot per UAV");
+  if (sc.mission.shape.size() != sc.uavs.size())
+    throw std::invalid_argument("a formation mission needs one slot per UAV");
   const PlanResult ref = reference_route(sc, ctx, centroid(starts), centroid(goals));
   if (ref.status != Status::solved) return fail_all(sc, "the formation's reference route: " + ref.message, plan);
   const FormationSchedule sched = formation_schedule(ref.route.waypoints, sc.mission.shape, starts, goals, cruise);
@@ -112,11 +115,14 @@ void FormationMission::plan(const Scenario& sc, const MissionContext& ctx, Plan&
   std::vector<std::string> ids;
   for (const UavSpec& u : sc.uavs) ids.push_back(u.id);
   RollingWindow guard(sc.world, rw, windows_of(sc, layer), ids);
-  FormationFlight flight(sched, {sc.mission.step_s, sc.mission.separation_m, sc.mission.reform_after_steps, vmax, cruise}, guard);
+  FormationFlight flight(
+      sched, {sc.mission.step_s, sc.mission.separation_m, sc.mission.reform_after_steps, vmax, cruise}, guard);
   std::vector<LoopUav> loop;
   for (std::size_t i = 0; i < sc.uavs.size(); ++i)
-    loop.push_back({&sc.uavs[i], {starts[i], sched.slots[i][1]},
-                    sc.uavs[i].sensor_range_m.value_or(std::numeric_limits<double>::infinity()), 0.0});
+    loop.push_back({&sc.uavs[i],
+                    {starts[i], sched.slots[i][1]},
+                    sc.uavs[i].sensor_range_m.value_or(std::numeric_limits<double>::infinity()),
+                    0.0});
   LoopOptions lo;
   lo.step_s = sc.mission.step_s;
   lo.horizon_s = 120.0 + 3.0 * sched.end_s();

@@ -32,7 +32,8 @@ std::vector<double> headings(const std::vector<Vec3>& route) {
 
 // The heading at which the shape (about its centroid) best matches `pts` (about theirs), in the
 // least-squares sense (2-D Procrustes); `fallback` when they say nothing about it.
-double fitted_heading(const std::vector<Vec3>& shape, const Vec3& centroid, const std::vector<Vec3>& pts, double fallback) {
+double fitted_heading(const std::vector<Vec3>& shape, const Vec3& centroid, const std::vector<Vec3>& pts,
+                      double fallback) {
   Vec3 c = Vec3::Zero();
   for (const Vec3& p : pts) c += p / static_cast<double>(pts.size());
   double cross = 0.0, dot = 0.0;

@@ -14,10 +14,10 @@
 namespace uavplan {
 
 struct FormationSchedule {
-  std::vector<double> knots_s;            // tau_k, from 0
-  std::vector<std::vector<Vec3>> slots;   // per UAV, its position at each knot
-  std::size_t form_up_knot = 1;           // the knot where the formation is formed (route start)
-  std::size_t final_knot = 0;             // the knot where the end leg to the goals begins
+  std::vector<double> knots_s;           // tau_k, from 0
+  std::vector<std::vector<Vec3>> slots;  // per UAV, its position at each knot
+  std::size_t form_up_knot = 1;          // the knot where the formation is formed (route start)
+  std::size_t final_knot = 0;            // the knot where the end leg to the goals begins
 
   double end_s() const { return knots_s.back(); }
   // UAV i's nominal position at clock tau.

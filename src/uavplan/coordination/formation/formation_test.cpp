@@ -46,7 +46,8 @@ TEST(FormationSchedule, SlotsTurnWithTheRouteAndShareOneClock) {
   EXPECT_NEAR(s.end_s(), 20.0 + corner_s + 20.0, 1e-9);  // goals are the last slots: no end leg
   for (std::size_t i = 0; i < 3; ++i) EXPECT_NEAR((s.at(i, s.end_s()) - goals[i]).norm(), 0.0, 1e-9);
   // The shape keeps them apart all the way (in a chord, at least cos 10 deg of their distance).
-  for (std::size_t k = 0; k + 1 < s.knots_s.size(); ++k) EXPECT_GE(schedule_gap_m(s, 1, 2, k), 10.0 * std::cos(M_PI / 18.0) - 1e-9);
+  for (std::size_t k = 0; k + 1 < s.knots_s.size(); ++k)
+    EXPECT_GE(schedule_gap_m(s, 1, 2, k), 10.0 * std::cos(M_PI / 18.0) - 1e-9);
 }
 
 TEST(FormationSchedule, AColumnTurningRoundNeverRunsThroughItself) {
@@ -58,7 +59,8 @@ TEST(FormationSchedule, AColumnTurningRoundNeverRunsThroughItself) {
   const FormationSchedule s = formation_schedule(route, column, starts, goals, 5.0);
   for (std::size_t k = 0; k + 1 < s.knots_s.size(); ++k)
     for (std::size_t i = 0; i < 3; ++i)
-      for (std::size_t j = i + 1; j < 3; ++j) EXPECT_GE(schedule_gap_m(s, i, j, k), 6.0 * std::cos(M_PI / 18.0) - 1e-9) << k;
+      for (std::size_t j = i + 1; j < 3; ++j)
+        EXPECT_GE(schedule_gap_m(s, i, j, k), 6.0 * std::cos(M_PI / 18.0) - 1e-9) << k;
 }
 
 Scenario crossing(bool with_obstacle) {
@@ -92,7 +94,8 @@ TEST(FormationMission, LeavesItsSlotToAvoidAndReformsWithOneEta) {
   const Plan p = plan_mission(sc, opt);
   ASSERT_EQ(p.status, Status::solved) << p.uavs[0].message << " | " << p.uavs[1].message << " | " << p.uavs[2].message;
   for (std::size_t i = 0; i < 3; ++i)
-    for (std::size_t j = i + 1; j < 3; ++j) EXPECT_GE(closest_approach(p.uavs[i].trajectory, p.uavs[j].trajectory).distance_m, 2.0);
+    for (std::size_t j = i + 1; j < 3; ++j)
+      EXPECT_GE(closest_approach(p.uavs[i].trajectory, p.uavs[j].trajectory).distance_m, 2.0);
   ASSERT_TRUE(p.formation);
   ASSERT_FALSE(p.formation->breaks.empty());  // the crosser meets the wedge at about x = 150
   double last_reform = 0.0;

@@ -1,11 +1,11 @@
 #include "uavplan/coordination/formation_mission/consensus.h"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <boost/graph/adjacency_list.hpp>
 #include <boost/graph/connected_components.hpp>
 #include <cmath>
 #include <complex>
-#include <algorithm>
 #include <stdexcept>
 
 namespace uavplan {
@@ -26,8 +26,8 @@ Topology complete_topology(std::size_t n) {
 }
 
 std::vector<AutopilotCommand> consensus_commands(const std::vector<AutopilotState>& s,
-                                                 const std::vector<AutopilotParams>& params,
-                                                 const ConsensusTarget& t, const Topology& a, const ConsensusGains& g) {
+                                                 const std::vector<AutopilotParams>& params, const ConsensusTarget& t,
+                                                 const Topology& a, const ConsensusGains& g) {
   const std::size_t n = s.size();
   if (params.size() != n || t.offset_m.size() != n || t.altitude_m.size() != n || a.size() != n)
     throw std::invalid_argument("consensus_commands: per-UAV inputs differ in length");

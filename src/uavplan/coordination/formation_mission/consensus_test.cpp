@@ -25,7 +25,8 @@ std::vector<AutopilotModel> fixed_wings(std::size_t n) {
 double nearest_spacing(const FormationGroup& g) {
   double best = 1e300;
   for (std::size_t i = 0; i < g.size(); ++i)
-    for (std::size_t j = i + 1; j < g.size(); ++j) best = std::min(best, (g.state(i).position - g.state(j).position).norm());
+    for (std::size_t j = i + 1; j < g.size(); ++j)
+      best = std::min(best, (g.state(i).position - g.state(j).position).norm());
   return best;
 }
 
@@ -91,7 +92,8 @@ TEST(Consensus, TheFortyFiveToFifteenTurnKeepsTheSafetyDistanceAndPassesTheWaypo
   const std::vector<Vec2> off = g.offsets_m(o);
   for (std::size_t i = 0; i < 4; ++i) {
     AutopilotState s;
-    s.position = Vec3(off[i].x() + 60.0 * std::cos(deg_to_rad(45.0)), off[i].y() + 60.0 * std::sin(deg_to_rad(45.0)), 5000.0);
+    s.position =
+        Vec3(off[i].x() + 60.0 * std::cos(deg_to_rad(45.0)), off[i].y() + 60.0 * std::sin(deg_to_rad(45.0)), 5000.0);
     s.speed_mps = 150.0;
     s.heading_rad = deg_to_rad(45.0);
     g.launch(i, s, true);
@@ -105,9 +107,9 @@ TEST(Consensus, TheFortyFiveToFifteenTurnKeepsTheSafetyDistanceAndPassesTheWaypo
     miss = std::min(miss, (g.centroid() - b).head<2>().norm());
     ASSERT_LT(g.time_s(), 1000.0);
   }
-  EXPECT_GT(nearest, 50.0);                       // P5: minimum 70.5 m, safety distance 50 m
-  EXPECT_NEAR(nearest_spacing(g), 84.85, 1.0);    // steady after the turn (P5: about 85 m)
-  EXPECT_LT(miss, 1500.0);                        // turned on the arc through the corner
+  EXPECT_GT(nearest, 50.0);                     // P5: minimum 70.5 m, safety distance 50 m
+  EXPECT_NEAR(nearest_spacing(g), 84.85, 1.0);  // steady after the turn (P5: about 85 m)
+  EXPECT_LT(miss, 1500.0);                      // turned on the arc through the corner
 }
 
 }  // namespace

@@ -10,7 +10,8 @@ FormationGroup::FormationGroup(std::vector<AutopilotModel> models, std::vector<V
                                FormationGroupOptions options, double t0_s)
     : models_(std::move(models)), shape_(std::move(shape)), topology_(std::move(topology)), o_(options), t_s_(t0_s) {
   const std::size_t n = models_.size();
-  if (shape_.size() != n || topology_.size() != n) throw std::invalid_argument("FormationGroup: a slot and a topology row per UAV");
+  if (shape_.size() != n || topology_.size() != n)
+    throw std::invalid_argument("FormationGroup: a slot and a topology row per UAV");
   for (const AutopilotModel& m : models_) params_.push_back(m.params());
   states_.resize(n);
   flying_.assign(n, 0);
@@ -51,7 +52,8 @@ Vec3 FormationGroup::centroid() const {
 std::vector<Vec2> FormationGroup::offsets_m(const FormationOrder& order) const {
   const double c = std::cos(order.heading_rad), s = std::sin(order.heading_rad);
   std::vector<Vec2> out;
-  for (const Vec3& r : shape_) out.emplace_back(order.scale * (c * r.x() - s * r.y()), order.scale * (s * r.x() + c * r.y()));
+  for (const Vec3& r : shape_)
+    out.emplace_back(order.scale * (c * r.x() - s * r.y()), order.scale * (s * r.x() + c * r.y()));
   return out;
 }
 
@@ -65,7 +67,9 @@ double FormationGroup::shape_error_m(const FormationOrder& order) const {
   c /= n, d /= n;
   double worst = 0.0;
   for (std::size_t i = 0; i < size(); ++i)
-    if (joined_[i]) worst = std::max(worst, ((states_[i].position - c) - (Vec3(off[i].x(), off[i].y(), order.altitude_m[i]) - d)).norm());
+    if (joined_[i])
+      worst =
+          std::max(worst, ((states_[i].position - c) - (Vec3(off[i].x(), off[i].y(), order.altitude_m[i]) - d)).norm());
   return worst;
 }
 

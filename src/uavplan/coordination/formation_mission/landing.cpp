@@ -20,7 +20,8 @@ LandingResult plan_landing(const Airfield& af, const AutopilotModel& model, cons
   const Vec3& thr = af.position;
   const double ground = thr.z(), z_gate = ground + o.gate_height_m;
   const Vec3 centre = thr - o.cylinder_before_threshold_m * dir;
-  const double omega = std::isfinite(model.limits().max_turn_rate_rad_s) ? model.limits().max_turn_rate_rad_s : deg_to_rad(3.0);
+  const double omega =
+      std::isfinite(model.limits().max_turn_rate_rad_s) ? model.limits().max_turn_rate_rad_s : deg_to_rad(3.0);
   const SpeedLimits& lim = model.limits().speed;
   // Touch-down 5 % down the runway, stopped by 45 %: within its first half whichever end
   // `position` names.
@@ -29,7 +30,8 @@ LandingResult plan_landing(const Airfield& af, const AutopilotModel& model, cons
   const double final_m = 0.4 * o.gate_before_threshold_m;
   const Vec3 final_fix = thr - final_m * dir + Vec3(0, 0, o.gate_height_m * final_m / o.gate_before_threshold_m);
   best.message = "no conflict-free landing at any speed in [" + std::to_string(static_cast<int>(lim.min_mps)) + ", " +
-                 std::to_string(static_cast<int>(lim.max_mps)) + "] m/s within " + std::to_string(o.max_holds) + " holds";
+                 std::to_string(static_cast<int>(lim.max_mps)) + "] m/s within " + std::to_string(o.max_holds) +
+                 " holds";
   for (int holds = 0; holds <= o.max_holds; ++holds) {
     for (double v = lim.max_mps; v >= lim.min_mps - 1e-9; v -= o.speed_step_mps) {
       const double r_turn = v / omega;

@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "uavplan/coordination/contract/scenario.h"
-#include "uavplan/vehicle/autopilot.h"
 #include "uavplan/simulation/trajectory.h"
+#include "uavplan/vehicle/autopilot.h"
 
 namespace uavplan {
 
@@ -32,8 +32,8 @@ struct LandingOptions {
 struct LandingResult {
   bool landed = false;
   std::string message;
-  Trajectory flight;         // from the state it starts in until it stops on the runway
-  double speed_mps = 0.0;    // the speed eq. 2 chose
+  Trajectory flight;       // from the state it starts in until it stops on the runway
+  double speed_mps = 0.0;  // the speed eq. 2 chose
   int holds = 0;
 };
 

@@ -6,9 +6,9 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "uavplan/coordination/contract/separation.h"
 #include "uavplan/coordination/formation_mission/formation_group.h"
 #include "uavplan/coordination/formation_mission/landing.h"
-#include "uavplan/coordination/contract/separation.h"
 #include "uavplan/coordination/timing.h"
 #include "uavplan/planning/registry.h"
 #include "uavplan/simulation/vehicle_flight.h"
@@ -26,7 +26,8 @@ AutopilotModel mission_model(const UavSpec& u) {
   AutopilotLimits lim = own.limits();
   if (!u.max_turn_rate_rad_s) lim.max_turn_rate_rad_s = kG_mps2 * std::tan(deg_to_rad(30.0)) / u.speed.cruise_mps;
   double climb = u.max_climb_rate_mps.value_or(20.0);
-  if (u.max_climb_rad < kPi / 2 - 1e-9) climb = std::min(climb, 0.95 * std::max(u.speed.min_mps, 1.0) * std::tan(u.max_climb_rad));
+  if (u.max_climb_rad < kPi / 2 - 1e-9)
+    climb = std::min(climb, 0.95 * std::max(u.speed.min_mps, 1.0) * std::tan(u.max_climb_rad));
   lim.max_climb_rate_mps = climb;
   // The model holds the horizontal speed; climbing at full rate it must stay within the maximum.
   lim.speed.max_mps = std::sqrt(std::max(0.0, u.speed.max_mps * u.speed.max_mps - climb * climb)) * (1.0 - 1e-6);
@@ -113,7 +114,8 @@ void PhasedFormationMission::plan(const Scenario& sc, const MissionContext& ctx,
     turn_rate = std::min(turn_rate, models[i].limits().max_turn_rate_rad_s);
   }
   const double z_form = af.position.z() + o.form_up_height_m;
-  const double ceiling = lead.ceiling_m ? std::min(*lead.ceiling_m, sc.world.bounds().max.z()) : sc.world.bounds().max.z();
+  const double ceiling =
+      lead.ceiling_m ? std::min(*lead.ceiling_m, sc.world.bounds().max.z()) : sc.world.bounds().max.z();
   if (z_form + o.layer_spacing_m * n > ceiling) {
     fail_all(sc, "no room for the form-up's altitude layers below the ceiling", plan);
     return;
@@ -161,7 +163,8 @@ void PhasedFormationMission::plan(const Scenario& sc, const MissionContext& ctx,
   std::vector<std::size_t> order;
   const std::vector<GroundRun> dep = departures(sc, starts, o, go.dt_s, order);
   std::vector<double> layer(n), up(n);
-  for (std::size_t k = 0; k < n; ++k) layer[order[k]] = o.layer_spacing_m * (static_cast<double>(n - 1 - k) - 0.5 * (n - 1));
+  for (std::size_t k = 0; k < n; ++k)
+    layer[order[k]] = o.layer_spacing_m * (static_cast<double>(n - 1 - k) - 0.5 * (n - 1));
   for (std::size_t i = 0; i < n; ++i) up[i] = sc.mission.shape[i].z() - mean_slot.z();
   FormationGroup group(models, sc.mission.shape, topology, go, 0.0);
   FormationOrder order_now;
@@ -186,7 +189,8 @@ void PhasedFormationMission::plan(const Scenario& sc, const MissionContext& ctx,
     // The frame turns towards phi* no faster than the UAVs can (a waypoint passed behind the
     // centroid must not flip the shape through itself).
     const double most = 0.8 * turn_rate * go.dt_s;
-    order_now.heading_rad += std::clamp(std::remainder(steer.heading_rad(c) - order_now.heading_rad, 2.0 * kPi), -most, most);
+    order_now.heading_rad +=
+        std::clamp(std::remainder(steer.heading_rad(c) - order_now.heading_rad, 2.0 * kPi), -most, most);
     for (std::size_t i = 0; i < n; ++i) order_now.altitude_m[i] = steer.altitude_m(c) + offsets[i];
     group.step(order_now, solo);
   };
@@ -211,7 +215,8 @@ void PhasedFormationMission::plan(const Scenario& sc, const MissionContext& ctx,
   const auto phase = [&](const char* name, bool ok) {
     if (!ok && failed.empty()) {
       char buf[160];
-      std::snprintf(buf, sizeof buf, "the %s phase did not complete (at t = %.0f s the shape was %.1f m off, tolerance %.1f m)", name,
+      std::snprintf(buf, sizeof buf,
+                    "the %s phase did not complete (at t = %.0f s the shape was %.1f m off, tolerance %.1f m)", name,
                     group.time_s(), group.shape_error_m(order_now), o.shape_tolerance_m);
       failed = buf;
     }
@@ -219,11 +224,14 @@ void PhasedFormationMission::plan(const Scenario& sc, const MissionContext& ctx,
     return ok;
   };
   const auto scale_to = [&](double target) {
-    return run_until([&] {
-      const double dscale = o.scale_rate_per_s * go.dt_s;
-      order_now.scale = order_now.scale < target ? std::min(target, order_now.scale + dscale) : std::max(target, order_now.scale - dscale);
-      return order_now.scale == target && in_shape();
-    }, o.step_timeout_s);
+    return run_until(
+        [&] {
+          const double dscale = o.scale_rate_per_s * go.dt_s;
+          order_now.scale = order_now.scale < target ? std::min(target, order_now.scale + dscale)
+                                                     : std::max(target, order_now.scale - dscale);
+          return order_now.scale == target && in_shape();
+        },
+        o.step_timeout_s);
   };
   bool ok = run_until([&] { return all_joined() && in_shape(); }, o.step_timeout_s);
   if (ok) offsets = up, ok = run_until(in_shape, o.step_timeout_s);
@@ -281,15 +289,18 @@ void PhasedFormationMission::plan(const Scenario& sc, const MissionContext& ctx,
     std::vector<Vec3> w{starts[i]};
     w.insert(w.end(), wps.begin(), wps.end());
     w.push_back(tr.back().p);
-    plan.uavs.push_back(flown_plan(sc.uavs[i].id, ok, ok ? "" : failed, std::move(w), ok ? std::move(tr) : Trajectory{}));
+    plan.uavs.push_back(
+        flown_plan(sc.uavs[i].id, ok, ok ? "" : failed, std::move(w), ok ? std::move(tr) : Trajectory{}));
   }
   if (ok)  // in the air the separation, on the ground their bodies (the contract's rule)
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = i + 1; j < n; ++j) {
-        const AirfieldEncounter e = airfield_encounter(sc, sc.uavs[i], plan.uavs[i].trajectory, sc.uavs[j], plan.uavs[j].trajectory);
+        const AirfieldEncounter e =
+            airfield_encounter(sc, sc.uavs[i], plan.uavs[i].trajectory, sc.uavs[j], plan.uavs[j].trajectory);
         if (!e.conflict) continue;
         char buf[160];
-        std::snprintf(buf, sizeof buf, "%.1f m from %s at t = %.1f s, below %.1f m", e.distance_m, sc.uavs[j].id.c_str(), e.t_s, e.need_m);
+        std::snprintf(buf, sizeof buf, "%.1f m from %s at t = %.1f s, below %.1f m", e.distance_m,
+                      sc.uavs[j].id.c_str(), e.t_s, e.need_m);
         for (const std::size_t k : {i, j}) {
           plan.uavs[k].status = Status::failed;
           if (plan.uavs[k].message.empty()) plan.uavs[k].message = k == i ? buf : "too close to " + sc.uavs[i].id;

@@ -19,14 +19,14 @@ struct FormationMissionOptions {
   double layer_spacing_m = 100.0;
   double enlargement = 3.0;
   double shape_tolerance_m = 5.0;
-  double scale_rate_per_s = 1.0 / 30.0;    // the shape shrinks / grows by its size in 30 s
-  double form_up_height_m = 1000.0;        // above the airfield (the lowest layer's reference)
+  double scale_rate_per_s = 1.0 / 30.0;  // the shape shrinks / grows by its size in 30 s
+  double form_up_height_m = 1000.0;      // above the airfield (the lowest layer's reference)
   double departure_after_runway_m = 15000.0;
-  double dismiss_within_m = 30000.0;       // of the airfield (papers.md P5: 20 km; ours leaves room to dismiss)
+  double dismiss_within_m = 30000.0;  // of the airfield (papers.md P5: 20 km; ours leaves room to dismiss)
   double taxi_mps = 10.0;
-  double takeoff_interval_s = 20.0;        // least time between two lift-offs
-  double join_above_m = 50.0;              // above the airfield a UAV off the runway joins the consensus
-  double step_timeout_s = 1800.0;          // a form-up or dismiss step that takes longer fails
+  double takeoff_interval_s = 20.0;  // least time between two lift-offs
+  double join_above_m = 50.0;        // above the airfield a UAV off the runway joins the consensus
+  double step_timeout_s = 1800.0;    // a form-up or dismiss step that takes longer fails
 };
 
 class PhasedFormationMission final : public Mission {

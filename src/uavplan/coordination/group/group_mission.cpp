@@ -16,8 +16,9 @@ std::string limits_broken(const std::vector<Vec3>& path, const UavSpec& u) {
   const bool turn = v.kind == LimitViolation::Kind::turn;
   char where[96];
   std::snprintf(where, sizeof where, " at (%.2f, %.2f, %.2f)", p.x(), p.y(), p.z());
-  return std::string(turn ? "the field's path turns " : "the field's path climbs ") + std::to_string(rad_to_deg(v.value_rad)) +
-         " deg" + where + ", above the limit " + std::to_string(rad_to_deg(turn ? u.max_turn_rad : u.max_climb_rad)) +
+  return std::string(turn ? "the field's path turns " : "the field's path climbs ") +
+         std::to_string(rad_to_deg(v.value_rad)) + " deg" + where + ", above the limit " +
+         std::to_string(rad_to_deg(turn ? u.max_turn_rad : u.max_climb_rad)) +
          " deg (an independent mission shapes each field path to the limits; or allow a larger max_turn_deg)";
 }
 

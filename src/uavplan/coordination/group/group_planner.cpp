@@ -87,7 +87,9 @@ class CellIndex {
   Coords coords(const Vec3& p) const {
     Coords c;
     for (int a = 0; a < 3; ++a)
-      c[a] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((p[a] - origin_[a]) / cell_)), -2, (1 << 20) + 2) + 4;
+      c[a] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((p[a] - origin_[a]) / cell_)), -2,
+                                      (1 << 20) + 2) +
+             4;
     return c;
   }
   static std::int64_t key(std::int64_t i, std::int64_t j, std::int64_t k) { return (k << 42) + (j << 21) + i; }
@@ -199,7 +201,8 @@ GroupResult plan_group(const Scenario& sc, const ApfOptions& options, const Stop
   // holds the frame's starting positions and a UAV moves at most a step within the frame.
   double max_radius = 0.0, max_reach = 0.0;
   for (const UavSpec& u : sc.uavs) max_radius = std::max(max_radius, u.radius_m);
-  for (const ApfOptions& o : resolved) max_reach = std::max(max_reach, o.r_rep_m + base.separation_m + 2 * step + 2 * max_radius);
+  for (const ApfOptions& o : resolved)
+    max_reach = std::max(max_reach, o.r_rep_m + base.separation_m + 2 * step + 2 * max_radius);
   CellIndex index;
   // The keep-outs' version for the escape routes: they change when a UAV is done.
   std::uint64_t done_count = static_cast<std::uint64_t>(std::count(done.begin(), done.end(), 1));
@@ -246,7 +249,8 @@ GroupResult plan_group(const Scenario& sc, const ApfOptions& options, const Stop
   res.frames = frame;
   for (std::size_t i = 0; i < n; ++i)
     if (!res.uavs[i].reached && res.uavs[i].message.empty())
-      res.uavs[i].message = "goal not reached within " + std::to_string(max_frames) + " frames; raise planner.params.max_frames";
+      res.uavs[i].message =
+          "goal not reached within " + std::to_string(max_frames) + " frames; raise planner.params.max_frames";
 
   // Smoothing, UAV by UAV, against the current paths of the peers that can matter: a smoothed
   // point stays within kDrift_steps steps of its raw place, so two UAVs that never come within

@@ -26,7 +26,7 @@ struct GroupUav {
   std::vector<Vec3> raw;       // position at every frame until arrival
   std::vector<Vec3> smoothed;  // the same frames after smoothing (== raw without smoothing)
   int smoothed_points = 0;
-  int kept_points = 0;         // smoothing moves refused for a conflict
+  int kept_points = 0;  // smoothing moves refused for a conflict
 };
 
 struct GroupResult {

@@ -4,9 +4,9 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <memory>
-#include <functional>
 #include <mutex>
 #include <numeric>
 #include <optional>
@@ -20,13 +20,20 @@ namespace uavplan {
 
 std::string_view to_string(RendezvousStep s) {
   switch (s) {
-    case RendezvousStep::none: return "none";
-    case RendezvousStep::preplanned: return "pre-planned";
-    case RendezvousStep::multi_point: return "multi-point search";
-    case RendezvousStep::loiter: return "loiter circle";
-    case RendezvousStep::virtual_adjust_r: return "virtual threat (adjust R)";
-    case RendezvousStep::virtual_move_h: return "virtual threat (move H)";
-    case RendezvousStep::detour: return "detour waypoint";
+    case RendezvousStep::none:
+      return "none";
+    case RendezvousStep::preplanned:
+      return "pre-planned";
+    case RendezvousStep::multi_point:
+      return "multi-point search";
+    case RendezvousStep::loiter:
+      return "loiter circle";
+    case RendezvousStep::virtual_adjust_r:
+      return "virtual threat (adjust R)";
+    case RendezvousStep::virtual_move_h:
+      return "virtual threat (move H)";
+    case RendezvousStep::detour:
+      return "detour waypoint";
   }
   return "none";
 }
@@ -137,8 +144,8 @@ struct Lengthening {
 // does not depend on the timing or the thread count. Unstarted queries stay empty.
 template <class Prepare, class Ends>
 std::vector<std::optional<DirectionalRoute>> run_ordered(std::vector<DirectionalSearch>& engines, const World& world,
-                                                         std::vector<DirectionalQuery> qs, Prepare&& prepare, Ends&& ends,
-                                                         const StopCondition& stop) {
+                                                         std::vector<DirectionalQuery> qs, Prepare&& prepare,
+                                                         Ends&& ends, const StopCondition& stop) {
   std::vector<std::optional<DirectionalRoute>> routes(qs.size());
   // A query running past the end of the list is cancelled (its route is never chosen).
   const std::unique_ptr<std::atomic<bool>[]> cancel(new std::atomic<bool>[qs.size()]);
@@ -172,7 +179,8 @@ std::vector<std::optional<DirectionalRoute>> run_ordered(std::vector<Directional
 
 }  // namespace
 
-RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlanner& planner, const StopCondition& stop) {
+RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlanner& planner,
+                                 const StopCondition& stop) {
   RendezvousResult res;
   // One search engine per thread (buffers, clearance cache), all on one set of cone tables; the
   // first serves the sequential steps.
@@ -200,8 +208,10 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
   const auto keep_query = [](std::size_t, DirectionalQuery&, const auto&) {};  // run_ordered's prepare: none
   const DirectionalAStarOptions& opt = planner.options();
   std::vector<DirectionalQuery> queries;
-  for (const UavSpec& u : sc.uavs) queries.push_back(planner.query_for(Problem{u, u.goal.value_or(u.start), {}}, sc.world));
-  if (!queries.empty()) DirectionalAStarPlanner::require_lattice(sc.world, queries.front(), static_cast<int>(engines.size()), stop);
+  for (const UavSpec& u : sc.uavs)
+    queries.push_back(planner.query_for(Problem{u, u.goal.value_or(u.start), {}}, sc.world));
+  if (!queries.empty())
+    DirectionalAStarPlanner::require_lattice(sc.world, queries.front(), static_cast<int>(engines.size()), stop);
   // The pre-plans are independent: side by side (a UAV without a goal gets no search). Like
   // every later search they keep P4's one state per lattice point; a UAV that finds no route
   // that way is searched again with heading sectors in the state (DirectionalQuery::heading_states).
@@ -311,8 +321,10 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
         const DirectionalRoute& route = *routes[c];
         candidates.push_back(route.waypoints);
         if (within(route.length_m))
-          accept(route.waypoints, RendezvousStep::multi_point, fmt("L = %.1f, M = %.0f", combos[c].first, combos[c].second));
-        else if (std::abs(route.length_m - aim) < std::abs(length(best) - aim)) best = route.waypoints;
+          accept(route.waypoints, RendezvousStep::multi_point,
+                 fmt("L = %.1f, M = %.0f", combos[c].first, combos[c].second));
+        else if (std::abs(route.length_m - aim) < std::abs(length(best) - aim))
+          best = route.waypoints;
       }
     }
     if (r.ok) continue;
@@ -331,7 +343,8 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
     // f(base, extra) on the routes found, longest first, whose missing length `usable` takes
     // (at most `max_bases` of them); true at the first f that accepts a route.
     auto on_candidates = [&](auto&& usable, int max_bases, auto&& f) {
-      std::sort(candidates.begin(), candidates.end(), [](const auto& x, const auto& y) { return length(x) > length(y); });
+      std::sort(candidates.begin(), candidates.end(),
+                [](const auto& x, const auto& y) { return length(x) > length(y); });
       int bases = 0;
       for (const auto& base : candidates) {
         const double extra = aim - length(base);
@@ -344,11 +357,14 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
     const auto loiter_fits = [&](double extra) { return extra / (2 * kPi) >= r_min; };
     // P4's loiter: one circle at the start, on the left.
     auto try_loiter = [&]() {
-      return on_candidates(loiter_fits, std::numeric_limits<int>::max(), [&](const std::vector<Vec3>& base, double extra) {
-        auto route = lengthen.loiter(base, 0, extra, 1, true);
-        if (route) accept(*route, RendezvousStep::loiter, fmt("radius %.1f m (R_min %.1f m), %.0f sides", extra / (2 * kPi), r_min, n));
-        return route.has_value();
-      });
+      return on_candidates(loiter_fits, std::numeric_limits<int>::max(),
+                           [&](const std::vector<Vec3>& base, double extra) {
+                             auto route = lengthen.loiter(base, 0, extra, 1, true);
+                             if (route)
+                               accept(*route, RendezvousStep::loiter,
+                                      fmt("radius %.1f m (R_min %.1f m), %.0f sides", extra / (2 * kPi), r_min, n));
+                             return route.has_value();
+                           });
     };
     // Where that circle does not fit (a boundary, a threat) and no virtual threat helped: the
     // same extra length as k laps of a circle k times smaller (while R >= R_min), on either side
@@ -360,10 +376,11 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
           for (int laps = 1; laps <= kMaxLoiterLaps && extra / (2 * kPi * laps) >= r_min; ++laps)
             for (const bool left : {true, false})
               if (auto route = lengthen.loiter(base, at, extra, laps, left)) {
-                accept(*route, RendezvousStep::loiter,
-                       fmt("radius %.1f m (R_min %.1f m), %.0f laps", extra / (2 * kPi * laps), r_min, laps) +
-                           (left ? " on the left" : " on the right") +
-                           (at == 0 ? std::string(" at the start") : fmt(" at waypoint %.0f", static_cast<double>(at))));
+                accept(
+                    *route, RendezvousStep::loiter,
+                    fmt("radius %.1f m (R_min %.1f m), %.0f laps", extra / (2 * kPi * laps), r_min, laps) +
+                        (left ? " on the left" : " on the right") +
+                        (at == 0 ? std::string(" at the start") : fmt(" at waypoint %.0f", static_cast<double>(at))));
                 return true;
               }
         return false;
@@ -373,25 +390,28 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
     // detour through one waypoint beside up to kDetourSpan segments, exactly `aim` long; the
     // longest chords of the longest routes found first.
     auto try_detour = [&]() {
-      return on_candidates([](double extra) { return extra > 0.0; }, kLoiterBases, [&](const std::vector<Vec3>& base, double extra) {
-        std::vector<std::pair<std::size_t, std::size_t>> spans;
-        for (std::size_t i = 0; i + 1 < base.size(); ++i)
-          for (std::size_t j = i + 1; j < base.size() && j - i <= kDetourSpan; ++j) spans.emplace_back(i, j);
-        std::stable_sort(spans.begin(), spans.end(), [&](const auto& x, const auto& y) {
-          return (base[x.second] - base[x.first]).norm() > (base[y.second] - base[y.first]).norm();
-        });
-        for (const auto& [i, j] : spans)
-          for (const bool left : {true, false}) {
-            double offset_m = 0.0;
-            if (auto route = lengthen.detour(base, i, j, extra, left, &offset_m)) {
-              accept(*route, RendezvousStep::detour,
-                     fmt("%.1f m beside waypoints %.0f to %.0f", offset_m, static_cast<double>(i), static_cast<double>(j)) +
-                         (left ? ", on the left" : ", on the right"));
-              return true;
-            }
-          }
-        return false;
-      });
+      return on_candidates([](double extra) { return extra > 0.0; }, kLoiterBases,
+                           [&](const std::vector<Vec3>& base, double extra) {
+                             std::vector<std::pair<std::size_t, std::size_t>> spans;
+                             for (std::size_t i = 0; i + 1 < base.size(); ++i)
+                               for (std::size_t j = i + 1; j < base.size() && j - i <= kDetourSpan; ++j)
+                                 spans.emplace_back(i, j);
+                             std::stable_sort(spans.begin(), spans.end(), [&](const auto& x, const auto& y) {
+                               return (base[x.second] - base[x.first]).norm() > (base[y.second] - base[y.first]).norm();
+                             });
+                             for (const auto& [i, j] : spans)
+                               for (const bool left : {true, false}) {
+                                 double offset_m = 0.0;
+                                 if (auto route = lengthen.detour(base, i, j, extra, left, &offset_m)) {
+                                   accept(*route, RendezvousStep::detour,
+                                          fmt("%.1f m beside waypoints %.0f to %.0f", offset_m, static_cast<double>(i),
+                                              static_cast<double>(j)) +
+                                              (left ? ", on the left" : ", on the right"));
+                                   return true;
+                                 }
+                               }
+                             return false;
+                           });
     };
     if (try_loiter()) continue;
     // (3) Virtual threat (P4 eq. 12-13): a sphere centred on the route point nearest the
@@ -409,7 +429,8 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
       for (std::size_t o = 0; o < res.uavs.size(); ++o) {
         if (o == s) continue;
         const auto& w = res.uavs[o].waypoints;
-        for (std::size_t i = 1; i < w.size(); ++i) lim = std::min(lim, point_segment_distance(h, w[i - 1], w[i]) - q.inflation_m);
+        for (std::size_t i = 1; i < w.size(); ++i)
+          lim = std::min(lim, point_segment_distance(h, w[i - 1], w[i]) - q.inflation_m);
       }
       return lim;
     };
@@ -456,8 +477,10 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
       const double rx = 0.5 * (short_rx + long_rx);
       q.virtual_threats = {Sphere{h0, rx}};
       const double len = take_radius(rx, search.run(sc.world, q, stop));
-      if (len >= 0.0 && len < lo) short_rx = rx;
-      else long_rx = rx;
+      if (len >= 0.0 && len < lo)
+        short_rx = rx;
+      else
+        long_rx = rx;
     }
     std::vector<Vec3> current = best;
     for (int it = 0; it < 15 && !r.ok && rx_used > 0.0 && !stop.should_stop(); ++it) {
@@ -469,7 +492,8 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
       if (!route.found || route.waypoints == current) break;
       current = route.waypoints;
       candidates.push_back(route.waypoints);
-      if (within(route.length_m)) accept(route.waypoints, RendezvousStep::virtual_move_h, fmt("R_x = %.1f m, %.0f moves", rx, it + 1));
+      if (within(route.length_m))
+        accept(route.waypoints, RendezvousStep::virtual_move_h, fmt("R_x = %.1f m, %.0f moves", rx, it + 1));
     }
     if (r.ok) continue;
     // Last: a loiter on any route found on the way, or a detour.

@@ -27,19 +27,20 @@ struct RendezvousUav {
   std::vector<Vec3> waypoints;
   double preplanned_m = 0.0, final_m = 0.0;
   RendezvousStep step = RendezvousStep::none;
-  std::string detail;  // L and M, loiter radius, virtual threat radius and centre, or why it failed
+  std::string detail;            // L and M, loiter radius, virtual threat radius and centre, or why it failed
   Reason reason = Reason::none;  // why it failed
 };
 
 struct RendezvousResult {
-  double target_m = 0.0;   // P_max
+  double target_m = 0.0;  // P_max
   double epsilon_m = 0.0;
   std::vector<RendezvousUav> uavs;
-  int searches = 0;               // directional searches run
-  std::uint64_t expanded = 0;     // nodes they expanded
+  int searches = 0;            // directional searches run
+  std::uint64_t expanded = 0;  // nodes they expanded
 };
 
 // epsilon: the mission's arrival_tolerance, or one lattice cell when it has none.
-RendezvousResult plan_rendezvous(const Scenario& scenario, const DirectionalAStarPlanner& planner, const StopCondition& stop);
+RendezvousResult plan_rendezvous(const Scenario& scenario, const DirectionalAStarPlanner& planner,
+                                 const StopCondition& stop);
 
 }  // namespace uavplan

@@ -46,8 +46,8 @@ void RendezvousMission::plan(const Scenario& sc, const MissionContext& ctx, Plan
   for (const std::size_t i : order) {
     const RendezvousUav& r = rr.uavs[i];
     const UavSpec& u = sc.uavs[i];
-    Departure d = earliest_departure(sc, u, r.waypoints, slack_s[i], committed, opt.delay_step_s, opt.max_sample_dt_s,
-                                     opt.stop);
+    Departure d =
+        earliest_departure(sc, u, r.waypoints, slack_s[i], committed, opt.delay_step_s, opt.max_sample_dt_s, opt.stop);
     char buf[200];
     if (d.stopped) {
       planned[i] = flown_plan(r.id, false, messages[i] + "; " + kStoppedMessage, {}, {});

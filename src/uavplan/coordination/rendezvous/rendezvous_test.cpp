@@ -52,10 +52,11 @@ Scenario small_rendezvous() {
   ws.obstacles.push_back(Sphere{Vec3(12000, 12000, 5000), 3000});
   ws.obstacles.push_back(Sphere{Vec3(20000, 9000, 6000), 2500});
   const Vec3 goal(18000, 18000, 8000);
-  return rendezvous(std::move(ws),
-                    {p4_uav(1, Vec3(2000, 2000, 4000), goal, kPi / 2, 100), p4_uav(2, Vec3(28000, 3000, 4000), goal, kPi / 2, 100),
-                     p4_uav(3, Vec3(27000, 27000, 5000), goal, kPi, 100)},
-                    1000, {{"cell_m", "1000"}, {"directions", "6"}});
+  return rendezvous(
+      std::move(ws),
+      {p4_uav(1, Vec3(2000, 2000, 4000), goal, kPi / 2, 100), p4_uav(2, Vec3(28000, 3000, 4000), goal, kPi / 2, 100),
+       p4_uav(3, Vec3(27000, 27000, 5000), goal, kPi, 100)},
+      1000, {{"cell_m", "1000"}, {"directions", "6"}});
 }
 
 TEST(Rendezvous, LengthsEndWithinEpsilonAndEachStepIsReported) {
@@ -93,8 +94,10 @@ TEST(Rendezvous, NoRoomToLengthenFailsClearly) {
   WorldSpec ws;
   ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(30000, 1500, 1500)};
   const Vec3 goal(29000, 750, 750);
-  const Scenario sc = rendezvous(std::move(ws), {p4_uav(1, Vec3(1000, 750, 750), goal, 0.0, 100), p4_uav(2, Vec3(20000, 750, 750), goal, 0.0, 100)},
-                                 500, {{"cell_m", "250"}, {"min_turn_radius_m", "1000"}});
+  const Scenario sc =
+      rendezvous(std::move(ws),
+                 {p4_uav(1, Vec3(1000, 750, 750), goal, 0.0, 100), p4_uav(2, Vec3(20000, 750, 750), goal, 0.0, 100)},
+                 500, {{"cell_m", "250"}, {"min_turn_radius_m", "1000"}});
   const Plan p = plan_mission(sc, {});
   EXPECT_NE(p.status, Status::solved);
   ASSERT_EQ(p.uavs.size(), 2u);
@@ -147,8 +150,10 @@ TEST(Rendezvous, LoiterGoesWhereItFitsWhenThePapersCircleDoesNot) {
   WorldSpec ws;
   ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(20000, 20000, 3000)};
   const Vec3 goal(10000, 17000, 1500);
-  const Scenario sc = rendezvous(std::move(ws), {p4_uav(1, Vec3(1000, 1000, 1500), goal, 0.0, 50), p4_uav(2, Vec3(7000, 19500, 1500), goal, 0.0, 50)},
-                                 500, {{"cell_m", "500"}, {"min_turn_radius_m", "500"}});
+  const Scenario sc =
+      rendezvous(std::move(ws),
+                 {p4_uav(1, Vec3(1000, 1000, 1500), goal, 0.0, 50), p4_uav(2, Vec3(7000, 19500, 1500), goal, 0.0, 50)},
+                 500, {{"cell_m", "500"}, {"min_turn_radius_m", "500"}});
   const DirectionalAStarPlanner planner(DirectionalAStarOptions::from_params(sc.planner.params));
   const RendezvousResult r = plan_rendezvous(sc, planner, {});
   ASSERT_TRUE(r.uavs[0].ok && r.uavs[1].ok) << r.uavs[1].detail;
@@ -164,8 +169,10 @@ TEST(Rendezvous, DetourWaypointMakesUpALengthTooShortToLoiter) {
   WorldSpec ws;
   ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(20000, 20000, 3000)};
   const Vec3 goal(15000, 15000, 1500);
-  const Scenario sc = rendezvous(std::move(ws), {p4_uav(1, Vec3(1000, 1000, 1500), goal, 0.0, 100), p4_uav(2, Vec3(2500, 1500, 1500), goal, kPi / 2, 100)},
-                                 10, {{"cell_m", "500"}, {"min_turn_radius_m", "1000"}});
+  const Scenario sc = rendezvous(
+      std::move(ws),
+      {p4_uav(1, Vec3(1000, 1000, 1500), goal, 0.0, 100), p4_uav(2, Vec3(2500, 1500, 1500), goal, kPi / 2, 100)}, 10,
+      {{"cell_m", "500"}, {"min_turn_radius_m", "1000"}});
   const DirectionalAStarPlanner planner(DirectionalAStarOptions::from_params(sc.planner.params));
   const RendezvousResult r = plan_rendezvous(sc, planner, {});
   ASSERT_TRUE(r.uavs[0].ok && r.uavs[1].ok) << r.uavs[1].detail;
@@ -183,8 +190,10 @@ TEST(Rendezvous, ConvergingUavsAreStaggeredWithinTheirSlack) {
   WorldSpec ws;
   ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(30000, 30000, 12000)};
   const Vec3 goal(15000, 15000, 6000);
-  Scenario sc = rendezvous(std::move(ws), {p4_uav(1, Vec3(3000, 14000, 6000), goal, 0.0, 100), p4_uav(2, Vec3(3000, 16000, 6000), goal, 0.0, 100)},
-                           1000, {{"cell_m", "1000"}, {"directions", "6"}});
+  Scenario sc = rendezvous(
+      std::move(ws),
+      {p4_uav(1, Vec3(3000, 14000, 6000), goal, 0.0, 100), p4_uav(2, Vec3(3000, 16000, 6000), goal, 0.0, 100)}, 1000,
+      {{"cell_m", "1000"}, {"directions", "6"}});
   sc.mission.separation_m = 200;
   const Plan p = plan_mission(sc, {});
   ASSERT_EQ(p.status, Status::solved) << p.message;

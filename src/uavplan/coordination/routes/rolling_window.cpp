@@ -24,7 +24,7 @@ std::vector<ThreatDisc> threat_discs(const UavSpec& u, const std::vector<Track>&
     }
     // Seen once: no V_b yet; taken to come straight at the UAV, at least as fast as the UAV can fly.
     const double speed = k.velocity_mps ? k.velocity_mps->norm() : std::max(u.speed.max_mps, k.entered_speed_mps);
-    const Vec3 velocity = k.velocity_mps ? *k.velocity_mps
+    const Vec3 velocity = k.velocity_mps              ? *k.velocity_mps
                           : k.relative_m.norm() > 0.0 ? Vec3(-speed * k.relative_m.normalized())
                                                       : Vec3::Zero();
     out.push_back({{k.position(), velocity, body + step_s * speed + kPlanningMargin_m, t_s}, body + kPlanningMargin_m});
@@ -77,7 +77,8 @@ Touch touches(const Ahead& a, const std::vector<MovingKeepOut>& ko, const Segmen
     const double end = std::min(a.along[i], window_m);
     const Vec3 b = a.at(end);
     const Vec3 seg = a.pts[i] - a.pts[i - 1];
-    bool hit = !rule(a.pts[i - 1], b) || (in && seg.norm() > 0.0 && turn_rad(*in, seg) > max_turn + kAngleTolerance_rad);
+    bool hit =
+        !rule(a.pts[i - 1], b) || (in && seg.norm() > 0.0 && turn_rad(*in, seg) > max_turn + kAngleTolerance_rad);
     if (seg.norm() > 0.0) in = seg;
     for (std::size_t k = 0; k < ko.size() && !hit; ++k)
       if (keep_out_distance(ko[k], a.pts[i - 1], t_s + a.along[i - 1] / v, b, t_s + end / v) < ko[k].radius_m) {
@@ -184,7 +185,8 @@ bool RollingWindow::guard(double t, std::size_t i, FlightState& s, const std::ve
     ev.outcome = ReplanEvent::Outcome::replanned;
   } else {
     log.trouble = "no local route " +
-                  (touch.keep_out ? "around " + describe(tracks[*touch.keep_out], t) : "back to its route at t=" + num(t) + " s") +
+                  (touch.keep_out ? "around " + describe(tracks[*touch.keep_out], t)
+                                  : "back to its route at t=" + num(t) + " s") +
                   " (" + why + ")";
     if (u.speed.min_mps <= 0.0 && clear_to_stay(t, i, s, threats)) {
       s.speed_mps = 0.0;
@@ -251,7 +253,8 @@ bool RollingWindow::replan(double t, std::size_t i, FlightState& s, const std::v
       if (d0 >= planning[k].radius_m) continue;
       inside = true;
       const double body = threats[k].body_m;
-      planning[k].radius_m = std::min(0.999 * d0, keep >= 1.0 ? planning[k].radius_m : body + keep * (planning[k].radius_m - body));
+      planning[k].radius_m =
+          std::min(0.999 * d0, keep >= 1.0 ? planning[k].radius_m : body + keep * (planning[k].radius_m - body));
     }
     if (keep < 1.0 && !inside) break;
     q.keep_outs = planning;
@@ -279,7 +282,8 @@ bool RollingWindow::clear_to_stay(double t, std::size_t i, const FlightState& s,
   // could still touch it.
   const double window_s = window_m_[i] / s.spec->speed.cruise_mps;
   for (const ThreatDisc& d : threats)
-    if (keep_out_distance(d.disc, s.position, t, s.position, t + (d.gives_way ? opt_.step_s : window_s)) < d.disc.radius_m)
+    if (keep_out_distance(d.disc, s.position, t, s.position, t + (d.gives_way ? opt_.step_s : window_s)) <
+        d.disc.radius_m)
       return false;
   return true;
 }
@@ -296,7 +300,8 @@ bool RollingWindow::escape(double t, FlightState& s, const std::vector<ThreatDis
   const auto score = [&](const Vec3& velocity) {
     double m = World::kInf;
     for (const ThreatDisc& d : threats)
-      m = std::min(m, keep_out_distance(d.disc, s.position, t, s.position + horizon * velocity, t + horizon) - d.body_m);
+      m = std::min(m,
+                   keep_out_distance(d.disc, s.position, t, s.position + horizon * velocity, t + horizon) - d.body_m);
     return m;
   };
   double best = -World::kInf, best_align = -World::kInf;

@@ -32,8 +32,8 @@
 namespace uavplan {
 
 struct RollingWindowOptions {
-  double step_s = 1.0;          // T
-  double separation_m = 0.0;    // between UAVs (the mission's)
+  double step_s = 1.0;        // T
+  double separation_m = 0.0;  // between UAVs (the mission's)
   RrtOptions local = RrtOptions::improved();
   std::uint64_t seed = 1;
   StopCondition stop;
@@ -41,17 +41,17 @@ struct RollingWindowOptions {
 
 struct ReplanEvent {
   double t_s = 0.0;
-  std::string object;           // the track whose disc touched the route (first found)
+  std::string object;                // the track whose disc touched the route (first found)
   Vec3 velocity_mps = Vec3::Zero();  // its V_b as the UAV estimated it
   enum class Outcome { replanned, held, escaped, none } outcome = Outcome::none;
 };
 
 struct RollingWindowLog {
   std::vector<ReplanEvent> events;
-  int replans = 0;              // RRT replans that succeeded
+  int replans = 0;  // RRT replans that succeeded
   int holds = 0, escapes = 0;
-  double local_ms = 0.0;        // time spent in the local RRT
-  std::string trouble;          // the last situation with no clear way out, for failure messages
+  double local_ms = 0.0;  // time spent in the local RRT
+  std::string trouble;    // the last situation with no clear way out, for failure messages
 };
 
 // A tracked object as the UAV plans around it: the disc (see above) and the distance at which
@@ -83,7 +83,8 @@ class RollingWindow final : public FlightController {
   const RollingWindowLog& log(std::size_t uav) const { return logs_[uav]; }
 
  private:
-  std::vector<ThreatDisc> discs_for(double t_s, std::size_t i, const FlightState& s, const std::vector<Track>& tracks) const;
+  std::vector<ThreatDisc> discs_for(double t_s, std::size_t i, const FlightState& s,
+                                    const std::vector<Track>& tracks) const;
   bool replan(double t_s, std::size_t i, FlightState& s, const std::vector<ThreatDisc>& threats, const Vec3& bias_mps,
               std::string& why);
   bool clear_to_stay(double t_s, std::size_t i, const FlightState& s, const std::vector<ThreatDisc>& threats) const;

@@ -41,7 +41,10 @@ Flight fly(const World& w, const UavSpec& u) {
 TEST(RollingWindow, AnObstacleThatTurnsAfterBeingSeenIsAvoidedFromTheUavsObservations) {
   // Flies east 30 m north of the route (no threat) and is seen from t = 10 on; at t = 14.5 it
   // turns south at 4 m/s, to cross the route just when the UAV gets there.
-  const MovingObstacle turner{"turner", 2.0, Vec3::Zero(), Vec3::Zero(),
+  const MovingObstacle turner{"turner",
+                              2.0,
+                              Vec3::Zero(),
+                              Vec3::Zero(),
                               {{0, Vec3(74, 80, 0)}, {14.5, Vec3(117.5, 80, 0)}, {34.5, Vec3(117.5, 0, 0)}}};
   const World w = flat({turner});
   const Flight f = fly(w, p1_uav(60.0));
@@ -67,8 +70,8 @@ TEST(RollingWindow, AnObstacleThatTurnsAfterBeingSeenIsAvoidedFromTheUavsObserva
 TEST(RollingWindow, AnObstacleOutsideTheSensorRangeIsNeverUsed) {
   // Its straight path would cross the route ahead; it stops 25 m short of it (beyond the 20 m
   // range of a UAV on the route), so the UAV never learns of it and flies straight.
-  const MovingObstacle lurker{"lurker", 1.0, Vec3::Zero(), Vec3::Zero(),
-                              {{0, Vec3(100, 95, 0)}, {10, Vec3(100, 75, 0)}}};
+  const MovingObstacle lurker{
+      "lurker", 1.0, Vec3::Zero(), Vec3::Zero(), {{0, Vec3(100, 95, 0)}, {10, Vec3(100, 75, 0)}}};
   const World w = flat({lurker});
   const Flight f = fly(w, p1_uav(20.0));
   EXPECT_TRUE(f.log.events.empty());
@@ -85,9 +88,9 @@ TEST(RollingWindow, DiscsGrowWithTheEstimatedSpeedAndSeparation) {
   Track uav{1, "u2", 0.5, true, 3.0, Vec3(0, 10, 0), Vec3::Zero(), Vec3::Zero(), 0.0};
   Track fresh{2, "new", 1.0, false, 3.0, Vec3(0, -10, 0), Vec3::Zero(), std::nullopt, 7.0};
   const auto discs = threat_discs(u, {obstacle, uav, fresh}, 3.0, 1.0, 6.0);
-  EXPECT_NEAR(discs[0].disc.radius_m, 5.0 + 2.0 + 0.5, 1e-2);    // T |V_b| + both radii
-  EXPECT_NEAR(discs[1].disc.radius_m, 6.0, 1e-2);                // the separation
-  EXPECT_NEAR(discs[2].disc.radius_m, 7.0 + 1.0 + 0.5, 1e-2);    // seen once: the speed it entered at
+  EXPECT_NEAR(discs[0].disc.radius_m, 5.0 + 2.0 + 0.5, 1e-2);       // T |V_b| + both radii
+  EXPECT_NEAR(discs[1].disc.radius_m, 6.0, 1e-2);                   // the separation
+  EXPECT_NEAR(discs[2].disc.radius_m, 7.0 + 1.0 + 0.5, 1e-2);       // seen once: the speed it entered at
   EXPECT_TRUE(discs[2].disc.velocity_mps.isApprox(Vec3(0, 7, 0)));  // taken to come straight at the UAV
   EXPECT_NEAR(discs[0].body_m, 2.5, 1e-2);
 }

@@ -19,8 +19,8 @@ bool senses(const UavSpec& u) { return u.sensor_range_m.has_value(); }
 // flights so far). UAVs without sensors also keep clear of the moving obstacles (known in advance
 // to them); UAVs with sensors only plan to (they meet the moving obstacles in the loop). Planning
 // and timing go UAV by UAV, so a stop leaves the UAVs done so far complete.
-Committed plan_and_time(const Scenario& sc, const Planner& planner, const MissionOptions& opt, const GroundPoints& ground,
-                        Plan& plan) {
+Committed plan_and_time(const Scenario& sc, const Planner& planner, const MissionOptions& opt,
+                        const GroundPoints& ground, Plan& plan) {
   plan.uavs.reserve(sc.uavs.size());  // `committed` points into it
   Committed committed;
   double horizon_s = 60.0;
@@ -58,7 +58,8 @@ Committed plan_and_time(const Scenario& sc, const Planner& planner, const Missio
     up.length_m = Route{up.waypoints}.length_m();
     if (u.model && fly_route(u, up.waypoints, 0.0, opt.max_sample_dt_s, sc.mission.waypoints).empty()) {
       up.status = Status::failed;
-      up.message = "its autopilot model cannot fly the route: it circles a waypoint (a turn tighter than its turn radius)";
+      up.message =
+          "its autopilot model cannot fly the route: it circles a waypoint (a turn tighter than its turn radius)";
       up.reason = Reason::no_route;
       continue;
     }
@@ -91,9 +92,7 @@ Committed plan_and_time(const Scenario& sc, const Planner& planner, const Missio
 }
 
 // When a timed UAV departs: the end of its wait at the start.
-double departure_s(const Trajectory& tr) {
-  return tr.size() >= 2 && tr[1].p == tr[0].p ? tr[1].t_s : 0.0;
-}
+double departure_s(const Trajectory& tr) { return tr.size() >= 2 && tr[1].p == tr[0].p ? tr[1].t_s : 0.0; }
 
 // The UAVs with sensors fly their routes in the loop, with the timed ones as objects to sense.
 void fly_sensing(const Scenario& sc, const MissionContext& ctx, const Committed& committed, Plan& plan) {
@@ -146,7 +145,7 @@ void fly_sensing(const Scenario& sc, const MissionContext& ctx, const Committed&
     std::snprintf(buf, sizeof buf, "flown in the loop (T = %g s): %d local replans, %d holds, %d escapes",
                   sc.mission.step_s, log.replans, log.holds, log.escapes);
     up.stats.plan_ms += log.local_ms;  // wall time stays out of the plan's text (same bytes every run)
-    up.trajectory = f.flown;  // what it flew, also when it failed (the report shows it)
+    up.trajectory = f.flown;           // what it flew, also when it failed (the report shows it)
     if (!f.done) {
       up.status = Status::failed;
       up.reason = flight.stopped && opt.stop.should_stop() ? Reason::stopped : Reason::no_route;

@@ -45,7 +45,8 @@ std::pair<double, double> footprint_distance_and_top(const Obstacle& o, const Ve
       [&](const auto& s) -> std::pair<double, double> {
         using T = std::decay_t<decltype(s)>;
         if constexpr (std::is_same_v<T, Sphere>) {
-          return {rect_point_distance(lo, hi, Vec2(s.center.x(), s.center.y())) - s.radius_m, s.center.z() + s.radius_m};
+          return {rect_point_distance(lo, hi, Vec2(s.center.x(), s.center.y())) - s.radius_m,
+                  s.center.z() + s.radius_m};
         } else if constexpr (std::is_same_v<T, Cylinder>) {
           return {rect_point_distance(lo, hi, s.center) - s.radius_m, s.z_max_m};
         } else if constexpr (std::is_same_v<T, Box>) {
@@ -65,14 +66,15 @@ CellMap::CellMap(const World& world, const CellMapOptions& opt, const StopCondit
   const Aabb& b = world.bounds();
   const TerrainGrid* terrain = world.terrain();
   cell_m_ = opt.cell_m > 0.0 ? opt.cell_m
-            : terrain     ? terrain->cell_m()
-                          : std::max(b.max.x() - b.min.x(), b.max.y() - b.min.y()) / 64.0;
+            : terrain        ? terrain->cell_m()
+                             : std::max(b.max.x() - b.min.x(), b.max.y() - b.min.y()) / 64.0;
   level_m_ = opt.level_m > 0.0 ? opt.level_m : cell_m_ / 2.0;
   origin_ = Vec2(b.min.x(), b.min.y());
   {  // sized before anything is built (or an int overflows)
     const double nx = std::max(1.0, std::ceil((b.max.x() - b.min.x()) / cell_m_ - 1e-9));
     const double ny = std::max(1.0, std::ceil((b.max.y() - b.min.y()) / cell_m_ - 1e-9));
-    const double nz = std::max(1.0, std::floor((opt.ceiling_m - opt.inflation_m - b.min.z() - opt.inflation_m) / level_m_ + 1e-9) + 1);
+    const double nz = std::max(
+        1.0, std::floor((opt.ceiling_m - opt.inflation_m - b.min.z() - opt.inflation_m) / level_m_ + 1e-9) + 1);
     char what[120];
     std::snprintf(what, sizeof what, "planner.params.cell_m = %g m, level_m = %g m", cell_m_, level_m_);
     // Heights per column, and per node the graph's costs, pheromone and search state.
@@ -89,7 +91,8 @@ CellMap::CellMap(const World& world, const CellMapOptions& opt, const StopCondit
   // A flat world (no height) is one level in its plane: no ground to keep the radius from.
   const bool flat = b.extent().z() <= 0.0;
   z0_ = flat ? b.min.z() : b.min.z() + opt.inflation_m;
-  nz_ = flat ? 1 : std::max(0, static_cast<int>(std::floor((opt.ceiling_m - opt.inflation_m - z0_) / level_m_ + 1e-9)) + 1);
+  nz_ = flat ? 1
+             : std::max(0, static_cast<int>(std::floor((opt.ceiling_m - opt.inflation_m - z0_) / level_m_ + 1e-9)) + 1);
 
   const double r = opt.inflation_m;
   // A level exactly at top + r would sit on the boundary of the exact segment check and fail it

@@ -13,10 +13,10 @@
 namespace uavplan {
 
 struct CellMapOptions {
-  double cell_m = 0.0;         // horizontal cell size; 0 = the terrain's cell, else bounds / 64
-  double level_m = 0.0;        // vertical level spacing; 0 = cell_m / 2
-  double inflation_m = 0.0;    // UAV radius plus margin
-  double ceiling_m = 0.0;      // highest altitude a route may use (UAV's or the world's top)
+  double cell_m = 0.0;       // horizontal cell size; 0 = the terrain's cell, else bounds / 64
+  double level_m = 0.0;      // vertical level spacing; 0 = cell_m / 2
+  double inflation_m = 0.0;  // UAV radius plus margin
+  double ceiling_m = 0.0;    // highest altitude a route may use (UAV's or the world's top)
 };
 
 class CellMap {

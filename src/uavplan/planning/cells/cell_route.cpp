@@ -57,11 +57,12 @@ std::string cells_hint(const CellMap& map, double max_climb_rad) {
   if (map.levels() > 1 && least_climb > max_climb_rad + 1e-12) {
     const double most = std::sqrt(2.0) * map.cell_m() * std::tan(max_climb_rad);
     const double unit = std::pow(10.0, std::floor(std::log10(most)) - 2);  // three digits, rounded down
-    std::snprintf(buf, sizeof buf,
-                  "the cell map's least climb (one level of %g m over a diagonal cell of %g m) is %.1f deg, steeper than the "
-                  "climb limit of %.1f deg, so it cannot change height: give planner.params.level_m <= %g",
-                  map.level_m(), map.cell_m(), rad_to_deg(least_climb), rad_to_deg(max_climb_rad),
-                  std::floor(most / unit) * unit);
+    std::snprintf(
+        buf, sizeof buf,
+        "the cell map's least climb (one level of %g m over a diagonal cell of %g m) is %.1f deg, steeper than the "
+        "climb limit of %.1f deg, so it cannot change height: give planner.params.level_m <= %g",
+        map.level_m(), map.cell_m(), rad_to_deg(least_climb), rad_to_deg(max_climb_rad),
+        std::floor(most / unit) * unit);
     return buf;
   }
   std::snprintf(buf, sizeof buf, "a smaller planner.params.cell_m (now %g m) finds narrower streets", map.cell_m());
@@ -101,7 +102,8 @@ PlanResult plan_once(const Problem& problem, const World& world, const CellPlanO
   for (std::size_t s = 0; s < stops.size(); ++s) {
     nodes.push_back(attach(map, stops[s], rule));
     if (nodes.back() < 0) {
-      res.message = stop_name(s, stops.size()) + " cannot reach a free cell of the cell map straight within its limits; " +
+      res.message = stop_name(s, stops.size()) +
+                    " cannot reach a free cell of the cell map straight within its limits; " +
                     cells_hint(map, problem.uav.max_climb_rad);
       finer_may_help = true;
       return res;
@@ -125,7 +127,8 @@ PlanResult plan_once(const Problem& problem, const World& world, const CellPlanO
     }
     if (!path) {
       res.reason = Reason::no_route;
-      res.message = leg_name(leg, stops.size()) + ": no route on the cell map; " + cells_hint(map, problem.uav.max_climb_rad);
+      res.message =
+          leg_name(leg, stops.size()) + ": no route on the cell map; " + cells_hint(map, problem.uav.max_climb_rad);
       finer_may_help = true;
       return res;
     }

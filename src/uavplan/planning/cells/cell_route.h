@@ -24,9 +24,8 @@ struct CellPlanOptions {
 };
 
 // A node path from `from` to `to` (both included), or nothing.
-using CellLegSearch =
-    std::function<std::optional<std::vector<std::int64_t>>(const CellGraph& g, std::int64_t from, std::int64_t to,
-                                                           int leg, PlanStats& stats)>;
+using CellLegSearch = std::function<std::optional<std::vector<std::int64_t>>(
+    const CellGraph& g, std::int64_t from, std::int64_t to, int leg, PlanStats& stats)>;
 
 PlanResult plan_on_cells(const Problem& problem, const World& world, const CellPlanOptions& options,
                          const StopCondition& stop, const CellLegSearch& search);

@@ -43,7 +43,7 @@ TEST(CellMap, HeightsToClear) {
   EXPECT_EQ(m.ny(), 20);
   EXPECT_NEAR(m.required_m(20, 10), 21.0, 1e-5);  // on the block: its top plus the radius
   EXPECT_NEAR(m.required_m(17, 10), 21.0, 1e-5);  // [85, 90] touches the block's inflated side
-  EXPECT_DOUBLE_EQ(m.required_m(16, 10), 1.0);   // [80, 85] is 5 m away: free
+  EXPECT_DOUBLE_EQ(m.required_m(16, 10), 1.0);    // [80, 85] is 5 m away: free
   EXPECT_NEAR(m.required_m(8, 16), 19.0, 1e-5);   // the zone's equivalent height
   EXPECT_DOUBLE_EQ(m.required_m(0, 0), 1.0);
 }
@@ -57,7 +57,8 @@ double highest(const std::vector<Vec3>& wp) {
 void expect_clear(const PlanResult& r, const Problem& p, const World& w) {
   ASSERT_EQ(r.status, Status::solved) << r.message;
   const SegmentRule rule(w, p.uav);
-  for (std::size_t i = 1; i < r.route.waypoints.size(); ++i) EXPECT_TRUE(rule(r.route.waypoints[i - 1], r.route.waypoints[i]));
+  for (std::size_t i = 1; i < r.route.waypoints.size(); ++i)
+    EXPECT_TRUE(rule(r.route.waypoints[i - 1], r.route.waypoints[i]));
 }
 
 // A level landing exactly on top + inflation (here 0.501 + 2 x 5 = 10 + 0.501) is on the
@@ -121,8 +122,8 @@ TEST(CellPlanners, AltitudeWeightChoosesAroundOrOver) {
   const World w = block_world();
   const Problem p = block_problem();
   for (const std::string name : {"cell_astar", "cellular_aco"}) {
-    Params costly{{"cell_m", "5"}, {"w2", "1"}};    // altitude dear: around, low
-    Params cheap{{"cell_m", "5"}, {"w2", "0"}};     // altitude free: over, short
+    Params costly{{"cell_m", "5"}, {"w2", "1"}};  // altitude dear: around, low
+    Params cheap{{"cell_m", "5"}, {"w2", "0"}};   // altitude free: over, short
     const auto around = make_planner(name, costly)->plan(p, w, {});
     const auto over = make_planner(name, cheap)->plan(p, w, {});
     expect_clear(around, p, w);

@@ -49,7 +49,8 @@ ApfOptions apf_resolved(const ApfOptions& in, const UavSpec& uav, const World& w
 PotentialField::PotentialField(const World& world, const UavSpec& uav, const ApfOptions& resolved)
     : world_(&world), uav_(uav), o_(resolved), inflation_m_(uav.radius_m + kPlanningMargin_m) {}
 
-Vec3 PotentialField::direction(const Vec3& p, const Vec3& goal, std::span<const PeerMotion> peers, const Vec3* aim) const {
+Vec3 PotentialField::direction(const Vec3& p, const Vec3& goal, std::span<const PeerMotion> peers,
+                               const Vec3* aim) const {
   const double big_r = (goal - p).norm();
   if (big_r <= 0.0) return Vec3::Zero();
   const Vec3 to_aim = aim ? Vec3(*aim - p) : Vec3(goal - p);
@@ -176,21 +177,24 @@ void FieldFlight::follow(std::vector<Vec3> route) {
   next_ = 0;
 }
 
-const Vec3& FieldFlight::advance(std::span<const PeerMotion> peers, const Guide& guide, std::uint64_t keep_out_version) {
+const Vec3& FieldFlight::advance(std::span<const PeerMotion> peers, const Guide& guide,
+                                 std::uint64_t keep_out_version) {
   if (arrived_ || failed_) return p_;
   const double l = field_->options().step_m;
   history_.push_back(progress_m());
   if (history_.size() > kWindowFrames && history_[history_.size() - 1 - kWindowFrames] - history_.back() < l) {
     ++stalls_;
     history_.clear();
-    auto where = [&] { return "(" + std::to_string(p_.x()) + ", " + std::to_string(p_.y()) + ", " + std::to_string(p_.z()) + ")"; };
+    auto where = [&] {
+      return "(" + std::to_string(p_.x()) + ", " + std::to_string(p_.y()) + ", " + std::to_string(p_.z()) + ")";
+    };
     if (guide && (route_.empty() || keep_out_version != route_version_)) {
       // A first route, or the keep-outs changed since the last one: (re)plan from here.
       std::vector<Vec3> r = guide(p_, goal_);
       if (r.empty()) {
         failed_ = true;
-        message_ = "stalled near " + where() + " with no route to the goal from there (grid search around the obstacles" +
-                   " and the keep-outs)";
+        message_ = "stalled near " + where() +
+                   " with no route to the goal from there (grid search around the obstacles" + " and the keep-outs)";
         return p_;
       }
       follow(std::move(r));
@@ -198,8 +202,9 @@ const Vec3& FieldFlight::advance(std::span<const PeerMotion> peers, const Guide&
       stalls_on_route_ = 0;
     } else if (patience_ >= 0 && ++stalls_on_route_ > patience_) {
       failed_ = true;
-      message_ = "stalled near " + where() + (route_.empty() ? std::string(" in a local minimum") : " on its escape route") +
-                 " after " + std::to_string(stalls_) + " stalls";
+      message_ = "stalled near " + where() +
+                 (route_.empty() ? std::string(" in a local minimum") : " on its escape route") + " after " +
+                 std::to_string(stalls_) + " stalls";
       return p_;
     }
   }
@@ -221,7 +226,8 @@ ApfRun run_apf(const PotentialField& field, const Vec3& start, const Vec3& goal,
   ApfRun run;
   run.points.push_back(start);
   const ApfOptions& o = field.options();
-  const int max_frames = o.max_frames > 0 ? o.max_frames : static_cast<int>(4.0 * (goal - start).norm() / o.step_m) + 500;
+  const int max_frames =
+      o.max_frames > 0 ? o.max_frames : static_cast<int>(4.0 * (goal - start).norm() / o.step_m) + 500;
   // Alone in a static world a stall on the escape route will not pass: two more and it fails.
   FieldFlight flight(field, start, goal, 2);
   std::unique_ptr<FieldGuide> own;
@@ -290,7 +296,8 @@ PlanResult ApfPlanner::do_plan(const Problem& pb, const World& world, const Stop
   for (std::size_t i = 0, v = 0; i < pts.size() && v < pb.via.size(); ++i)
     if (pts[i] == pb.via[v]) pinned[i] = 1, ++v;
   const SegmentRule rule(world, pb.uav);
-  const TurnShaping shaped = enforce_turn_limits(pts, pinned, pb.uav.heading_rad, {pb.uav.max_turn_rad, pb.uav.max_climb_rad}, rule);
+  const TurnShaping shaped =
+      enforce_turn_limits(pts, pinned, pb.uav.heading_rad, {pb.uav.max_turn_rad, pb.uav.max_climb_rad}, rule);
   if (!shaped.ok) {
     res.message = "turn limits: " + shaped.message;
     pts.clear();

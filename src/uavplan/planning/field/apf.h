@@ -35,12 +35,12 @@
 namespace uavplan {
 
 struct ApfOptions {
-  bool improved = true;       // P3's field; false: the traditional one
-  double step_m = 0.0;        // l; 0 = derived (apf_defaults)
-  double k_att = 1.0;         // K_a
-  double r_att_m = 0.0;       // R_a0; 0 = 10 l
-  double k_rep = 0.0;         // K_r; 0 = balances attraction at r = R_r0 / 2
-  double r_rep_m = 0.0;       // R_r0; 0 = max(5 l, 2 separation, 3 radius)
+  bool improved = true;  // P3's field; false: the traditional one
+  double step_m = 0.0;   // l; 0 = derived (apf_defaults)
+  double k_att = 1.0;    // K_a
+  double r_att_m = 0.0;  // R_a0; 0 = 10 l
+  double k_rep = 0.0;    // K_r; 0 = balances attraction at r = R_r0 / 2
+  double r_rep_m = 0.0;  // R_r0; 0 = max(5 l, 2 separation, 3 radius)
   double sector_deg = 15.0;
   int max_frames = 0;         // 0 = 4 x straight distance / l + 500
   double separation_m = 0.0;  // peers are obstacles closer than this (the mission's)

@@ -38,14 +38,17 @@ TEST(Apf, FreeSpacePointsAtTheGoal) {
 TEST(Apf, RepulsionDeflectsAndTheSectorRuleKeepsOnlyTheNearest) {
   const Vec3 p(0, 0, 0), goal(10, 0, 0);
   const World one = flat_world({Sphere{Vec3(0.8, 0.3, 0), 0.1}});
-  const World two = flat_world({Sphere{Vec3(0.8, 0.3, 0), 0.1}, Sphere{Vec3(1.2, 0.46, 0), 0.1}});  // same sector, farther
+  const World two =
+      flat_world({Sphere{Vec3(0.8, 0.3, 0), 0.1}, Sphere{Vec3(1.2, 0.46, 0), 0.1}});  // same sector, farther
   for (const bool improved : {true, false}) {
     const ApfOptions o = apf_resolved(opts(improved), uav(), one);
     const Vec3 d1 = PotentialField(one, uav(), o).direction(p, goal, {});
     const Vec3 d2 = PotentialField(two, uav(), o).direction(p, goal, {});
     EXPECT_LT(d1.y(), 0.0) << "pushed away from the obstacle above the path";
-    if (improved) EXPECT_TRUE(d1.isApprox(d2, 1e-12)) << "the farther obstacle in the same sector is ignored";
-    else EXPECT_LT(d2.y(), d1.y()) << "the traditional field adds every obstacle";
+    if (improved)
+      EXPECT_TRUE(d1.isApprox(d2, 1e-12)) << "the farther obstacle in the same sector is ignored";
+    else
+      EXPECT_LT(d2.y(), d1.y()) << "the traditional field adds every obstacle";
   }
 }
 
@@ -76,7 +79,8 @@ TEST(Apf, ReachesTheGoalPastAWallOrFailsWithAReason) {
   const PotentialField f(w, uav(), apf_resolved(opts(true), uav(), w));
   const ApfRun run = run_apf(f, Vec3(0, 0, 0), Vec3(10, 0, 0));
   ASSERT_TRUE(run.reached) << run.message;  // the wall is short: the guide goes round it
-  for (std::size_t i = 1; i < run.points.size(); ++i) ASSERT_GE(w.segment_clearance(run.points[i - 1], run.points[i], 1.0), 0.1);
+  for (std::size_t i = 1; i < run.points.size(); ++i)
+    ASSERT_GE(w.segment_clearance(run.points[i - 1], run.points[i], 1.0), 0.1);
   // Enclosed goal: bounded, with a reason.
   const World cage = flat_world({Box{Vec3(8, -2, -1), Vec3(12, -1.5, 1)}, Box{Vec3(8, 1.5, -1), Vec3(12, 2, 1)},
                                  Box{Vec3(8, -2, -1), Vec3(8.5, 2, 1)}, Box{Vec3(11.5, -2, -1), Vec3(12, 2, 1)}});
@@ -120,10 +124,17 @@ TEST(Apf, GuideRoutesAroundKeepOutsAndForgetsThem) {
   ASSERT_FALSE(around.empty());
   EXPECT_GT(length(around), 15.0);
   for (const Vec3& p : around) EXPECT_GE((p - plug.centre).norm(), plug.radius_m);
-  EXPECT_NEAR(length(guide.route(Vec3(0, 0, 0), Vec3(10, 0, 0), {})), length(through), 1e-12) << "keep-outs last one query";
+  EXPECT_NEAR(length(guide.route(Vec3(0, 0, 0), Vec3(10, 0, 0), {})), length(through), 1e-12)
+      << "keep-outs last one query";
   // Closed in: no route.
-  const KeepOut ring[] = {{Vec3(10, 0, 0) + Vec3(1, 0, 0), 0.6}, {Vec3(9, 0, 0), 0.6}, {Vec3(10, 1, 0), 0.6}, {Vec3(10, -1, 0), 0.6},
-                          {Vec3(11, 1, 0), 0.6}, {Vec3(9, 1, 0), 0.6}, {Vec3(11, -1, 0), 0.6}, {Vec3(9, -1, 0), 0.6}};
+  const KeepOut ring[] = {{Vec3(10, 0, 0) + Vec3(1, 0, 0), 0.6},
+                          {Vec3(9, 0, 0), 0.6},
+                          {Vec3(10, 1, 0), 0.6},
+                          {Vec3(10, -1, 0), 0.6},
+                          {Vec3(11, 1, 0), 0.6},
+                          {Vec3(9, 1, 0), 0.6},
+                          {Vec3(11, -1, 0), 0.6},
+                          {Vec3(9, -1, 0), 0.6}};
   EXPECT_TRUE(guide.route(Vec3(0, 0, 0), Vec3(10, 0, 0), ring).empty());
 }
 

@@ -14,7 +14,8 @@ Vec3 guide_cell(const World& world, const UavSpec& uav, double cell_m, std::int6
   const Vec3 ext = world.bounds().extent();
   for (;; cell_m *= 1.25) {
     const Vec3 cell(cell_m, cell_m, layer_height_m(cell_m, uav.max_climb_rad));
-    if (VoxelGrid::cell_count(world.bounds(), cell) <= static_cast<double>(max_cells) || cell_m > ext.norm()) return cell;
+    if (VoxelGrid::cell_count(world.bounds(), cell) <= static_cast<double>(max_cells) || cell_m > ext.norm())
+      return cell;
   }
 }
 
@@ -84,7 +85,8 @@ std::vector<Vec3> FieldGuide::route(const Vec3& from, const Vec3& goal, std::spa
   return out;
 }
 
-std::vector<Vec3> FieldGuide::route_on(Level& level, const Vec3& from, const Vec3& goal, std::span<const KeepOut> keep_out) {
+std::vector<Vec3> FieldGuide::route_on(Level& level, const Vec3& from, const Vec3& goal,
+                                       std::span<const KeepOut> keep_out) {
   // Keep-outs block the cells whose centre they cover; cells already blocked stay as they were.
   marked_.clear();
   VoxelGrid& g = level.grid;

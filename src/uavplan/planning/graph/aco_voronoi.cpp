@@ -30,7 +30,8 @@ AcoVoronoiOptions read_options(const Params& params, bool colony) {
     o.q = r.number("q", o.q, 1e-12, 1e12);
     const std::string d = r.text("deposit", o.deposit_by_cost ? "cost" : "length");
     if (d != "length" && d != "cost")
-      throw std::invalid_argument("planner.params.deposit: expected 'length' (P1's Q / L_k) or 'cost' (Q / J_k), got '" + d + "'");
+      throw std::invalid_argument(
+          "planner.params.deposit: expected 'length' (P1's Q / L_k) or 'cost' (Q / J_k), got '" + d + "'");
     o.deposit_by_cost = d == "cost";
     o.tau0 = r.number("tau0", o.tau0, 1e-12, 1e12);
     o.toward_goal = r.number("toward_goal", o.toward_goal, 0.0, 1.0);
@@ -70,7 +71,9 @@ class Walker {
     while (v != to) {
       const auto& inc = map_.incident[v];
       const double to_go = o.toward_goal * (1.0 - o.roadmap.k1);
-      auto cost_of = [&](std::uint32_t e) { return map_.edges[e].cost + to_go * (map_.vertices[map_.other(e, v)] - goal).norm(); };
+      auto cost_of = [&](std::uint32_t e) {
+        return map_.edges[e].cost + to_go * (map_.vertices[map_.other(e, v)] - goal).norm();
+      };
       double least = World::kInf;
       for (const std::uint32_t e : inc)
         if (stamp_[map_.other(e, v)] != epoch_) least = std::min(least, cost_of(e));
@@ -132,10 +135,13 @@ std::uint32_t edge_between(const Roadmap& map, std::uint32_t a, std::uint32_t b)
 
 }  // namespace
 
-AcoVoronoiOptions AcoVoronoiOptions::from_params(const Params& params, bool colony) { return read_options(params, colony); }
+AcoVoronoiOptions AcoVoronoiOptions::from_params(const Params& params, bool colony) {
+  return read_options(params, colony);
+}
 
-std::optional<GraphRoute> aco_route(const Roadmap& map, std::uint32_t from, std::uint32_t to, const AcoVoronoiOptions& o,
-                                    std::uint64_t seed, const StopCondition& stop, PlanStats& stats) {
+std::optional<GraphRoute> aco_route(const Roadmap& map, std::uint32_t from, std::uint32_t to,
+                                    const AcoVoronoiOptions& o, std::uint64_t seed, const StopCondition& stop,
+                                    PlanStats& stats) {
   if (from == to) return GraphRoute{{from}, 0.0, 0.0};
   std::vector<double> tau(map.edges.size(), o.tau0), deposit(map.edges.size(), 0.0);
   std::optional<GraphRoute> best;
@@ -144,14 +150,16 @@ std::optional<GraphRoute> aco_route(const Roadmap& map, std::uint32_t from, std:
   const Rng base(seed);
   auto amount = [&](const GraphRoute& r) { return o.q / std::max(o.deposit_by_cost ? r.cost : r.length_m, 1e-300); };
   auto lay = [&](const GraphRoute& r, double d) {
-    for (std::size_t k = 1; k < r.vertices.size(); ++k) deposit[edge_between(map, r.vertices[k - 1], r.vertices[k])] += d;
+    for (std::size_t k = 1; k < r.vertices.size(); ++k)
+      deposit[edge_between(map, r.vertices[k - 1], r.vertices[k])] += d;
   };
   for (int it = 0; it < o.iterations; ++it) {
     if (stop.should_stop(static_cast<std::uint64_t>(it))) return std::nullopt;
     std::fill(deposit.begin(), deposit.end(), 0.0);
     std::optional<GraphRoute> iteration_best;
     for (int ant = 0; ant < o.ants; ++ant) {
-      Rng rng = base.split(static_cast<std::uint64_t>(it) * static_cast<std::uint64_t>(o.ants) + static_cast<std::uint64_t>(ant));
+      Rng rng = base.split(static_cast<std::uint64_t>(it) * static_cast<std::uint64_t>(o.ants) +
+                           static_cast<std::uint64_t>(ant));
       if (!walker.walk(from, to, tau, o, rng, edges)) continue;
       stats.nodes_expanded += edges.size();
       GraphRoute r = route_of(map, from, edges);
@@ -190,7 +198,8 @@ std::optional<GraphRoute> dijkstra_route(const Roadmap& map, std::uint32_t from,
   }
   std::reverse(r.vertices.begin(), r.vertices.end());
   r.cost = dist[to];
-  for (std::size_t k = 1; k < r.vertices.size(); ++k) r.length_m += (map.vertices[r.vertices[k]] - map.vertices[r.vertices[k - 1]]).norm();
+  for (std::size_t k = 1; k < r.vertices.size(); ++k)
+    r.length_m += (map.vertices[r.vertices[k]] - map.vertices[r.vertices[k - 1]]).norm();
   return r;
 }
 
@@ -228,8 +237,9 @@ PlanResult AcoVoronoiPlanner::do_plan(const Problem& pb, const World& world, con
         return res;
       }
       res.reason = Reason::no_route;
-      res.message = leg_name(leg, stops.size()) + ": no route on the threat roadmap (" + std::to_string(map.vertices.size()) +
-                    " vertices, " + std::to_string(map.edges.size()) + " edges from " + std::to_string(map.sites) + " sites" +
+      res.message = leg_name(leg, stops.size()) + ": no route on the threat roadmap (" +
+                    std::to_string(map.vertices.size()) + " vertices, " + std::to_string(map.edges.size()) +
+                    " edges from " + std::to_string(map.sites) + " sites" +
                     (colony_ ? "; no ant arrived: raise planner.params.iterations or ants, " : "; ") +
                     "a larger planner.params.join_nearest joins the stops to more of it)";
       return res;
@@ -246,8 +256,8 @@ PlanResult AcoVoronoiPlanner::do_plan(const Problem& pb, const World& world, con
       p.z() = k + 1 == r->vertices.size() ? b.z() : a.z() + (total > 0.0 ? flown / total : 1.0) * (b.z() - a.z());
       if (!rule(wp.back(), p)) {
         res.message = leg_name(leg, stops.size()) + ": the route's climb from " + std::to_string(a.z()) + " m to " +
-                      std::to_string(b.z()) + " m meets an obstacle or the climb limit near (" + std::to_string(p.x()) + ", " +
-                      std::to_string(p.y()) + ")";
+                      std::to_string(b.z()) + " m meets an obstacle or the climb limit near (" + std::to_string(p.x()) +
+                      ", " + std::to_string(p.y()) + ")";
         return res;
       }
       if ((p - wp.back()).norm() > 0.0) {

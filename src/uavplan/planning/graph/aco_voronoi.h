@@ -19,8 +19,8 @@ namespace uavplan {
 
 struct AcoVoronoiOptions {
   RoadmapOptions roadmap;
-  int ants = 10;              // m
-  int iterations = 100;       // N_max
+  int ants = 10;         // m
+  int iterations = 100;  // N_max
   double alpha = 1.0;
   // P1 gives beta 5 and Q / L_k. With the goal term in eta (below) and threats that dominate the
   // cost, beta 5 makes each step all but greedy and Q / L_k rewards short routes, not cheap ones:
@@ -29,14 +29,14 @@ struct AcoVoronoiOptions {
   double beta = 1.0;
   double rho = 0.2;
   double q = 1.0;
-  bool deposit_by_cost = true;   // Q / J_k; false: P1's Q / L_k
-  double tau0 = 1.0;             // initial pheromone (P1 gives none)
+  bool deposit_by_cost = true;  // Q / J_k; false: P1's Q / L_k
+  double tau0 = 1.0;            // initial pheromone (P1 gives none)
   // eta = 1 / (J_edge + toward_goal * (1 - k1) * |next - goal|): 0 is P1's 1 / J; 1 (default)
   // adds a lower bound of the cost still to go, so an ant heads for the goal as A* does. With
   // P1's 1 / J alone ants wander a roadmap of hundreds of vertices (bench p1 shows both).
   double toward_goal = 1.0;
-  bool max_min = false;          // MAX-MIN ant system: only the iteration's best deposits, tau bounded
-  double elite = 0.0;            // the best route so far gets elite * Q / L_best more each iteration
+  bool max_min = false;  // MAX-MIN ant system: only the iteration's best deposits, tau bounded
+  double elite = 0.0;    // the best route so far gets elite * Q / L_best more each iteration
   // The colony's keys, and the roadmap's (k1, threat_prefactor, join_nearest) that both read.
   static AcoVoronoiOptions from_params(const Params& params, bool colony = true);
 };
@@ -47,8 +47,9 @@ struct GraphRoute {
 };
 
 // The colony's best route from `from` to `to`; nothing when no ant arrived.
-std::optional<GraphRoute> aco_route(const Roadmap& map, std::uint32_t from, std::uint32_t to, const AcoVoronoiOptions& o,
-                                    std::uint64_t seed, const StopCondition& stop, PlanStats& stats);
+std::optional<GraphRoute> aco_route(const Roadmap& map, std::uint32_t from, std::uint32_t to,
+                                    const AcoVoronoiOptions& o, std::uint64_t seed, const StopCondition& stop,
+                                    PlanStats& stats);
 // The least-cost route (Dijkstra); nothing when `to` is not connected to `from`.
 std::optional<GraphRoute> dijkstra_route(const Roadmap& map, std::uint32_t from, std::uint32_t to, PlanStats& stats);
 

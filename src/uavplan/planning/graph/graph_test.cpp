@@ -29,7 +29,8 @@ UavSpec uav() {
 // Four threats on a square: the Voronoi diagram is the two lines between them, crossing at the
 // square's centre; each edge lies midway between its two threats.
 TEST(ThreatRoadmap, EdgesRunMidwayBetweenNeighbouringThreats) {
-  const World w = threat_world({{Vec3(200, 200, 50), 1}, {Vec3(400, 200, 50), 1}, {Vec3(400, 400, 50), 1}, {Vec3(200, 400, 50), 1}});
+  const World w = threat_world(
+      {{Vec3(200, 200, 50), 1}, {Vec3(400, 200, 50), 1}, {Vec3(400, 400, 50), 1}, {Vec3(200, 400, 50), 1}});
   const SegmentRule rule(w, uav());
   const Roadmap map = threat_roadmap(w, rule, 50.0, {});
   EXPECT_EQ(map.sites, 4u);
@@ -44,13 +45,15 @@ TEST(ThreatRoadmap, EdgesRunMidwayBetweenNeighbouringThreats) {
     EXPECT_NEAR(e.length_m, 300.0, 1e-6);  // a ray, or the bounds from a ray's end to a corner
     if (std::min((a - Vec3(300, 300, 50)).norm(), (b - Vec3(300, 300, 50)).norm()) > 1e-6) continue;
     ++rays;
-    EXPECT_NEAR(std::abs((a + b).x() / 2 - 300.0) * std::abs((a + b).y() / 2 - 300.0), 0.0, 1e-6);  // on x = 300 or y = 300
+    EXPECT_NEAR(std::abs((a + b).x() / 2 - 300.0) * std::abs((a + b).y() / 2 - 300.0), 0.0,
+                1e-6);  // on x = 300 or y = 300
   }
   EXPECT_EQ(rays, 4);
 }
 
 TEST(ThreatRoadmap, EdgesThroughObstaclesAreDropped) {
-  const std::vector<Radar> r{{Vec3(200, 200, 50), 1}, {Vec3(400, 200, 50), 1}, {Vec3(400, 400, 50), 1}, {Vec3(200, 400, 50), 1}};
+  const std::vector<Radar> r{
+      {Vec3(200, 200, 50), 1}, {Vec3(400, 200, 50), 1}, {Vec3(400, 400, 50), 1}, {Vec3(200, 400, 50), 1}};
   const World w = threat_world(r, {Cylinder{Vec2(300, 500), 20, 0, 100}});  // on the northern ray
   const SegmentRule rule(w, uav());
   const Roadmap map = threat_roadmap(w, rule, 50.0, {});
@@ -58,7 +61,8 @@ TEST(ThreatRoadmap, EdgesThroughObstaclesAreDropped) {
   // The northern ray is cut at the cylinder; the diagram now runs around its outline instead.
   int from_centre = 0;
   for (const Roadmap::Edge& e : map.edges)
-    from_centre += (map.vertices[e.a] - Vec3(300, 300, 50)).norm() < 1e-6 || (map.vertices[e.b] - Vec3(300, 300, 50)).norm() < 1e-6;
+    from_centre += (map.vertices[e.a] - Vec3(300, 300, 50)).norm() < 1e-6 ||
+                   (map.vertices[e.b] - Vec3(300, 300, 50)).norm() < 1e-6;
   EXPECT_EQ(from_centre, 4);  // the centre still has its four neighbours (the northern one short of the cylinder)
   Problem p;
   p.uav = uav();
@@ -101,7 +105,8 @@ TEST(AcoVoronoi, ColonyWithinFivePercentOfTheOptimum) {
       ASSERT_EQ(aco.status, Status::solved) << aco.message;
       auto cost = [&](const PlanResult& r) {
         double c = 0.0;
-        for (std::size_t i = 1; i < r.route.waypoints.size(); ++i) c += p1_edge_cost(r.route.waypoints[i - 1], r.route.waypoints[i], w, {});
+        for (std::size_t i = 1; i < r.route.waypoints.size(); ++i)
+          c += p1_edge_cost(r.route.waypoints[i - 1], r.route.waypoints[i], w, {});
         return c;
       };
       EXPECT_GE(cost(aco), cost(opt) * (1.0 - 1e-9)) << n << " threats";

@@ -66,13 +66,13 @@ void rectangle_sites(const Vec2& lo, const Vec2& hi, double spacing_m, int max_p
 // margin and a little more, sampled every `spacing_m` (corners always): the diagram of these
 // samples with the edges inside one outline removed is the generalized Voronoi diagram's
 // approximation, running midway between obstacles as P1's runs midway between threats.
-void outline_sites(const World& world, double plane_z, double inflate_m, double spacing_m, std::vector<GroupedSite>& out,
-                   std::uint32_t& group) {
+void outline_sites(const World& world, double plane_z, double inflate_m, double spacing_m,
+                   std::vector<GroupedSite>& out, std::uint32_t& group) {
   for (const Obstacle& o : world.obstacles()) {
     const Aabb b = bounding_box(o);
     if (b.min.z() - inflate_m > plane_z || b.max.z() + inflate_m < plane_z) continue;
-    rectangle_sites(b.min.head<2>() - Vec2::Constant(inflate_m), b.max.head<2>() + Vec2::Constant(inflate_m), spacing_m, 64,
-                    group++, out);
+    rectangle_sites(b.min.head<2>() - Vec2::Constant(inflate_m), b.max.head<2>() + Vec2::Constant(inflate_m), spacing_m,
+                    64, group++, out);
   }
 }
 
@@ -81,7 +81,8 @@ std::vector<GroupedSite> site_points(const World& world, double plane_z, double 
   std::uint32_t group = 0;
   for (const Radar& r : world.radars()) pts.push_back({Vec2(r.position.x(), r.position.y()), group++});
   const Aabb& b = world.bounds();
-  const double spacing_m = o.outline_spacing_m > 0.0 ? o.outline_spacing_m : std::max(b.extent().x(), b.extent().y()) / 100.0;
+  const double spacing_m =
+      o.outline_spacing_m > 0.0 ? o.outline_spacing_m : std::max(b.extent().x(), b.extent().y()) / 100.0;
   const std::size_t radars = pts.size();
   outline_sites(world, plane_z, inflate_m, spacing_m, pts, group);
   if (pts.size() > radars) {
@@ -90,7 +91,8 @@ std::vector<GroupedSite> site_points(const World& world, double plane_z, double 
     rectangle_sites(b.min.head<2>(), b.max.head<2>(), spacing_m, 256, group++, pts);
   }
   if (pts.size() < 3)
-    for (const Vec2& c : {Vec2(b.min.x(), b.min.y()), Vec2(b.max.x(), b.min.y()), Vec2(b.max.x(), b.max.y()), Vec2(b.min.x(), b.max.y())})
+    for (const Vec2& c : {Vec2(b.min.x(), b.min.y()), Vec2(b.max.x(), b.min.y()), Vec2(b.max.x(), b.max.y()),
+                          Vec2(b.min.x(), b.max.y())})
       pts.push_back({c, group++});
   return pts;
 }
@@ -134,11 +136,13 @@ Roadmap threat_roadmap(const World& world, const SegmentRule& rule, double plane
   // Integer sites, sorted and unique (the first group wins a shared point).
   std::vector<std::pair<Site, std::uint32_t>> keyed;
   for (const GroupedSite& p : pts) keyed.push_back({frame.to_int(p.p), p.group});
-  std::stable_sort(keyed.begin(), keyed.end(),
-                   [](const auto& a, const auto& b) { return a.first.x < b.first.x || (a.first.x == b.first.x && a.first.y < b.first.y); });
-  keyed.erase(std::unique(keyed.begin(), keyed.end(),
-                          [](const auto& a, const auto& b) { return a.first.x == b.first.x && a.first.y == b.first.y; }),
-              keyed.end());
+  std::stable_sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) {
+    return a.first.x < b.first.x || (a.first.x == b.first.x && a.first.y < b.first.y);
+  });
+  keyed.erase(
+      std::unique(keyed.begin(), keyed.end(),
+                  [](const auto& a, const auto& b) { return a.first.x == b.first.x && a.first.y == b.first.y; }),
+      keyed.end());
   std::vector<Site> sites;
   for (const auto& k : keyed) sites.push_back(k.first);
   map.sites = sites.size();
@@ -165,7 +169,7 @@ Roadmap threat_roadmap(const World& world, const SegmentRule& rule, double plane
   std::size_t seen = 0;
   for (const auto& e : vd.edges()) {
     if ((++seen & 1023) == 0) stop.throw_if_stopped();  // each edge is checked and costed (P1 eq. 1-3)
-    if (e.color() != 0) continue;  // its twin was taken
+    if (e.color() != 0) continue;                       // its twin was taken
     e.twin()->color(1);
     const std::size_t c0 = e.cell()->source_index(), c1 = e.twin()->cell()->source_index();
     if (!e.is_primary() || keyed[c0].second == keyed[c1].second) continue;  // inside one obstacle's outline
@@ -187,7 +191,8 @@ Roadmap threat_roadmap(const World& world, const SegmentRule& rule, double plane
   }
   // The diagram clipped to a box ends on the box: its outline joins those ends (and its corners),
   // so regions the diagram leaves apart are still joined where the bounds' edge is free.
-  const Vec2 corners[4] = {box.min.head<2>(), Vec2(box.max.x(), box.min.y()), box.max.head<2>(), Vec2(box.min.x(), box.max.y())};
+  const Vec2 corners[4] = {box.min.head<2>(), Vec2(box.max.x(), box.min.y()), box.max.head<2>(),
+                           Vec2(box.min.x(), box.max.y())};
   for (const Vec2& c : corners) {
     const Vec3 p(c.x(), c.y(), plane_z);
     if (rule.point_ok(p)) rim.emplace_back(perimeter_position(c, box), map.add_vertex(p));
@@ -201,8 +206,8 @@ Roadmap threat_roadmap(const World& world, const SegmentRule& rule, double plane
   return map;
 }
 
-std::uint32_t join_stop(Roadmap& map, const Vec3& p, const SegmentRule& rule, const World& world, const RoadmapOptions& o,
-                        const std::vector<std::uint32_t>& also) {
+std::uint32_t join_stop(Roadmap& map, const Vec3& p, const SegmentRule& rule, const World& world,
+                        const RoadmapOptions& o, const std::vector<std::uint32_t>& also) {
   std::vector<std::pair<double, std::uint32_t>> near;
   for (std::uint32_t v = 0; v < map.vertices.size(); ++v)
     if (!map.incident[v].empty()) near.emplace_back((map.vertices[v] - p).squaredNorm(), v);
@@ -215,7 +220,8 @@ std::uint32_t join_stop(Roadmap& map, const Vec3& p, const SegmentRule& rule, co
     return true;
   };
   int joined = 0;
-  for (std::size_t k = 0; k < near.size() && joined < o.join_nearest && k < 64u * static_cast<std::size_t>(o.join_nearest); ++k)
+  for (std::size_t k = 0;
+       k < near.size() && joined < o.join_nearest && k < 64u * static_cast<std::size_t>(o.join_nearest); ++k)
     joined += link(near[k].second);
   for (const std::uint32_t v : also) link(v);
   return s;

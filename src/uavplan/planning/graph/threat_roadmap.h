@@ -15,10 +15,10 @@
 namespace uavplan {
 
 struct RoadmapOptions {
-  double k1 = 0.5;               // P1 eq. 3 weight of the threat cost
-  double threat_prefactor = 1.0; // multiplies J_threat (1: P1's L_i; 1/3: the midpoint rule's L_i / 3)
-  int join_nearest = 4;          // a stop is joined to this many nearest vertices it sees
-  double outline_spacing_m = 0;  // obstacle outlines sampled this often; 0: 1/100 of the bounds' larger side
+  double k1 = 0.5;                // P1 eq. 3 weight of the threat cost
+  double threat_prefactor = 1.0;  // multiplies J_threat (1: P1's L_i; 1/3: the midpoint rule's L_i / 3)
+  int join_nearest = 4;           // a stop is joined to this many nearest vertices it sees
+  double outline_spacing_m = 0;   // obstacle outlines sampled this often; 0: 1/100 of the bounds' larger side
 };
 
 struct Roadmap {
@@ -33,7 +33,9 @@ struct Roadmap {
 
   std::uint32_t add_vertex(const Vec3& p);
   void add_edge(std::uint32_t a, std::uint32_t b, double length_m, double cost);
-  std::uint32_t other(std::uint32_t edge, std::uint32_t v) const { return edges[edge].a == v ? edges[edge].b : edges[edge].a; }
+  std::uint32_t other(std::uint32_t edge, std::uint32_t v) const {
+    return edges[edge].a == v ? edges[edge].b : edges[edge].a;
+  }
 };
 
 // P1 eq. 3 on segment [a, b]: k1 * prefactor * J_threat (eq. 1) + (1 - k1) * L (eq. 2).
@@ -49,7 +51,7 @@ Roadmap threat_roadmap(const World& world, const SegmentRule& rule, double plane
 
 // Adds p as a vertex joined to the `join_nearest` nearest vertices it sees (and to each of
 // `also` it sees); returns its index.
-std::uint32_t join_stop(Roadmap& map, const Vec3& p, const SegmentRule& rule, const World& world, const RoadmapOptions& o,
-                        const std::vector<std::uint32_t>& also = {});
+std::uint32_t join_stop(Roadmap& map, const Vec3& p, const SegmentRule& rule, const World& world,
+                        const RoadmapOptions& o, const std::vector<std::uint32_t>& also = {});
 
 }  // namespace uavplan

@@ -66,7 +66,8 @@ struct LegPlanner {
       if (d < 0.0 && sp[k] < b.min[k]) t = std::min(t, (b.min[k] - q[k]) / d);
     }
     Vec3 end = q + std::max(t, 0.0) * (sp - q);
-    end.z() = std::clamp(end.z(), b.min.z() + rule.inflation_m(), std::max(b.min.z() + rule.inflation_m(), rule.ceiling_m() - rule.inflation_m()));
+    end.z() = std::clamp(end.z(), b.min.z() + rule.inflation_m(),
+                         std::max(b.min.z() + rule.inflation_m(), rule.ceiling_m() - rule.inflation_m()));
     return clear(q, end, n);
   }
 
@@ -133,7 +134,8 @@ constexpr const char* kStoppedWhy = "stopped before the route was complete";
 // The best of a 13 x 3 grid over the box (turns 1/12 of the range apart; level, up and down),
 // if any is feasible.
 template <class F>
-std::optional<std::array<double, 2>> coarse_best(const F& f, const std::array<double, 2>& lo, const std::array<double, 2>& hi) {
+std::optional<std::array<double, 2>> coarse_best(const F& f, const std::array<double, 2>& lo,
+                                                 const std::array<double, 2>& hi) {
   std::optional<std::array<double, 2>> best;
   double best_f = kInf;
   for (int i = 0; i <= 12; ++i)
@@ -150,8 +152,8 @@ std::optional<std::array<double, 2>> coarse_best(const F& f, const std::array<do
 // sets `in` and returns ""; else returns why (": ..." after the leg's name, or kStoppedWhy) and
 // leaves both as they were.
 std::string fly_leg(const LegPlanner& lp, const Vec3& task, const std::optional<double>& entry, const Rng& base,
-                    std::uint64_t salt, const StopCondition& stop, std::vector<Vec3>& route_io, std::optional<Vec3>& in_io,
-                    PlanStats& stats) {
+                    std::uint64_t salt, const StopCondition& stop, std::vector<Vec3>& route_io,
+                    std::optional<Vec3>& in_io, PlanStats& stats) {
   const double l = lp.l, turn_max = lp.turn_max, dh_max = lp.dh_max;
   const PsoMpcOptions& options = lp.o;
   std::vector<Vec3> route = route_io;
@@ -159,7 +161,8 @@ std::string fly_leg(const LegPlanner& lp, const Vec3& task, const std::optional<
   Vec3 target = task;
   if (entry) {  // eq. 10: the fixed final segment, one step l long at the task's height
     target = task - l * heading_vector(*entry);
-    if (!lp.rule.point_ok(target) || !lp.rule(target, task)) return ": the fixed segment into the entry heading is blocked";
+    if (!lp.rule.point_ok(target) || !lp.rule(target, task))
+      return ": the fixed segment into the entry heading is blocked";
   }
   Vec3 p = route.back();
   double psi = in ? std::atan2(in->y(), in->x()) : bearing(p, target);
@@ -198,8 +201,12 @@ std::string fly_leg(const LegPlanner& lp, const Vec3& task, const std::optional<
       return lp.cost(x, p, psi, in, target, entry, prediction, nearby);
     };
     const std::array<double, 2> lo{-turn_max, -dh_max}, hi{turn_max, dh_max};
-    std::array<double, 6> seeds{0.0, 0.0, std::clamp(wrap(bearing(p, target) - psi), -turn_max, turn_max),
-                                std::clamp(target.z() - p.z(), -dh_max, dh_max), 0.0, 0.0};
+    std::array<double, 6> seeds{0.0,
+                                0.0,
+                                std::clamp(wrap(bearing(p, target) - psi), -turn_max, turn_max),
+                                std::clamp(target.z() - p.z(), -dh_max, dh_max),
+                                0.0,
+                                0.0};
     // A coarse look over the turns first: where every heading's look-ahead is blocked, look
     // nearer before the swarm is asked (a blocked swarm spends 20 iterations finding nothing).
     while (prediction > 0) {
@@ -232,7 +239,8 @@ std::string fly_leg(const LegPlanner& lp, const Vec3& task, const std::optional<
     if (best.f == kInf) {
       if (history.empty() || backtracks >= kMaxBacktracks) {
         char buf[160];
-        std::snprintf(buf, sizeof buf, ": no feasible waypoint %g m on from (%.1f, %.1f, %.1f)", l, p.x(), p.y(), p.z());
+        std::snprintf(buf, sizeof buf, ": no feasible waypoint %g m on from (%.1f, %.1f, %.1f)", l, p.x(), p.y(),
+                      p.z());
         return buf;
       }
       ++backtracks;
@@ -253,7 +261,8 @@ std::string fly_leg(const LegPlanner& lp, const Vec3& task, const std::optional<
     p = q;
   }
   if (!arrived)
-    return ": not at its target within " + std::to_string(cap) + " steps of " + std::to_string(static_cast<int>(l)) + " m";
+    return ": not at its target within " + std::to_string(cap) + " steps of " + std::to_string(static_cast<int>(l)) +
+           " m";
   if (entry) {
     in = task - target;
     route.push_back(task);
@@ -271,7 +280,8 @@ PsoSteps pso_steps(const PsoMpcOptions& o, const UavSpec& uav, const World& worl
   const double side = std::max(world.bounds().extent().x(), world.bounds().extent().y());
   st.step_m = o.step_m > 0.0 ? o.step_m : side >= 200000.0 ? 5000.0 : side / 40.0;
   if (o.step_m <= 0.0 && uav.max_turn_rate_rad_s)  // long enough for the vehicle to turn dphi_max between waypoints
-    st.step_m = std::max(st.step_m, 2.0 * uav.speed.cruise_mps / *uav.max_turn_rate_rad_s * std::sin(0.5 * st.max_turn_rad));
+    st.step_m =
+        std::max(st.step_m, 2.0 * uav.speed.cruise_mps / *uav.max_turn_rate_rad_s * std::sin(0.5 * st.max_turn_rad));
   double climb = uav.max_climb_rad < kPi / 2 - 1e-9 ? uav.max_climb_rad : std::atan(300.0 / 5000.0);
   if (uav.max_climb_rate_mps) climb = std::min(climb, std::atan(*uav.max_climb_rate_mps / uav.speed.cruise_mps));
   st.max_dh_m = o.max_dh_m > 0.0 ? o.max_dh_m : st.step_m * std::tan(climb);
@@ -281,7 +291,8 @@ PsoSteps pso_steps(const PsoMpcOptions& o, const UavSpec& uav, const World& worl
 namespace {
 
 // P5's multi-step planning with a given look-ahead (prediction steps).
-PlanResult plan_multi_step(const Problem& pb, const World& world, const StopCondition& stop, const PsoMpcOptions& options) {
+PlanResult plan_multi_step(const Problem& pb, const World& world, const StopCondition& stop,
+                           const PsoMpcOptions& options) {
   PlanResult res;
   const PsoSteps steps = pso_steps(options, pb.uav, world);
   const double l = steps.step_m, turn_max = steps.max_turn_rad, dh_max = steps.max_dh_m;
@@ -329,7 +340,8 @@ PlanResult plan_multi_step(const Problem& pb, const World& world, const StopCond
   }
   res.status = Status::solved;
   res.route.waypoints = std::move(route);
-  res.route.waypoints.erase(std::unique(res.route.waypoints.begin(), res.route.waypoints.end()), res.route.waypoints.end());
+  res.route.waypoints.erase(std::unique(res.route.waypoints.begin(), res.route.waypoints.end()),
+                            res.route.waypoints.end());
   return res;
 }
 
@@ -347,7 +359,8 @@ PlanResult PsoMpcPlanner::do_plan(const Problem& pb, const World& world, const S
   straight.waypoints.insert(straight.waypoints.end(), pb.via.begin(), pb.via.end());
   straight.waypoints.push_back(pb.goal);
   const bool solved = first.status == Status::solved;
-  if (options_.prediction_steps < 2 || stop.should_stop() || (solved && first.route.length_m() <= kLongRoute * straight.length_m()))
+  if (options_.prediction_steps < 2 || stop.should_stop() ||
+      (solved && first.route.length_m() <= kLongRoute * straight.length_m()))
     return first;
   PsoMpcOptions nearer = options_;
   nearer.prediction_steps /= 2;

@@ -24,17 +24,24 @@ struct PsoMpcOptions {
   double max_turn_deg = 30.0;  // dphi_max (P5 Table 1); never more than the UAV's turn limit
   // dh_max (m). 0: l tan(climb), the climb the UAV's limit, else P5's atan(300 / 5000).
   double max_dh_m = 0.0;
-  double alpha = 10.0;         // P5 Table 1
+  double alpha = 10.0;  // P5 Table 1
   // Per degree, as multiples of l: P5's beta = 800 and gamma = 5000 at l = 5000 m.
   double beta_per_l = 0.16;
   double gamma_per_l = 1.0;
-  int prediction_steps = 11;   // 0: P5's J0 (eq. 4), the look-ahead ablation
+  int prediction_steps = 11;  // 0: P5's J0 (eq. 4), the look-ahead ablation
   double d_tar_l = 15.0, d_t_l = 13.0;
   // 30 particles, 100 iterations, w 0.9 -> 0.4, c1 = c2 = 2 (papers.md P5); stop after 10
   // iterations without improving by 1e-6 of the cost (about a metre in 1000 km; 20 gave routes
   // within 0.1 %), or after 20 without any feasible point (keys stall, give_up).
-  PsoOptions pso{.particles = 30, .iterations = 100, .w_start = 0.9, .w_end = 0.4, .c1 = 2.0, .c2 = 2.0,
-                 .stall_iterations = 10, .stall_tolerance = 1e-6, .infeasible_iterations = 20};
+  PsoOptions pso{.particles = 30,
+                 .iterations = 100,
+                 .w_start = 0.9,
+                 .w_end = 0.4,
+                 .c1 = 2.0,
+                 .c2 = 2.0,
+                 .stall_iterations = 10,
+                 .stall_tolerance = 1e-6,
+                 .infeasible_iterations = 20};
   static PsoMpcOptions from_params(const Params& params);
 };
 

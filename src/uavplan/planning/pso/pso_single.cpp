@@ -70,7 +70,8 @@ PsoSingleOptions PsoSingleOptions::from_params(const Params& params) {
   return o;
 }
 
-SingleStepRoute pso_single_route(const Problem& pb, const World& world, const PsoSingleOptions& o, const StopCondition& stop) {
+SingleStepRoute pso_single_route(const Problem& pb, const World& world, const PsoSingleOptions& o,
+                                 const StopCondition& stop) {
   const UavSpec& u = pb.uav;
   const SegmentRule rule(world, u);
   const PsoSteps steps = pso_steps(o.steps, u, world);
@@ -101,7 +102,8 @@ SingleStepRoute pso_single_route(const Problem& pb, const World& world, const Ps
       Rng rng = base.split(leg);
       std::uint64_t evaluations = 0;
       const auto f = [&](std::span<const double> x) {
-        if (stop.should_stop(++evaluations)) return std::numeric_limits<double>::infinity();  // the swarm runs out at once
+        if (stop.should_stop(++evaluations))
+          return std::numeric_limits<double>::infinity();  // the swarm runs out at once
         cost.route(x, pts);
         return cost(pts);
       };
@@ -131,15 +133,16 @@ PlanResult PsoSinglePlanner::do_plan(const Problem& pb, const World& world, cons
   const SegmentRule rule(world, pb.uav);
   for (std::size_t k = 1; k < r.waypoints.size(); ++k)
     if (!rule(r.waypoints[k - 1], r.waypoints[k])) {
-      res.message = "the swarm's best route (relaxed constraints) crosses an obstacle or the bounds on segment " + std::to_string(k) +
-                    " (" + std::to_string(static_cast<int>(r.inside_nfz_m)) + " m inside)";
+      res.message = "the swarm's best route (relaxed constraints) crosses an obstacle or the bounds on segment " +
+                    std::to_string(k) + " (" + std::to_string(static_cast<int>(r.inside_nfz_m)) + " m inside)";
       return res;
     }
   const auto broken = check_route_limits(r.waypoints, pb.uav);
   const double limit = std::min(deg_to_rad(options_.steps.max_turn_deg), pb.uav.max_turn_rad);
   if (!broken.empty() || r.worst_turn_rad > limit + kAngleTolerance_rad) {
     char buf[160];
-    std::snprintf(buf, sizeof buf, "the swarm's best route (relaxed constraints) turns %.1f deg at waypoint %zu, above %.1f deg",
+    std::snprintf(buf, sizeof buf,
+                  "the swarm's best route (relaxed constraints) turns %.1f deg at waypoint %zu, above %.1f deg",
                   rad_to_deg(r.worst_turn_rad), r.worst_turn_at, rad_to_deg(limit));
     res.message = buf;
     return res;

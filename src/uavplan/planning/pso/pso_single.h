@@ -17,14 +17,21 @@
 namespace uavplan {
 
 struct PsoSingleOptions {
-  PsoMpcOptions steps;        // l, dphi_max and dh_max as pso_mpc has them
-  int waypoints = 0;          // per leg; 0: floor(distance / l) - 1
-  double w_turn_per_l = 1.0;  // per degree over dphi_max, as a multiple of l (P5's gamma)
-  double w_climb = 10.0;      // per metre over dh_max (P5's alpha)
-  double w_len = 10.0;        // per metre a segment falls short of l
-  double w_nfz_per_m = 100.0; // per metre inside a no-fly zone
-  PsoOptions pso{.particles = 100, .iterations = 500, .w_start = 0.9, .w_end = 0.4, .c1 = 2.0, .c2 = 2.0,
-                 .stall_iterations = 50, .stall_tolerance = 1e-9, .infeasible_iterations = 0};
+  PsoMpcOptions steps;         // l, dphi_max and dh_max as pso_mpc has them
+  int waypoints = 0;           // per leg; 0: floor(distance / l) - 1
+  double w_turn_per_l = 1.0;   // per degree over dphi_max, as a multiple of l (P5's gamma)
+  double w_climb = 10.0;       // per metre over dh_max (P5's alpha)
+  double w_len = 10.0;         // per metre a segment falls short of l
+  double w_nfz_per_m = 100.0;  // per metre inside a no-fly zone
+  PsoOptions pso{.particles = 100,
+                 .iterations = 500,
+                 .w_start = 0.9,
+                 .w_end = 0.4,
+                 .c1 = 2.0,
+                 .c2 = 2.0,
+                 .stall_iterations = 50,
+                 .stall_tolerance = 1e-9,
+                 .infeasible_iterations = 0};
   static PsoSingleOptions from_params(const Params& params);
 };
 

@@ -56,7 +56,9 @@ TEST(PsoMpc, EveryTurnWithinTheLimitEverySegmentOneStepAndClear) {
       EXPECT_GE(h, 5000.0 - 1e-6);
       EXPECT_LT(h, 10000.0 + 1e-6);
     }
-    if (k >= 2) turn_max = std::max(turn_max, std::abs(std::remainder(heading(pts[k] - pts[k - 1]) - heading(pts[k - 1] - pts[k - 2]), 2 * kPi)));
+    if (k >= 2)
+      turn_max = std::max(
+          turn_max, std::abs(std::remainder(heading(pts[k] - pts[k - 1]) - heading(pts[k - 1] - pts[k - 2]), 2 * kPi)));
   }
   EXPECT_LE(turn_max, deg_to_rad(30) + 1e-9);
   EXPECT_GT(turn_max, deg_to_rad(5));  // it did go round the cylinder
@@ -76,12 +78,14 @@ TEST(PsoMpc, EntersATaskPointAtItsRequiredHeading) {
     ASSERT_NE(at, pts.end());
     ASSERT_NE(at, pts.begin());
     EXPECT_NEAR(std::remainder(heading(*at - *(at - 1)) - deg_to_rad(entry_deg), 2 * kPi), 0.0, 1e-9) << entry_deg;
-    EXPECT_TRUE(check_route_limits(pts, [] {
-                  UavSpec u;
-                  u.max_turn_rad = deg_to_rad(30);
-                  u.heading_rad = deg_to_rad(45);
-                  return u;
-                }()).empty())
+    EXPECT_TRUE(check_route_limits(pts,
+                                   [] {
+                                     UavSpec u;
+                                     u.max_turn_rad = deg_to_rad(30);
+                                     u.heading_rad = deg_to_rad(45);
+                                     return u;
+                                   }())
+                    .empty())
         << entry_deg;
   }
 }
@@ -92,7 +96,8 @@ TEST(PsoMpc, WithoutTheLookAheadTheCylinderIsHarderToPass) {
   const World w = scene();
   PsoMpcOptions plain;
   plain.prediction_steps = 0;
-  const PlanResult with = PsoMpcPlanner({}).plan(problem(), w, {}), without = PsoMpcPlanner(plain).plan(problem(), w, {});
+  const PlanResult with = PsoMpcPlanner({}).plan(problem(), w, {}),
+                   without = PsoMpcPlanner(plain).plan(problem(), w, {});
   ASSERT_EQ(with.status, Status::solved);
   if (without.status == Status::solved) {
     EXPECT_GT(without.route.length_m(), with.route.length_m());
@@ -112,7 +117,8 @@ TEST(PsoMpc, ACylinderCloserThanTheLookAheadIsStillPassed) {
   const PlanResult r = PsoMpcPlanner({}).plan(p, w, {});
   ASSERT_EQ(r.status, Status::solved) << r.message;
   const SegmentRule rule(w, p.uav);
-  for (std::size_t k = 1; k < r.route.waypoints.size(); ++k) EXPECT_TRUE(rule(r.route.waypoints[k - 1], r.route.waypoints[k])) << k;
+  for (std::size_t k = 1; k < r.route.waypoints.size(); ++k)
+    EXPECT_TRUE(rule(r.route.waypoints[k - 1], r.route.waypoints[k])) << k;
 }
 
 // Heading into a corner 8-9 km off: 30 deg turns every 5 km (a polygon of radius 9.7 km) cannot
@@ -167,7 +173,8 @@ TEST(PsoMpc, ALongDetourIsPlannedAgainLookingLessFarAhead) {
   ASSERT_EQ(r.status, Status::solved) << r.message;
   EXPECT_LE(r.route.length_m(), 1.2 * straight);
   const SegmentRule rule(w, p.uav);
-  for (std::size_t k = 1; k < r.route.waypoints.size(); ++k) EXPECT_TRUE(rule(r.route.waypoints[k - 1], r.route.waypoints[k])) << k;
+  for (std::size_t k = 1; k < r.route.waypoints.size(); ++k)
+    EXPECT_TRUE(rule(r.route.waypoints[k - 1], r.route.waypoints[k])) << k;
 }
 
 // A margin off the bounds' sides (pso_mpc: the body and the turns' overshoot), not off the top.

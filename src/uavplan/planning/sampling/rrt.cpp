@@ -126,7 +126,8 @@ bool path_ok(const std::vector<Vec3>& path, const EdgeCheck& ok, const PruneLimi
     along += seg.norm();
     if (seg.norm() > 0.0 && limits.max_turn_rad < kPi) in = seg;
   }
-  return !(in && limits.end_direction && turn_rad(*in, *limits.end_direction) > limits.max_turn_rad + kAngleTolerance_rad);
+  return !(in && limits.end_direction &&
+           turn_rad(*in, *limits.end_direction) > limits.max_turn_rad + kAngleTolerance_rad);
 }
 
 std::string fmt(const Vec3& p) {
@@ -192,10 +193,11 @@ RrtResult rrt_search(const SegmentRule& rule, double max_turn, const RrtQuery& q
       break;
     }
     // A start every move from which is refused (boxed in by keep-outs) is given up early.
-    if (tree.size() >= opt.max_nodes || res.iterations >= max_iterations || (tree.size() == 1 && res.iterations >= 2000)) {
-      res.message = "no route within " + std::to_string(tree.size()) + " nodes of " + std::to_string(step).substr(0, 5) +
-                    " m; raise planner.params.max_nodes (now " + std::to_string(opt.max_nodes) +
-                    ") or give a shorter step_m for narrow gaps";
+    if (tree.size() >= opt.max_nodes || res.iterations >= max_iterations ||
+        (tree.size() == 1 && res.iterations >= 2000)) {
+      res.message = "no route within " + std::to_string(tree.size()) + " nodes of " +
+                    std::to_string(step).substr(0, 5) + " m; raise planner.params.max_nodes (now " +
+                    std::to_string(opt.max_nodes) + ") or give a shorter step_m for narrow gaps";
       break;
     }
     ++res.iterations;
@@ -206,8 +208,10 @@ RrtResult rrt_search(const SegmentRule& rule, double max_turn, const RrtQuery& q
       // Each node grows toward the goal once: a node near the goal whose heading or climb cannot
       // reach it would otherwise take every goal-biased step.
       near = tree.nearest_usable(q.goal, [&](int i) { return !goal_tried[static_cast<std::size_t>(i)]; });
-      if (near < 0) to_goal = false;
-      else goal_tried[static_cast<std::size_t>(near)] = 1;
+      if (near < 0)
+        to_goal = false;
+      else
+        goal_tried[static_cast<std::size_t>(near)] = 1;
     }
     if (!to_goal) {  // step 5: a sample, chaotic or pseudo-random
       target = opt.chaotic ? chaos.sample(q.sample_box)

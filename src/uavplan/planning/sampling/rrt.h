@@ -23,15 +23,15 @@
 namespace uavplan {
 
 struct RrtOptions {
-  double step_m = 0.0;          // epsilon; 0 = P1's 2 m, or diagonal / 50 for worlds larger than 100 m
-  double goal_bias = 0.5;       // p_s: probability of growing toward the goal
-  int max_nodes = 5000;         // per search (papers.md P1: 5000 per replan)
-  bool chaotic = false;         // logistic-map samples (improved)
-  bool arcsine_uniform = false; // chaos transformed to uniform
-  double lambda = 0.0;          // growth bias: dir = unit(q_rand - q_near) + lambda * V_b / cruise (improved: 1)
-  bool prune = false;           // P1's 5-look-ahead redundant-waypoint removal (improved)
+  double step_m = 0.0;           // epsilon; 0 = P1's 2 m, or diagonal / 50 for worlds larger than 100 m
+  double goal_bias = 0.5;        // p_s: probability of growing toward the goal
+  int max_nodes = 5000;          // per search (papers.md P1: 5000 per replan)
+  bool chaotic = false;          // logistic-map samples (improved)
+  bool arcsine_uniform = false;  // chaos transformed to uniform
+  double lambda = 0.0;           // growth bias: dir = unit(q_rand - q_near) + lambda * V_b / cruise (improved: 1)
+  bool prune = false;            // P1's 5-look-ahead redundant-waypoint removal (improved)
   int lookahead = 5;
-  bool shortcut = false;        // line-of-sight shortcut after pruning (improved)
+  bool shortcut = false;  // line-of-sight shortcut after pruning (improved)
 
   static RrtOptions common();
   static RrtOptions improved();
@@ -60,26 +60,26 @@ double keep_out_distance(const MovingKeepOut& k, const Vec3& a, double t_a_s, co
 struct RrtQuery {
   Vec3 start = Vec3::Zero();
   Vec3 goal = Vec3::Zero();
-  std::optional<Vec3> start_direction;   // the turn limit holds the first segment against it
-  std::optional<Vec3> goal_direction;    // and the last against the way the route goes on
-  Aabb sample_box;                       // where samples are drawn (within the world's bounds)
-  bool planar = false;                   // grow in the start's horizontal plane only
-  double start_time_s = 0.0;             // the UAV leaves the start then, at `speed_mps`
+  std::optional<Vec3> start_direction;  // the turn limit holds the first segment against it
+  std::optional<Vec3> goal_direction;   // and the last against the way the route goes on
+  Aabb sample_box;                      // where samples are drawn (within the world's bounds)
+  bool planar = false;                  // grow in the start's horizontal plane only
+  double start_time_s = 0.0;            // the UAV leaves the start then, at `speed_mps`
   double speed_mps = 1.0;
   std::span<const MovingKeepOut> keep_outs;
-  Vec3 bias_velocity_mps = Vec3::Zero(); // V_b of the threatening obstacle (improved growth)
-  double uav_step_m = 5.0;               // the UAV's distance per control step (pruning)
+  Vec3 bias_velocity_mps = Vec3::Zero();  // V_b of the threatening obstacle (improved growth)
+  double uav_step_m = 5.0;                // the UAV's distance per control step (pruning)
   std::uint64_t seed = 1;
 };
 
 struct RrtResult {
   bool ok = false;
-  std::vector<Vec3> path;   // start ... goal
-  std::vector<Vec3> raw;    // the tree's path before pruning and shortcutting
+  std::vector<Vec3> path;  // start ... goal
+  std::vector<Vec3> raw;   // the tree's path before pruning and shortcutting
   int nodes = 0;
   std::uint64_t iterations = 0;
-  std::string message;      // why it failed
-  bool stopped = false;     // by the stop condition (else its node or iteration budget)
+  std::string message;   // why it failed
+  bool stopped = false;  // by the stop condition (else its node or iteration budget)
 };
 
 // Throws std::invalid_argument when the start breaks the rule (outside, inside an obstacle).

@@ -117,8 +117,8 @@ TEST(Rrt, BothRrtsRouteAroundMovingDiscsAndImprovedIsShorter) {
 TEST(Rrt, TurnLimitHoldsAtStartAlongAndIntoTheWayOn) {
   Window w = window(4, false);
   w.query.keep_outs = w.discs;
-  w.query.start_direction = Vec3(1, 0, 0);   // flying east at the start
-  w.query.goal_direction = Vec3(-1, 0, 0);   // and going on west after the goal
+  w.query.start_direction = Vec3(1, 0, 0);  // flying east at the start
+  w.query.goal_direction = Vec3(-1, 0, 0);  // and going on west after the goal
   const double limit = deg_to_rad(45);
   for (const RrtOptions& o : {RrtOptions::common(), RrtOptions::improved()}) {
     const RrtResult r = rrt_search(SegmentRule(w.world, w.uav), limit, w.query, o, {});

@@ -19,8 +19,9 @@ namespace uavplan {
 class RrtTree {
  public:
   RrtTree(const Vec3& root, int capacity)
-      : cloud_{&pos_}, index_(3, cloud_, nanoflann::KDTreeSingleIndexAdaptorParams(16),
-                              static_cast<std::size_t>(std::max(capacity, 2))) {
+      : cloud_{&pos_},
+        index_(3, cloud_, nanoflann::KDTreeSingleIndexAdaptorParams(16),
+               static_cast<std::size_t>(std::max(capacity, 2))) {
     // A local replan has tens of nodes: reserve for a few hundred and grow beyond (reserving the
     // whole capacity costs a fresh mapping and its page faults on every search).
     const auto first = static_cast<std::size_t>(std::clamp(capacity, 2, 512));
@@ -83,8 +84,9 @@ class RrtTree {
     std::array<std::size_t, kNear + kBatch> order{};
     for (std::size_t i = 0; i < n; ++i) order[i] = i;
     const std::size_t m = std::min(n, kNear);
-    std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(m), order.begin() + static_cast<std::ptrdiff_t>(n),
-                      [&](std::size_t a, std::size_t b) { return d2[a] < d2[b] || (d2[a] == d2[b] && found[a] < found[b]); });
+    std::partial_sort(
+        order.begin(), order.begin() + static_cast<std::ptrdiff_t>(m), order.begin() + static_cast<std::ptrdiff_t>(n),
+        [&](std::size_t a, std::size_t b) { return d2[a] < d2[b] || (d2[a] == d2[b] && found[a] < found[b]); });
     for (std::size_t i = 0; i < m; ++i)
       if (usable(static_cast<int>(found[order[i]]))) return static_cast<int>(found[order[i]]);
     return -1;
@@ -109,10 +111,12 @@ class RrtTree {
     std::size_t kdtree_get_point_count() const { return points->size(); }
     double kdtree_get_pt(std::size_t i, std::size_t axis) const { return (*points)[i][static_cast<int>(axis)]; }
     template <class Box>
-    bool kdtree_get_bbox(Box&) const { return false; }
+    bool kdtree_get_bbox(Box&) const {
+      return false;
+    }
   };
-  using Index = nanoflann::KDTreeSingleIndexDynamicAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>, Cloud, 3,
-                                                           std::uint32_t>;
+  using Index =
+      nanoflann::KDTreeSingleIndexDynamicAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>, Cloud, 3, std::uint32_t>;
   std::vector<Vec3> pos_;
   std::vector<int> parent_;
   std::vector<double> along_;

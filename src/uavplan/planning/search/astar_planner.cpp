@@ -52,7 +52,8 @@ std::int64_t attach(const VoxelGrid& g, const Vec3& p, const SegmentRule& rule) 
   int ci, cj, ck;
   g.cell_of(p, ci, cj, ck);
   for (int reach = 1; reach <= 4; reach *= 2) {
-    const int rz = g.cell().z() > 0 ? std::max(reach, static_cast<int>(std::ceil(reach * g.cell().x() / g.cell().z()))) : 0;
+    const int rz =
+        g.cell().z() > 0 ? std::max(reach, static_cast<int>(std::ceil(reach * g.cell().x() / g.cell().z()))) : 0;
     std::int64_t best = -1;
     double best_d = World::kInf;
     for (int k = ck - rz; k <= ck + rz; ++k)
@@ -109,8 +110,10 @@ PlanResult AStarPlanner::do_plan(const Problem& pb, const World& world, const St
     const double cells = VoxelGrid::cell_count(world.bounds(), cell3);
     // A bit per voxel and a search node (16 bytes) per voxel reached.
     constexpr double kBytesPerVoxel = 16.125;
-    if (attempt > 0 && (cells > static_cast<double>(options_.max_cells) || !grid_fits(cells, kBytesPerVoxel, stop))) break;
-    require_grid(cells, kBytesPerVoxel, stop, derived ? "the derived cell of " + fmt_m(cell) : "planner.params.cell_m = " + fmt_m(cell));
+    if (attempt > 0 && (cells > static_cast<double>(options_.max_cells) || !grid_fits(cells, kBytesPerVoxel, stop)))
+      break;
+    require_grid(cells, kBytesPerVoxel, stop,
+                 derived ? "the derived cell of " + fmt_m(cell) : "planner.params.cell_m = " + fmt_m(cell));
     const VoxelGrid grid = voxelize(world, cell3, rule.inflation_m(), rule.ceiling_m(), stop);
     const Vec3 cs = grid.cell();
     GridAStar search(grid.cells(), bounding_box_moves(grid.cells(), cs.x(), cs.y(), cs.z(), uav.max_climb_rad),
@@ -131,8 +134,9 @@ PlanResult AStarPlanner::do_plan(const Problem& pb, const World& world, const St
       if (ga < 0 || gb < 0) {
         found = false;
         res.reason = Reason::no_route;
-        res.message = leg_name(s, stops.size()) + ": no free cell of the " + fmt_m(cs.x()) + " grid can be reached straight from its " +
-                      (ga < 0 ? "start" : "end") + "; a smaller planner.params.cell_m gives cells in narrower room";
+        res.message = leg_name(s, stops.size()) + ": no free cell of the " + fmt_m(cs.x()) +
+                      " grid can be reached straight from its " + (ga < 0 ? "start" : "end") +
+                      "; a smaller planner.params.cell_m gives cells in narrower room";
         break;
       }
       const GridSearchResult vp = search.search(ga, gb, stop);
@@ -146,10 +150,12 @@ PlanResult AStarPlanner::do_plan(const Problem& pb, const World& world, const St
       if (!vp.found) {
         found = false;
         res.reason = Reason::no_route;
-        res.message = leg_name(s, stops.size()) + ": no route on a " + std::to_string(grid.nx()) + "x" + std::to_string(grid.ny()) +
-                      "x" + std::to_string(grid.nz()) + " grid of " + fmt_m(cs.x()) +
+        res.message = leg_name(s, stops.size()) + ": no route on a " + std::to_string(grid.nx()) + "x" +
+                      std::to_string(grid.ny()) + "x" + std::to_string(grid.nz()) + " grid of " + fmt_m(cs.x()) +
                       " cells; a smaller planner.params.cell_m finds narrower gaps" +
-                      (derived ? " (the derived cell was halved while the grid stayed under planner.params.max_cells and --max-memory)" : "");
+                      (derived ? " (the derived cell was halved while the grid stayed under planner.params.max_cells "
+                                 "and --max-memory)"
+                               : "");
         break;
       }
       for (const std::int64_t c : vp.cells) {
@@ -174,8 +180,8 @@ PlanResult AStarPlanner::do_plan(const Problem& pb, const World& world, const St
       }
     pinned = std::move(pins);
   }
-  const TurnShaping shaped = enforce_turn_limits(path, pinned, uav.heading_rad,
-                                                 {uav.max_turn_rad, uav.max_climb_rad}, rule);
+  const TurnShaping shaped =
+      enforce_turn_limits(path, pinned, uav.heading_rad, {uav.max_turn_rad, uav.max_climb_rad}, rule);
   if (!shaped.ok) {
     res.message = shaped.message;
     return res;

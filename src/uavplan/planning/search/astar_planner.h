@@ -13,10 +13,10 @@
 namespace uavplan {
 
 struct AStarOptions {
-  double cell_m = 0.0;               // horizontal cell size; 0 = derived from the world
-  bool shortcut = true;              // remove redundant waypoints afterwards
-  int refinements = 2;               // with a derived cell: halve it this often when no route
-  std::int64_t max_cells = 8'000'000;  // refinement never exceeds this grid size
+  double cell_m = 0.0;                    // horizontal cell size; 0 = derived from the world
+  bool shortcut = true;                   // remove redundant waypoints afterwards
+  int refinements = 2;                    // with a derived cell: halve it this often when no route
+  std::int64_t max_cells = 8'000'000;     // refinement never exceeds this grid size
   std::int64_t target_cells = 1'000'000;  // derived cells aim at about this many voxels
 
   static AStarOptions from_params(const Params& params);

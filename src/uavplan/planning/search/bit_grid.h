@@ -25,9 +25,7 @@ class BitGrid {
     j = static_cast<int>(r % n_[1]);
     k = static_cast<int>(r / n_[1]);
   }
-  bool inside(int i, int j, int k) const {
-    return i >= 0 && j >= 0 && k >= 0 && i < n_[0] && j < n_[1] && k < n_[2];
-  }
+  bool inside(int i, int j, int k) const { return i >= 0 && j >= 0 && k >= 0 && i < n_[0] && j < n_[1] && k < n_[2]; }
   bool blocked(std::int64_t idx) const { return (bits_[idx >> 6] >> (idx & 63)) & 1u; }
   bool blocked(int i, int j, int k) const { return !inside(i, j, k) || blocked(index(i, j, k)); }
   bool free(int i, int j, int k) const { return !blocked(i, j, k); }

@@ -20,7 +20,8 @@ DirectionalAStarOptions DirectionalAStarOptions::from_params(const Params& param
   DirectionalAStarOptions o;
   o.cell_m = r.number("cell_m", o.cell_m, 0.0, 1e9);
   o.step_cells = r.number("step_cells", o.step_cells, 0.0, 100.0);
-  if (o.step_cells > 0.0 && o.step_cells < 0.5) throw std::invalid_argument("planner.params.step_cells: must be 0 (derived) or at least 0.5");
+  if (o.step_cells > 0.0 && o.step_cells < 0.5)
+    throw std::invalid_argument("planner.params.step_cells: must be 0 (derived) or at least 0.5");
   o.directions = r.integer("directions", o.directions, 1, 64);
   o.max_yaw_rad = deg_to_rad(r.number("max_yaw_deg", rad_to_deg(o.max_yaw_rad), 0.0, 180.0));
   o.max_pitch_rad = deg_to_rad(r.number("max_pitch_deg", rad_to_deg(o.max_pitch_rad), 0.0, 90.0));
@@ -36,7 +37,7 @@ DirectionalAStarOptions DirectionalAStarOptions::from_params(const Params& param
 
 namespace {
 
-constexpr double kDefaultYaw_rad = kPi / 3;   // P4's psi_max when the UAV states none
+constexpr double kDefaultYaw_rad = kPi / 3;    // P4's psi_max when the UAV states none
 constexpr double kDefaultPitch_rad = kPi / 6;  // P4's phi_max
 
 struct Lattice {
@@ -54,8 +55,10 @@ struct Lattice {
   // decodes two indices per expansion, and integer division is slow.
   static std::uint32_t quotient(std::uint32_t a, std::uint32_t d, double inv_d) {
     auto q = static_cast<std::uint32_t>(static_cast<double>(a) * inv_d);
-    if (std::uint64_t{q} * d > a) --q;
-    else if ((std::uint64_t{q} + 1) * d <= a) ++q;
+    if (std::uint64_t{q} * d > a)
+      --q;
+    else if ((std::uint64_t{q} + 1) * d <= a)
+      ++q;
     return q;
   }
   void coords(std::uint32_t id, int& i, int& j, int& k) const {
@@ -79,7 +82,8 @@ struct Lattice {
   int corners(const Vec3& p, std::uint32_t ids[8], Vec3 pts[8]) const {
     int lo[3];
     for (int a = 0; a < 3; ++a)
-      lo[a] = static_cast<int>(std::clamp(std::floor((p[a] - origin[a]) / cell), 0.0, static_cast<double>(std::max(n[a] - 2, 0))));
+      lo[a] = static_cast<int>(
+          std::clamp(std::floor((p[a] - origin[a]) / cell), 0.0, static_cast<double>(std::max(n[a] - 2, 0))));
     double d2[8];
     int k = 0;
     for (int dz = 0; dz <= (n[2] > 1); ++dz)
@@ -131,7 +135,8 @@ struct ConeLimits {
   double cos_turn, tan_pitch;
   ConeLimits(double max_yaw_rad, double max_pitch_rad)
       : cos_turn(std::cos(std::min(max_yaw_rad + kAngleTolerance_rad, kPi))),
-        tan_pitch(max_pitch_rad + kAngleTolerance_rad >= kPi / 2 ? 1e300 : std::tan(max_pitch_rad + kAngleTolerance_rad)) {}
+        tan_pitch(max_pitch_rad + kAngleTolerance_rad >= kPi / 2 ? 1e300
+                                                                 : std::tan(max_pitch_rad + kAngleTolerance_rad)) {}
   explicit ConeLimits(const DirectionalQuery& q) : ConeLimits(q.max_yaw_rad, q.max_pitch_rad) {}
   bool pitch_ok(const Vec3& seg) const { return std::abs(seg.z()) <= tan_pitch * seg.head<2>().norm(); }
   bool turn_ok(const std::optional<Vec3>& from, const Vec3& seg) const {
@@ -184,9 +189,13 @@ template <class F>
 void general_children(const Lattice& lat, const DirectionalQuery& q, const ConeLimits& lim, bool flat, const Vec3& p,
                       const std::optional<Vec3>& heading, F&& f) {
   const int m = std::max(1, q.directions), mp = flat ? 1 : m;
-  const double yaw0 = heading ? std::atan2(heading->y(), heading->x()) : std::atan2(q.goal.y() - p.y(), q.goal.x() - p.x());
+  const double yaw0 =
+      heading ? std::atan2(heading->y(), heading->x()) : std::atan2(q.goal.y() - p.y(), q.goal.x() - p.x());
   const double yaw_span = heading ? q.max_yaw_rad : kPi;
-  const int my = heading ? m : std::max(m, static_cast<int>(std::ceil(2 * kPi / std::max(2 * q.max_yaw_rad / std::max(m - 1, 1), 1e-3))));
+  const int my =
+      heading
+          ? m
+          : std::max(m, static_cast<int>(std::ceil(2 * kPi / std::max(2 * q.max_yaw_rad / std::max(m - 1, 1), 1e-3))));
   ConeDirections(mp, q.max_pitch_rad).for_each(yaw0, yaw_span, my, heading.has_value(), [&](const Vec3& dir) {
     const Vec3 target = p + q.step_cells * q.cell_m * dir;
     std::uint32_t cand[8];
@@ -233,7 +242,8 @@ DirectionalCones::Cone build_cone(const DirectionalCones::Key& key, int dx, int 
       const Vec3& seg = pts[i];
       if (seg.norm() < 1e-9 || !lim.turn_ok(heading, seg) || !lim.pitch_ok(seg)) continue;
       const DirectionalCones::Child child{
-          {static_cast<std::int16_t>(seg.x()), static_cast<std::int16_t>(seg.y()), static_cast<std::int16_t>(seg.z())}, seg.norm()};
+          {static_cast<std::int16_t>(seg.x()), static_cast<std::int16_t>(seg.y()), static_cast<std::int16_t>(seg.z())},
+          seg.norm()};
       const bool seen = std::any_of(c.children.begin(), c.children.end(), [&](const DirectionalCones::Child& o) {
         return o.d[0] == child.d[0] && o.d[1] == child.d[1] && o.d[2] == child.d[2];
       });
@@ -253,17 +263,19 @@ std::string limits_hint(const DirectionalQuery& q, bool flat) {
   char buf[320];
   const double least_climb = std::atan(1.0 / q.step_cells);
   if (!flat && least_climb > q.max_pitch_rad + 1e-12) {
-    std::snprintf(buf, sizeof buf,
-                  "the lattice's least climb, atan(1 / step_cells) = %.1f deg, is steeper than the climb limit of %.1f deg, "
-                  "so it cannot change height: give planner.params.step_cells >= %.1f (and a smaller cell_m to keep "
-                  "its turns tight)",
-                  rad_to_deg(least_climb), rad_to_deg(q.max_pitch_rad), std::ceil(10.0 / std::tan(q.max_pitch_rad)) / 10.0);
+    std::snprintf(
+        buf, sizeof buf,
+        "the lattice's least climb, atan(1 / step_cells) = %.1f deg, is steeper than the climb limit of %.1f deg, "
+        "so it cannot change height: give planner.params.step_cells >= %.1f (and a smaller cell_m to keep "
+        "its turns tight)",
+        rad_to_deg(least_climb), rad_to_deg(q.max_pitch_rad), std::ceil(10.0 / std::tan(q.max_pitch_rad)) / 10.0);
     return buf;
   }
-  std::snprintf(buf, sizeof buf,
-                "a longer planner.params.step_cells (now %.2f) gives finer turns and climbs, a smaller cell_m (now %g m) "
-                "more room to turn",
-                q.step_cells, q.cell_m);
+  std::snprintf(
+      buf, sizeof buf,
+      "a longer planner.params.step_cells (now %.2f) gives finer turns and climbs, a smaller cell_m (now %g m) "
+      "more room to turn",
+      q.step_cells, q.cell_m);
   return buf;
 }
 
@@ -308,7 +320,8 @@ bool DirectionalCones::level_change_reachable(Table& table, const std::vector<st
   while (!frontier.empty()) {
     const std::uint32_t k = frontier.back();
     frontier.pop_back();
-    const int dx = static_cast<int>(k >> 20) - 512, dy = static_cast<int>((k >> 10) & 1023) - 512, dz = static_cast<int>(k & 1023) - 512;
+    const int dx = static_cast<int>(k >> 20) - 512, dy = static_cast<int>((k >> 10) & 1023) - 512,
+              dz = static_cast<int>(k & 1023) - 512;
     for (const Child& c : cone_locked(table, dx, dy, dz).children) {
       if (c.d[2] != 0) return true;
       visit(pack_offset(c.d[0], c.d[1], c.d[2]));
@@ -319,7 +332,8 @@ bool DirectionalCones::level_change_reachable(Table& table, const std::vector<st
   return false;
 }
 
-bool DirectionalSearch::levels_reachable(const World& world, const DirectionalQuery& q, DirectionalCones::Table& table) {
+bool DirectionalSearch::levels_reachable(const World& world, const DirectionalQuery& q,
+                                         DirectionalCones::Table& table) {
   const Lattice lat = make_lattice(world, q.cell_m);
   const bool flat = lat.n[2] == 1;
   if (flat) return true;
@@ -397,12 +411,14 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
   }
   const auto kStart = static_cast<std::uint32_t>(states), kGoal = kStart + 1;
   const unsigned bin_bits = kBins > 1 ? 3u : 0u;  // kBins is 1 or 8
-  auto position = [&](std::uint32_t id) { return id == kStart ? q.start : id == kGoal ? q.goal : lat.point(id >> bin_bits); };
+  auto position = [&](std::uint32_t id) {
+    return id == kStart ? q.start : id == kGoal ? q.goal : lat.point(id >> bin_bits);
+  };
   // Heading sector by octant (signs of x and y, and which is larger): no trigonometry.
   auto state_of = [&](std::uint32_t point, const Vec3& seg) {
     if (kBins == 1) return point;
-    const std::uint32_t bin = (seg.x() < 0 ? 4u : 0u) | (seg.y() < 0 ? 2u : 0u) |
-                              (std::abs(seg.x()) < std::abs(seg.y()) ? 1u : 0u);
+    const std::uint32_t bin =
+        (seg.x() < 0 ? 4u : 0u) | (seg.y() < 0 ? 2u : 0u) | (std::abs(seg.x()) < std::abs(seg.y()) ? 1u : 0u);
     return point << bin_bits | bin;
   };
   const ConeLimits lim(q);
@@ -428,7 +444,8 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
   const double goal_hop_m = 1.5 * step_m + q.cell_m;
   DirectionalCones::Table& cone_table =
       cones_->table({q.step_cells, q.max_yaw_rad, q.max_pitch_rad, std::max(1, q.directions), flat});
-  const bool level_locked = !flat && std::abs(q.goal.z() - q.start.z()) > goal_hop_m && !levels_reachable(world, q, cone_table);
+  const bool level_locked =
+      !flat && std::abs(q.goal.z() - q.start.z()) > goal_hop_m && !levels_reachable(world, q, cone_table);
   auto interior = [&](int i, int j, int k) {
     return i >= reach && i < lat.n[0] - reach && j >= reach && j < lat.n[1] - reach &&
            (flat || (k >= reach && k < lat.n[2] - reach));
@@ -455,8 +472,11 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
   // goal is shorter (still a lower bound, and consistent along feasible segments). It changes
   // nothing where the climb is gentle and spares a climb-limited search (a spiral up) most of
   // its expansions.
-  const double inv_sin_pitch = q.climb_bound ? 1.0 / std::sin(std::min(q.max_pitch_rad + kAngleTolerance_rad, kPi / 2)) : 0.0;
-  auto h = [&](const Vec3& to) { return std::max((q.goal - to).norm(), std::abs(q.goal.z() - to.z()) * inv_sin_pitch); };
+  const double inv_sin_pitch =
+      q.climb_bound ? 1.0 / std::sin(std::min(q.max_pitch_rad + kAngleTolerance_rad, kPi / 2)) : 0.0;
+  auto h = [&](const Vec3& to) {
+    return std::max((q.goal - to).norm(), std::abs(q.goal.z() - to.z()) * inv_sin_pitch);
+  };
   const double h0 = h(q.start);
   // With f = g + h a lower bound on the length through a node, the length bound prunes.
   const bool bounded = q.heuristic_weight == 1.0 && std::isfinite(q.max_length_m);
@@ -477,11 +497,13 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
     }
     SearchBuffers::close(n);
     if (e.id == kGoal) break;
-    if (static_cast<std::int64_t>(++out.expanded) > q.max_expansions || ((out.expanded & 255) == 0 && stop.should_stop(out.expanded))) {
+    if (static_cast<std::int64_t>(++out.expanded) > q.max_expansions ||
+        ((out.expanded & 255) == 0 && stop.should_stop(out.expanded))) {
       out.stopped = static_cast<std::int64_t>(out.expanded) <= q.max_expansions;
-      out.message = out.stopped ? "stopped before a route was found"
-                                : "expansion limit reached (planner.params.max_expansions = " + std::to_string(q.max_expansions) +
-                                      "; raise it, or give a larger cell_m)";
+      out.message =
+          out.stopped ? "stopped before a route was found"
+                      : "expansion limit reached (planner.params.max_expansions = " + std::to_string(q.max_expansions) +
+                            "; raise it, or give a larger cell_m)";
       return out;
     }
     int i = 0, j = 0, k = 0;  // the lattice coordinates of a lattice node
@@ -528,7 +550,8 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
         const int dx = i - pi, dy = j - pj, dz = k - pk;
         const DirectionalCones::Cone* cone_ptr = nullptr;
         if (std::abs(dx) <= reach && std::abs(dy) <= reach && std::abs(dz) <= reach) {
-          const DirectionalCones::Cone*& slot = cone_index[static_cast<std::size_t>(((dz + reach) * side + dy + reach) * side + dx + reach)];
+          const DirectionalCones::Cone*& slot =
+              cone_index[static_cast<std::size_t>(((dz + reach) * side + dy + reach) * side + dx + reach)];
           if (!slot) slot = &cones_->cone(cone_table, dx, dy, dz);
           cone_ptr = slot;
         } else {
@@ -583,8 +606,9 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
     const float clearance_p = e.id == kStart ? 0.0f : clearance_at(world, e.id >> bin_bits, p, clearance_cap_m_);
     general_children(lat, q, lim, flat, p, heading, [&](std::uint32_t id, const Vec3& to) {
       const double len_m = (to - p).norm();
-      const bool covered = e.id != kStart && len_m <= (reach + 1) * q.cell_m &&
-                           static_cast<double>(clearance_p) + clearance_at(world, id, to, clearance_cap_m_) - 2 * q.inflation_m >= len_m;
+      const bool covered =
+          e.id != kStart && len_m <= (reach + 1) * q.cell_m &&
+          static_cast<double>(clearance_p) + clearance_at(world, id, to, clearance_cap_m_) - 2 * q.inflation_m >= len_m;
       if (covered ? segment_limits_ok(p, to) : segment_ok(p, to)) {
         ++children;
         relax(state_of(id, to - p), to, len_m);
@@ -596,8 +620,8 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
   SearchBuffers::Node& goal = buf_.at(kGoal);
   if (!SearchBuffers::closed(goal)) {
     out.message = beyond_bound ? "no route within the length bound"
-                               : "no route within the turn and climb limits (" + std::to_string(out.dead_zones) + " dead zones); " +
-                                     limits_hint(q, flat);
+                               : "no route within the turn and climb limits (" + std::to_string(out.dead_zones) +
+                                     " dead zones); " + limits_hint(q, flat);
     return out;
   }
   out.found = true;
@@ -643,7 +667,9 @@ PlanResult DirectionalAStarPlanner::do_plan(const Problem& pb, const World& worl
   res.stats.cell_m = q.cell_m;
   if (!r.found) {
     res.message = r.stopped ? r.message : leg_name(0, 2) + ": " + r.message;
-    res.reason = r.stopped ? Reason::stopped : r.expanded > static_cast<std::uint64_t>(q.max_expansions) ? Reason::budget : Reason::no_route;
+    res.reason = r.stopped                                                   ? Reason::stopped
+                 : r.expanded > static_cast<std::uint64_t>(q.max_expansions) ? Reason::budget
+                                                                             : Reason::no_route;
     return res;
   }
   res.route.waypoints = r.waypoints;

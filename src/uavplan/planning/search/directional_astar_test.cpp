@@ -40,7 +40,8 @@ TEST(DirectionalAStar, RandomSphereWorldsKeepTurnAndClimbLimits) {
     WorldSpec ws;
     ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(30000, 30000, 10000)};
     for (int k = 0; k < 6; ++k)
-      ws.obstacles.push_back(Sphere{Vec3(r.uniform(8000, 22000), r.uniform(8000, 22000), r.uniform(0, 10000)), r.uniform(1500, 4000)});
+      ws.obstacles.push_back(
+          Sphere{Vec3(r.uniform(8000, 22000), r.uniform(8000, 22000), r.uniform(0, 10000)), r.uniform(1500, 4000)});
     const World w(std::move(ws));
     const Problem p = problem(Vec3(5000, 5000, 2000), Vec3(28000, 27000, 6000), r.uniform(-kPi, kPi));
     if (w.point_collides(p.uav.start, 10) || w.point_collides(p.goal, 10)) continue;
@@ -145,8 +146,10 @@ TEST(DirectionalAStar, SharedConeTablesGiveTheSameRoutesAcrossThreads) {
       for (std::size_t i = 0; i < qs.size(); ++i) {
         const std::size_t k = (i + 2 * t) % qs.size();  // each thread its own order
         const DirectionalRoute r = engine.run(w, qs[k], {});
-        if (t == 0) shared[k] = r;
-        else EXPECT_EQ(r.waypoints, alone[k].waypoints) << k;
+        if (t == 0)
+          shared[k] = r;
+        else
+          EXPECT_EQ(r.waypoints, alone[k].waypoints) << k;
       }
     });
   for (auto& th : threads) th.join();
@@ -166,7 +169,8 @@ TEST(DirectionalAStar, ClimbBoundSparesASpiralSearch) {
   Problem p = problem(Vec3(2000, 2000, 1000), Vec3(10000, 10000, 9000), 0.0);
   p.uav.max_climb_rad = deg_to_rad(20);
   const DirectionalAStarPlanner euclid(DirectionalAStarOptions::from_params({{"cell_m", "500"}}));
-  const DirectionalAStarPlanner climb(DirectionalAStarOptions::from_params({{"cell_m", "500"}, {"climb_bound", "true"}}));
+  const DirectionalAStarPlanner climb(
+      DirectionalAStarOptions::from_params({{"cell_m", "500"}, {"climb_bound", "true"}}));
   const PlanResult a = euclid.plan(p, w, {});
   const PlanResult b = climb.plan(p, w, {});
   expect_feasible(a, p, w);

@@ -58,7 +58,8 @@ TEST(GridAStar, OptimalAgainstDijkstraOnRandomGrids) {
     const Vec3 cell = cubic ? Vec3(1, 1, 1) : Vec3(1, 1, 0.6);
     const double pitch = trial % 2 ? kPi / 2 : deg_to_rad(35);
     GridAStar search(g, bounding_box_moves(g, cell.x(), cell.y(), cell.z(), pitch),
-                     cubic && pitch > 1 ? GridHeuristic::octile : GridHeuristic::euclidean, cell.x(), cell.y(), cell.z());
+                     cubic && pitch > 1 ? GridHeuristic::octile : GridHeuristic::euclidean, cell.x(), cell.y(),
+                     cell.z());
     for (int repeat = 0; repeat < 2; ++repeat) {  // the second query reuses the buffers
       const GridSearchResult p = search.search(s, t);
       const double ref = dijkstra(g, s, t, cell, pitch);

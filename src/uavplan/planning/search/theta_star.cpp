@@ -42,7 +42,9 @@ bool line_of_sight(const BitGrid& g, const int a[3], const int b[3]) {
 }
 
 LazyThetaStar::LazyThetaStar(const BitGrid& grid)
-    : grid_(&grid), moves_(bounding_box_moves(grid)), grid_search_(grid, bounding_box_moves(grid), GridHeuristic::octile) {
+    : grid_(&grid),
+      moves_(bounding_box_moves(grid)),
+      grid_search_(grid, bounding_box_moves(grid), GridHeuristic::octile) {
   for (const GridMove& m : moves_) offsets_.push_back(grid.index(m.di, m.dj, m.dk) - grid.index(0, 0, 0));
 }
 
@@ -138,7 +140,9 @@ GridSearchResult LazyThetaStar::search(std::int64_t start, std::int64_t goal, co
     double len = 0.0;
     for (std::size_t i = 0; i + 1 < a.cells.size();) {
       std::size_t j = i + 1;
-      while (j + 1 < a.cells.size() && los(static_cast<std::uint32_t>(a.cells[i]), static_cast<std::uint32_t>(a.cells[j + 1]))) ++j;
+      while (j + 1 < a.cells.size() &&
+             los(static_cast<std::uint32_t>(a.cells[i]), static_cast<std::uint32_t>(a.cells[j + 1])))
+        ++j;
       len += dist(static_cast<std::uint32_t>(a.cells[i]), static_cast<std::uint32_t>(a.cells[j]));
       pulled.push_back(a.cells[j]);
       i = j;

@@ -32,7 +32,8 @@ TEST(LineOfSight, MatchesTheExactOracle) {
       for (int k = 0; k < 3; ++k) {
         const int n = k == 0 ? g.nx() : k == 1 ? g.ny() : g.nz();
         a[k] = static_cast<int>(r.uniform_int(0, n - 1));
-        b[k] = q % 4 == 0 ? a[k] + static_cast<int>(r.uniform_int(-1, 1)) * (k == 2 ? 0 : 2) : static_cast<int>(r.uniform_int(0, n - 1));
+        b[k] = q % 4 == 0 ? a[k] + static_cast<int>(r.uniform_int(-1, 1)) * (k == 2 ? 0 : 2)
+                          : static_cast<int>(r.uniform_int(0, n - 1));
         b[k] = std::clamp(b[k], 0, n - 1);
       }
       if (g.blocked(a[0], a[1], a[2]) || g.blocked(b[0], b[1], b[2])) continue;
@@ -62,7 +63,8 @@ TEST(LazyThetaStar, BetweenTheAnyAngleBoundAndTheGridOptimum) {
       g.coords(th.cells[i - 1], p[0], p[1], p[2]);
       g.coords(th.cells[i], q[0], q[1], q[2]);
       ASSERT_TRUE(line_of_sight(g, p, q));
-      len += std::sqrt(double((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2])));
+      len += std::sqrt(
+          double((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2])));
     }
     ASSERT_NEAR(len, th.cost, 1e-9);
   }

@@ -92,8 +92,8 @@ bool pursue(std::vector<Vec3>& out, Vec3 dir, const Vec3& target, const TurnLimi
 
 }  // namespace
 
-TurnShaping enforce_turn_limits(std::span<const Vec3> pts, std::span<const char> pinned,
-                                std::optional<double> heading, const TurnLimits& lim, const SegmentPredicate& ok) {
+TurnShaping enforce_turn_limits(std::span<const Vec3> pts, std::span<const char> pinned, std::optional<double> heading,
+                                const TurnLimits& lim, const SegmentPredicate& ok) {
   TurnShaping r;
   // Drop repeated points: they have no direction.
   std::vector<Vec3> p;

@@ -23,7 +23,8 @@ TEST(TurnLimits, RandomPolylinesComeOutWithinTheLimits) {
     std::vector<Vec3> pts{Vec3::Zero()};
     for (int k = 0; k < 6; ++k) {
       const double yaw = r.uniform(-kPi, kPi), pitch = r.uniform(-0.8, 0.8) * u.max_climb_rad;
-      pts.push_back(pts.back() + r.uniform(20, 100) * Vec3(std::cos(pitch) * std::cos(yaw), std::cos(pitch) * std::sin(yaw), std::sin(pitch)));
+      pts.push_back(pts.back() + r.uniform(20, 100) * Vec3(std::cos(pitch) * std::cos(yaw),
+                                                           std::cos(pitch) * std::sin(yaw), std::sin(pitch)));
     }
     std::vector<char> pinned(pts.size(), 0);
     pinned.front() = pinned.back() = 1;
@@ -47,7 +48,8 @@ TEST(TurnLimits, ReversedStartHeadingTurnsAroundWithinTheLimit) {
   u.heading_rad = kPi;  // facing away from the goal
   const std::vector<Vec3> pts{{0, 0, 50}, {200, 0, 50}};
   const std::vector<char> pinned{1, 1};
-  const TurnShaping s = enforce_turn_limits(pts, pinned, u.heading_rad, {u.max_turn_rad, u.max_climb_rad}, SegmentRule(w, u));
+  const TurnShaping s =
+      enforce_turn_limits(pts, pinned, u.heading_rad, {u.max_turn_rad, u.max_climb_rad}, SegmentRule(w, u));
   ASSERT_TRUE(s.ok) << s.message;
   EXPECT_TRUE(check_route_limits(s.waypoints, u).empty());
   EXPECT_GT(s.waypoints.size(), 6u);

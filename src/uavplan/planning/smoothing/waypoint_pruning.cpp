@@ -31,7 +31,8 @@ std::vector<Vec3> jump(std::span<const Vec3> pts, const PruneLimits& limits, con
     for (std::size_t j = last(head); j > head + 1; --j) {
       const Vec3 seg = pts[j] - pts[head];
       if (turns && in && turn_rad(*in, seg) > limits.max_turn_rad + kAngleTolerance_rad) continue;
-      const std::optional<Vec3> on = j + 1 < pts.size() ? std::optional<Vec3>(pts[j + 1] - pts[j]) : limits.end_direction;
+      const std::optional<Vec3> on =
+          j + 1 < pts.size() ? std::optional<Vec3>(pts[j + 1] - pts[j]) : limits.end_direction;
       if (turns && on && turn_rad(seg, *on) > limits.max_turn_rad + kAngleTolerance_rad) continue;
       if (!admissible(head, j, along)) continue;
       if (limits.timed && !rest_holds(pts, j, along + seg.norm(), ok)) continue;
@@ -62,9 +63,8 @@ std::vector<Vec3> prune_within_step(std::span<const Vec3> pts, double step_m, in
 std::vector<Vec3> shortcut_within_limits(std::span<const Vec3> pts, const PruneLimits& limits,
                                          const TimedSegmentCheck& ok) {
   const auto last = [&](std::size_t) { return pts.size() - 1; };
-  return jump(pts, limits, ok, last, [&](std::size_t head, std::size_t j, double along) {
-    return ok(pts[head], along, pts[j]);
-  });
+  return jump(pts, limits, ok, last,
+              [&](std::size_t head, std::size_t j, double along) { return ok(pts[head], along, pts[j]); });
 }
 
 }  // namespace uavplan
