@@ -13,7 +13,7 @@ CellAStarOptions CellAStarOptions::from_params(const Params& params) {
 }
 
 std::optional<std::vector<std::int64_t>> cell_astar_search(const CellGraph& g, std::int64_t from, std::int64_t to,
-                                                           PlanStats& stats) {
+                                                           PlanStats& stats, const StopCondition& stop) {
   const CellMap& m = g.map();
   const auto n = static_cast<std::size_t>(m.nodes());
   std::vector<double> cost(n, World::kInf);
@@ -30,7 +30,7 @@ std::optional<std::vector<std::int64_t>> cell_astar_search(const CellGraph& g, s
     open.pop();
     if (closed[v]) continue;
     closed[v] = 1;
-    ++stats.nodes_expanded;
+    if ((++stats.nodes_expanded & 4095) == 0 && stop.should_stop()) return std::nullopt;
     if (v == to) {
       std::vector<std::int64_t> path{to};
       while (path.back() != from) path.push_back(parent[path.back()]);
@@ -57,8 +57,8 @@ std::optional<std::vector<std::int64_t>> cell_astar_search(const CellGraph& g, s
 
 PlanResult CellAStarPlanner::do_plan(const Problem& problem, const World& world, const StopCondition& stop) const {
   return plan_on_cells(problem, world, options_.cells, stop,
-                       [](const CellGraph& g, std::int64_t a, std::int64_t b, int, PlanStats& s) {
-                         return cell_astar_search(g, a, b, s);
+                       [&stop](const CellGraph& g, std::int64_t a, std::int64_t b, int, PlanStats& s) {
+                         return cell_astar_search(g, a, b, s, stop);
                        });
 }
 

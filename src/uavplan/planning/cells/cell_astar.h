@@ -11,9 +11,10 @@ struct CellAStarOptions {
   static CellAStarOptions from_params(const Params& params);
 };
 
-// Optimal node path on the graph (A*); nothing when the goal is unreachable.
+// Optimal node path on the graph (A*); nothing when the goal is unreachable or the stop came
+// first (the caller tells the two apart by asking the stop).
 std::optional<std::vector<std::int64_t>> cell_astar_search(const CellGraph& g, std::int64_t from, std::int64_t to,
-                                                           PlanStats& stats);
+                                                           PlanStats& stats, const StopCondition& stop = {});
 
 class CellAStarPlanner final : public Planner {
  public:

@@ -38,8 +38,9 @@ struct Walk {
 
 class Colony {
  public:
-  Colony(const CellGraph& g, std::int64_t from, std::int64_t to, const CellularAcoOptions& o)
-      : g_(g), m_(g.map()), from_(from), to_(to), o_(o), tau_(static_cast<std::size_t>(m_.nodes()), 1.0) {
+  // Throws Stopped (core/stop.h) when the stop holds while the estimate to go is computed.
+  Colony(const CellGraph& g, std::int64_t from, std::int64_t to, const CellularAcoOptions& o, const StopCondition& stop)
+      : g_(g), m_(g.map()), from_(from), to_(to), o_(o), stop_(stop), tau_(static_cast<std::size_t>(m_.nodes()), 1.0) {
     goal_ = pos(to);
     // eta's scale: the cost of one horizontal cell at the lowest level.
     scale_ = std::max(1e-12, g.cost(m_.centre(0, 0, 0), m_.centre(0, 0, 0) + Vec3(m_.cell_m(), 0, 0)));
@@ -67,6 +68,8 @@ class Colony {
     std::array<double, CellGraph::kMoves> weight{};
     while (v != to_) {
       if (static_cast<int>(w.path.size()) > max_steps_) return {};
+      // A long walk on a fine map takes a while: the stop ends it (the ant counts as lost).
+      if ((w.path.size() & 4095) == 0 && stop_.should_stop()) return {};
       int i = 0, j = 0, k = 0;
       m_.unpack(v, i, j, k);
       const Vec3 pv = m_.centre(i, j, k);
@@ -171,7 +174,8 @@ class Colony {
     to_go_[static_cast<std::size_t>(to_)] = 0.0;
     open.emplace(0.0, to_);
     const double k = g_.w1() * g_.speed();
-    while (!open.empty()) {
+    for (std::uint64_t pops = 0; !open.empty(); ++pops) {
+      if ((pops & 4095) == 0) stop_.throw_if_stopped();  // the whole map, on a fine one seconds
       const auto [d, v] = open.top();
       open.pop();
       if (d > to_go_[static_cast<std::size_t>(v)]) continue;
@@ -195,6 +199,7 @@ class Colony {
   const CellMap& m_;
   std::int64_t from_, to_;
   const CellularAcoOptions& o_;
+  const StopCondition& stop_;
   std::vector<double> tau_;
   Vec3 goal_;
   double scale_ = 1.0;
@@ -208,7 +213,7 @@ std::optional<std::vector<std::int64_t>> cellular_aco_search(const CellGraph& g,
                                                              const StopCondition& stop, PlanStats& stats,
                                                              AcoLegReport* report) {
   if (from == to) return std::vector<std::int64_t>{from};
-  Colony colony(g, from, to, o);
+  Colony colony(g, from, to, o, stop);
   if (!colony.reachable()) return std::nullopt;
   const std::size_t nodes = static_cast<std::size_t>(g.map().nodes());
   const int threads = o.threads > 0 ? std::min(o.ants, o.threads) : stop.threads(o.ants);
