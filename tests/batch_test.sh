@@ -176,27 +176,26 @@ grep -q ',timeout,' "$T/tiny_in/results.csv" || fail "a run stopped by its limit
 # Ctrl-C reaches isolated runs (their own process group), and a killed batch leaves no orphans.
 printf 'scenarios: [%s]\nplanners: [{name: cellular_aco, params: {iterations: [100000]}}]\nseeds: 2\n' \
   "$ROOT/scenarios/p2_city.yaml" > "$T/slow.yaml"
-"$UAVPLAN" batch "$T/slow.yaml" -o "$T/slow_int" --jobs 1 --isolate >/dev/null 2>&1 &
-pid=$!
-child=""
-for _ in $(seq 1 500); do
-  child=$(pgrep -P $pid -f "p2_city.yaml" | head -1); [ -n "$child" ] && break; sleep 0.01
-done
-[ -n "$child" ] || fail "no isolated run was seen"
+slow_batch() {  # slow_batch OUT: starts the batch in the background; sets pid and child (its run)
+  "$UAVPLAN" batch "$T/slow.yaml" -o "$1" --jobs 1 --isolate >/dev/null 2>&1 &
+  pid=$!
+  child=""
+  for _ in $(seq 1 500); do
+    child=$(pgrep -P $pid -f "p2_city.yaml" | head -1); [ -n "$child" ] && break; sleep 0.01
+  done
+  [ -n "$child" ] || fail "no isolated run was seen"
+}
+gone() {  # gone PID: true once the process has ended (within 5 s)
+  for _ in $(seq 1 100); do kill -0 "$1" 2>/dev/null || return 0; sleep 0.05; done
+  return 1
+}
+slow_batch "$T/slow_int"
 sleep 0.5
 kill -INT $pid
-for _ in $(seq 1 100); do kill -0 "$child" 2>/dev/null || break; sleep 0.05; done
-kill -0 "$child" 2>/dev/null && fail "an isolated run went on after Ctrl-C"
+gone "$child" || fail "an isolated run went on after Ctrl-C"
 wait $pid; rc=$?
 [ $rc = 130 ] || fail "interrupted isolated batch: exit $rc, not 130"
-"$UAVPLAN" batch "$T/slow.yaml" -o "$T/slow_kill" --jobs 1 --isolate >/dev/null 2>&1 &
-pid=$!
-child=""
-for _ in $(seq 1 500); do
-  child=$(pgrep -P $pid -f "p2_city.yaml" | head -1); [ -n "$child" ] && break; sleep 0.01
-done
-[ -n "$child" ] || fail "no isolated run was seen"
+slow_batch "$T/slow_kill"
 kill -KILL $pid; wait $pid 2>/dev/null
-for _ in $(seq 1 100); do kill -0 "$child" 2>/dev/null || break; sleep 0.05; done
-kill -0 "$child" 2>/dev/null && { kill -KILL "$child"; fail "a killed batch left its run running"; }
+gone "$child" || { kill -KILL "$child"; fail "a killed batch left its run running"; }
 echo "batch: ok"
