@@ -69,7 +69,7 @@ class Colony {
     while (v != to_) {
       if (static_cast<int>(w.path.size()) > max_steps_) return {};
       // A long walk on a fine map takes a while: the stop ends it (the ant counts as lost).
-      if ((w.path.size() & 4095) == 0 && stop_.should_stop()) return {};
+      if ((w.path.size() & 255) == 0 && stop_.should_stop()) return {};
       int i = 0, j = 0, k = 0;
       m_.unpack(v, i, j, k);
       const Vec3 pv = m_.centre(i, j, k);
@@ -214,7 +214,7 @@ std::optional<std::vector<std::int64_t>> cellular_aco_search(const CellGraph& g,
                                                              AcoLegReport* report) {
   if (from == to) return std::vector<std::int64_t>{from};
   Colony colony(g, from, to, o, stop);
-  if (!colony.reachable()) return std::nullopt;
+  if (!colony.reachable() || stop.should_stop()) return std::nullopt;  // a fine map's arrays take a while to fill
   const std::size_t nodes = static_cast<std::size_t>(g.map().nodes());
   const int threads = o.threads > 0 ? std::min(o.ants, o.threads) : stop.threads(o.ants);
   std::vector<std::vector<std::uint32_t>> seen(static_cast<std::size_t>(threads), std::vector<std::uint32_t>(nodes, 0));
