@@ -11,10 +11,9 @@ cd "$(dirname "$0")/.."
 BUILD=${1:-build}
 status=0
 mapfile -t files < <(git ls-files '*.cpp' '*.h' | grep -v '^tests/fixtures/')
-bad=()
-for f in "${files[@]}"; do
-  clang-format --dry-run --Werror "$f" >/dev/null 2>&1 || bad+=("$f")
-done
+# Every file in one clang-format call per core; the unformatted ones are named.
+mapfile -t bad < <(printf '%s\n' "${files[@]}" |
+  xargs -P "$(nproc)" -n 40 sh -c 'for f; do clang-format --dry-run --Werror "$f" >/dev/null 2>&1 || echo "$f"; done' sh)
 if [ ${#bad[@]} -gt 0 ]; then
   echo "lint: not formatted (clang-format -i FILE): ${bad[*]}"
   status=1
