@@ -49,7 +49,10 @@ python3 -c 'import json, sys; p = json.load(open(sys.argv[1])); p["uavs"][0]["tr
 "$BIN" verify "$SRC/scenarios/demo.yaml" "$TMP/neg/bad.json" >/dev/null 2>"$TMP/stderr"; check plan.negative_time 2 $?
 grep -q "from 0 to 1e9" "$TMP/stderr" || { echo "FAIL plan.negative_time message: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
 # The bench tables find the bundled scenarios from any folder (beside the binary).
-(cd "$TMP" && "$BIN" bench p2 >/dev/null 2>"$TMP/stderr"); check bench.any_folder 0 $?
+# (exit 0 or 1: whether its timing targets are met depends on the machine; 2 is a missing file)
+(cd "$TMP" && "$BIN" bench p2 >"$TMP/stdout" 2>"$TMP/stderr"); rc=$?
+[ $rc != 2 ] && grep -q "Table 1" "$TMP/stdout" && pass=$((pass + 1)) ||
+  { echo "FAIL bench.any_folder: exit $rc: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
 # --algorithm is the planner the mission is checked against (the file's astar cannot plan a group).
 "$BIN" plan "$SRC/scenarios/demo.yaml" -o "$TMP/c" --set mission.type=group --algorithm apf >/dev/null 2>"$TMP/stderr"
 rc=$?; [ $rc != 2 ] && pass=$((pass + 1)) || { echo "FAIL algorithm.wins: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
