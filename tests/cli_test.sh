@@ -48,6 +48,9 @@ python3 -c 'import json, sys; p = json.load(open(sys.argv[1])); p["uavs"][0]["tr
   "$TMP/neg/plan.json" "$TMP/neg/bad.json"
 "$BIN" verify "$SRC/scenarios/demo.yaml" "$TMP/neg/bad.json" >/dev/null 2>"$TMP/stderr"; check plan.negative_time 2 $?
 grep -q "from 0 to 1e9" "$TMP/stderr" || { echo "FAIL plan.negative_time message: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
+# --timing: per-UAV times only where a UAV was planned on its own (not 0.0 for each of a group).
+"$BIN" plan "$SRC/scenarios/p3_group9.yaml" -o "$TMP/timing" --timing >/dev/null 2>&1
+if grep -q '\.plan_ms": 0\.0' "$TMP/timing/plan.json"; then echo "FAIL timing: 0.0 per UAV of a group"; fails=$((fails + 1)); else pass=$((pass + 1)); fi
 # The bench tables find the bundled scenarios from any folder (beside the binary).
 # (exit 0 or 1: whether its timing targets are met depends on the machine; 2 is a missing file)
 (cd "$TMP" && "$BIN" bench p2 >"$TMP/stdout" 2>"$TMP/stderr"); rc=$?

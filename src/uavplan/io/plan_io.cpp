@@ -209,7 +209,9 @@ std::string plan_to_json(const Plan& plan, const PlanWriteOptions& options) {
   j["timing"] = Json::object();
   if (options.include_timing) {
     j["timing"]["plan_ms"] = std::round(plan.plan_ms * 1000.0) / 1000.0;
-    for (const UavPlan& u : plan.uavs) j["timing"][u.id + ".plan_ms"] = std::round(u.stats.plan_ms * 1000.0) / 1000.0;
+    // Per UAV where it was planned on its own (a group or formation is planned as one: no 0.0 rows).
+    for (const UavPlan& u : plan.uavs)
+      if (u.stats.plan_ms > 0.0) j["timing"][u.id + ".plan_ms"] = std::round(u.stats.plan_ms * 1000.0) / 1000.0;
   }
   std::size_t rows = 0;
   for (const UavPlan& u : plan.uavs) rows += u.trajectory.size() + u.waypoints.size();
