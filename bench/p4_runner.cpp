@@ -172,6 +172,7 @@ std::string run_p4(const std::string& dir, bool* all_ok) {
       }
       out += "\n";
     }
+    out += "-: ours finds no route within the turn and climb limits at this L and M (the paper has one)\n";
   }
   if (all_ok) *all_ok = ok;
   return out;
