@@ -173,7 +173,15 @@ PYBIND11_MODULE(uavplan, m) {
           "from_dict",
           [](const py::dict& d) {
             const std::string text = py::module_::import("json").attr("dumps")(d).cast<std::string>();
-            return std::make_shared<Scenario>(parse_scenario(text, "<dict>"));
+            try {
+              return std::make_shared<Scenario>(parse_scenario(text, "<dict>"));
+            } catch (const InputError& e) {
+              // The dict was dumped on one line: its line number says nothing, its key path all.
+              std::string why = e.what();
+              const auto at = why.find(": ");
+              if (why.rfind("<dict>", 0) == 0 && at != std::string::npos) why = why.substr(at + 2);
+              throw InputError("Scenario.from_dict", 0, "", why);
+            }
           },
           py::arg("scenario"), "A scenario from a dict of the scenario file's structure")
       .def_property_readonly("name", [](const Scenario& s) { return s.name; })

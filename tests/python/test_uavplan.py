@@ -91,6 +91,11 @@ def test_from_dict_plans_a_scenario_written_in_python():
     assert t[:, 2].max() > 150  # around the wall's end (it stands to the ceiling)
     assert sc.obstacles == [{"type": "box", "min": [80.0, 0.0, 0.0], "max": [120.0, 150.0, 50.0]}]
     assert sc.bounds == [[0, 0, 0], [200, 200, 50]]
+    # A dict's error names the key path, not a line of text the user never wrote.
+    with pytest.raises(uavplan.InputError) as e:
+        uavplan.Scenario.from_dict({"version": 1, "world": {"bounds": {"min": [0, 0, 0], "max": [9, 9, 9]}},
+                                    "uavs": [{"id": "a", "start": [1, 1, 1], "goal": [2, 2, "x"]}]})
+    assert str(e.value).startswith("Scenario.from_dict: uavs[0].goal[2]: expected a number"), str(e.value)
 
 
 def test_errors_carry_the_clis_one_line_message(root, exe, tmp_path):
