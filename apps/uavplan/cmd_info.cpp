@@ -14,26 +14,13 @@
 namespace uavplan::cli {
 namespace {
 
-const char* shape_name(const Obstacle& o) {
-  switch (o.index()) {
-    case 0:
-      return "sphere";
-    case 1:
-      return "cylinder";
-    case 2:
-      return "box";
-    default:
-      return "prism";
-  }
-}
-
 void print_world(const Scenario& sc) {
   const World& w = sc.world;
   const Vec3 lo = w.bounds().min, hi = w.bounds().max;
   std::printf("scenario  %s (version %d)\n", sc.name.c_str(), sc.version);
   std::printf("bounds    [%g, %g, %g] .. [%g, %g, %g] m\n", lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z());
   std::map<std::string, int> counts;
-  for (const auto& o : w.obstacles()) ++counts[shape_name(o)];
+  for (const auto& o : w.obstacles()) ++counts[std::string(shape_name(o))];
   std::printf("obstacles %zu", w.obstacles().size());
   for (const auto& [k, n] : counts) std::printf("  %s %d", k.c_str(), n);
   std::printf("\nthreats   %zu radar\n", w.radars().size());

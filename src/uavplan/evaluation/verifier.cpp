@@ -85,7 +85,6 @@ void add(Out& out, ViolationKind k, const std::string& uav, std::optional<double
 // What the clearance at p is measured to, by name: "obstacle hangar" (its id), "obstacle 3 (box)"
 // when it has none, or "the terrain".
 std::string nearest_thing(const World& w, const Vec3& p) {
-  static constexpr const char* kShapes[] = {"sphere", "cylinder", "box", "prism"};
   const auto& obstacles = w.obstacles();
   const auto& ids = w.spec().obstacle_ids;
   double best = World::kInf;
@@ -96,7 +95,7 @@ std::string nearest_thing(const World& w, const Vec3& p) {
     best = d;
     what = k < ids.size() && !ids[k].empty()
                ? "obstacle " + ids[k]
-               : "obstacle " + std::to_string(k) + " (" + kShapes[obstacles[k].index()] + ")";
+               : "obstacle " + std::to_string(k) + " (" + std::string(shape_name(obstacles[k])) + ")";
   }
   if (const TerrainGrid* t = w.terrain(); t && t->point_distance(p, best) < best) what = "the terrain";
   return what;

@@ -55,11 +55,6 @@ std::vector<Vec2> footprint(const Obstacle& o) {
   return ring;
 }
 
-std::string_view shape_name(const Obstacle& o) {
-  static constexpr std::string_view names[] = {"sphere", "cylinder", "box", "prism"};
-  return names[o.index()];
-}
-
 std::string obstacle_name(const World& w, std::size_t k) { return name_at(w.spec().obstacle_ids, k, "obstacle"); }
 std::string radar_name(const World& w, std::size_t k) { return name_at(w.spec().radar_ids, k, "radar"); }
 

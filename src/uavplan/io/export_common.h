@@ -20,7 +20,6 @@ std::string short_num(double v);
 
 // Horizontal footprint of an obstacle, counter-clockwise, not closed (circles as 64-gons).
 std::vector<Vec2> footprint(const Obstacle& o);
-std::string_view shape_name(const Obstacle& o);
 // The scenario's id of obstacle k, else "obstacle K"; the same for radars.
 std::string obstacle_name(const World& world, std::size_t k);
 std::string radar_name(const World& world, std::size_t k);

@@ -175,6 +175,11 @@ Aabb bounding_box(const Obstacle& o) { return std::visit(BoundsVisitor{}, o); }
 
 double point_distance(const Obstacle& o, const Vec3& p) { return std::visit(PointVisitor{p}, o); }
 
+std::string_view shape_name(const Obstacle& o) {
+  static constexpr std::string_view kNames[] = {"sphere", "cylinder", "box", "prism"};
+  return kNames[o.index()];
+}
+
 double segment_distance(const Obstacle& o, const Vec3& a, const Vec3& b, double cap) {
   return std::visit(SegmentVisitor{a, b, cap}, o);
 }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <limits>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -37,6 +38,8 @@ Aabb bounding_box(const Obstacle& o);
 
 // Euclidean distance from p to the solid (0 inside or on it).
 double point_distance(const Obstacle& o, const Vec3& p);
+// "sphere", "cylinder", "box" or "prism": the scenario file's word for the shape.
+std::string_view shape_name(const Obstacle& o);
 
 // The point of the solid nearest to p (p itself when inside).
 Vec3 closest_point(const Obstacle& o, const Vec3& p);
