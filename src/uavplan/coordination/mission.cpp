@@ -10,6 +10,7 @@
 #include "uavplan/coordination/group/group_mission.h"
 #include "uavplan/coordination/rendezvous/rendezvous_mission.h"
 #include "uavplan/coordination/routes/routes_mission.h"
+#include "uavplan/core/text.h"
 #include "uavplan/planning/registry.h"
 
 namespace uavplan {
@@ -18,8 +19,8 @@ namespace {
 const std::vector<std::pair<MissionType, std::unique_ptr<Mission>>>& registry() {
   static const auto table = [] {
     std::vector<std::pair<MissionType, std::unique_ptr<Mission>>> t;
-    t.emplace_back(MissionType::independent, std::make_unique<RoutesMission>());
-    t.emplace_back(MissionType::route, std::make_unique<RoutesMission>());
+    t.emplace_back(MissionType::independent, std::make_unique<RoutesMission>(MissionType::independent));
+    t.emplace_back(MissionType::route, std::make_unique<RoutesMission>(MissionType::route));
     t.emplace_back(MissionType::group, std::make_unique<GroupMission>());
     t.emplace_back(MissionType::rendezvous, std::make_unique<RendezvousMission>());
     t.emplace_back(MissionType::formation, std::make_unique<FormationMission>());
@@ -31,10 +32,25 @@ const std::vector<std::pair<MissionType, std::unique_ptr<Mission>>>& registry() 
 
 }  // namespace
 
+void Mission::check_pair(const Scenario& /*scenario*/, const UavSpec& a, const Trajectory& ta, const UavSpec& b,
+                         const Trajectory& tb, double need_m, Violations& out) const {
+  const Encounter e = closest_approach(ta, tb);
+  if (e.distance_m < need_m - kDistanceTolerance_m)
+    add_violation(
+        out, ViolationKind::separation, a.id, e.t_s, e.where,
+        "distance " + num_text(e.distance_m) + " m to '" + b.id + "', below the separation " + num_text(need_m) + " m");
+}
+
 const Mission* find_mission(MissionType type) {
   for (const auto& [t, m] : registry())
     if (t == type) return m.get();
   return nullptr;
+}
+
+std::vector<MissionType> mission_types() {
+  std::vector<MissionType> types;
+  for (const auto& [t, m] : registry()) types.push_back(t);
+  return types;
 }
 
 std::string mission_type_list() {

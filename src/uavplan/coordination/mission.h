@@ -1,7 +1,11 @@
-// Mission types are a registry, like planners: each type is one file pair that plans a whole
-// scenario into a Plan; plan_mission (mission_planner.h) looks the type up and does the rest.
+// Mission types are a registry, like planners: each type is one room of coordination/ whose
+// Mission declares the keys of the scenario's `mission` section it reads, reads them, plans a
+// whole scenario into a Plan and adds its own rules to the verifier's. plan_mission
+// (mission_planner.h), the scenario reader (io/scenario_io.cpp) and the verifier
+// (evaluation/verifier.cpp) look the type up and do the rest.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -11,6 +15,8 @@
 
 #include "uavplan/coordination/contract/plan.h"
 #include "uavplan/coordination/contract/scenario.h"
+#include "uavplan/coordination/contract/section.h"
+#include "uavplan/coordination/contract/violation.h"
 #include "uavplan/core/stop.h"
 
 namespace uavplan {
@@ -45,9 +51,24 @@ struct MissionContext {
   GroundPoints ground;
 };
 
+// The keys of the `mission` section every type reads (io/scenario_io.cpp): type, separation,
+// step_s, goal_spacing.
+inline constexpr std::array<const char*, 4> kCommonMissionKeys = {"type", "separation", "step_s", "goal_spacing"};
+
 class Mission {
  public:
   virtual ~Mission() = default;
+
+  // Reading the scenario.
+  // The keys of the `mission` section it reads besides kCommonMissionKeys.
+  virtual std::vector<const char*> section_keys() const { return {}; }
+  // Reads them into scenario.mission once the world, the UAVs and the common keys are read;
+  // checks what they ask of the UAVs (`uavs`: the scenario's list). Fails through the sections.
+  virtual void read_section(const Section& /*mission*/, const Section& /*uavs*/, Scenario& /*scenario*/) const {}
+  // Whether every UAV needs a goal.
+  virtual bool needs_goals() const { return true; }
+
+  // Planning.
   // The planners this mission plans with, the default first; empty: any registered planner.
   virtual std::vector<std::string> algorithms() const { return {}; }
   // The planner it plans with when none is asked for.
@@ -60,10 +81,23 @@ class Mission {
   // Appends one UavPlan per scenario UAV, in scenario order. Throws std::invalid_argument for
   // bad parameters or a malformed problem.
   virtual void plan(const Scenario& scenario, const MissionContext& context, Plan& plan) const = 0;
+
+  // Its rules in the verifier (evaluation/verifier.cpp), beside the rules of every plan.
+  // On one UAV's trajectory.
+  virtual void check_uav(const Scenario& /*scenario*/, const UavSpec& /*uav*/, const Trajectory& /*trajectory*/,
+                         Violations& /*out*/) const {}
+  // Separation of two UAVs that come nearer than `need_m` by their swept boxes; by default the
+  // closest approach of their trajectories.
+  virtual void check_pair(const Scenario& scenario, const UavSpec& a, const Trajectory& ta, const UavSpec& b,
+                          const Trajectory& tb, double need_m, Violations& out) const;
+  // On the whole plan (the UAVs that have a trajectory).
+  virtual void check_plan(const Scenario& /*scenario*/, const FlownUavs& /*flown*/, Violations& /*out*/) const {}
 };
 
 // The mission registered for a type, or nullptr when none is.
 const Mission* find_mission(MissionType type);
+// The registered mission types, in registry order.
+std::vector<MissionType> mission_types();
 // The registered mission types' names in registry order ("independent, route, ... or X"), for
 // messages that list them.
 std::string mission_type_list();

@@ -11,6 +11,13 @@
 namespace uavplan {
 
 // Distance from p to segment [a, b]; `t_out` (optional) receives the closest parameter.
+// The length of the polyline through the points, summed from the first (0 for fewer than two).
+inline double polyline_length_m(std::span<const Vec3> points) {
+  double len = 0.0;
+  for (std::size_t i = 1; i < points.size(); ++i) len += (points[i] - points[i - 1]).norm();
+  return len;
+}
+
 double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b, double* t_out = nullptr);
 
 // Distance between segments [p0, p1] and [q0, q1] (Ericson, Real-Time Collision Detection 5.1.9).

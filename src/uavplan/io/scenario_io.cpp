@@ -7,13 +7,14 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "uavplan/coordination/formation_mission/consensus.h"
 #include "uavplan/coordination/mission.h"
 #include "uavplan/coordination/planning_view.h"
 #include "uavplan/core/geometry.h"
+#include "uavplan/core/text.h"
 #include "uavplan/core/units.h"
 #include "uavplan/io/files.h"
 #include "uavplan/io/geo.h"
@@ -64,7 +65,8 @@ struct At {
   void expect_seq() const {
     if (!node.IsSequence()) fail("expected a list");
   }
-  void keys(std::initializer_list<const char*> allowed) const {
+  void keys(std::initializer_list<const char*> allowed) const { keys(std::vector<const char*>(allowed)); }
+  void keys(const std::vector<const char*>& allowed) const {
     expect_map();
     for (const auto& kv : node) {
       const std::string k = kv.first.Scalar();
@@ -133,11 +135,32 @@ struct At {
     if (!node.IsSequence() || node.size() != 2) fail("expected a list of 2 numbers [x, y]");
     return {item(0).coordinate(), item(1).coordinate()};
   }
-  static std::string fmt(double x) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%g", x);
-    return buf;
-  }
+  static std::string fmt(double x) { return num_text(x); }
+};
+
+// The scenario file as a mission type reads its section (Mission::read_section).
+class AtSection final : public Section {
+ public:
+  explicit AtSection(At at) : at_(std::move(at)) {}
+  [[noreturn]] void fail(const std::string& what) const override { at_.fail(what); }
+  bool has(const char* key) const override { return at_.has(key); }
+  std::unique_ptr<Section> at(const char* key) const override { return wrap(at_[key]); }
+  std::unique_ptr<Section> req(const char* key) const override { return wrap(at_.req(key)); }
+  std::size_t size() const override { return at_.size(); }
+  std::unique_ptr<Section> item(std::size_t i) const override { return wrap(at_.item(i)); }
+  bool is_map() const override { return at_.node.IsMap(); }
+  void expect_seq() const override { at_.expect_seq(); }
+  void keys(std::initializer_list<const char*> allowed) const override { at_.keys(allowed); }
+  double number() const override { return at_.number(); }
+  double positive() const override { return at_.positive(); }
+  double non_negative() const override { return at_.non_negative(); }
+  std::int64_t integer() const override { return at_.integer(); }
+  std::string text() const override { return at_.text(); }
+  Vec3 vec3() const override { return at_.vec3(); }
+
+ private:
+  static std::unique_ptr<Section> wrap(At at) { return std::make_unique<AtSection>(std::move(at)); }
+  At at_;
 };
 
 Obstacle read_obstacle(const At& o) {
@@ -273,15 +296,8 @@ std::vector<TimedPoint> read_timed_path(const At& list) {
   return rows;
 }
 
-// Inside the bounds and free; a point on the ground (the terrain there, or the bottom of the
-// bounds) is a UAV standing on it: only obstacles count.
 void check_placed(const At& at, const Vec3& p, const World& world, const std::string& what) {
-  if (!world.in_bounds(p)) at.fail(what + " is outside the world bounds");
-  if (world.on_ground(p)) {
-    if (world.segment_obstacle_clearance(p, p, 1e-9) <= 0.0) at.fail(what + " is inside an obstacle");
-  } else if (world.clearance(p, 1e-9) <= 0.0) {
-    at.fail(what + " is inside an obstacle or below the terrain");
-  }
+  check_placed(AtSection(at), p, world, what);
 }
 
 // `model: {type: autopilot, tau_v, tau_heading, tau_zdot, tau_z}` (P5 eq. 1; defaults papers.md P5
@@ -384,7 +400,7 @@ void check_room(const At& obstacles, const World& w) {
 void check_uavs_fit(const At& uavs, const Scenario& sc) {
   const World& w = sc.world;
   // (a formation's goals are its slots at the end; a formation_mission's UAVs land on the runway)
-  const bool goals_needed = sc.mission.type != MissionType::formation_mission;
+  const bool goals_needed = find_mission(sc.mission.type)->needs_goals();
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
     const UavSpec& u = sc.uavs[i];
     const At ui = uavs.item(i);
@@ -404,93 +420,6 @@ void check_uavs_fit(const At& uavs, const Scenario& sc) {
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
     if (!placed[i].start.empty()) uavs.item(i)["start"].fail("cannot be planned from: " + placed[i].start);
     if (!placed[i].goal.empty()) uavs.item(i)["goal"].fail("cannot be planned to: " + placed[i].goal);
-  }
-}
-
-// A formation's shape: one slot per UAV, every two slots at least the separation (and their
-// bodies) apart.
-void read_shape(const At& list, Scenario& sc) {
-  list.expect_seq();
-  if (list.size() != sc.uavs.size())
-    list.fail("has " + std::to_string(list.size()) + " slots for " + std::to_string(sc.uavs.size()) +
-              " UAVs (one slot per UAV, in scenario order)");
-  for (std::size_t i = 0; i < list.size(); ++i) sc.mission.shape.push_back(list.item(i).vec3());
-  for (std::size_t i = 0; i < sc.mission.shape.size(); ++i)
-    for (std::size_t j = 0; j < i; ++j) {
-      const double d = (sc.mission.shape[i] - sc.mission.shape[j]).norm();
-      const double need = std::max(sc.mission.separation_m, sc.uavs[i].radius_m + sc.uavs[j].radius_m);
-      if (d < need)
-        list.item(i).fail("is " + At::fmt(d) + " m from slot " + std::to_string(j) + " (" + sc.uavs[j].id +
-                          "); slots must be at least " + At::fmt(need) +
-                          " m apart (the separation, and the UAVs' bodies)");
-    }
-}
-
-// formation_mission (P5): the airfield, the task points in order, the topology; UAVs parked on
-// the ground at least the separation apart, with no goal (they land on the runway).
-void read_formation_mission(const At& m, const At& uavs, Scenario& sc) {
-  MissionSpec& ms = sc.mission;
-  const At a = m.req("airfield");
-  a.keys({"position", "runway_heading_deg", "runway_length"});
-  Airfield af;
-  af.position = a.req("position").vec3();
-  if (a.has("runway_heading_deg")) af.runway_heading_rad = deg_to_rad(a["runway_heading_deg"].number());
-  if (a.has("runway_length")) af.runway_length_m = a["runway_length"].positive();
-  check_placed(a["position"], af.position, sc.world, "the airfield");
-  if (!sc.world.on_ground(af.position))
-    a["position"].fail("the airfield must lie on the ground (z = the ground there)");
-  const Vec3 end =
-      af.position + af.runway_length_m * Vec3(std::cos(af.runway_heading_rad), std::sin(af.runway_heading_rad), 0.0);
-  if (!sc.world.in_bounds(end)) a["runway_length"].fail("the runway leaves the world bounds");
-  ms.airfield = af;
-  const At list = m.req("task_points");
-  list.expect_seq();
-  if (list.size() == 0) list.fail("a formation_mission needs at least one task point");
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const At row = list.item(i);
-    row.keys({"position", "entry_heading_deg", "radius"});
-    TaskPoint tp;
-    tp.position = row.req("position").vec3();
-    check_placed(row["position"], tp.position, sc.world, "task point");
-    if (row.has("entry_heading_deg")) tp.entry_heading_rad = deg_to_rad(row["entry_heading_deg"].number());
-    if (row.has("radius")) tp.radius_m = row["radius"].positive();
-    ms.task_points.push_back(tp);
-  }
-  if (m.has("topology")) {
-    const At t = m["topology"];
-    t.expect_seq();
-    if (t.size() != sc.uavs.size())
-      t.fail("needs a row a_ij per UAV (" + std::to_string(sc.uavs.size()) + "), got " + std::to_string(t.size()));
-    for (std::size_t i = 0; i < t.size(); ++i) {
-      const At row = t.item(i);
-      row.expect_seq();
-      if (row.size() != sc.uavs.size()) row.fail("needs " + std::to_string(sc.uavs.size()) + " entries a_ij");
-      std::vector<double> r;
-      for (std::size_t j = 0; j < row.size(); ++j) r.push_back(row.item(j).non_negative());
-      ms.topology.push_back(std::move(r));
-    }
-    if (!topology_connected(ms.topology))
-      t.fail("leaves a UAV out: the UAVs must all be connected, through the others");
-  }
-  if (!m.has("shape")) m.req("shape").fail("a formation_mission needs a slot per UAV");
-  for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
-    const UavSpec& u = sc.uavs[i];
-    const At ui = uavs.item(i);
-    if (u.goal) ui["goal"].fail("a formation_mission UAV has no goal: it lands on the runway");
-    if (!sc.world.on_ground(u.start))
-      ui["start"].fail("a formation_mission UAV starts parked on the ground at the airfield");
-    // The take-off rolls and climb-outs pass over the runway: nobody may wait on it.
-    const Vec3 along = Vec3(std::cos(ms.airfield->runway_heading_rad), std::sin(ms.airfield->runway_heading_rad), 0.0);
-    const Vec3 rel = u.start - ms.airfield->position;
-    const double s_m = rel.dot(along), off_m = std::abs(along.x() * rel.y() - along.y() * rel.x());
-    if (s_m > 0.0 && s_m <= ms.airfield->runway_length_m && off_m < ms.separation_m)
-      ui["start"].fail("is parked on the runway (" + At::fmt(std::round(off_m)) +
-                       " m from its centreline), where the others take off; park it at least the separation " +
-                       At::fmt(ms.separation_m) + " m beside the runway or behind its threshold");
-    for (std::size_t j = 0; j < i; ++j)
-      if ((sc.uavs[j].start - u.start).norm() < ms.separation_m)
-        ui["start"].fail("is " + At::fmt((sc.uavs[j].start - u.start).norm()) + " m from " + sc.uavs[j].id +
-                         "'s start; starts must be at least the separation " + At::fmt(ms.separation_m) + " m apart");
   }
 }
 
@@ -583,17 +512,8 @@ std::pair<std::string, std::string> apply_override(YAML::Node& root, const std::
   throw InputError(file, 0, place, "empty key");
 }
 
-}  // namespace
-
-Scenario parse_scenario(const std::string& text, const std::string& file, const Overrides& overrides) {
-  YAML::Node root = parse_yaml(text, file);
-  if (!root.IsMap()) throw InputError(file, 0, "", "the top level must be a mapping of scenario keys");
-  Applied applied;
-  for (const auto& [k, v] : overrides) applied.push_back(apply_override(root, k, v, file));
-  const At top{root, "", &file, &applied};
-  top.keys({"version", "name", "seed", "origin", "world", "uavs", "mission", "planner"});
-
-  Scenario sc;
+// version, name, seed, origin.
+void read_header(const At& top, Scenario& sc) {
   const std::int64_t version = top.req("version").integer();
   if (version != 1)
     top["version"].fail("unsupported version " + std::to_string(version) + " (this build reads version 1)");
@@ -609,19 +529,55 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
     sc.origin = GeoOrigin{o.req("lat").in_range(-90, 90), o.req("lon").in_range(-180, 180),
                           o.has("alt") ? o["alt"].number() : 0.0};
   }
+}
 
-  // World.
-  const At w = top.req("world");
+Aabb read_bounds(const At& b) {
+  b.keys({"min", "max"});
+  const Aabb bounds{b.req("min").vec3(), b.req("max").vec3()};
+  if (!(bounds.min.x() < bounds.max.x()) || !(bounds.min.y() < bounds.max.y()) || !(bounds.min.z() <= bounds.max.z()))
+    b["max"].fail("must be above min in x and y, and not below it in z");
+  return bounds;
+}
+
+void read_threats(const At& list, WorldSpec& ws) {
+  list.expect_seq();
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const At t = list.item(i);
+    t.keys({"type", "id", "position", "weight"});
+    const std::string type = t.req("type").text();
+    if (type != "radar") t["type"].fail("unknown threat type '" + type + "' (expected radar)");
+    ws.radars.push_back(Radar{t.req("position").vec3(), t.has("weight") ? t["weight"].non_negative() : 1.0});
+    ws.radar_ids.push_back(t.has("id") ? t["id"].text() : std::string());
+  }
+}
+
+void read_moving(const At& list, WorldSpec& ws) {
+  list.expect_seq();
+  std::set<std::string> ids;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const At m = list.item(i);
+    m.keys({"id", "radius", "position", "velocity", "trajectory"});
+    MovingObstacle mo;
+    mo.id = m.has("id") ? m["id"].text() : std::string("m").append(std::to_string(i + 1));
+    if (!ids.insert(mo.id).second) m["id"].fail("duplicate moving obstacle id '" + mo.id + "'");
+    mo.radius_m = m.req("radius").positive();
+    if (m.has("trajectory")) {
+      if (m.has("velocity")) m["velocity"].fail("give either 'velocity' or 'trajectory', not both");
+      if (m.has("position")) m["position"].fail("a 'trajectory' obstacle starts at its first row; drop 'position'");
+      mo.path = read_timed_path(m["trajectory"]);
+      mo.position = mo.path.front().p;
+    } else {
+      mo.position = m.req("position").vec3();
+      mo.velocity_mps = m.has("velocity") ? m["velocity"].vec3() : Vec3::Zero();
+    }
+    ws.moving.push_back(std::move(mo));
+  }
+}
+
+World read_world(const At& w, const std::optional<GeoOrigin>& origin) {
   w.keys({"bounds", "obstacles", "buildings", "threats", "terrain", "moving_obstacles"});
   WorldSpec ws;
-  {
-    const At b = w.req("bounds");
-    b.keys({"min", "max"});
-    ws.bounds = Aabb{b.req("min").vec3(), b.req("max").vec3()};
-    if (!(ws.bounds.min.x() < ws.bounds.max.x()) || !(ws.bounds.min.y() < ws.bounds.max.y()) ||
-        !(ws.bounds.min.z() <= ws.bounds.max.z()))
-      b["max"].fail("must be above min in x and y, and not below it in z");
-  }
+  ws.bounds = read_bounds(w.req("bounds"));
   if (w.has("obstacles")) {
     const At list = w["obstacles"];
     list.expect_seq();
@@ -630,52 +586,20 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
       ws.obstacle_ids.push_back(list.item(i).has("id") ? list.item(i)["id"].text() : std::string());
     }
   }
-  if (w.has("buildings")) read_buildings(w["buildings"], sc.origin, ws.bounds, ws.obstacles);
-  if (w.has("threats")) {
-    const At list = w["threats"];
-    list.expect_seq();
-    for (std::size_t i = 0; i < list.size(); ++i) {
-      const At t = list.item(i);
-      t.keys({"type", "id", "position", "weight"});
-      const std::string type = t.req("type").text();
-      if (type != "radar") t["type"].fail("unknown threat type '" + type + "' (expected radar)");
-      ws.radars.push_back(Radar{t.req("position").vec3(), t.has("weight") ? t["weight"].non_negative() : 1.0});
-      ws.radar_ids.push_back(t.has("id") ? t["id"].text() : std::string());
-    }
-  }
+  if (w.has("buildings")) read_buildings(w["buildings"], origin, ws.bounds, ws.obstacles);
+  if (w.has("threats")) read_threats(w["threats"], ws);
   if (w.has("terrain")) ws.terrain = read_terrain(w["terrain"]);
-  if (w.has("moving_obstacles")) {
-    const At list = w["moving_obstacles"];
-    list.expect_seq();
-    std::set<std::string> ids;
-    for (std::size_t i = 0; i < list.size(); ++i) {
-      const At m = list.item(i);
-      m.keys({"id", "radius", "position", "velocity", "trajectory"});
-      MovingObstacle mo;
-      mo.id = m.has("id") ? m["id"].text() : std::string("m").append(std::to_string(i + 1));
-      if (!ids.insert(mo.id).second) m["id"].fail("duplicate moving obstacle id '" + mo.id + "'");
-      mo.radius_m = m.req("radius").positive();
-      if (m.has("trajectory")) {
-        if (m.has("velocity")) m["velocity"].fail("give either 'velocity' or 'trajectory', not both");
-        if (m.has("position")) m["position"].fail("a 'trajectory' obstacle starts at its first row; drop 'position'");
-        mo.path = read_timed_path(m["trajectory"]);
-        mo.position = mo.path.front().p;
-      } else {
-        mo.position = m.req("position").vec3();
-        mo.velocity_mps = m.has("velocity") ? m["velocity"].vec3() : Vec3::Zero();
-      }
-      ws.moving.push_back(std::move(mo));
-    }
-  }
+  if (w.has("moving_obstacles")) read_moving(w["moving_obstacles"], ws);
   try {
-    sc.world = World(std::move(ws));
-    if (w.has("obstacles")) check_room(w["obstacles"], sc.world);
+    World world(std::move(ws));
+    if (w.has("obstacles")) check_room(w["obstacles"], world);
+    return world;
   } catch (const std::invalid_argument& e) {
     w.fail(e.what());
   }
+}
 
-  // UAVs.
-  const At uavs = top.req("uavs");
+void read_uavs(const At& uavs, Scenario& sc) {
   uavs.expect_seq();
   if (uavs.size() == 0) uavs.fail("needs at least one UAV");
   for (std::size_t i = 0; i < uavs.size(); ++i) {
@@ -686,107 +610,92 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
     if (s.goal) check_placed(u["goal"], *s.goal, sc.world, "goal");
     sc.uavs.push_back(std::move(s));
   }
+}
 
-  // Mission.
-  if (top.has("mission")) {
-    const At m = top["mission"];
-    m.keys({"type", "separation", "waypoints", "arrival_tolerance", "step_s", "goal_spacing", "shape",
-            "reform_after_steps", "arrival_tolerance_s", "airfield", "task_points", "topology"});
-    if (m.has("type")) {
-      const auto t = mission_type_from_string(m["type"].text());
-      if (!t) m["type"].fail("unknown mission type '" + m["type"].text() + "' (expected " + mission_type_list() + ")");
-      sc.mission.type = *t;
-    }
-    if (m.has("separation")) sc.mission.separation_m = m["separation"].non_negative();
-    if (m.has("waypoints")) {
-      const At list = m["waypoints"];
-      list.expect_seq();
-      // A row is [x, y, z], or {position: [x, y, z], entry_heading_deg: h} (P5's task points).
-      for (std::size_t i = 0; i < list.size(); ++i) {
-        const At row = list.item(i);
-        std::optional<double> entry;
-        Vec3 p;
-        if (row.node.IsMap()) {
-          row.keys({"position", "entry_heading_deg"});
-          p = row.req("position").vec3();
-          if (row.has("entry_heading_deg")) entry = deg_to_rad(row["entry_heading_deg"].number());
-        } else {
-          p = row.vec3();
-        }
-        check_placed(row.node.IsMap() ? row["position"] : row, p, sc.world, "waypoint");
-        sc.mission.waypoints.push_back(p);
-        sc.mission.waypoint_entry_heading_rad.push_back(entry);
-      }
-    }
-    if (m.has("arrival_tolerance")) sc.mission.arrival_tolerance_m = m["arrival_tolerance"].positive();
-    if (m.has("step_s")) sc.mission.step_s = m["step_s"].in_range(kMinStep_s, 3600.0);
-    if (m.has("goal_spacing")) sc.mission.goal_spacing_m = m["goal_spacing"].non_negative();
-    if (sc.mission.type == MissionType::route && sc.mission.waypoints.empty())
-      m.req("waypoints").fail("a route mission needs at least one waypoint");
-    if (m.has("reform_after_steps")) {
-      const std::int64_t n = m["reform_after_steps"].integer();
-      if (n < 1 || n > 1000000)
-        m["reform_after_steps"].fail("expected at least 1 clear step before re-forming, got " + std::to_string(n));
-      sc.mission.reform_after_steps = static_cast<int>(n);
-    }
-    if (m.has("arrival_tolerance_s")) sc.mission.arrival_tolerance_s = m["arrival_tolerance_s"].non_negative();
-    if (m.has("shape")) read_shape(m["shape"], sc);
-    if (sc.mission.type == MissionType::formation && !m.has("shape"))
-      m.req("shape").fail("a formation mission needs a slot per UAV");
-    if (sc.mission.type == MissionType::formation_mission) {
-      read_formation_mission(m, uavs, sc);
-    } else {
-      for (const char* k : {"airfield", "task_points", "topology"})
-        if (m.has(k)) m[k].fail("only a formation_mission has " + std::string(k));
-    }
+// The common keys, then the type's own section (Mission::read_section).
+void read_mission(const At& m, const At& uavs, Scenario& sc) {
+  m.expect_map();
+  if (m.has("type")) {
+    const auto t = mission_type_from_string(m["type"].text());
+    if (!t) m["type"].fail("unknown mission type '" + m["type"].text() + "' (expected " + mission_type_list() + ")");
+    sc.mission.type = *t;
   }
+  // Every type's keys are known: a scenario switches `type` and keeps the others' keys, which
+  // the type it names does not read.
+  std::vector<const char*> keys(kCommonMissionKeys.begin(), kCommonMissionKeys.end());
+  for (MissionType t : mission_types())
+    for (const char* k : find_mission(t)->section_keys())
+      if (std::none_of(keys.begin(), keys.end(), [&](const char* a) { return std::string_view(k) == a; }))
+        keys.push_back(k);
+  m.keys(keys);
+  const Mission& mission = *find_mission(sc.mission.type);
+  if (m.has("separation")) sc.mission.separation_m = m["separation"].non_negative();
+  if (m.has("step_s")) sc.mission.step_s = m["step_s"].in_range(kMinStep_s, 3600.0);
+  if (m.has("goal_spacing")) sc.mission.goal_spacing_m = m["goal_spacing"].non_negative();
+  mission.read_section(AtSection(m), AtSection(uavs), sc);
+}
 
-  // Every plan's trajectory has a row at least every second: a route that would take longer than
-  // kMaxFlight_s at its cruise speed is refused here, not after writing millions of rows.
+// Every plan's trajectory has a row at least every second: a route that would take longer than
+// kMaxFlight_s at its cruise speed is refused here, not after writing millions of rows.
+void check_flight_lengths(const At& uavs, const Scenario& sc) {
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
     const UavSpec& u = sc.uavs[i];
     if (!u.goal) continue;
-    double length = 0.0;
-    Vec3 at = u.start;
-    if (sc.mission.type == MissionType::route)
-      for (const Vec3& via : sc.mission.waypoints) {
-        length += (via - at).norm();
-        at = via;
-      }
-    length += (*u.goal - at).norm();
+    std::vector<Vec3> route{u.start};
+    route.insert(route.end(), sc.mission.waypoints.begin(), sc.mission.waypoints.end());
+    route.push_back(*u.goal);
+    const double length = polyline_length_m(route);
     if (length / u.speed.cruise_mps <= kMaxFlight_s) continue;
     const At ui = uavs.item(i);
     (ui.has("speed") ? ui["speed"] : ui)
         .fail("at " + At::fmt(u.speed.cruise_mps) + " m/s its " + At::fmt(length) + " m straight route would take " +
               At::fmt(length / u.speed.cruise_mps) + " s; a plan may last at most " + At::fmt(kMaxFlight_s) + " s");
   }
+}
 
-  check_uavs_fit(uavs, sc);
-
-  // Planner.
-  if (top.has("planner")) {
-    const At p = top["planner"];
-    p.keys({"algorithm", "params"});
-    if (p.has("algorithm")) {
-      sc.planner.algorithm = p["algorithm"].text();
-      sc.planner.algorithm_given = true;
-      try {
-        make_planner(sc.planner.algorithm, {});
-        mission_algorithm(sc, std::nullopt);
-      } catch (const std::invalid_argument& e) {
-        p["algorithm"].fail(e.what());
-      }
-    }
-    if (p.has("params")) {
-      const At params = p["params"];
-      params.expect_map();
-      for (const auto& kv : params.node) {
-        const At v{kv.second, params.path + "." + kv.first.Scalar(), &file};
-        if (!kv.second.IsScalar()) v.fail("planner parameters must be single values");
-        sc.planner.params[kv.first.Scalar()] = kv.second.Scalar();
-      }
+void read_planner(const At& p, Scenario& sc) {
+  p.keys({"algorithm", "params"});
+  if (p.has("algorithm")) {
+    sc.planner.algorithm = p["algorithm"].text();
+    sc.planner.algorithm_given = true;
+    try {
+      make_planner(sc.planner.algorithm, {});
+      mission_algorithm(sc, std::nullopt);
+    } catch (const std::invalid_argument& e) {
+      p["algorithm"].fail(e.what());
     }
   }
+  if (p.has("params")) {
+    const At params = p["params"];
+    params.expect_map();
+    for (const auto& kv : params.node) {
+      const At v{kv.second, params.path + "." + kv.first.Scalar(), p.file};
+      if (!kv.second.IsScalar()) v.fail("planner parameters must be single values");
+      sc.planner.params[kv.first.Scalar()] = kv.second.Scalar();
+    }
+  }
+}
+
+}  // namespace
+
+Scenario parse_scenario(const std::string& text, const std::string& file, const Overrides& overrides) {
+  YAML::Node root = parse_yaml(text, file);
+  if (!root.IsMap()) throw InputError(file, 0, "", "the top level must be a mapping of scenario keys");
+  Applied applied;
+  for (const auto& [k, v] : overrides) applied.push_back(apply_override(root, k, v, file));
+  const At top{root, "", &file, &applied};
+  top.keys({"version", "name", "seed", "origin", "world", "uavs", "mission", "planner"});
+
+  Scenario sc;
+  read_header(top, sc);
+  const At w = top.req("world");
+  sc.world = read_world(w, sc.origin);
+  const At uavs = top.req("uavs");
+  read_uavs(uavs, sc);
+  if (top.has("mission")) read_mission(top["mission"], uavs, sc);
+  check_flight_lengths(uavs, sc);
+  check_uavs_fit(uavs, sc);
+  if (top.has("planner")) read_planner(top["planner"], sc);
   return sc;
 }
 

@@ -309,6 +309,27 @@ TEST(ScenarioIo, ClearanceMinAglGroundStartsAndGoalSpacing) {
 }
 
 // What planning would find out too late is an error at load (item 12).
+// Each mission type reads its own keys of the section (Mission::read_section); a scenario that
+// switches `type` keeps the others' keys, which are known but not read.
+TEST(ScenarioIo, EachMissionTypeReadsItsOwnKeys) {
+  const Scenario route = parse_scenario(kGood, "s.yaml");
+  ASSERT_EQ(route.mission.waypoints.size(), 1u);
+  const Scenario independent = parse_scenario(replace(kGood, "type: route", "type: independent"), "s.yaml");
+  EXPECT_TRUE(independent.mission.waypoints.empty());
+  const std::string extra = "  waypoints: [[50, 10, 10]]\n  arrival_tolerance: 5\n  shape: [[0, 0, 0]]\n"
+                            "  airfield: {position: [1, 1, 0]}\n";
+  const Scenario rendezvous =
+      parse_scenario(replace(replace(kGood, "type: route", "type: rendezvous"), "  waypoints: [[50, 10, 10]]\n", extra),
+                     "s.yaml", {{"planner.algorithm", "directional_astar"}});
+  EXPECT_EQ(rendezvous.mission.arrival_tolerance_m, 5.0);
+  EXPECT_TRUE(rendezvous.mission.waypoints.empty());
+  EXPECT_TRUE(rendezvous.mission.shape.empty());
+  EXPECT_FALSE(rendezvous.mission.airfield.has_value());
+  expect_error(replace(kGood, "type: route", "type: formation"), {"mission", "missing required key 'shape'"});
+  expect_error(replace(kGood, "  waypoints: [[50, 10, 10]]\n", "  waypoint: [[50, 10, 10]]\n"),
+               {"unknown key 'waypoint'", "airfield"});
+}
+
 TEST(ScenarioIo, ProblemsPlanningWouldMeetAreLoadErrors) {
   const std::string second = "uavs:\n  - id: u2\n    start: [5.3, 5, 10]\n    goal: [90, 90, 10]\n";
   expect_error(replace(kGood, "uavs:\n", second), {"uavs[1].start", "closer to u2's start", "radii"});

@@ -28,6 +28,13 @@ void append_straight_run(Trajectory& tr, const Vec3& to, double v0_mps, double v
 
 Vec3 position_at(const Trajectory& tr, double t_s);
 
+// The distance flown: the length of the polyline through the rows, summed from the first.
+inline double flown_length_m(const Trajectory& tr) {
+  double len = 0.0;
+  for (std::size_t i = 1; i < tr.size(); ++i) len += (tr[i].p - tr[i - 1].p).norm();
+  return len;
+}
+
 struct Encounter {
   double distance_m = World::kInf;  // smallest distance (centre to centre for two UAVs)
   double t_s = 0.0;                 // when

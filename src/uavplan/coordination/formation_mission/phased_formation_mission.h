@@ -31,9 +31,20 @@ struct FormationMissionOptions {
 
 class PhasedFormationMission final : public Mission {
  public:
+  // `shape`, `airfield`, `task_points`, `topology`; no goals: the UAVs land on the runway
+  // (formation_mission_rules.cpp).
+  std::vector<const char*> section_keys() const override { return {"shape", "airfield", "task_points", "topology"}; }
+  void read_section(const Section& mission, const Section& uavs, Scenario& scenario) const override;
+  bool needs_goals() const override { return false; }
   std::vector<std::string> algorithms() const override { return {"pso_mpc"}; }
   bool times_ground_legs() const override { return true; }
   void plan(const Scenario& scenario, const MissionContext& context, Plan& plan) const override;
+  // The airfield's rule (contract/separation.h): separation in the air, bodies on the ground.
+  void check_pair(const Scenario& scenario, const UavSpec& a, const Trajectory& ta, const UavSpec& b,
+                  const Trajectory& tb, double need_m, Violations& out) const override;
+  // The task points reached by the formation's reference in order at their entry headings,
+  // every UAV ending stopped on the runway.
+  void check_plan(const Scenario& scenario, const FlownUavs& flown, Violations& out) const override;
 };
 
 }  // namespace uavplan

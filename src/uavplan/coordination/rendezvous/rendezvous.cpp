@@ -48,12 +48,10 @@ constexpr int kLoiterBases = 4;
 constexpr int kMaxLoiterLaps = 16;
 // A detour replaces at most this many consecutive route segments.
 constexpr std::size_t kDetourSpan = 8;
+// move-H re-centres the virtual threat at most this many times.
+constexpr int kMoveCentreSteps = 15;
 
-double length(const std::vector<Vec3>& pts) {
-  double l = 0.0;
-  for (std::size_t i = 1; i < pts.size(); ++i) l += (pts[i] - pts[i - 1]).norm();
-  return l;
-}
+double length(const std::vector<Vec3>& pts) { return polyline_length_m(pts); }
 
 std::string fmt(const char* f, double a, double b = 0.0, double c = 0.0) {
   char buf[160];
@@ -177,67 +175,81 @@ std::vector<std::optional<DirectionalRoute>> run_ordered(std::vector<Directional
   return routes;
 }
 
-}  // namespace
+// The searches of one rendezvous: one engine per thread (buffers, clearance cache), all on one
+// set of cone tables, the first serving the sequential steps; every search is counted into the
+// result.
+class Searches {
+ public:
+  Searches(const World& world, const StopCondition& stop, RendezvousResult& res)
+      : world_(world), stop_(stop), res_(res) {
+    const auto cones = std::make_shared<DirectionalCones>();
+    for (int t = stop.threads(8); t > 0; --t) engines_.emplace_back(cones);
+  }
+  int threads() const { return static_cast<int>(engines_.size()); }
+  const StopCondition& stop() const { return stop_; }
 
-RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlanner& planner,
-                                 const StopCondition& stop) {
-  RendezvousResult res;
-  // One search engine per thread (buffers, clearance cache), all on one set of cone tables; the
-  // first serves the sequential steps.
-  const auto cones = std::make_shared<DirectionalCones>();
-  std::vector<DirectionalSearch> engines;
-  for (int t = stop.threads(8); t > 0; --t) engines.emplace_back(cones);
-  DirectionalSearch& engine = engines.front();
-  struct Counting {
-    DirectionalSearch& engine;
-    RendezvousResult& res;
-    DirectionalRoute run(const World& w, const DirectionalQuery& q, const StopCondition& st) {
-      DirectionalRoute r = engine.run(w, q, st);
-      ++res.searches;
-      res.expanded += r.expanded;
-      return r;
-    }
-  } search{engine, res};
-  auto count = [&](const std::vector<std::optional<DirectionalRoute>>& routes) {
+  DirectionalRoute run(const DirectionalQuery& q) {
+    DirectionalRoute r = engines_.front().run(world_, q, stop_);
+    count(r);
+    return r;
+  }
+  // run_ordered on every engine, the routes counted.
+  template <class Prepare, class Ends>
+  std::vector<std::optional<DirectionalRoute>> ordered(std::vector<DirectionalQuery> qs, Prepare&& prepare,
+                                                       Ends&& ends) {
+    auto routes = run_ordered(engines_, world_, std::move(qs), prepare, ends, stop_);
     for (const auto& r : routes)
-      if (r) {
-        ++res.searches;
-        res.expanded += r->expanded;
-      }
-  };
-  const auto keep_query = [](std::size_t, DirectionalQuery&, const auto&) {};  // run_ordered's prepare: none
-  const DirectionalAStarOptions& opt = planner.options();
-  std::vector<DirectionalQuery> queries;
-  for (const UavSpec& u : sc.uavs)
-    queries.push_back(planner.query_for(Problem{u, u.goal.value_or(u.start), {}}, sc.world));
-  if (!queries.empty())
-    DirectionalAStarPlanner::require_lattice(sc.world, queries.front(), static_cast<int>(engines.size()), stop);
-  // The pre-plans are independent: side by side (a UAV without a goal gets no search). Like
-  // every later search they keep P4's one state per lattice point; a UAV that finds no route
-  // that way is searched again with heading sectors in the state (DirectionalQuery::heading_states).
-  const auto never_ends = [](std::size_t, const DirectionalRoute&) { return false; };
+      if (r) count(*r);
+    return routes;
+  }
+  // Side by side, all of them (no query tightened, none ends the list).
+  std::vector<std::optional<DirectionalRoute>> all(std::vector<DirectionalQuery> qs) {
+    return ordered(std::move(qs), keep_query, [](std::size_t, const DirectionalRoute&) { return false; });
+  }
+  static void keep_query(std::size_t, DirectionalQuery&, const std::vector<std::optional<DirectionalRoute>>&) {}
+
+ private:
+  void count(const DirectionalRoute& r) {
+    ++res_.searches;
+    res_.expanded += r.expanded;
+  }
+  const World& world_;
+  const StopCondition& stop_;
+  RendezvousResult& res_;
+  std::vector<DirectionalSearch> engines_;
+};
+
+// The pre-plans are independent: side by side (a UAV without a goal gets no search). Like
+// every later search they keep P4's one state per lattice point; a UAV that finds no route
+// that way is searched again with heading sectors in the state (DirectionalQuery::heading_states).
+// One entry per UAV with a goal, in scenario order; empty where the stop came first.
+std::vector<std::optional<DirectionalRoute>> preplan(const Scenario& sc, const std::vector<DirectionalQuery>& queries,
+                                                     Searches& searches) {
   std::vector<DirectionalQuery> with_goal;
   for (std::size_t s = 0; s < sc.uavs.size(); ++s)
     if (sc.uavs[s].goal) {
       with_goal.push_back(queries[s]);
       with_goal.back().heading_states = false;
     }
-  auto preplans = run_ordered(engines, sc.world, with_goal, keep_query, never_ends, stop);
-  count(preplans);
-  {
-    std::vector<DirectionalQuery> again;
-    std::vector<std::size_t> again_of;
-    for (std::size_t k = 0; k < preplans.size(); ++k)
-      if (preplans[k] && !preplans[k]->found && !preplans[k]->stopped) {
-        again.push_back(with_goal[k]);
-        again.back().heading_states = true;
-        again_of.push_back(k);
-      }
-    auto second = run_ordered(engines, sc.world, std::move(again), keep_query, never_ends, stop);
-    count(second);
-    for (std::size_t m = 0; m < second.size(); ++m)
-      if (second[m]) preplans[again_of[m]] = std::move(second[m]);
-  }
+  auto preplans = searches.all(with_goal);
+  std::vector<DirectionalQuery> again;
+  std::vector<std::size_t> again_of;
+  for (std::size_t k = 0; k < preplans.size(); ++k)
+    if (preplans[k] && !preplans[k]->found && !preplans[k]->stopped) {
+      again.push_back(with_goal[k]);
+      again.back().heading_states = true;
+      again_of.push_back(k);
+    }
+  auto second = searches.all(std::move(again));
+  for (std::size_t m = 0; m < second.size(); ++m)
+    if (second[m]) preplans[again_of[m]] = std::move(second[m]);
+  return preplans;
+}
+
+// Each UAV as pre-planned: its route, or why it has none.
+std::vector<RendezvousUav> preplanned_uavs(const Scenario& sc,
+                                           const std::vector<std::optional<DirectionalRoute>>& preplans) {
+  std::vector<RendezvousUav> uavs;
   for (std::size_t s = 0, k = 0; s < sc.uavs.size(); ++s) {
     const UavSpec& u = sc.uavs[s];
     RendezvousUav r;
@@ -260,245 +272,341 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
         r.reason = route.stopped ? Reason::stopped : Reason::no_route;
       }
     }
-    res.uavs.push_back(std::move(r));
+    uavs.push_back(std::move(r));
   }
-  for (const auto& r : res.uavs)
-    if (r.ok) res.target_m = std::max(res.target_m, r.final_m);
-  const double cell = queries.empty() ? 1.0 : queries.front().cell_m;
-  res.epsilon_m = sc.mission.arrival_tolerance_m.value_or(cell);
-  const double lo = res.target_m - res.epsilon_m, hi = res.target_m;
-  const double aim = res.target_m - 0.5 * res.epsilon_m;
-  auto within = [&](double l) { return l >= lo && l <= hi; };
+  return uavs;
+}
 
-  for (std::size_t s = 0; s < res.uavs.size(); ++s) {
-    RendezvousUav& r = res.uavs[s];
-    if (!r.ok || within(r.final_m)) continue;
-    const UavSpec& u = sc.uavs[s];
-    DirectionalQuery q = queries[s];
-    // The re-planning steps run many searches; each keeps P4's one state per lattice point and
-    // a route that gets stuck is simply not a candidate.
-    q.heading_states = false;
-    q.max_expansions = std::min<std::int64_t>(q.max_expansions, kReplanExpansions);
-    r.ok = false;
-    // Every route found on the way; the loiter may extend any of them.
-    std::vector<std::vector<Vec3>> candidates{r.waypoints};
-    auto accept = [&](const std::vector<Vec3>& route, RendezvousStep step, std::string detail) {
-      r.waypoints = route;
-      r.final_m = length(route);
-      r.step = step;
-      r.detail = std::move(detail);
-      r.ok = true;
-    };
-    // (1) Variable-step multi-point search (P4 table 1): L from 1 to L_max step 0.2, M from 3 to
-    // 6; the first route within the window ends the step, else the closest is kept.
-    // The searches are independent: they run in batches, one per thread, and are taken in
-    // their (L, M) order, so the result does not depend on the thread count.
-    std::vector<Vec3> best = r.waypoints;
-    std::vector<std::pair<double, int>> combos;
-    for (int li = 0; 1.0 + 0.2 * li <= opt.step_cells_max + 1e-9; ++li)
-      for (int m = 3; m <= 6; ++m) combos.emplace_back(1.0 + 0.2 * li, m);
-    {
-      std::vector<DirectionalQuery> qs(combos.size(), q);
-      for (std::size_t c = 0; c < combos.size(); ++c) {
-        qs[c].step_cells = combos[c].first;
-        qs[c].directions = combos[c].second;
-      }
-      const double best0_m = length(best);
-      const auto routes = run_ordered(
-          engines, sc.world, std::move(qs),
-          [&](std::size_t, DirectionalQuery& qi, const std::vector<std::optional<DirectionalRoute>>& done) {
-            // A route longer than this can neither fall in the window nor come closer than the
-            // best so far (any finished subset of the routes gives a safe bound).
-            double off = std::abs(best0_m - aim);
-            for (const auto& d : done)
-              if (d && d->found) off = std::min(off, std::abs(d->length_m - aim));
-            qi.max_length_m = aim + std::max(off, 0.5 * res.epsilon_m);
-          },
-          [&](std::size_t, const DirectionalRoute& route) { return route.found && within(route.length_m); }, stop);
-      count(routes);
-      for (std::size_t c = 0; c < routes.size() && !r.ok; ++c) {
-        if (!routes[c] || !routes[c]->found) continue;
-        const DirectionalRoute& route = *routes[c];
-        candidates.push_back(route.waypoints);
-        if (within(route.length_m))
-          accept(route.waypoints, RendezvousStep::multi_point,
-                 fmt("L = %.1f, M = %.0f", combos[c].first, combos[c].second));
-        else if (std::abs(route.length_m - aim) < std::abs(length(best) - aim))
-          best = route.waypoints;
-      }
-    }
-    if (r.ok) continue;
-    r.waypoints = best;
-    r.final_m = length(best);
-    // (2) Loiter circle at the start (P4 eq. 9-11): R = (P_max - P_i) / (2 pi) >= R_min and the
-    // circle clear of every obstacle.
-    const double r_min = opt.min_turn_radius_m > 0.0 ? opt.min_turn_radius_m : cell;
-    const SegmentRule rule(sc.world, u);
-    const int n = std::max(12, static_cast<int>(std::ceil(2 * kPi / (0.95 * std::min(u.max_turn_rad, q.max_yaw_rad)))));
-    // The limits the lengthened routes must keep (the search's, which are within the UAV's).
+// The window every route's length must fall in: [lo, hi] = [P_max - epsilon, P_max], aiming at
+// its middle.
+struct LengthWindow {
+  double lo = 0.0, hi = 0.0, aim = 0.0, epsilon = 0.0;
+  bool within(double l) const { return l >= lo && l <= hi; }
+};
+
+// The steps that bring one UAV's route into the window, in P4's order, each a method; the first
+// route within the window is accepted and ends them.
+class Lengthener {
+ public:
+  Lengthener(const Scenario& sc, std::size_t s, const DirectionalQuery& query, const DirectionalAStarOptions& opt,
+             const LengthWindow& window, Searches& searches, RendezvousResult& res)
+      : sc_(sc),
+        s_(s),
+        u_(sc.uavs[s]),
+        r_(res.uavs[s]),
+        res_(res),
+        window_(window),
+        searches_(searches),
+        cell_(query.cell_m),
+        r_min_(opt.min_turn_radius_m > 0.0 ? opt.min_turn_radius_m : query.cell_m),
+        sides_(
+            std::max(12, static_cast<int>(std::ceil(2 * kPi / (0.95 * std::min(u_.max_turn_rad, query.max_yaw_rad)))))),
+        rule_(sc.world, u_),
+        limits_(search_limits(u_, query)),
+        lengthen_{rule_, limits_, window.lo, window.hi, sides_},
+        step_cells_max_(opt.step_cells_max),
+        q_(replan_query(query)) {}
+
+  void run() {
+    candidates_ = {r_.waypoints};
+    r_.ok = false;
+    if (multi_point()) return;
+    if (loiter_at_start()) return;
+    if (virtual_threat()) return;
+    // Last: a loiter on any route found on the way, or a detour.
+    if (loiter_at_start() || loiter_anywhere() || detour()) return;
+    r_.detail = fmt("no step brought the length (%.1f m) within [%.1f, %.1f] m", r_.final_m, window_.lo, window_.hi);
+  }
+
+ private:
+  // The limits the lengthened routes must keep (the search's, which are within the UAV's).
+  static UavSpec search_limits(const UavSpec& u, const DirectionalQuery& q) {
     UavSpec limits = u;
     limits.max_turn_rad = std::min(u.max_turn_rad, q.max_yaw_rad);
     limits.max_climb_rad = std::min(u.max_climb_rad, q.max_pitch_rad);
-    const Lengthening lengthen{rule, limits, lo, hi, n};
-    // f(base, extra) on the routes found, longest first, whose missing length `usable` takes
-    // (at most `max_bases` of them); true at the first f that accepts a route.
-    auto on_candidates = [&](auto&& usable, int max_bases, auto&& f) {
-      std::sort(candidates.begin(), candidates.end(),
-                [](const auto& x, const auto& y) { return length(x) > length(y); });
-      int bases = 0;
-      for (const auto& base : candidates) {
-        const double extra = aim - length(base);
-        if (!usable(extra) || base.size() < 2) continue;
-        if (++bases > max_bases) break;
-        if (f(base, extra)) return true;
-      }
-      return false;
-    };
-    const auto loiter_fits = [&](double extra) { return extra / (2 * kPi) >= r_min; };
-    // P4's loiter: one circle at the start, on the left.
-    auto try_loiter = [&]() {
-      return on_candidates(loiter_fits, std::numeric_limits<int>::max(),
-                           [&](const std::vector<Vec3>& base, double extra) {
-                             auto route = lengthen.loiter(base, 0, extra, 1, true);
-                             if (route)
-                               accept(*route, RendezvousStep::loiter,
-                                      fmt("radius %.1f m (R_min %.1f m), %.0f sides", extra / (2 * kPi), r_min, n));
-                             return route.has_value();
-                           });
-    };
-    // Where that circle does not fit (a boundary, a threat) and no virtual threat helped: the
-    // same extra length as k laps of a circle k times smaller (while R >= R_min), on either side
-    // of the heading, at the start or a later waypoint of the longest routes found; the first
-    // that fits in that order (start first, fewer laps first, left first).
-    auto try_loiter_anywhere = [&]() {
-      return on_candidates(loiter_fits, kLoiterBases, [&](const std::vector<Vec3>& base, double extra) {
+    return limits;
+  }
+  // The re-planning steps run many searches; each keeps P4's one state per lattice point and a
+  // route that gets stuck is simply not a candidate.
+  static DirectionalQuery replan_query(DirectionalQuery q) {
+    q.heading_states = false;
+    q.max_expansions = std::min<std::int64_t>(q.max_expansions, kReplanExpansions);
+    return q;
+  }
+
+  void accept(const std::vector<Vec3>& route, RendezvousStep step, std::string detail) {
+    r_.waypoints = route;
+    r_.final_m = length(route);
+    r_.step = step;
+    r_.detail = std::move(detail);
+    r_.ok = true;
+  }
+
+  bool multi_point();
+  bool loiter_at_start();
+  bool loiter_anywhere();
+  bool detour();
+  bool virtual_threat();
+  double adjust_radius(const Vec3& h0, double rx_max);
+  void move_centre(double rx_used);
+  Vec3 centre_on(const std::vector<Vec3>& pts) const;
+  double radius_limit(const Vec3& h) const;
+
+  // f(base, extra) on the routes found, longest first, whose missing length `usable` takes (at
+  // most `max_bases` of them); true at the first f that accepts a route.
+  template <class Usable, class F>
+  bool on_candidates(Usable&& usable, int max_bases, F&& f) {
+    std::sort(candidates_.begin(), candidates_.end(),
+              [](const auto& x, const auto& y) { return length(x) > length(y); });
+    int bases = 0;
+    for (const auto& base : candidates_) {
+      const double extra = window_.aim - length(base);
+      if (!usable(extra) || base.size() < 2) continue;
+      if (++bases > max_bases) break;
+      if (f(base, extra)) return true;
+    }
+    return false;
+  }
+  bool loiter_fits(double extra) const { return extra / (2 * kPi) >= r_min_; }
+
+  const Scenario& sc_;
+  std::size_t s_;
+  const UavSpec& u_;
+  RendezvousUav& r_;
+  const RendezvousResult& res_;
+  LengthWindow window_;
+  Searches& searches_;
+  double cell_, r_min_;
+  int sides_;
+  SegmentRule rule_;
+  UavSpec limits_;
+  Lengthening lengthen_;
+  double step_cells_max_;
+  DirectionalQuery q_;
+  std::vector<std::vector<Vec3>> candidates_;  // every route found on the way; the loiter may extend any
+  std::vector<Vec3> best_;                     // the closest to the window so far
+};
+
+// (1) Variable-step multi-point search (P4 table 1): L from 1 to L_max step 0.2, M from 3 to 6;
+// the first route within the window ends the step, else the closest is kept. The searches are
+// independent: they run in batches, one per thread, and are taken in their (L, M) order, so the
+// result does not depend on the thread count.
+bool Lengthener::multi_point() {
+  best_ = r_.waypoints;
+  std::vector<std::pair<double, int>> combos;
+  for (int li = 0; 1.0 + 0.2 * li <= step_cells_max_ + 1e-9; ++li)
+    for (int m = 3; m <= 6; ++m) combos.emplace_back(1.0 + 0.2 * li, m);
+  std::vector<DirectionalQuery> qs(combos.size(), q_);
+  for (std::size_t c = 0; c < combos.size(); ++c) {
+    qs[c].step_cells = combos[c].first;
+    qs[c].directions = combos[c].second;
+  }
+  const double best0_m = length(best_);
+  const double aim = window_.aim;
+  const auto routes = searches_.ordered(
+      std::move(qs),
+      [&](std::size_t, DirectionalQuery& qi, const std::vector<std::optional<DirectionalRoute>>& done) {
+        // A route longer than this can neither fall in the window nor come closer than the best
+        // so far (any finished subset of the routes gives a safe bound).
+        double off = std::abs(best0_m - aim);
+        for (const auto& d : done)
+          if (d && d->found) off = std::min(off, std::abs(d->length_m - aim));
+        qi.max_length_m = aim + std::max(off, 0.5 * window_.epsilon);
+      },
+      [&](std::size_t, const DirectionalRoute& route) { return route.found && window_.within(route.length_m); });
+  for (std::size_t c = 0; c < routes.size() && !r_.ok; ++c) {
+    if (!routes[c] || !routes[c]->found) continue;
+    const DirectionalRoute& route = *routes[c];
+    candidates_.push_back(route.waypoints);
+    if (window_.within(route.length_m))
+      accept(route.waypoints, RendezvousStep::multi_point,
+             fmt("L = %.1f, M = %.0f", combos[c].first, combos[c].second));
+    else if (std::abs(route.length_m - aim) < std::abs(length(best_) - aim))
+      best_ = route.waypoints;
+  }
+  if (r_.ok) return true;
+  r_.waypoints = best_;
+  r_.final_m = length(best_);
+  return false;
+}
+
+// (2) P4's loiter (eq. 9-11): one circle at the start, on the left, R = (P_max - P_i) / (2 pi)
+// >= R_min and the circle clear of every obstacle.
+bool Lengthener::loiter_at_start() {
+  return on_candidates([&](double extra) { return loiter_fits(extra); }, std::numeric_limits<int>::max(),
+                       [&](const std::vector<Vec3>& base, double extra) {
+                         auto route = lengthen_.loiter(base, 0, extra, 1, true);
+                         if (route)
+                           accept(*route, RendezvousStep::loiter,
+                                  fmt("radius %.1f m (R_min %.1f m), %.0f sides", extra / (2 * kPi), r_min_, sides_));
+                         return route.has_value();
+                       });
+}
+
+// Where that circle does not fit (a boundary, a threat) and no virtual threat helped: the same
+// extra length as k laps of a circle k times smaller (while R >= R_min), on either side of the
+// heading, at the start or a later waypoint of the longest routes found; the first that fits in
+// that order (start first, fewer laps first, left first).
+bool Lengthener::loiter_anywhere() {
+  return on_candidates(
+      [&](double extra) { return loiter_fits(extra); }, kLoiterBases,
+      [&](const std::vector<Vec3>& base, double extra) {
         for (std::size_t at = 0; at + 1 < base.size(); ++at)
-          for (int laps = 1; laps <= kMaxLoiterLaps && extra / (2 * kPi * laps) >= r_min; ++laps)
+          for (int laps = 1; laps <= kMaxLoiterLaps && extra / (2 * kPi * laps) >= r_min_; ++laps)
             for (const bool left : {true, false})
-              if (auto route = lengthen.loiter(base, at, extra, laps, left)) {
+              if (auto route = lengthen_.loiter(base, at, extra, laps, left)) {
                 accept(
                     *route, RendezvousStep::loiter,
-                    fmt("radius %.1f m (R_min %.1f m), %.0f laps", extra / (2 * kPi * laps), r_min, laps) +
+                    fmt("radius %.1f m (R_min %.1f m), %.0f laps", extra / (2 * kPi * laps), r_min_, laps) +
                         (left ? " on the left" : " on the right") +
                         (at == 0 ? std::string(" at the start") : fmt(" at waypoint %.0f", static_cast<double>(at))));
                 return true;
               }
         return false;
       });
-    };
-    // A missing length too short for a loiter (R < R_min) that the virtual threat missed: a
-    // detour through one waypoint beside up to kDetourSpan segments, exactly `aim` long; the
-    // longest chords of the longest routes found first.
-    auto try_detour = [&]() {
-      return on_candidates([](double extra) { return extra > 0.0; }, kLoiterBases,
-                           [&](const std::vector<Vec3>& base, double extra) {
-                             std::vector<std::pair<std::size_t, std::size_t>> spans;
-                             for (std::size_t i = 0; i + 1 < base.size(); ++i)
-                               for (std::size_t j = i + 1; j < base.size() && j - i <= kDetourSpan; ++j)
-                                 spans.emplace_back(i, j);
-                             std::stable_sort(spans.begin(), spans.end(), [&](const auto& x, const auto& y) {
-                               return (base[x.second] - base[x.first]).norm() > (base[y.second] - base[y.first]).norm();
-                             });
-                             for (const auto& [i, j] : spans)
-                               for (const bool left : {true, false}) {
-                                 double offset_m = 0.0;
-                                 if (auto route = lengthen.detour(base, i, j, extra, left, &offset_m)) {
-                                   accept(*route, RendezvousStep::detour,
-                                          fmt("%.1f m beside waypoints %.0f to %.0f", offset_m, static_cast<double>(i),
-                                              static_cast<double>(j)) +
-                                              (left ? ", on the left" : ", on the right"));
-                                   return true;
-                                 }
-                               }
-                             return false;
-                           });
-    };
-    if (try_loiter()) continue;
-    // (3) Virtual threat (P4 eq. 12-13): a sphere centred on the route point nearest the
-    // start-goal midpoint; its radius stays below the distance to the other UAVs' routes and
-    // leaves the start and the goal outside. adjust-R grows it; move-H keeps R_x and re-centres
-    // it on each new route.
-    const Vec3 mid = 0.5 * (u.start + *u.goal);
-    auto centre_on = [&](const std::vector<Vec3>& pts) {
-      return *std::min_element(pts.begin(), pts.end(), [&](const Vec3& x, const Vec3& y) {
-        return (x - mid).squaredNorm() < (y - mid).squaredNorm();
-      });
-    };
-    auto radius_limit = [&](const Vec3& h) {
-      double lim = std::min((h - u.start).norm(), (h - *u.goal).norm()) - 2 * q.inflation_m - cell;
-      for (std::size_t o = 0; o < res.uavs.size(); ++o) {
-        if (o == s) continue;
-        const auto& w = res.uavs[o].waypoints;
-        for (std::size_t i = 1; i < w.size(); ++i)
-          lim = std::min(lim, point_segment_distance(h, w[i - 1], w[i]) - q.inflation_m);
-      }
-      return lim;
-    };
-    q = queries[s];
-    q.heading_states = false;
-    q.max_expansions = std::min<std::int64_t>(q.max_expansions, kReplanExpansions);
-    const Vec3 h0 = centre_on(best);
-    const double rx_max = radius_limit(h0);
-    // adjust-R: the length grows with R_x (by steps, the lattice being discrete), so R_x doubles
-    // from half a cell until the route is long enough, then bisection narrows it to a quarter cell.
-    double rx_used = 0.0;
-    auto take_radius = [&](double rx, const DirectionalRoute& route) -> double {  // its length, or -1 without a route
-      if (!route.found) return -1.0;
-      candidates.push_back(route.waypoints);
-      if (route.length_m < lo) rx_used = std::max(rx_used, rx);
-      if (within(route.length_m))
-        accept(route.waypoints, RendezvousStep::virtual_adjust_r,
-               fmt("R_x = %.1f m at (%.0f, %.0f", rx, h0.x(), h0.y()) + fmt(", %.0f)", h0.z()));
-      return route.length_m;
-    };
-    double short_rx = 0.0, long_rx = -1.0;
-    {
-      // The doubling radii run side by side; taken in order, they end at the first route
-      // within the window or too long.
-      std::vector<double> radii;
-      for (double rx = 0.5 * cell; rx < rx_max; rx *= 2.0) radii.push_back(rx);
-      std::vector<DirectionalQuery> qs(radii.size(), q);
-      for (std::size_t k = 0; k < radii.size(); ++k) qs[k].virtual_threats = {Sphere{h0, radii[k]}};
-      const auto routes = run_ordered(
-          engines, sc.world, std::move(qs), keep_query,
-          [&](std::size_t, const DirectionalRoute& route) { return route.found && route.length_m >= lo; }, stop);
-      count(routes);
-      for (std::size_t k = 0; k < routes.size() && routes[k] && !r.ok; ++k) {
-        const double len = take_radius(radii[k], *routes[k]);
-        if (len >= 0.0 && len < lo) short_rx = radii[k];
-        if (len > hi) {
-          long_rx = radii[k];
-          break;
-        }
-      }
+}
+
+// A missing length too short for a loiter (R < R_min) that the virtual threat missed: a detour
+// through one waypoint beside up to kDetourSpan segments, exactly `aim` long; the longest chords
+// of the longest routes found first.
+bool Lengthener::detour() {
+  return on_candidates([](double extra) { return extra > 0.0; }, kLoiterBases,
+                       [&](const std::vector<Vec3>& base, double extra) {
+                         std::vector<std::pair<std::size_t, std::size_t>> spans;
+                         for (std::size_t i = 0; i + 1 < base.size(); ++i)
+                           for (std::size_t j = i + 1; j < base.size() && j - i <= kDetourSpan; ++j)
+                             spans.emplace_back(i, j);
+                         std::stable_sort(spans.begin(), spans.end(), [&](const auto& x, const auto& y) {
+                           return (base[x.second] - base[x.first]).norm() > (base[y.second] - base[y.first]).norm();
+                         });
+                         for (const auto& [i, j] : spans)
+                           for (const bool left : {true, false}) {
+                             double offset_m = 0.0;
+                             if (auto route = lengthen_.detour(base, i, j, extra, left, &offset_m)) {
+                               accept(*route, RendezvousStep::detour,
+                                      fmt("%.1f m beside waypoints %.0f to %.0f", offset_m, static_cast<double>(i),
+                                          static_cast<double>(j)) +
+                                          (left ? ", on the left" : ", on the right"));
+                               return true;
+                             }
+                           }
+                         return false;
+                       });
+}
+
+// The route point nearest the start-goal midpoint.
+Vec3 Lengthener::centre_on(const std::vector<Vec3>& pts) const {
+  const Vec3 mid = 0.5 * (u_.start + *u_.goal);
+  return *std::min_element(pts.begin(), pts.end(), [&](const Vec3& x, const Vec3& y) {
+    return (x - mid).squaredNorm() < (y - mid).squaredNorm();
+  });
+}
+
+// A virtual threat's largest radius at h: below the distance to the other UAVs' routes, the
+// start and the goal outside it.
+double Lengthener::radius_limit(const Vec3& h) const {
+  double lim = std::min((h - u_.start).norm(), (h - *u_.goal).norm()) - 2 * q_.inflation_m - cell_;
+  for (std::size_t o = 0; o < res_.uavs.size(); ++o) {
+    if (o == s_) continue;
+    const auto& w = res_.uavs[o].waypoints;
+    for (std::size_t i = 1; i < w.size(); ++i)
+      lim = std::min(lim, point_segment_distance(h, w[i - 1], w[i]) - q_.inflation_m);
+  }
+  return lim;
+}
+
+// (3) Virtual threat (P4 eq. 12-13): a sphere centred on the route point nearest the start-goal
+// midpoint; adjust-R grows it, move-H keeps R_x and re-centres it on each new route.
+bool Lengthener::virtual_threat() {
+  const Vec3 h0 = centre_on(best_);
+  const double rx_used = adjust_radius(h0, radius_limit(h0));
+  if (!r_.ok) move_centre(rx_used);
+  return r_.ok;
+}
+
+// adjust-R: the length grows with R_x (by steps, the lattice being discrete), so R_x doubles from
+// half a cell until the route is long enough, then bisection narrows it to a quarter cell. The
+// doubling radii run side by side; taken in order, they end at the first route within the
+// window or too long. Returns the largest radius whose route was still too short (0: none).
+double Lengthener::adjust_radius(const Vec3& h0, double rx_max) {
+  double rx_used = 0.0;
+  auto take_radius = [&](double rx, const DirectionalRoute& route) -> double {  // its length, or -1 without a route
+    if (!route.found) return -1.0;
+    candidates_.push_back(route.waypoints);
+    if (route.length_m < window_.lo) rx_used = std::max(rx_used, rx);
+    if (window_.within(route.length_m))
+      accept(route.waypoints, RendezvousStep::virtual_adjust_r,
+             fmt("R_x = %.1f m at (%.0f, %.0f", rx, h0.x(), h0.y()) + fmt(", %.0f)", h0.z()));
+    return route.length_m;
+  };
+  double short_rx = 0.0, long_rx = -1.0;
+  std::vector<double> radii;
+  for (double rx = 0.5 * cell_; rx < rx_max; rx *= 2.0) radii.push_back(rx);
+  std::vector<DirectionalQuery> qs(radii.size(), q_);
+  for (std::size_t k = 0; k < radii.size(); ++k) qs[k].virtual_threats = {Sphere{h0, radii[k]}};
+  const auto routes = searches_.ordered(
+      std::move(qs), Searches::keep_query,
+      [&](std::size_t, const DirectionalRoute& route) { return route.found && route.length_m >= window_.lo; });
+  for (std::size_t k = 0; k < routes.size() && routes[k] && !r_.ok; ++k) {
+    const double len = take_radius(radii[k], *routes[k]);
+    if (len >= 0.0 && len < window_.lo) short_rx = radii[k];
+    if (len > window_.hi) {
+      long_rx = radii[k];
+      break;
     }
-    if (long_rx < 0.0 && !r.ok && rx_max > short_rx) long_rx = rx_max;
-    while (!r.ok && long_rx > 0.0 && long_rx - short_rx > 0.25 * cell && !stop.should_stop()) {
-      const double rx = 0.5 * (short_rx + long_rx);
-      q.virtual_threats = {Sphere{h0, rx}};
-      const double len = take_radius(rx, search.run(sc.world, q, stop));
-      if (len >= 0.0 && len < lo)
-        short_rx = rx;
-      else
-        long_rx = rx;
-    }
-    std::vector<Vec3> current = best;
-    for (int it = 0; it < 15 && !r.ok && rx_used > 0.0 && !stop.should_stop(); ++it) {
-      const Vec3 h = centre_on(current);
-      const double rx = std::min(rx_used, radius_limit(h));
-      if (rx <= 0.0) break;
-      q.virtual_threats = {Sphere{h, rx}};
-      const DirectionalRoute route = search.run(sc.world, q, stop);
-      if (!route.found || route.waypoints == current) break;
-      current = route.waypoints;
-      candidates.push_back(route.waypoints);
-      if (within(route.length_m))
-        accept(route.waypoints, RendezvousStep::virtual_move_h, fmt("R_x = %.1f m, %.0f moves", rx, it + 1));
-    }
-    if (r.ok) continue;
-    // Last: a loiter on any route found on the way, or a detour.
-    if (try_loiter() || try_loiter_anywhere() || try_detour()) continue;
-    r.detail = fmt("no step brought the length (%.1f m) within [%.1f, %.1f] m", r.final_m, lo, hi);
+  }
+  if (long_rx < 0.0 && !r_.ok && rx_max > short_rx) long_rx = rx_max;
+  DirectionalQuery q = q_;
+  while (!r_.ok && long_rx > 0.0 && long_rx - short_rx > 0.25 * cell_ && !searches_.stop().should_stop()) {
+    const double rx = 0.5 * (short_rx + long_rx);
+    q.virtual_threats = {Sphere{h0, rx}};
+    const double len = take_radius(rx, searches_.run(q));
+    if (len >= 0.0 && len < window_.lo)
+      short_rx = rx;
+    else
+      long_rx = rx;
+  }
+  return rx_used;
+}
+
+// move-H: the threat of radius R_x re-centred on each new route, up to kMoveCentreSteps times.
+void Lengthener::move_centre(double rx_used) {
+  std::vector<Vec3> current = best_;
+  DirectionalQuery q = q_;
+  for (int it = 0; it < kMoveCentreSteps && !r_.ok && rx_used > 0.0 && !searches_.stop().should_stop(); ++it) {
+    const Vec3 h = centre_on(current);
+    const double rx = std::min(rx_used, radius_limit(h));
+    if (rx <= 0.0) break;
+    q.virtual_threats = {Sphere{h, rx}};
+    const DirectionalRoute route = searches_.run(q);
+    if (!route.found || route.waypoints == current) break;
+    current = route.waypoints;
+    candidates_.push_back(route.waypoints);
+    if (window_.within(route.length_m))
+      accept(route.waypoints, RendezvousStep::virtual_move_h, fmt("R_x = %.1f m, %.0f moves", rx, it + 1));
+  }
+}
+
+}  // namespace
+
+RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlanner& planner,
+                                 const StopCondition& stop) {
+  RendezvousResult res;
+  Searches searches(sc.world, stop, res);
+  std::vector<DirectionalQuery> queries;
+  for (const UavSpec& u : sc.uavs)
+    queries.push_back(planner.query_for(Problem{u, u.goal.value_or(u.start), {}}, sc.world));
+  if (!queries.empty()) DirectionalAStarPlanner::require_lattice(sc.world, queries.front(), searches.threads(), stop);
+  res.uavs = preplanned_uavs(sc, preplan(sc, queries, searches));
+  for (const auto& r : res.uavs)
+    if (r.ok) res.target_m = std::max(res.target_m, r.final_m);
+  const double cell = queries.empty() ? 1.0 : queries.front().cell_m;
+  res.epsilon_m = sc.mission.arrival_tolerance_m.value_or(cell);
+  const LengthWindow window{res.target_m - res.epsilon_m, res.target_m, res.target_m - 0.5 * res.epsilon_m,
+                            res.epsilon_m};
+  for (std::size_t s = 0; s < res.uavs.size(); ++s) {
+    if (!res.uavs[s].ok || window.within(res.uavs[s].final_m)) continue;
+    Lengthener(sc, s, queries[s], planner.options(), window, searches, res).run();
   }
   return res;
 }

@@ -17,9 +17,18 @@ namespace uavplan {
 
 class RoutesMission final : public Mission {
  public:
+  // `independent` or `route` (its via points: `mission.waypoints`, route_rules.cpp).
+  explicit RoutesMission(MissionType type) : type_(type) {}
+  std::vector<const char*> section_keys() const override;
+  void read_section(const Section& mission, const Section& uavs, Scenario& scenario) const override;
   std::vector<std::string> parameters() const override { return {"local", "window_m"}; }
   bool times_ground_legs() const override { return true; }
   void plan(const Scenario& scenario, const MissionContext& context, Plan& plan) const override;
+  void check_uav(const Scenario& scenario, const UavSpec& uav, const Trajectory& trajectory,
+                 Violations& out) const override;
+
+ private:
+  MissionType type_;
 };
 
 }  // namespace uavplan

@@ -1,0 +1,68 @@
+#include "uavplan/coordination/contract/violation.h"
+
+#include <cstdio>
+
+namespace uavplan {
+
+std::string_view to_string(ViolationKind k) {
+  switch (k) {
+    case ViolationKind::not_planned:
+      return "not_planned";
+    case ViolationKind::unknown_uav:
+      return "unknown_uav";
+    case ViolationKind::trajectory:
+      return "trajectory";
+    case ViolationKind::start:
+      return "start";
+    case ViolationKind::goal:
+      return "goal";
+    case ViolationKind::bounds:
+      return "bounds";
+    case ViolationKind::ceiling:
+      return "ceiling";
+    case ViolationKind::obstacle:
+      return "obstacle";
+    case ViolationKind::low_altitude:
+      return "low_altitude";
+    case ViolationKind::moving_obstacle:
+      return "moving_obstacle";
+    case ViolationKind::separation:
+      return "separation";
+    case ViolationKind::turn:
+      return "turn";
+    case ViolationKind::climb:
+      return "climb";
+    case ViolationKind::speed:
+      return "speed";
+    case ViolationKind::via_point:
+      return "via_point";
+    case ViolationKind::length_spread:
+      return "length_spread";
+    case ViolationKind::arrival_spread:
+      return "arrival_spread";
+  }
+  return "?";
+}
+
+std::string describe(const Violation& v) {
+  std::string s = v.uav.empty() ? std::string("mission") : v.uav;
+  s += " ";
+  s += to_string(v.kind);
+  char buf[160];
+  if (v.t_s) {
+    std::snprintf(buf, sizeof buf, " t=%.2f s", *v.t_s);
+    s += buf;
+  }
+  if (v.where) {
+    std::snprintf(buf, sizeof buf, " at (%.2f, %.2f, %.2f)", v.where->x(), v.where->y(), v.where->z());
+    s += buf;
+  }
+  return s + ": " + v.message;
+}
+
+void add_violation(Violations& out, ViolationKind kind, const std::string& uav, std::optional<double> t_s,
+                   std::optional<Vec3> where, std::string message) {
+  out.push_back({kind, uav, t_s, where, std::move(message)});
+}
+
+}  // namespace uavplan

@@ -1,0 +1,51 @@
+// The formation mission's part of the contract (P1): its shape, re-forming and arrival
+// tolerance, as read and as verified.
+#include <algorithm>
+#include <string>
+
+#include "uavplan/coordination/formation/formation_mission.h"
+#include "uavplan/core/text.h"
+
+namespace uavplan {
+
+void read_formation_shape(const Section& list, Scenario& sc) {
+  list.expect_seq();
+  if (list.size() != sc.uavs.size())
+    list.fail("has " + std::to_string(list.size()) + " slots for " + std::to_string(sc.uavs.size()) +
+              " UAVs (one slot per UAV, in scenario order)");
+  for (std::size_t i = 0; i < list.size(); ++i) sc.mission.shape.push_back(list.item(i)->vec3());
+  for (std::size_t i = 0; i < sc.mission.shape.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j) {
+      const double d = (sc.mission.shape[i] - sc.mission.shape[j]).norm();
+      const double need = std::max(sc.mission.separation_m, sc.uavs[i].radius_m + sc.uavs[j].radius_m);
+      if (d < need)
+        list.item(i)->fail("is " + num_text(d) + " m from slot " + std::to_string(j) + " (" + sc.uavs[j].id +
+                           "); slots must be at least " + num_text(need) +
+                           " m apart (the separation, and the UAVs' bodies)");
+    }
+}
+
+void FormationMission::read_section(const Section& m, const Section& /*uavs*/, Scenario& sc) const {
+  read_formation_shape(*m.req("shape"), sc);
+  if (m.has("reform_after_steps")) {
+    const std::int64_t n = m.at("reform_after_steps")->integer();
+    if (n < 1 || n > 1000000)
+      m.at("reform_after_steps")->fail("expected at least 1 clear step before re-forming, got " + std::to_string(n));
+    sc.mission.reform_after_steps = static_cast<int>(n);
+  }
+  if (m.has("arrival_tolerance_s")) sc.mission.arrival_tolerance_s = m.at("arrival_tolerance_s")->non_negative();
+}
+
+// The UAVs' arrival times (their trajectories' ends) within arrival_tolerance_s of one another.
+void FormationMission::check_plan(const Scenario& sc, const FlownUavs& flown, Violations& out) const {
+  if (flown.size() < 2) return;
+  double lo = World::kInf, hi = -World::kInf;
+  for (const auto& f : flown)
+    lo = std::min(lo, f.second->trajectory.back().t_s), hi = std::max(hi, f.second->trajectory.back().t_s);
+  if (hi - lo > sc.mission.arrival_tolerance_s + 1e-6)
+    add_violation(out, ViolationKind::arrival_spread, "", std::nullopt, std::nullopt,
+                  "arrival times differ by " + num_text(hi - lo) + " s, above arrival_tolerance_s " +
+                      num_text(sc.mission.arrival_tolerance_s) + " s");
+}
+
+}  // namespace uavplan
