@@ -115,7 +115,7 @@ std::string turn_table(bool& ok) {
     s.position = Vec3(off[i].x() + 60.0 * dir(45.0).x(), off[i].y() + 60.0 * dir(45.0).y(), 5000.0);
     s.speed_mps = 150.0;
     s.heading_rad = deg_to_rad(45.0);
-    g.launch(i, s, true);
+    g.launch(i, s, FormationGroup::Launch::in_formation);
   }
   RouteSteering steer({a, b, c}, {}, 150.0 / deg_to_rad(2.2), 300.0);
   const auto nearest = [&] {

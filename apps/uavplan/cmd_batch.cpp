@@ -2,11 +2,9 @@
 // and, with --mpi under mpirun, across machines; DIR/results.csv, timings.csv, each run's plan,
 // a summary table. A batch killed part way continues with --resume.
 //
-// DIR/journal/ holds one line per finished run (written in one write(2) after the run's plan
-// file is in place): a SIGKILL loses at most the runs under way, and a line cut short is
-// dropped on resume, its run done again. Under MPI every rank appends to its own journal, so
-// DIR must be a folder every rank sees (as a cluster's shared file system is).
-#include <fcntl.h>
+// DIR/journal/ (experiments/journal.h) holds one line per finished run: a SIGKILL loses at most
+// the runs under way. Under MPI every rank appends to its own journal, so DIR must be a folder
+// every rank sees (as a cluster's shared file system is).
 #include <unistd.h>
 
 #include <chrono>
@@ -21,6 +19,7 @@
 #include "batch_mpi.h"
 #include "commands.h"
 #include "uavplan/experiments/batch.h"
+#include "uavplan/experiments/journal.h"
 #include "uavplan/experiments/ompl_log.h"
 #include "uavplan/experiments/results.h"
 #include "uavplan/experiments/sweep.h"
@@ -41,42 +40,6 @@ struct BatchArgs {
   std::string ompl_log;
   std::uint64_t max_memory_bytes = 0;
 };
-
-fs::path journal_dir(const std::string& out) { return fs::path(out) / "journal"; }
-
-// Every parsable journal line of every rank's file.
-std::vector<RunRecord> read_journals(const std::string& out) {
-  std::vector<RunRecord> done;
-  std::error_code ec;
-  if (!fs::is_directory(journal_dir(out), ec)) return done;
-  std::vector<fs::path> files;
-  for (const auto& e : fs::directory_iterator(journal_dir(out))) files.push_back(e.path());
-  std::sort(files.begin(), files.end());
-  for (const fs::path& f : files) {
-    std::ifstream in(f);
-    std::string line;
-    while (std::getline(in, line))
-      if (auto r = parse_journal_line(line)) done.push_back(std::move(*r));
-  }
-  return done;
-}
-
-// The runs a journal holds, checked against the sweep (one record per run number).
-std::optional<std::vector<RunRecord>> resumed_runs(const BatchArgs& a, const std::vector<RunSpec>& runs, bool root) {
-  std::vector<RunRecord> kept;
-  std::set<std::size_t> seen;
-  for (RunRecord& r : read_journals(a.out_dir)) {
-    if (r.spec.index >= runs.size() || !same_run(r.spec, runs[r.spec.index])) {
-      if (root)
-        std::cerr << a.sweep << ": --resume: " << a.out_dir << " holds run " << r.spec.index
-                  << " of another sweep, or its scenario file changed since (scenario, its content, planner, seed or "
-                     "parameters differ); use a new folder\n";
-      return std::nullopt;
-    }
-    if (seen.insert(r.spec.index).second) kept.push_back(std::move(r));
-  }
-  return kept;
-}
 
 std::string format_eta(double s) {
   char buf[32];
@@ -127,93 +90,90 @@ void write_ompl_logs(const BatchArgs& a, const Sweep& sweep, const std::vector<R
   }
 }
 
-int run_batch_command(const BatchArgs& a) {
-  check_output_dir(a.out_dir);
-  MpiSession mpi(a.mpi);
+// The sweep and its runs; nullopt after saying why (bad input).
+struct Loaded {
   Sweep sweep;
   std::vector<RunSpec> runs;
+};
+std::optional<Loaded> load(const BatchArgs& a, const MpiSession& mpi) {
+  Loaded l;
   try {
-    sweep = load_sweep(a.sweep);
-    check_sweep(sweep);
+    l.sweep = load_sweep(a.sweep);
+    check_sweep(l.sweep);
     // A dry run counts the runs without listing them (a sweep may have 1e8).
-    if (!a.dry_run) runs = expand_runs(sweep);
+    if (!a.dry_run) l.runs = expand_runs(l.sweep);
   } catch (const InputError& e) {
     if (mpi.root()) std::cerr << e.what() << "\n";
-    return kExitBadInput;
+    return std::nullopt;
   }
-  if (a.dry_run) {
-    if (mpi.root()) {
-      std::size_t settings = 0;
-      for (const auto& p : sweep.planners) settings += grid_size(p.params);
-      std::printf("%zu runs: %zu scenarios x %zu planner settings x %zu parameter settings x %zu seeds\n",
-                  run_count(sweep), sweep.scenarios.size(), settings, grid_size(sweep.params), sweep.seeds.size());
-    }
-    return kExitOk;
-  }
-  const bool exists = fs::exists(journal_dir(a.out_dir));
-  if (exists && !a.resume) {
-    if (mpi.root())
-      std::cerr << a.sweep << ": " << a.out_dir
-                << " holds a batch already: --resume continues it, or choose another folder\n";
-    return kExitBadInput;
-  }
-  mpi.barrier();  // every rank has looked before rank 0 touches the folder
-  // Rank 0 merges the journals of the last attempt into one file (lines cut short dropped).
+  return l;
+}
+
+void print_dry_run(const Sweep& sweep) {
+  std::size_t settings = 0;
+  for (const auto& p : sweep.planners) settings += grid_size(p.params);
+  std::printf("%zu runs: %zu scenarios x %zu planner settings x %zu parameter settings x %zu seeds\n", run_count(sweep),
+              sweep.scenarios.size(), settings, grid_size(sweep.params), sweep.seeds.size());
+}
+
+// The runs done before (a resumed batch): rank 0 checks the journal against the sweep and merges
+// it into one file, then every rank reads it. nullopt after saying why.
+std::optional<std::vector<RunRecord>> previous_runs(const BatchArgs& a, const std::vector<RunSpec>& runs,
+                                                    MpiSession& mpi) {
   std::vector<RunRecord> previous;
   if (mpi.root()) {
-    const auto kept = resumed_runs(a, runs, true);
+    std::string error;
+    const auto kept = resumed_runs(a.out_dir, runs, error);
     if (!kept) {
+      std::cerr << a.sweep << ": --resume: " << error << "\n";
       mpi.any(true);
-      return kExitBadInput;
+      return std::nullopt;
     }
     previous = *kept;
-    std::string merged;
-    for (const RunRecord& r : previous) merged += journal_line(r) + "\n";
-    fs::create_directories(journal_dir(a.out_dir));
-    const fs::path mine = journal_dir(a.out_dir) / "rank-0.jsonl";
-    write_file_atomic(mine.string(), merged);
-    for (const auto& e : fs::directory_iterator(journal_dir(a.out_dir)))
-      if (e.path() != mine) fs::remove(e.path());
+    merge_journal(a.out_dir, previous);
   }
-  if (mpi.any(false)) return kExitBadInput;
+  if (mpi.any(false)) return std::nullopt;
   mpi.barrier();
   if (!mpi.root()) previous = read_journals(a.out_dir);
+  return previous;
+}
+
+// This rank's share of the runs not done before.
+std::vector<RunSpec> pending_runs(const std::vector<RunSpec>& runs, const std::vector<RunRecord>& previous,
+                                  const MpiSession& mpi) {
   std::set<std::size_t> done_before;
   for (const RunRecord& r : previous) done_before.insert(r.spec.index);
   std::vector<RunSpec> pending;
   std::size_t k = 0;
   for (const RunSpec& r : runs)
     if (!done_before.count(r.index) && (k++ % std::size_t(mpi.size())) == std::size_t(mpi.rank())) pending.push_back(r);
+  return pending;
+}
 
-  const fs::path journal = journal_dir(a.out_dir) / ("rank-" + std::to_string(mpi.rank()) + ".jsonl");
-  const int fd = ::open(journal.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC | O_NOFOLLOW, 0644);
-  if (fd < 0) {
-    std::cerr << a.out_dir << ": cannot write " << journal.string() << "\n";
-    return kExitBadInput;
-  }
-  const fs::path runs_dir = fs::path(a.out_dir) / "runs";
-  fs::create_directories(runs_dir);
-  if (mpi.root()) remove_temporaries(runs_dir.string());  // plan files a killed batch was writing
-  const std::string started = now_text();
-  const auto t0 = Clock::now();
-  install_interrupt_handlers();
-  ScenarioCache cache;
+BatchOptions batch_options(const BatchArgs& a, const Sweep& sweep, int rank) {
   BatchOptions opt;
   opt.jobs = a.jobs;
   opt.time_limit_s = sweep.time_limit_s;
   opt.isolate = a.isolate;
   opt.uavplan_exe = fs::canonical("/proc/self/exe").string();
-  opt.work_dir = (fs::path(a.out_dir) / "tmp" / ("rank-" + std::to_string(mpi.rank()))).string();
+  opt.work_dir = (fs::path(a.out_dir) / "tmp" / ("rank-" + std::to_string(rank))).string();
   opt.max_memory_bytes = a.max_memory_bytes;
   opt.stop = interrupt_flag();
+  return opt;
+}
+
+// This rank's runs on every core: each run's plan file, then its journal line; progress on
+// stderr.
+std::vector<RunRecord> run_pending(const BatchArgs& a, const std::vector<RunSpec>& pending, const BatchOptions& opt,
+                                   JournalWriter& journal) {
+  const auto t0 = Clock::now();
+  ScenarioCache cache;
   std::vector<RunRecord> mine;
   Progress progress;
   const std::size_t total = pending.size();
   run_batch(pending, cache, opt, [&](RunRecord&& rec, const std::string& plan_json) {
     if (!plan_json.empty()) write_file_atomic_in((fs::path(a.out_dir) / rec.plan_file).string(), plan_json);
-    const std::string line = journal_line(rec) + "\n";
-    if (::write(fd, line.data(), line.size()) != static_cast<ssize_t>(line.size()))
-      throw std::runtime_error("cannot append to " + journal.string());
+    journal.append(rec);
     mine.push_back(std::move(rec));
     const double s = std::chrono::duration<double>(Clock::now() - t0).count();
     const double rate = double(mine.size()) / std::max(s, 1e-9);
@@ -223,7 +183,65 @@ int run_batch_command(const BatchArgs& a) {
                   format_eta(double(total - mine.size()) / std::max(rate, 1e-9)).c_str());
     progress.update(buf);
   });
-  ::close(fd);
+  return mine;
+}
+
+// Rank 0: results.csv, timings.csv, the summary, the OMPL logs. The exit code.
+int write_results(const BatchArgs& a, const Loaded& l, const std::vector<RunRecord>& all, std::size_t before,
+                  double total_s, const std::string& started, const MpiSession& mpi, int jobs, bool stopped) {
+  write_file_atomic((fs::path(a.out_dir) / "results.csv").string(), results_csv(all));
+  write_file_atomic((fs::path(a.out_dir) / "timings.csv").string(), timings_csv(all));
+  std::cout << summary_table(all);
+  std::size_t solved = 0;
+  for (const RunRecord& r : all) solved += r.outcome.status == "solved";
+  std::printf(
+      "%zu of %zu runs done (%zu this time, %.1f s, %d rank%s x %d jobs), %zu solved; results in %s/results.csv\n",
+      all.size(), l.runs.size(), all.size() - before, total_s, mpi.size(), mpi.size() > 1 ? "s" : "",
+      jobs > 0 ? jobs : int(std::max(1u, std::thread::hardware_concurrency())), solved, a.out_dir.c_str());
+  if (!a.ompl_log.empty()) write_ompl_logs(a, l.sweep, all, total_s, started);
+  if (stopped && all.size() < l.runs.size()) {
+    std::cerr << "uavplan: interrupted after the runs under way; --resume continues the " << l.runs.size() - all.size()
+              << " runs left\n";
+    return kExitInterrupted;
+  }
+  return kExitOk;
+}
+
+int run_batch_command(const BatchArgs& a) {
+  check_output_dir(a.out_dir);
+  MpiSession mpi(a.mpi);
+  const std::optional<Loaded> l = load(a, mpi);
+  if (!l) return kExitBadInput;
+  if (a.dry_run) {
+    if (mpi.root()) print_dry_run(l->sweep);
+    return kExitOk;
+  }
+  if (fs::exists(journal_dir(a.out_dir)) && !a.resume) {
+    if (mpi.root())
+      std::cerr << a.sweep << ": " << a.out_dir
+                << " holds a batch already: --resume continues it, or choose another folder\n";
+    return kExitBadInput;
+  }
+  mpi.barrier();  // every rank has looked before rank 0 touches the folder
+  const std::optional<std::vector<RunRecord>> previous = previous_runs(a, l->runs, mpi);
+  if (!previous) return kExitBadInput;
+  const std::vector<RunSpec> pending = pending_runs(l->runs, *previous, mpi);
+  std::optional<JournalWriter> journal;
+  try {
+    journal.emplace(a.out_dir, mpi.rank());
+  } catch (const std::runtime_error& e) {
+    std::cerr << a.out_dir << ": " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  const fs::path runs_dir = fs::path(a.out_dir) / "runs";
+  fs::create_directories(runs_dir);
+  if (mpi.root()) remove_temporaries(runs_dir.string());  // plan files a killed batch was writing
+  const std::string started = now_text();
+  const auto t0 = Clock::now();
+  install_interrupt_handlers();
+  const BatchOptions opt = batch_options(a, l->sweep, mpi.rank());
+  const std::vector<RunRecord> mine = run_pending(a, pending, opt, *journal);
+  journal.reset();
   std::error_code ec;
   fs::remove_all(opt.work_dir, ec);
   const double total_s = std::chrono::duration<double>(Clock::now() - t0).count();
@@ -234,29 +252,9 @@ int run_batch_command(const BatchArgs& a) {
   const std::string gathered = mpi.gather(lines);
   const bool stopped = mpi.any(interrupted());
   if (!mpi.root()) return stopped ? kExitInterrupted : kExitOk;
-  std::vector<RunRecord> all = previous;
-  std::size_t from = 0;
-  while (from < gathered.size()) {
-    const std::size_t nl = gathered.find('\n', from);
-    if (auto r = parse_journal_line(gathered.substr(from, nl - from))) all.push_back(std::move(*r));
-    from = nl == std::string::npos ? gathered.size() : nl + 1;
-  }
-  write_file_atomic((fs::path(a.out_dir) / "results.csv").string(), results_csv(all));
-  write_file_atomic((fs::path(a.out_dir) / "timings.csv").string(), timings_csv(all));
-  std::cout << summary_table(all);
-  std::size_t solved = 0;
-  for (const RunRecord& r : all) solved += r.outcome.status == "solved";
-  std::printf(
-      "%zu of %zu runs done (%zu this time, %.1f s, %d rank%s x %d jobs), %zu solved; results in %s/results.csv\n",
-      all.size(), runs.size(), all.size() - previous.size(), total_s, mpi.size(), mpi.size() > 1 ? "s" : "",
-      opt.jobs > 0 ? opt.jobs : int(std::max(1u, std::thread::hardware_concurrency())), solved, a.out_dir.c_str());
-  if (!a.ompl_log.empty()) write_ompl_logs(a, sweep, all, total_s, started);
-  if (stopped && all.size() < runs.size()) {
-    std::cerr << "uavplan: interrupted after the runs under way; --resume continues the " << runs.size() - all.size()
-              << " runs left\n";
-    return kExitInterrupted;
-  }
-  return kExitOk;
+  std::vector<RunRecord> all = *previous;
+  for (RunRecord& r : parse_journal_lines(gathered)) all.push_back(std::move(r));
+  return write_results(a, *l, all, previous->size(), total_s, started, mpi, opt.jobs, stopped);
 }
 
 }  // namespace

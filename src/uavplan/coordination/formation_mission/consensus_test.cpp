@@ -53,7 +53,7 @@ TEST(Consensus, StraightFlightConvergesToTheShapeAtTheDesiredVelocity) {
     s.position = starts[i];
     s.speed_mps = 140.0 + 5.0 * i;
     s.heading_rad = deg_to_rad(10.0 * i);
-    g.launch(i, s, true);
+    g.launch(i, s, FormationGroup::Launch::in_formation);
   }
   FormationOrder o{150.0, deg_to_rad(30.0), 1.0, std::vector<double>(4, 5000.0)};
   for (int k = 0; k < 3000; ++k) g.step(o, {});
@@ -76,7 +76,7 @@ TEST(Consensus, UavsKilometresApartOnOppositeCoursesGather) {
     s.position = starts[i];
     s.speed_mps = 150.0;
     s.heading_rad = deg_to_rad(90.0 * i);
-    g.launch(i, s, true);
+    g.launch(i, s, FormationGroup::Launch::in_formation);
   }
   FormationOrder o{150.0, 0.0, 3.0, std::vector<double>(4, 5000.0)};
   for (int k = 0; k < 6000 && g.shape_error_m(o) > 5.0; ++k) g.step(o, {});
@@ -96,7 +96,7 @@ TEST(Consensus, TheFortyFiveToFifteenTurnKeepsTheSafetyDistanceAndPassesTheWaypo
         Vec3(off[i].x() + 60.0 * std::cos(deg_to_rad(45.0)), off[i].y() + 60.0 * std::sin(deg_to_rad(45.0)), 5000.0);
     s.speed_mps = 150.0;
     s.heading_rad = deg_to_rad(45.0);
-    g.launch(i, s, true);
+    g.launch(i, s, FormationGroup::Launch::in_formation);
   }
   RouteSteering steer({a, b, c}, {}, 150.0 / deg_to_rad(2.2), 300.0);
   double nearest = 1e300, miss = 1e300;

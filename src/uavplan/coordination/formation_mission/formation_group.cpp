@@ -24,10 +24,10 @@ void FormationGroup::record(std::size_t i) {
   rows_[i].push_back({t_s_, states_[i].position});
 }
 
-void FormationGroup::launch(std::size_t i, const AutopilotState& s, bool join) {
+void FormationGroup::launch(std::size_t i, const AutopilotState& s, Launch how) {
   states_[i] = s;
   flying_[i] = 1;
-  joined_[i] = join;
+  joined_[i] = how == Launch::in_formation;
   record(i);
 }
 

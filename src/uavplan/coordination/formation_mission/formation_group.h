@@ -42,8 +42,10 @@ class FormationGroup {
   const Trajectory& trajectory(std::size_t i) const { return rows_[i]; }
   const std::vector<Vec3>& shape() const { return shape_; }
 
-  // UAV i flies from now with this state (recorded now); `join`: under the consensus laws.
-  void launch(std::size_t i, const AutopilotState& state, bool join);
+  // How a launched UAV flies: on its own command (until join()), or under the consensus laws.
+  enum class Launch { solo, in_formation };
+  // UAV i flies from now with this state (recorded now).
+  void launch(std::size_t i, const AutopilotState& state, Launch how);
   void join(std::size_t i) { joined_[i] = true; }
   // UAV i leaves the group (its rows end here).
   void release(std::size_t i);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <numeric>
 #include <stdexcept>
 
@@ -10,6 +11,7 @@
 #include "uavplan/coordination/formation_mission/formation_group.h"
 #include "uavplan/coordination/formation_mission/landing.h"
 #include "uavplan/coordination/timing.h"
+#include "uavplan/planning/params.h"
 #include "uavplan/planning/registry.h"
 #include "uavplan/simulation/vehicle_flight.h"
 
@@ -17,15 +19,17 @@ namespace uavplan {
 namespace {
 
 constexpr double kG_mps2 = 9.81;
+// A route waypoint this near a task point is that task point (pso_mpc puts one on each).
+constexpr double kTaskPointMatch_m = 1.0;
 
 // The model a UAV flies through: its own, or papers.md P5's defaults (time constants; the turn rate of
 // a 30 deg bank at cruise; climb at most 20 m/s and within its climb angle at its least speed;
 // the horizontal speed at most what leaves the maximum speed in 3-D while climbing).
-AutopilotModel mission_model(const UavSpec& u) {
+AutopilotModel mission_model(const UavSpec& u, const FormationMissionOptions& o) {
   const AutopilotModel own = autopilot_of(u);
   AutopilotLimits lim = own.limits();
-  if (!u.max_turn_rate_rad_s) lim.max_turn_rate_rad_s = kG_mps2 * std::tan(deg_to_rad(30.0)) / u.speed.cruise_mps;
-  double climb = u.max_climb_rate_mps.value_or(20.0);
+  if (!u.max_turn_rate_rad_s) lim.max_turn_rate_rad_s = kG_mps2 * std::tan(deg_to_rad(o.bank_deg)) / u.speed.cruise_mps;
+  double climb = u.max_climb_rate_mps.value_or(o.max_climb_rate_mps);
   if (u.max_climb_rad < kPi / 2 - 1e-9)
     climb = std::min(climb, 0.95 * std::max(u.speed.min_mps, 1.0) * std::tan(u.max_climb_rad));
   lim.max_climb_rate_mps = climb;
@@ -60,7 +64,8 @@ std::vector<GroundRun> departures(const Scenario& sc, const std::vector<Vec3>& s
   for (const std::size_t i : order) {
     const UavSpec& u = sc.uavs[i];
     const double v_lo = lift_off_mps(u);
-    const double acc = std::max(3.0, v_lo * v_lo / (2.0 * 0.4 * af.runway_length_m));
+    const double acc =
+        std::max(o.min_roll_accel_mps2, v_lo * v_lo / (2.0 * o.lift_off_within_runway * af.runway_length_m));
     const double roll_s = v_lo / acc, roll_m = 0.5 * v_lo * roll_s;
     const Vec3 thr(af.position.x(), af.position.y(), af.position.z());
     const double taxi_s = (starts[i] - thr).norm() / o.taxi_mps;
@@ -84,63 +89,337 @@ std::vector<GroundRun> departures(const Scenario& sc, const std::vector<Vec3>& s
   return out;
 }
 
-}  // namespace
-
-void PhasedFormationMission::plan(const Scenario& sc, const MissionContext& ctx, Plan& plan) const {
-  const FormationMissionOptions o;
-  const std::size_t n = sc.uavs.size();
-  if (!sc.mission.airfield || sc.mission.shape.size() != n || sc.mission.task_points.empty())
-    throw std::invalid_argument("a formation_mission needs an airfield, a slot per UAV and a task point");
-  const Airfield& af = *sc.mission.airfield;
-  const Vec3 dir(std::cos(af.runway_heading_rad), std::sin(af.runway_heading_rad), 0.0);
-  std::vector<Vec3> starts;
-  std::vector<AutopilotModel> models;
-  for (std::size_t i = 0; i < n; ++i) {
-    starts.push_back(ctx.ground.start.size() > i && ctx.ground.start[i] ? *ctx.ground.start[i] : sc.uavs[i].start);
-    models.push_back(mission_model(sc.uavs[i]));
-  }
-  FormationGroupOptions go;
-  const Topology topology = sc.mission.topology.empty() ? complete_topology(n) : sc.mission.topology;
-
-  // The coarse route (pso_mpc) for a body as wide as the enlarged shape plus the turn's overshoot.
-  const UavSpec& lead = sc.uavs.front();
+// The formation as one body: its slots' mean, its half-width, the widest UAV, the slowest
+// cruise and the slowest turn rate.
+struct FormationBody {
   Vec3 mean_slot = Vec3::Zero();
-  for (const Vec3& s : sc.mission.shape) mean_slot += s / static_cast<double>(n);
-  double body = 0.0, widest = 0.0, cruise = World::kInf, turn_rate = World::kInf;
+  double half_width_m = 0.0, widest_m = 0.0, cruise_mps = World::kInf, turn_rate_rad_s = World::kInf;
+};
+
+FormationBody formation_body(const Scenario& sc, const std::vector<AutopilotModel>& models) {
+  const std::size_t n = sc.uavs.size();
+  FormationBody b;
+  for (const Vec3& s : sc.mission.shape) b.mean_slot += s / static_cast<double>(n);
   for (std::size_t i = 0; i < n; ++i) {
-    body = std::max(body, (sc.mission.shape[i] - mean_slot).head<2>().norm());
-    widest = std::max(widest, sc.uavs[i].radius_m);
-    cruise = std::min(cruise, sc.uavs[i].speed.cruise_mps);
-    turn_rate = std::min(turn_rate, models[i].limits().max_turn_rate_rad_s);
+    b.half_width_m = std::max(b.half_width_m, (sc.mission.shape[i] - b.mean_slot).head<2>().norm());
+    b.widest_m = std::max(b.widest_m, sc.uavs[i].radius_m);
+    b.cruise_mps = std::min(b.cruise_mps, sc.uavs[i].speed.cruise_mps);
+    b.turn_rate_rad_s = std::min(b.turn_rate_rad_s, models[i].limits().max_turn_rate_rad_s);
   }
-  const double z_form = af.position.z() + o.form_up_height_m;
-  const double ceiling =
-      lead.ceiling_m ? std::min(*lead.ceiling_m, sc.world.bounds().max.z()) : sc.world.bounds().max.z();
-  if (z_form + o.layer_spacing_m * n > ceiling) {
-    fail_all(sc, "no room for the form-up's altitude layers below the ceiling", plan);
-    return;
-  }
+  return b;
+}
+
+Vec3 runway_direction(const Airfield& af) {
+  return {std::cos(af.runway_heading_rad), std::sin(af.runway_heading_rad), 0.0};
+}
+
+// The coarse route's problem (pso_mpc): from the departure point after the runway through the
+// task points at their entry headings back to the landing cylinder, for a body as wide as the
+// enlarged shape plus the turn's overshoot.
+Problem coarse_problem(const Scenario& sc, const MissionContext& ctx, const FormationMissionOptions& o,
+                       const FormationBody& b, double z_form) {
+  const Airfield& af = *sc.mission.airfield;
+  const Vec3 dir = runway_direction(af);
+  const UavSpec& lead = sc.uavs.front();
   Problem pb;
   pb.uav = lead;
   pb.uav.id = "formation";
-  pb.uav.radius_m = o.enlargement * body + widest + cruise / turn_rate * (1.0 - std::cos(deg_to_rad(30.0)));
+  pb.uav.radius_m = o.enlargement * b.half_width_m + b.widest_m +
+                    b.cruise_mps / b.turn_rate_rad_s * (1.0 - std::cos(deg_to_rad(o.overshoot_turn_deg)));
   pb.uav.start = af.position + (af.runway_length_m + o.departure_after_runway_m) * dir;
   pb.uav.start.z() = z_form;
   pb.uav.heading_rad = af.runway_heading_rad;
-  pb.uav.speed.cruise_mps = cruise;
-  pb.uav.max_turn_rate_rad_s = 0.8 * turn_rate;  // margin for the shape turning as a body
+  pb.uav.speed.cruise_mps = b.cruise_mps;
+  pb.uav.max_turn_rate_rad_s = o.turn_margin * b.turn_rate_rad_s;  // margin for the shape turning as a body
   pb.uav.model = lead.model.value_or(AutopilotParams{});
   for (const TaskPoint& tp : sc.mission.task_points) {
     pb.via.push_back(tp.position);
     pb.via_entry_heading_rad.push_back(tp.entry_heading_rad);
   }
   // Back to the landing cylinder (phase 5) at the last task point's altitude.
-  const Vec3 cylinder = af.position - LandingOptions{}.cylinder_before_threshold_m * dir;
+  const Vec3 cylinder = af.position - o.landing.cylinder_before_threshold_m * dir;
   pb.goal = Vec3(cylinder.x(), cylinder.y(), sc.mission.task_points.back().position.z());
   pb.seed = ctx.options.seed;
+  return pb;
+}
+
+// The route's waypoints that are task points are flown over; `last_task` the last of them.
+std::vector<char> task_fly_over(const Scenario& sc, const std::vector<Vec3>& wps, std::size_t& last_task) {
+  std::vector<char> fly_over(wps.size(), 0);
+  last_task = 0;
+  for (const TaskPoint& tp : sc.mission.task_points)
+    for (std::size_t k = last_task + 1; k < wps.size(); ++k)
+      if ((wps[k] - tp.position).norm() < kTaskPointMatch_m) {
+        fly_over[k] = 1, last_task = k;
+        break;
+      }
+  return fly_over;
+}
+
+// The flight of one formation_mission, phase by phase, on one FormationGroup; each phase a
+// method that returns whether it completed.
+class PhasedFlight {
+ public:
+  PhasedFlight(const Scenario& sc, const MissionContext& ctx, const FormationMissionOptions& o,
+               const std::vector<Vec3>& starts, const std::vector<AutopilotModel>& models, const FormationBody& body,
+               const std::vector<Vec3>& wps, double route_m, double z_form)
+      : sc_(sc),
+        ctx_(ctx),
+        o_(o),
+        n_(sc.uavs.size()),
+        af_(*sc.mission.airfield),
+        body_(body),
+        z_form_(z_form),
+        fly_over_(task_fly_over(sc, wps, last_task_)),
+        steer_(wps, fly_over_, body.cruise_mps / body.turn_rate_rad_s, o.steering_switch_m),
+        dep_(departures(sc, starts, o, go_.dt_s, order_)),
+        group_(models, sc.mission.shape, sc.mission.topology.empty() ? complete_topology(n_) : sc.mission.topology, go_,
+               0.0),
+        route_s_(3.0 * route_m / body.cruise_mps + o.step_timeout_s),
+        models_(models) {
+    layer_.resize(n_);
+    up_.resize(n_);
+    for (std::size_t k = 0; k < n_; ++k)
+      layer_[order_[k]] = o.layer_spacing_m * (static_cast<double>(n_ - 1 - k) - 0.5 * (n_ - 1));
+    for (std::size_t i = 0; i < n_; ++i) up_[i] = sc.mission.shape[i].z() - body.mean_slot.z();
+    order_now_.speed_mps = body.cruise_mps;
+    order_now_.heading_rad = af_.runway_heading_rad;
+    order_now_.scale = o.enlargement;
+    order_now_.altitude_m.assign(n_, z_form);
+    offsets_ = layer_;
+  }
+
+  // Phases 1-5; false with failure() set where one does not complete.
+  bool fly() {
+    // A phase that fails ends the flight; the later ones are logged as ending then.
+    bool ok = phase("form_up", form_up());
+    ok = phase("mission", ok && task_points());
+    ok = phase("return", ok && back());
+    ok = phase("dismiss", ok && dismiss());
+    return ok && land();
+  }
+  const std::string& failure() const { return failed_; }
+  const FormationLog& log() const { return log_; }
+  // UAV i's rows: on the ground, in the group, landing.
+  Trajectory trajectory(std::size_t i) const {
+    Trajectory tr = dep_[i].ground;
+    for (const TrajectorySample& s : group_.trajectory(i))
+      if (s.t_s > tr.back().t_s + 1e-9) tr.push_back(s);
+    for (const TrajectorySample& s : landings_[i])
+      if (s.t_s > tr.back().t_s + 1e-9) tr.push_back(s);
+    return tr;
+  }
+
+ private:
+  // Phase 1: take-off in turn, layers, the enlarged shape, heights, shrink.
+  bool form_up() {
+    if (!run_until([&] { return all_joined() && in_shape(); }, o_.step_timeout_s)) return false;
+    offsets_ = up_;
+    return run_until([&] { return in_shape(); }, o_.step_timeout_s) && scale_to(1.0);
+  }
+  // Phase 2: the route through the task points.
+  bool task_points() {
+    return run_until([&] { return steer_.next() > last_task_; }, route_s_);
+  }
+  // Phase 3: back towards the airfield until within dismiss_within_m.
+  bool back() {
+    return run_until(
+        [&] { return !route_left_ || (group_.centroid() - af_.position).head<2>().norm() < o_.dismiss_within_m; },
+        route_s_);
+  }
+  // Phase 4, on the way to the landing cylinder: the reverse of form-up.
+  bool dismiss() {
+    if (!scale_to(o_.enlargement)) return false;
+    offsets_ = layer_;
+    return run_until([&] { return in_shape(); }, o_.step_timeout_s);
+  }
+  bool land();
+  void step();
+  bool run_until(const std::function<bool()>& done, double limit_s);
+  bool scale_to(double target);
+  bool all_joined() const {
+    for (std::size_t i = 0; i < n_; ++i)
+      if (!group_.in_formation(i)) return false;
+    return true;
+  }
+  bool in_shape() const { return group_.shape_error_m(order_now_) < o_.shape_tolerance_m; }
+  bool phase(const char* name, bool ok);
+
+  const Scenario& sc_;
+  const MissionContext& ctx_;
+  const FormationMissionOptions& o_;
+  std::size_t n_;
+  const Airfield& af_;
+  FormationBody body_;
+  double z_form_;
+  FormationGroupOptions go_;
+  std::size_t last_task_ = 0;
+  std::vector<char> fly_over_;
+  RouteSteering steer_;
+  std::vector<std::size_t> order_;  // of take-off
+  std::vector<GroundRun> dep_;
+  FormationGroup group_;
+  double route_s_;  // a route phase not ended within this much flight fails the mission
+  std::vector<AutopilotModel> models_;
+  std::vector<double> layer_, up_, offsets_;
+  FormationOrder order_now_;
+  bool route_left_ = true;
+  FormationLog log_;
+  std::string failed_;
+  std::vector<Trajectory> landings_ = std::vector<Trajectory>(n_);
+};
+
+bool PhasedFlight::phase(const char* name, bool ok) {
+  if (!ok && failed_.empty()) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf,
+                  "the %s phase did not complete (at t = %.0f s the shape was %.1f m off, tolerance %.1f m)", name,
+                  group_.time_s(), group_.shape_error_m(order_now_), o_.shape_tolerance_m);
+    failed_ = buf;
+  }
+  log_.phases.push_back({name, group_.time_s()});
+  return ok;
+}
+
+// One control sample: lift-offs and joins, then the group under the order, its frame steered
+// along the route.
+void PhasedFlight::step() {
+  const auto solo = [&](std::size_t i) {
+    return AutopilotCommand{lift_off_mps(sc_.uavs[i]), z_form_ + layer_[i], af_.runway_heading_rad};
+  };
+  for (std::size_t i = 0; i < n_; ++i) {
+    if (!group_.flying(i) && dep_[i].lift_s <= group_.time_s() + 1e-9)
+      group_.launch(i, dep_[i].lift_off, FormationGroup::Launch::solo);
+    // Straight ahead off the runway, into the consensus once clear of the ground.
+    if (group_.flying(i) && group_.state(i).position.z() > af_.position.z() + o_.join_above_m) group_.join(i);
+  }
+  if (!group_.anyone_in_formation()) return group_.step(order_now_, solo);
+  const Vec3 c = group_.centroid();
+  route_left_ = steer_.update(c);
+  // The frame turns towards phi* no faster than the UAVs can (a waypoint passed behind the
+  // centroid must not flip the shape through itself).
+  const double most = o_.turn_margin * body_.turn_rate_rad_s * go_.dt_s;
+  order_now_.heading_rad +=
+      std::clamp(std::remainder(steer_.heading_rad(c) - order_now_.heading_rad, 2.0 * kPi), -most, most);
+  for (std::size_t i = 0; i < n_; ++i) order_now_.altitude_m[i] = steer_.altitude_m(c) + offsets_[i];
+  group_.step(order_now_, solo);
+}
+
+// Steps until `done`; false when `limit_s` of flight pass first (or the stop comes).
+bool PhasedFlight::run_until(const std::function<bool()>& done, double limit_s) {
+  const double t0 = group_.time_s();
+  while (!done()) {
+    if (group_.time_s() - t0 > limit_s || ctx_.options.stop.should_stop()) return false;
+    step();
+  }
+  return true;
+}
+
+// The shape's scale changes at scale_rate_per_s to `target`, then the shape settles.
+bool PhasedFlight::scale_to(double target) {
+  return run_until(
+      [&] {
+        const double dscale = o_.scale_rate_per_s * go_.dt_s;
+        order_now_.scale = order_now_.scale < target ? std::min(target, order_now_.scale + dscale)
+                                                     : std::max(target, order_now_.scale - dscale);
+        return order_now_.scale == target && in_shape();
+      },
+      o_.step_timeout_s);
+}
+
+// Phase 5: in turn, the nearest to the landing cylinder first (eq. 2 for each), each clear of
+// those landed before it by the airfield's rule.
+bool PhasedFlight::land() {
+  const double t_d = group_.time_s();
+  for (std::size_t i = 0; i < n_; ++i) group_.release(i);
+  std::vector<std::size_t> land(n_);
+  std::iota(land.begin(), land.end(), 0);
+  const Vec3 centre = af_.position - o_.landing.cylinder_before_threshold_m * runway_direction(af_);
+  std::stable_sort(land.begin(), land.end(), [&](std::size_t a, std::size_t b) {
+    return (group_.state(a).position - centre).head<2>().norm() < (group_.state(b).position - centre).head<2>().norm();
+  });
+  std::vector<std::size_t> landed;
+  for (const std::size_t i : land) {
+    const auto conflicts = [&](const Trajectory& f) {
+      for (const std::size_t j : landed)
+        if (airfield_encounter(sc_, sc_.uavs[i], f, sc_.uavs[j], landings_[j], t_d).conflict) return true;
+      return false;
+    };
+    LandingResult r = plan_landing(af_, models_[i], group_.state(i), t_d, o_.landing, conflicts);
+    if (!r.landed) {
+      failed_ = sc_.uavs[i].id + "'s landing: " + r.message;
+      return false;
+    }
+    landings_[i] = std::move(r.flight);
+    landed.push_back(i);
+  }
+  double end = t_d;
+  for (const Trajectory& f : landings_)
+    if (!f.empty()) end = std::max(end, f.back().t_s);
+  log_.phases.push_back({"landing", end});
+  log_.eta_s = end;
+  return true;
+}
+
+// In the air the separation, on the ground their bodies (the contract's rule): a pair that
+// breaks it fails both.
+void check_airfield_separation(const Scenario& sc, Plan& plan) {
+  const std::size_t n = sc.uavs.size();
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const AirfieldEncounter e =
+          airfield_encounter(sc, sc.uavs[i], plan.uavs[i].trajectory, sc.uavs[j], plan.uavs[j].trajectory);
+      if (!e.conflict) continue;
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "%.1f m from %s at t = %.1f s, below %.1f m", e.distance_m, sc.uavs[j].id.c_str(),
+                    e.t_s, e.need_m);
+      for (const std::size_t k : {i, j}) {
+        plan.uavs[k].status = Status::failed;
+        if (plan.uavs[k].message.empty()) plan.uavs[k].message = k == i ? buf : "too close to " + sc.uavs[i].id;
+      }
+    }
+}
+
+}  // namespace
+
+FormationMissionOptions FormationMissionOptions::from_params(const Params& params) {
+  ParamReader r(params, "formation_mission");
+  FormationMissionOptions o;
+  o.layer_spacing_m = r.number("layer_spacing_m", o.layer_spacing_m, 0.0, 1e5);
+  o.enlargement = r.number("enlargement", o.enlargement, 1.0, 100.0);
+  o.shape_tolerance_m = r.number("shape_tolerance_m", o.shape_tolerance_m, 1e-3, 1e5);
+  o.form_up_height_m = r.number("form_up_height_m", o.form_up_height_m, 0.0, 1e5);
+  o.takeoff_interval_s = r.number("takeoff_interval_s", o.takeoff_interval_s, 0.0, 3600.0);
+  o.dismiss_within_m = r.number("dismiss_within_m", o.dismiss_within_m, 0.0, 1e7);
+  r.finish();
+  return o;
+}
+
+void PhasedFormationMission::plan(const Scenario& sc, const MissionContext& ctx, Plan& plan) const {
+  const FormationMissionOptions o = FormationMissionOptions::from_params(ctx.mission_params);
+  const std::size_t n = sc.uavs.size();
+  if (!sc.mission.airfield || sc.mission.shape.size() != n || sc.mission.task_points.empty())
+    throw std::invalid_argument("a formation_mission needs an airfield, a slot per UAV and a task point");
+  const Airfield& af = *sc.mission.airfield;
+  std::vector<Vec3> starts;
+  std::vector<AutopilotModel> models;
+  for (std::size_t i = 0; i < n; ++i) {
+    starts.push_back(ctx.ground.start.size() > i && ctx.ground.start[i] ? *ctx.ground.start[i] : sc.uavs[i].start);
+    models.push_back(mission_model(sc.uavs[i], o));
+  }
+  const FormationBody body = formation_body(sc, models);
+  const double z_form = af.position.z() + o.form_up_height_m;
+  const UavSpec& lead = sc.uavs.front();
+  const double ceiling =
+      lead.ceiling_m ? std::min(*lead.ceiling_m, sc.world.bounds().max.z()) : sc.world.bounds().max.z();
+  if (z_form + o.layer_spacing_m * n > ceiling) {
+    fail_all(sc, "no room for the form-up's altitude layers below the ceiling", plan);
+    return;
+  }
   PlanResult route;  // pso_mpc keeps the body (and its turns) inside the bounds too
   try {
-    route = make_planner(ctx.algorithm, ctx.params)->plan(pb, sc.world, ctx.options.stop);
+    route = make_planner(ctx.algorithm, ctx.params)
+                ->plan(coarse_problem(sc, ctx, o, body, z_form), sc.world, ctx.options.stop);
   } catch (const std::invalid_argument& e) {
     route.message = e.what();
   }
@@ -149,164 +428,18 @@ void PhasedFormationMission::plan(const Scenario& sc, const MissionContext& ctx,
     return;
   }
   const std::vector<Vec3>& wps = route.route.waypoints;
-  std::vector<char> fly_over(wps.size(), 0);
-  std::size_t last_task = 0;
-  for (const TaskPoint& tp : sc.mission.task_points)
-    for (std::size_t k = last_task + 1; k < wps.size(); ++k)
-      if ((wps[k] - tp.position).norm() < 1.0) {
-        fly_over[k] = 1, last_task = k;
-        break;
-      }
-  RouteSteering steer(wps, fly_over, cruise / turn_rate, 300.0);
-
-  // Phase 1: take-off in turn, layers, the enlarged shape, heights, shrink.
-  std::vector<std::size_t> order;
-  const std::vector<GroundRun> dep = departures(sc, starts, o, go.dt_s, order);
-  std::vector<double> layer(n), up(n);
-  for (std::size_t k = 0; k < n; ++k)
-    layer[order[k]] = o.layer_spacing_m * (static_cast<double>(n - 1 - k) - 0.5 * (n - 1));
-  for (std::size_t i = 0; i < n; ++i) up[i] = sc.mission.shape[i].z() - mean_slot.z();
-  FormationGroup group(models, sc.mission.shape, topology, go, 0.0);
-  FormationOrder order_now;
-  order_now.speed_mps = cruise;
-  order_now.heading_rad = af.runway_heading_rad;
-  order_now.scale = o.enlargement;
-  order_now.altitude_m.assign(n, z_form);
-  std::vector<double> offsets = layer;
-  const auto solo = [&](std::size_t i) {
-    return AutopilotCommand{lift_off_mps(sc.uavs[i]), z_form + layer[i], af.runway_heading_rad};
-  };
-  bool route_left = true;
-  const auto step = [&] {
-    for (std::size_t i = 0; i < n; ++i) {
-      if (!group.flying(i) && dep[i].lift_s <= group.time_s() + 1e-9) group.launch(i, dep[i].lift_off, false);
-      // Straight ahead off the runway, into the consensus once clear of the ground.
-      if (group.flying(i) && group.state(i).position.z() > af.position.z() + o.join_above_m) group.join(i);
-    }
-    if (!group.anyone_in_formation()) return group.step(order_now, solo);
-    const Vec3 c = group.centroid();
-    route_left = steer.update(c);
-    // The frame turns towards phi* no faster than the UAVs can (a waypoint passed behind the
-    // centroid must not flip the shape through itself).
-    const double most = 0.8 * turn_rate * go.dt_s;
-    order_now.heading_rad +=
-        std::clamp(std::remainder(steer.heading_rad(c) - order_now.heading_rad, 2.0 * kPi), -most, most);
-    for (std::size_t i = 0; i < n; ++i) order_now.altitude_m[i] = steer.altitude_m(c) + offsets[i];
-    group.step(order_now, solo);
-  };
-  // A step that has not ended within `limit_s` of flight fails the mission.
-  const double route_s = 3.0 * route.route.length_m() / cruise + o.step_timeout_s;
-  const auto run_until = [&](const auto& done, double limit_s) {
-    const double t0 = group.time_s();
-    while (!done()) {
-      if (group.time_s() - t0 > limit_s || ctx.options.stop.should_stop()) return false;
-      step();
-    }
-    return true;
-  };
-  const auto all_joined = [&] {
-    for (std::size_t i = 0; i < n; ++i)
-      if (!group.in_formation(i)) return false;
-    return true;
-  };
-  const auto in_shape = [&] { return group.shape_error_m(order_now) < o.shape_tolerance_m; };
-  FormationLog log;
-  std::string failed;
-  const auto phase = [&](const char* name, bool ok) {
-    if (!ok && failed.empty()) {
-      char buf[160];
-      std::snprintf(buf, sizeof buf,
-                    "the %s phase did not complete (at t = %.0f s the shape was %.1f m off, tolerance %.1f m)", name,
-                    group.time_s(), group.shape_error_m(order_now), o.shape_tolerance_m);
-      failed = buf;
-    }
-    log.phases.push_back({name, group.time_s()});
-    return ok;
-  };
-  const auto scale_to = [&](double target) {
-    return run_until(
-        [&] {
-          const double dscale = o.scale_rate_per_s * go.dt_s;
-          order_now.scale = order_now.scale < target ? std::min(target, order_now.scale + dscale)
-                                                     : std::max(target, order_now.scale - dscale);
-          return order_now.scale == target && in_shape();
-        },
-        o.step_timeout_s);
-  };
-  bool ok = run_until([&] { return all_joined() && in_shape(); }, o.step_timeout_s);
-  if (ok) offsets = up, ok = run_until(in_shape, o.step_timeout_s);
-  if (ok) ok = scale_to(1.0);
-  // Phases 2 and 3: the route through the task points, then back towards the airfield.
-  if (phase("form_up", ok)) ok = run_until([&] { return steer.next() > last_task; }, route_s);
-  const auto near_airfield = [&] {
-    return !route_left || (group.centroid() - af.position).head<2>().norm() < o.dismiss_within_m;
-  };
-  if (phase("mission", ok)) ok = run_until(near_airfield, route_s);
-  if (phase("return", ok)) {  // phase 4 on the way to the landing cylinder
-    ok = scale_to(o.enlargement);
-    if (ok) offsets = layer, ok = run_until(in_shape, o.step_timeout_s);
-  }
-  std::vector<Trajectory> flights(n);
-  if (phase("dismiss", ok)) {
-    const double t_d = group.time_s();
-    for (std::size_t i = 0; i < n; ++i) group.release(i);
-    // Phase 5: in turn, the nearest to the landing cylinder first (eq. 2 for each).
-    std::vector<std::size_t> land(n);
-    std::iota(land.begin(), land.end(), 0);
-    const Vec3 centre = af.position - LandingOptions{}.cylinder_before_threshold_m * dir;
-    std::stable_sort(land.begin(), land.end(), [&](std::size_t a, std::size_t b) {
-      return (group.state(a).position - centre).head<2>().norm() < (group.state(b).position - centre).head<2>().norm();
-    });
-    std::vector<std::size_t> landed;
-    for (const std::size_t i : land) {
-      const auto conflicts = [&](const Trajectory& f) {
-        for (const std::size_t j : landed)
-          if (airfield_encounter(sc, sc.uavs[i], f, sc.uavs[j], flights[j], t_d).conflict) return true;
-        return false;
-      };
-      LandingResult r = plan_landing(af, models[i], group.state(i), t_d, LandingOptions{}, conflicts);
-      if (!r.landed) {
-        ok = false;
-        failed = sc.uavs[i].id + "'s landing: " + r.message;
-        break;
-      }
-      flights[i] = std::move(r.flight);
-      landed.push_back(i);
-    }
-    double end = t_d;
-    for (const Trajectory& f : flights)
-      if (!f.empty()) end = std::max(end, f.back().t_s);
-    log.phases.push_back({"landing", end});
-    log.eta_s = end;
-  }
-  // Each UAV's rows: on the ground, in the group, landing.
+  PhasedFlight flight(sc, ctx, o, starts, models, body, wps, route.route.length_m(), z_form);
+  const bool ok = flight.fly();
   for (std::size_t i = 0; i < n; ++i) {
-    Trajectory tr = dep[i].ground;
-    for (const TrajectorySample& s : group.trajectory(i))
-      if (s.t_s > tr.back().t_s + 1e-9) tr.push_back(s);
-    for (const TrajectorySample& s : flights[i])
-      if (s.t_s > tr.back().t_s + 1e-9) tr.push_back(s);
+    Trajectory tr = flight.trajectory(i);
     std::vector<Vec3> w{starts[i]};
     w.insert(w.end(), wps.begin(), wps.end());
     w.push_back(tr.back().p);
     plan.uavs.push_back(
-        flown_plan(sc.uavs[i].id, ok, ok ? "" : failed, std::move(w), ok ? std::move(tr) : Trajectory{}));
+        flown_plan(sc.uavs[i].id, ok, ok ? "" : flight.failure(), std::move(w), ok ? std::move(tr) : Trajectory{}));
   }
-  if (ok)  // in the air the separation, on the ground their bodies (the contract's rule)
-    for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t j = i + 1; j < n; ++j) {
-        const AirfieldEncounter e =
-            airfield_encounter(sc, sc.uavs[i], plan.uavs[i].trajectory, sc.uavs[j], plan.uavs[j].trajectory);
-        if (!e.conflict) continue;
-        char buf[160];
-        std::snprintf(buf, sizeof buf, "%.1f m from %s at t = %.1f s, below %.1f m", e.distance_m,
-                      sc.uavs[j].id.c_str(), e.t_s, e.need_m);
-        for (const std::size_t k : {i, j}) {
-          plan.uavs[k].status = Status::failed;
-          if (plan.uavs[k].message.empty()) plan.uavs[k].message = k == i ? buf : "too close to " + sc.uavs[i].id;
-        }
-      }
-  plan.formation = log;
+  if (ok) check_airfield_separation(sc, plan);
+  plan.formation = flight.log();
 }
 
 }  // namespace uavplan

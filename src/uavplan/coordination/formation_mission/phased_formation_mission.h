@@ -11,10 +11,13 @@
 // Quantities P5 leaves out are papers.md P5's defaults (FormationMissionOptions).
 #pragma once
 
+#include "uavplan/coordination/formation_mission/landing.h"
 #include "uavplan/coordination/mission.h"
 
 namespace uavplan {
 
+// Mission parameters (planner.params / --set): layer_spacing_m, enlargement, shape_tolerance_m,
+// form_up_height_m, takeoff_interval_s, dismiss_within_m; the rest are fixed here.
 struct FormationMissionOptions {
   double layer_spacing_m = 100.0;
   double enlargement = 3.0;
@@ -27,6 +30,22 @@ struct FormationMissionOptions {
   double takeoff_interval_s = 20.0;  // least time between two lift-offs
   double join_above_m = 50.0;        // above the airfield a UAV off the runway joins the consensus
   double step_timeout_s = 1800.0;    // a form-up or dismiss step that takes longer fails
+  // The take-off roll: lift-off within this fraction of the runway, accelerating at least so.
+  double lift_off_within_runway = 0.4;
+  double min_roll_accel_mps2 = 3.0;
+  // A UAV without its own turn-rate limit turns at the rate of this bank at cruise; one without
+  // its own climb-rate limit climbs at most this fast (papers.md P5).
+  double bank_deg = 30.0;
+  double max_climb_rate_mps = 20.0;
+  // The formation turns at this fraction of its slowest UAV's turn rate (margin for the shape
+  // turning as a body); its route is planned for a body widened by the overshoot of a turn of
+  // overshoot_turn_deg.
+  double turn_margin = 0.8;
+  double overshoot_turn_deg = 30.0;
+  double steering_switch_m = 300.0;  // RouteSteering: a waypoint is passed within this distance
+  LandingOptions landing;            // phase 5 (landing.h)
+
+  static FormationMissionOptions from_params(const Params& params);
 };
 
 class PhasedFormationMission final : public Mission {
@@ -37,6 +56,10 @@ class PhasedFormationMission final : public Mission {
   void read_section(const Section& mission, const Section& uavs, Scenario& scenario) const override;
   bool needs_goals() const override { return false; }
   std::vector<std::string> algorithms() const override { return {"pso_mpc"}; }
+  std::vector<std::string> parameters() const override {
+    return {"layer_spacing_m",  "enlargement",        "shape_tolerance_m",
+            "form_up_height_m", "takeoff_interval_s", "dismiss_within_m"};
+  }
   bool times_ground_legs() const override { return true; }
   void plan(const Scenario& scenario, const MissionContext& context, Plan& plan) const override;
   // The airfield's rule (contract/separation.h): separation in the air, bodies on the ground.

@@ -22,6 +22,9 @@ Trajectory frames_to_trajectory(const std::vector<Vec3>& frames, double frame_s)
 
 namespace {
 
+// An escape route's grid holds at most this many cells (FieldGuide).
+constexpr std::int64_t kGuideCells = 2'000'000;
+
 // Position at frame k (held at the last one afterwards).
 const Vec3& at(const std::vector<Vec3>& f, std::size_t k) { return f[std::min(k, f.size() - 1)]; }
 
@@ -133,151 +136,197 @@ class FrameNeighbours {
   std::vector<std::vector<std::uint32_t>> first_;  // per frame, where its peers begin
 };
 
-}  // namespace
+// P3's group planning: every UAV's field and the group's one step and frame time, the frames
+// (each UAV in turn one step, the earlier UAVs with this frame's motion as time-stamped
+// obstacles, the later ones where they are), then the smoothing. One method per stage.
+class GroupPlanning {
+ public:
+  GroupPlanning(const Scenario& sc, const ApfOptions& options, const StopCondition& stop)
+      : sc_(sc), options_(options), stop_(stop), n_(sc.uavs.size()), cur_(n_), prev_(n_), done_(n_, 0) {
+    base_ = options;
+    base_.separation_m = sc.mission.separation_m;
+    // The escape route of the UAV moving now, around the UAVs that are done.
+    guide_ = [this](const Vec3& from, const Vec3& to) {
+      keep_out_.clear();
+      for (std::size_t j = 0; j < n_; ++j)
+        if (j != moving_ && done_[j])
+          keep_out_.push_back(
+              {cur_[j],
+               std::max(base_.separation_m, sc_.uavs[moving_].radius_m + sc_.uavs[j].radius_m) + kPlanningMargin_m});
+      return guide_for(moving_).route(from, to, keep_out_);
+    };
+  }
 
-GroupResult plan_group(const Scenario& sc, const ApfOptions& options, const StopCondition& stop) {
-  GroupResult res;
-  const std::size_t n = sc.uavs.size();
-  ApfOptions base = options;
-  base.separation_m = sc.mission.separation_m;
-  // One step and one frame time for the whole group: the smallest derived step, flown by the
-  // slowest UAV in one frame.
-  std::vector<ApfOptions> resolved;
+  GroupResult run() {
+    resolve_fields();
+    const double longest = start_uavs();
+    fly(options_.max_frames > 0 ? options_.max_frames : static_cast<int>(4.0 * longest / step_) + 500);
+    for (std::size_t i = 0; i < n_; ++i) res_.uavs[i].smoothed = res_.uavs[i].raw;
+    if (options_.smooth) smooth();
+    return std::move(res_);
+  }
+
+ private:
+  void resolve_fields();
+  double start_uavs();
+  void fly(int max_frames);
+  void smooth();
+  FieldGuide& guide_for(std::size_t i);
+  Vec3 step_uav(std::size_t i, const CellIndex& index, double max_radius, std::uint64_t& done_count);
+
+  const Scenario& sc_;
+  const ApfOptions& options_;
+  const StopCondition& stop_;
+  std::size_t n_;
+  ApfOptions base_;
+  GroupResult res_;
+  double step_ = 0.0;
+  std::vector<ApfOptions> resolved_;
+  std::vector<std::unique_ptr<PotentialField>> fields_;
+  std::vector<FieldFlight> flights_;
+  std::vector<Vec3> cur_, prev_;
+  std::vector<char> done_;
+  // Escape routes (FieldGuide): one grid per distinct body, built at the first stall.
+  std::vector<std::pair<std::size_t, std::unique_ptr<FieldGuide>>> guides_;
+  std::vector<KeepOut> keep_out_;
+  std::vector<PeerMotion> peers_;
+  std::size_t moving_ = 0;
+  FieldFlight::Guide guide_;
+};
+
+// One step and one frame time for the whole group: the smallest derived step, flown by the
+// slowest UAV in one frame; each UAV's field resolved for that step.
+void GroupPlanning::resolve_fields() {
   double step = 1e300, slowest = 1e300;
-  for (const UavSpec& u : sc.uavs) {
-    resolved.push_back(apf_resolved(base, u, sc.world));
-    step = std::min(step, resolved.back().step_m);
+  for (const UavSpec& u : sc_.uavs) {
+    resolved_.push_back(apf_resolved(base_, u, sc_.world));
+    step = std::min(step, resolved_.back().step_m);
     slowest = std::min(slowest, u.speed.cruise_mps);
   }
-  res.step_m = step;
-  res.frame_s = step / slowest;
-  std::vector<std::unique_ptr<PotentialField>> fields;
-  for (std::size_t i = 0; i < n; ++i) {
-    resolved[i].step_m = step;
-    resolved[i] = apf_resolved(resolved[i], sc.uavs[i], sc.world);
-    fields.push_back(std::make_unique<PotentialField>(sc.world, sc.uavs[i], resolved[i]));
+  step_ = step;
+  res_.step_m = step;
+  res_.frame_s = step / slowest;
+  for (std::size_t i = 0; i < n_; ++i) {
+    resolved_[i].step_m = step;
+    resolved_[i] = apf_resolved(resolved_[i], sc_.uavs[i], sc_.world);
+    fields_.push_back(std::make_unique<PotentialField>(sc_.world, sc_.uavs[i], resolved_[i]));
   }
-  std::vector<Vec3> cur(n), prev(n);
-  std::vector<char> done(n, 0);
-  std::vector<FieldFlight> flights;
+}
+
+// Every UAV at its start; those without a goal, that cannot fly or are there already are done.
+// Returns the longest straight distance still to fly.
+double GroupPlanning::start_uavs() {
   double longest = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < n_; ++i) {
     GroupUav g;
-    g.id = sc.uavs[i].id;
-    cur[i] = sc.uavs[i].start;
-    g.raw.push_back(cur[i]);
-    const Vec3 goal = sc.uavs[i].goal.value_or(cur[i]);
-    flights.emplace_back(*fields[i], cur[i], goal, -1);  // stalls in a crowd pass: the frame budget bounds them
-    if (!sc.uavs[i].goal) {
+    g.id = sc_.uavs[i].id;
+    cur_[i] = sc_.uavs[i].start;
+    g.raw.push_back(cur_[i]);
+    const Vec3 goal = sc_.uavs[i].goal.value_or(cur_[i]);
+    flights_.emplace_back(*fields_[i], cur_[i], goal, -1);  // stalls in a crowd pass: the frame budget bounds them
+    if (!sc_.uavs[i].goal) {
       g.message = "no goal given";
-      done[i] = 1;
-    } else if (const std::string why = infeasible(sc, i); !why.empty()) {
+      done_[i] = 1;
+    } else if (const std::string why = infeasible(sc_, i); !why.empty()) {
       g.message = why;
-      done[i] = 1;
-    } else if (goal == cur[i]) {
+      done_[i] = 1;
+    } else if (goal == cur_[i]) {
       g.reached = true;
-      done[i] = 1;
+      done_[i] = 1;
     } else {
-      longest = std::max(longest, (goal - cur[i]).norm());
+      longest = std::max(longest, (goal - cur_[i]).norm());
     }
-    res.uavs.push_back(std::move(g));
+    res_.uavs.push_back(std::move(g));
   }
-  // Escape routes (FieldGuide): one grid per distinct body, built at the first stall; UAVs
-  // that are done (arrived or failed) never move again, so they are the routes' keep-outs.
-  std::vector<std::pair<std::size_t, std::unique_ptr<FieldGuide>>> guides;
-  auto guide_for = [&](std::size_t i) -> FieldGuide& {
-    const UavSpec& u = sc.uavs[i];
-    for (auto& [j, g] : guides) {
-      const UavSpec& v = sc.uavs[j];
-      if (v.radius_m == u.radius_m && v.max_climb_rad == u.max_climb_rad && v.ceiling_m == u.ceiling_m) return *g;
-    }
-    guides.emplace_back(i, std::make_unique<FieldGuide>(sc.world, u, step, 2'000'000, stop));
-    return *guides.back().second;
-  };
-  std::vector<KeepOut> keep_out;
-  const int max_frames = options.max_frames > 0 ? options.max_frames : static_cast<int>(4.0 * longest / step) + 500;
-  std::vector<PeerMotion> peers;
-  // Peers near enough to matter: within reach + step (each UAV's own reach, below); the index
-  // holds the frame's starting positions and a UAV moves at most a step within the frame.
+  return longest;
+}
+
+FieldGuide& GroupPlanning::guide_for(std::size_t i) {
+  const UavSpec& u = sc_.uavs[i];
+  for (auto& [j, g] : guides_) {
+    const UavSpec& v = sc_.uavs[j];
+    if (v.radius_m == u.radius_m && v.max_climb_rad == u.max_climb_rad && v.ceiling_m == u.ceiling_m) return *g;
+  }
+  guides_.emplace_back(i, std::make_unique<FieldGuide>(sc_.world, u, step_, kGuideCells, stop_));
+  return *guides_.back().second;
+}
+
+// UAV i's step of this frame among its peers (within its reach + a step: the index holds the
+// frame's starting positions and a UAV moves at most a step within the frame); an escape route,
+// when it stalls, goes around the UAVs that are done (they never move again).
+Vec3 GroupPlanning::step_uav(std::size_t i, const CellIndex& index, double max_radius, std::uint64_t& done_count) {
+  const UavSpec& u = sc_.uavs[i];
+  const double reach = resolved_[i].r_rep_m + base_.separation_m + 2 * step_ + u.radius_m + max_radius;
+  peers_.clear();
+  index.near(cur_[i], [&](std::uint32_t j) {
+    if (j == i || (cur_[j] - cur_[i]).norm() > reach + step_) return;
+    peers_.push_back({j < i ? prev_[j] : cur_[j], cur_[j], sc_.uavs[j].radius_m});
+  });
+  moving_ = i;
+  return flights_[i].advance(peers_, guide_, done_count);
+}
+
+void GroupPlanning::fly(int max_frames) {
   double max_radius = 0.0, max_reach = 0.0;
-  for (const UavSpec& u : sc.uavs) max_radius = std::max(max_radius, u.radius_m);
-  for (const ApfOptions& o : resolved)
-    max_reach = std::max(max_reach, o.r_rep_m + base.separation_m + 2 * step + 2 * max_radius);
+  for (const UavSpec& u : sc_.uavs) max_radius = std::max(max_radius, u.radius_m);
+  for (const ApfOptions& o : resolved_)
+    max_reach = std::max(max_reach, o.r_rep_m + base_.separation_m + 2 * step_ + 2 * max_radius);
   CellIndex index;
   // The keep-outs' version for the escape routes: they change when a UAV is done.
-  std::uint64_t done_count = static_cast<std::uint64_t>(std::count(done.begin(), done.end(), 1));
-  // The escape route of the UAV moving now (`moving`), around the UAVs that are done.
-  std::size_t moving = 0;
-  const FieldFlight::Guide guide = [&](const Vec3& from, const Vec3& to) {
-    keep_out.clear();
-    for (std::size_t j = 0; j < n; ++j)
-      if (j != moving && done[j])
-        keep_out.push_back(
-            {cur[j], std::max(base.separation_m, sc.uavs[moving].radius_m + sc.uavs[j].radius_m) + kPlanningMargin_m});
-    return guide_for(moving).route(from, to, keep_out);
-  };
+  std::uint64_t done_count = static_cast<std::uint64_t>(std::count(done_.begin(), done_.end(), 1));
   int frame = 0;
-  for (; frame < max_frames && done_count < n && !stop.should_stop(frame); ++frame) {
-    prev = cur;
-    index.build(prev, max_reach + 3 * step);
-    for (std::size_t i = 0; i < n; ++i) {
-      if (done[i]) continue;
-      const UavSpec& u = sc.uavs[i];
-      // Earlier UAVs with this frame's motion, later ones where they are.
-      const double reach = resolved[i].r_rep_m + base.separation_m + 2 * step + u.radius_m + max_radius;
-      peers.clear();
-      index.near(cur[i], [&](std::uint32_t j) {
-        if (j == i || (cur[j] - cur[i]).norm() > reach + step) return;
-        peers.push_back({j < i ? prev[j] : cur[j], cur[j], sc.uavs[j].radius_m});
-      });
-      moving = i;
-      cur[i] = flights[i].advance(peers, guide, done_count);
-      if (flights[i].failed()) {
-        res.uavs[i].message = flights[i].message() + " at frame " + std::to_string(frame);
-        done[i] = 1;
+  for (; frame < max_frames && done_count < n_ && !stop_.should_stop(frame); ++frame) {
+    prev_ = cur_;
+    index.build(prev_, max_reach + 3 * step_);
+    for (std::size_t i = 0; i < n_; ++i) {
+      if (done_[i]) continue;
+      cur_[i] = step_uav(i, index, max_radius, done_count);
+      if (flights_[i].failed()) {
+        res_.uavs[i].message = flights_[i].message() + " at frame " + std::to_string(frame);
+        done_[i] = 1;
         ++done_count;
         continue;
       }
-      res.uavs[i].raw.push_back(cur[i]);
-      if (flights[i].arrived()) {
-        done[i] = 1;
+      res_.uavs[i].raw.push_back(cur_[i]);
+      if (flights_[i].arrived()) {
+        done_[i] = 1;
         ++done_count;
-        res.uavs[i].reached = true;
+        res_.uavs[i].reached = true;
       }
     }
   }
-  res.frames = frame;
-  for (std::size_t i = 0; i < n; ++i)
-    if (!res.uavs[i].reached && res.uavs[i].message.empty())
-      res.uavs[i].message =
+  res_.frames = frame;
+  for (std::size_t i = 0; i < n_; ++i)
+    if (!res_.uavs[i].reached && res_.uavs[i].message.empty())
+      res_.uavs[i].message =
           "goal not reached within " + std::to_string(max_frames) + " frames; raise planner.params.max_frames";
+}
 
-  // Smoothing, UAV by UAV, against the current paths of the peers that can matter: a smoothed
-  // point stays within kDrift_steps steps of its raw place, so two UAVs that never come within
-  // `reach` of each other at equal frames cannot conflict after smoothing (FrameNeighbours).
-  for (std::size_t i = 0; i < n; ++i) res.uavs[i].smoothed = res.uavs[i].raw;
-  if (!options.smooth) return res;
-  double need_max = base.separation_m;
-  for (const UavSpec& u : sc.uavs) need_max = std::max(need_max, 2.0 * u.radius_m);
-  const double drift_m = kDrift_steps * step;
+// Smoothing, UAV by UAV, against the current paths of the peers that can matter: a smoothed
+// point stays within kDrift_steps steps of its raw place, so two UAVs that never come within
+// `reach` of each other at equal frames cannot conflict after smoothing (FrameNeighbours).
+void GroupPlanning::smooth() {
+  double need_max = base_.separation_m;
+  for (const UavSpec& u : sc_.uavs) need_max = std::max(need_max, 2.0 * u.radius_m);
+  const double drift_m = kDrift_steps * step_;
   // Endpoints move by at most 2 drifts relative to each other, a frame's relative motion is at
   // most 2 (step + 2 drift) long and its middle lies within half that of an endpoint; a move at
   // frame k is checked over frames k - 1 to k + 1, and raw steps are at most one step long.
-  const double reach = need_max + kPlanningMargin_m + step + 4.0 * drift_m + 2.0 * step;
-  const FrameNeighbours near(res.uavs, reach);
-  for (std::size_t i = 0; i < n; ++i) {
-    GroupUav& g = res.uavs[i];
+  const double reach = need_max + kPlanningMargin_m + step_ + 4.0 * drift_m + 2.0 * step_;
+  const FrameNeighbours near(res_.uavs, reach);
+  for (std::size_t i = 0; i < n_; ++i) {
+    GroupUav& g = res_.uavs[i];
     if (!g.reached) continue;
     auto& pts = g.smoothed;
     auto accept = [&](std::size_t k, const Vec3& c) {
-      if ((c - g.raw[k]).norm() > drift_m || !fields[i]->step_safe(pts[k - 1], c, {}) ||
-          !fields[i]->step_safe(c, pts[k + 1], {})) {
+      if ((c - g.raw[k]).norm() > drift_m || !fields_[i]->step_safe(pts[k - 1], c, {}) ||
+          !fields_[i]->step_safe(c, pts[k + 1], {})) {
         ++g.kept_points;
         return false;
       }
       for (const std::uint32_t j : near.at_frame(i, k)) {
-        const auto& q = res.uavs[j].smoothed;
-        const double need = std::max(base.separation_m, sc.uavs[i].radius_m + sc.uavs[j].radius_m) + 1e-3;
+        const auto& q = res_.uavs[j].smoothed;
+        const double need = std::max(base_.separation_m, sc_.uavs[i].radius_m + sc_.uavs[j].radius_m) + 1e-3;
         if (point_segment_distance(Vec3::Zero(), pts[k - 1] - at(q, k - 1), c - at(q, k)) < need ||
             point_segment_distance(Vec3::Zero(), c - at(q, k), pts[k + 1] - at(q, k + 1)) < need) {
           ++g.kept_points;
@@ -286,9 +335,14 @@ GroupResult plan_group(const Scenario& sc, const ApfOptions& options, const Stop
       }
       return true;
     };
-    g.smoothed_points = smooth_triples(pts, deg_to_rad(options.smoothing_threshold_deg), accept);
+    g.smoothed_points = smooth_triples(pts, deg_to_rad(options_.smoothing_threshold_deg), accept);
   }
-  return res;
+}
+
+}  // namespace
+
+GroupResult plan_group(const Scenario& sc, const ApfOptions& options, const StopCondition& stop) {
+  return GroupPlanning(sc, options, stop).run();
 }
 
 }  // namespace uavplan
