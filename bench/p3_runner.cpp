@@ -69,7 +69,7 @@ std::string run_p3(const std::string& dir, bool* all_ok) {
   const double paper_before[9] = {303.3, 12.6, 1.8, 109.8, 32.8, 10.5, 3.4, 12.6, 11.7};
   const double paper_after[9] = {2.9, 2.6, 1.8, 2.8, 2.7, 2.6, 2.4, 2.9, 2.8};
   for (const bool improved : {true, false}) {
-    ApfOptions o = ApfOptions::from_params({}, improved);
+    ApfOptions o = ApfOptions::from_params({}, improved ? ApfField::improved : ApfField::traditional);
     o.smooth = true;  // the baseline's "after" column shows what smoothing alone would do
     const auto t0 = Clock::now();
     const GroupResult g = plan_group(sc, o, {});

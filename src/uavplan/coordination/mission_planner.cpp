@@ -53,7 +53,8 @@ Plan plan_mission(const Scenario& sc, const MissionOptions& opt) {
   sort_params(mission, ctx, plan.notes);
   plan.algorithm = ctx.algorithm;
   make_planner(ctx.algorithm, ctx.params);  // unknown names and parameters are errors for every mission
-  const PlanningView view = planning_view(sc, !(mission && mission->times_ground_legs()));
+  const PlanningView view = planning_view(
+      sc, mission && mission->times_ground_legs() ? GroundLegTiming::by_mission : GroundLegTiming::shifted);
   ctx.ground = view.ground;
   if (mission) {
     try {

@@ -85,7 +85,7 @@ std::vector<PlacementProblem> placement_problems(const Scenario& sc) {
   return out;
 }
 
-PlanningView planning_view(const Scenario& sc, bool shift_for_takeoff) {
+PlanningView planning_view(const Scenario& sc, GroundLegTiming timing) {
   PlanningView v;
   const std::size_t n = sc.uavs.size();
   v.lift_off.assign(n, std::nullopt);
@@ -110,7 +110,7 @@ PlanningView planning_view(const Scenario& sc, bool shift_for_takeoff) {
     if (w.on_ground(u.start)) {
       v.lift_off[i] = Vec3(u.start.x(), u.start.y(), w.ground_z(u.start.x(), u.start.y()) + lift);
       v.ground.start[i] = u.start;
-      if (shift_for_takeoff) v.takeoff_s = std::max(v.takeoff_s, lift / u.speed.cruise_mps);
+      if (timing == GroundLegTiming::shifted) v.takeoff_s = std::max(v.takeoff_s, lift / u.speed.cruise_mps);
     }
     if (goal[i] && w.on_ground(*goal[i])) {
       const double g = w.ground_z(goal[i]->x(), goal[i]->y());

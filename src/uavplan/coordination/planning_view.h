@@ -35,8 +35,10 @@ struct PlanningView {
   std::vector<std::string> arrival_problem;     // per UAV: a shared goal without room (it fails)
 };
 
-// `shift_for_takeoff`: the mission does not time the ground legs (see above).
-PlanningView planning_view(const Scenario& scenario, bool shift_for_takeoff = true);
+// Who times the take-off and landing legs: the plan shifted by the longest take-off (the legs
+// added around the mission's plan), or the mission itself (Mission::times_ground_legs).
+enum class GroundLegTiming { shifted, by_mission };
+PlanningView planning_view(const Scenario& scenario, GroundLegTiming timing = GroundLegTiming::shifted);
 
 // The largest min_agl of the scenario's UAVs: the ground the planners keep clear for all of them.
 double planning_min_agl_m(const Scenario& scenario);

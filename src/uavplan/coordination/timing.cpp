@@ -18,9 +18,9 @@ std::string at(const Encounter& e) {
 }  // namespace
 
 Conflict find_conflict(const Scenario& sc, const UavSpec& uav, const Trajectory& tr, const Committed& committed,
-                       bool moving_obstacles) {
+                       MovingObstacles moving) {
   int idx = -1;
-  const Encounter m = moving_obstacles ? closest_moving_approach(sc.world, tr, &idx) : Encounter{};
+  const Encounter m = moving == MovingObstacles::avoided ? closest_moving_approach(sc.world, tr, &idx) : Encounter{};
   if (m.distance_m < uav.radius_m + kTimingMargin_m)
     return {true, "moving obstacle '" + sc.world.moving()[idx].id + "' at " + at(m)};
   for (const auto& [spec, other] : committed) {
@@ -33,7 +33,7 @@ Conflict find_conflict(const Scenario& sc, const UavSpec& uav, const Trajectory&
 
 Departure earliest_departure(const Scenario& sc, const UavSpec& u, const std::vector<Vec3>& waypoints,
                              double max_delay_s, const Committed& committed, double delay_step_s,
-                             double max_sample_dt_s, const StopCondition& stop, bool moving_obstacles) {
+                             double max_sample_dt_s, const StopCondition& stop, MovingObstacles moving) {
   Departure d;
   for (int k = 0; k == 0 || (delay_step_s > 0.0 && k * delay_step_s <= max_delay_s + 1e-9); ++k) {
     if (stop.should_stop()) {
@@ -43,7 +43,7 @@ Departure earliest_departure(const Scenario& sc, const UavSpec& u, const std::ve
     const double delay = k * delay_step_s;
     Trajectory tr = fly_route(u, waypoints, delay, max_sample_dt_s, sc.mission.waypoints);
     if (tr.empty()) break;  // its model cannot fly the route at all
-    const Conflict c = find_conflict(sc, u, tr, committed, moving_obstacles);
+    const Conflict c = find_conflict(sc, u, tr, committed, moving);
     if (!d.first.any) d.first = c;
     if (c.any) continue;
     d.placed = true;

@@ -52,7 +52,7 @@ TEST_P(Group, PaperScenarioReachesVerifiesAndSmoothingLowersTheScore) {
   EXPECT_EQ(plan.status, Status::solved) << plan.message;
   EXPECT_GE(plan.metrics.at("min_separation_m"), 0.5);
 
-  const GroupResult g = plan_group(sc, ApfOptions::from_params({}, true), {});
+  const GroupResult g = plan_group(sc, ApfOptions::from_params({}, ApfField::improved), {});
   double before = 0, after = 0;
   for (const auto& u : g.uavs) {
     before += p3_score(u.raw, sc.world).sc;
@@ -66,7 +66,7 @@ INSTANTIATE_TEST_SUITE_P(FlatAnd3d, Group, ::testing::Bool());
 TEST(Group, TraditionalBaselineAlsoPlansButWithoutSmoothing) {
   Scenario sc = p3_group(false);
   sc.planner.algorithm = "apf_traditional";
-  const GroupResult g = plan_group(sc, ApfOptions::from_params({}, false), {});
+  const GroupResult g = plan_group(sc, ApfOptions::from_params({}, ApfField::traditional), {});
   for (const auto& u : g.uavs) EXPECT_EQ(u.raw, u.smoothed);
 }
 
@@ -117,7 +117,7 @@ TEST(Group, CrowdedBlockThroughAFieldAllArriveSeparated) {
 
 TEST(Group, SmoothedPointsStayNearTheirFrames) {
   const Scenario sc = crowded(25, 4);
-  const GroupResult g = plan_group(sc, ApfOptions::from_params({}, true), {});
+  const GroupResult g = plan_group(sc, ApfOptions::from_params({}, ApfField::improved), {});
   int moved = 0;
   for (const auto& u : g.uavs) {
     ASSERT_EQ(u.raw.size(), u.smoothed.size());

@@ -137,12 +137,11 @@ RunOutcome run_in_process(const RunSpec& run, const ScenarioCache& cache, const 
   return o;
 }
 
-RunOutcome run_isolated(const RunSpec& run, const ScenarioCache& cache, const BatchOptions& options,
-                        std::string& plan_json) {
-  const auto t0 = Clock::now();
-  plan_json.clear();
-  const fs::path dir = fs::path(options.work_dir) / ("run-" + std::to_string(run.index));
-  fs::create_directories(dir);
+namespace {
+
+// `uavplan plan` of one run into `dir`, one thread, with the run's seed, planner, parameters,
+// time limit and memory cap.
+std::vector<std::string> isolated_args(const RunSpec& run, const BatchOptions& options, const fs::path& dir) {
   std::vector<std::string> args = {
       options.uavplan_exe,      "plan",      run.scenario, "-o",      dir.string(), "--seed",
       std::to_string(run.seed), "--threads", "1",          "--timing"};
@@ -154,25 +153,27 @@ RunOutcome run_isolated(const RunSpec& run, const ScenarioCache& cache, const Ba
     args.insert(args.end(), {"--time-limit", limit});
   }
   args.insert(args.end(), {"--max-memory", std::to_string(options.max_memory_bytes)});
+  return args;
+}
+
+// The process in its own process group, stdin and stdout /dev/null, stderr to a fresh
+// `err_path` (never through a link planted under its name). The child ends with the batch: it is
+// told its parent, and dies when that is gone (a killed batch leaves no orphans to race a later
+// --resume). -1 when it cannot start.
+pid_t spawn_run(std::vector<std::string> args, const std::string& err_path) {
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
-
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
   posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  const std::string err_path = (dir / "stderr.txt").string();
-  // A fresh file, never through a link planted under its name.
   ::unlink(err_path.c_str());
   posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW, 0644);
   posix_spawnattr_t attr;
   posix_spawnattr_init(&attr);
   posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
   posix_spawnattr_setpgroup(&attr, 0);
-  pid_t pid = -1;
-  // The child ends with the batch: it is told its parent, and dies when that is gone (a killed
-  // batch leaves no orphans to race a later --resume).
   std::vector<std::string> env_text;
   for (char** e = environ; *e; ++e)
     if (std::strncmp(*e, kParentPidVariable, std::strlen(kParentPidVariable)) != 0) env_text.emplace_back(*e);
@@ -180,61 +181,94 @@ RunOutcome run_isolated(const RunSpec& run, const ScenarioCache& cache, const Ba
   std::vector<char*> envp;
   for (auto& e : env_text) envp.push_back(e.data());
   envp.push_back(nullptr);
-  const int spawned = posix_spawn(&pid, options.uavplan_exe.c_str(), &actions, &attr, argv.data(), envp.data());
+  pid_t pid = -1;
+  const int spawned = posix_spawn(&pid, args.front().c_str(), &actions, &attr, argv.data(), envp.data());
   posix_spawn_file_actions_destroy(&actions);
   posix_spawnattr_destroy(&attr);
+  return spawned == 0 ? pid : -1;
+}
+
+// Waits for the run's process: an interrupt is passed on as SIGINT to its process group (the
+// terminal's Ctrl-C does not reach it); past twice the time limit plus 5 s it is killed.
+struct Waited {
+  int wstatus = 0;
+  bool killed = false;
+};
+Waited wait_run(pid_t pid, const BatchOptions& options, Clock::time_point t0) {
+  const double kill_after_ms = options.time_limit_s > 0.0 ? 2000.0 * options.time_limit_s + 5000.0 : -1.0;
+  Waited w;
+  bool interrupted = false;
+  while (::waitpid(pid, &w.wstatus, WNOHANG) == 0) {
+    if (options.stop && options.stop->load() && !interrupted) {
+      ::kill(-pid, SIGINT);
+      interrupted = true;
+    }
+    if (kill_after_ms > 0.0 && !w.killed && ms_since(t0) > kill_after_ms) {
+      ::kill(pid, SIGKILL);
+      w.killed = true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  return w;
+}
+
+// The outcome of a plan the process wrote, verified here against the run's scenario.
+RunOutcome read_isolated_plan(const RunSpec& run, const ScenarioCache& cache, const BatchOptions& options,
+                              const fs::path& plan_path, std::string& plan_json) {
   RunOutcome o;
-  if (spawned != 0) {
+  try {
+    ParamSetting overrides;
+    Params unused;
+    split_params(run.params, overrides, unused);
+    const auto sc = cache.get(run.scenario, overrides);
+    const std::string text = read_text_file(plan_path.string());
+    Plan plan = parse_plan(text, plan_path.string());
+    o = outcome_of(plan, verify_plan(*sc, plan).size(), options.time_limit_s > 0.0);
+    o.plan_ms = plan.plan_ms;
+    plan_json = plan_to_json(plan);  // without the timing the process wrote
+  } catch (const std::exception& e) {
+    o.status = "error";
+    o.message = first_line(e.what());
+  }
+  return o;
+}
+
+}  // namespace
+
+RunOutcome run_isolated(const RunSpec& run, const ScenarioCache& cache, const BatchOptions& options,
+                        std::string& plan_json) {
+  const auto t0 = Clock::now();
+  plan_json.clear();
+  const fs::path dir = fs::path(options.work_dir) / ("run-" + std::to_string(run.index));
+  fs::create_directories(dir);
+  const std::string err_path = (dir / "stderr.txt").string();
+  const pid_t pid = spawn_run(isolated_args(run, options, dir), err_path);
+  RunOutcome o;
+  if (pid < 0) {
     o.message = "could not start " + options.uavplan_exe;
     o.wall_ms = ms_since(t0);
     return o;
   }
-  const double kill_after_ms = options.time_limit_s > 0.0 ? 2000.0 * options.time_limit_s + 5000.0 : -1.0;
-  int wstatus = 0;
-  bool killed = false;
-  bool interrupted = false;
-  while (::waitpid(pid, &wstatus, WNOHANG) == 0) {
-    if (options.stop && options.stop->load() && !interrupted) {
-      ::kill(-pid, SIGINT);  // its own process group: the terminal's Ctrl-C does not reach it
-      interrupted = true;
-    }
-    if (kill_after_ms > 0.0 && !killed && ms_since(t0) > kill_after_ms) {
-      ::kill(pid, SIGKILL);
-      killed = true;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  }
+  const Waited w = wait_run(pid, options, t0);
   std::string err;
   try {
     err = read_text_file(err_path);
   } catch (const std::exception&) {
   }
   const fs::path plan_path = dir / "plan.json";
-  if (killed) {
+  if (w.killed) {
     o.status = "timeout";
     o.message = "killed at twice the time limit plus 5 s";
-  } else if (WIFSIGNALED(wstatus)) {
+  } else if (WIFSIGNALED(w.wstatus)) {
     o.status = "crashed";
-    o.message = "the run's process died of signal " + std::to_string(WTERMSIG(wstatus));
-  } else if (WIFEXITED(wstatus) && (WEXITSTATUS(wstatus) == 0 || WEXITSTATUS(wstatus) == 1) && fs::exists(plan_path)) {
-    try {
-      ParamSetting overrides;
-      Params unused;
-      split_params(run.params, overrides, unused);
-      const auto sc = cache.get(run.scenario, overrides);
-      const std::string text = read_text_file(plan_path.string());
-      Plan plan = parse_plan(text, plan_path.string());
-      o = outcome_of(plan, verify_plan(*sc, plan).size(), options.time_limit_s > 0.0);
-      o.plan_ms = plan.plan_ms;
-      plan_json = plan_to_json(plan);  // without the timing the process wrote
-    } catch (const std::exception& e) {
-      o.status = "error";
-      o.message = first_line(e.what());
-    }
+    o.message = "the run's process died of signal " + std::to_string(WTERMSIG(w.wstatus));
+  } else if (WIFEXITED(w.wstatus) && (WEXITSTATUS(w.wstatus) == 0 || WEXITSTATUS(w.wstatus) == 1) &&
+             fs::exists(plan_path)) {
+    o = read_isolated_plan(run, cache, options, plan_path, plan_json);
   } else {
     o.status = "error";
     o.message =
-        first_line(err.empty() ? "the run's process ended with exit " + std::to_string(WEXITSTATUS(wstatus)) : err);
+        first_line(err.empty() ? "the run's process ended with exit " + std::to_string(WEXITSTATUS(w.wstatus)) : err);
   }
   std::error_code ec;
   fs::remove_all(dir, ec);

@@ -224,8 +224,10 @@ std::string plan_to_json(const Plan& plan, const PlanWriteOptions& options) {
   return out;
 }
 
-Plan parse_plan(const std::string& raw, const std::string& file) {
-  const std::string text = checked_text(raw, file);
+namespace {
+
+// The JSON tree of a plan file: valid JSON, no key twice in one object.
+Json parse_plan_json(const std::string& text, const std::string& file) {
   Json j;
   bool duplicate = false;
   std::vector<std::set<std::string>> keys;  // of the objects open while parsing
@@ -250,6 +252,103 @@ Plan parse_plan(const std::string& raw, const std::string& file) {
     }
     throw InputError(file, 0, "", "a key appears twice in one object");
   }
+  return j;
+}
+
+// `[t, x, y, z]` rows. The input limits of scenarios hold here too: times from 0 (a mission
+// starts at 0; a UAV is at its first row before it) to 1e9 s, coordinates within 1e9 m.
+Trajectory read_rows(const Reader& r, const Json& tr, const std::string& at) {
+  if (!tr.is_array()) r.fail(at + ".trajectory", "expected an array");
+  Trajectory rows;
+  for (std::size_t k = 0; k < tr.size(); ++k) {
+    const std::string row = at + ".trajectory[" + std::to_string(k) + "]";
+    if (!tr[k].is_array() || tr[k].size() != 4) r.fail(row, "expected [t, x, y, z]");
+    const double t_s = r.number(tr[k][0], row);
+    if (t_s < 0.0 || t_s > 1e9) r.fail(row, "time must be from 0 to 1e9 s, got " + num_text(t_s));
+    const Vec3 at_m(r.number(tr[k][1], row), r.number(tr[k][2], row), r.number(tr[k][3], row));
+    if (at_m.cwiseAbs().maxCoeff() > 1e9) r.fail(row, "coordinates must be within 1e9 m");
+    rows.push_back({t_s, at_m});
+  }
+  return rows;
+}
+
+std::vector<Vec3> read_waypoints(const Reader& r, const Json& w, const std::string& at) {
+  if (!w.is_array()) r.fail(at + ".waypoints", "expected an array");
+  std::vector<Vec3> out;
+  for (std::size_t k = 0; k < w.size(); ++k) {
+    const std::string wp = at + ".waypoints[" + std::to_string(k) + "]";
+    if (!w[k].is_array() || w[k].size() != 3) r.fail(wp, "expected [x, y, z]");
+    out.emplace_back(r.number(w[k][0], wp), r.number(w[k][1], wp), r.number(w[k][2], wp));
+  }
+  return out;
+}
+
+PlanStats read_stats(const Reader& r, const Json& st, const std::string& at) {
+  if (!st.is_object()) r.fail(at + ".stats", "expected an object");
+  const auto count = [&](const char* key) -> std::uint64_t {
+    if (!st.contains(key)) return 0;
+    const double v = r.number(st[key], at + ".stats." + key);
+    if (v < 0 || v > 1.8e19) r.fail(at + ".stats." + key, "expected a count");
+    return static_cast<std::uint64_t>(v);
+  };
+  PlanStats stats;
+  stats.nodes_expanded = count("nodes_expanded");
+  stats.open_max = count("open_max");
+  stats.grid_cells = count("grid_cells");
+  if (st.contains("cell_m")) stats.cell_m = r.number(st["cell_m"], at + ".stats.cell_m");
+  return stats;
+}
+
+UavPlan read_uav_plan(const Reader& r, const Json& ju, const std::string& at) {
+  UavPlan u;
+  u.id = r.text(r.req(ju, "id", at), at + ".id");
+  const auto us = status_from_string(r.text(r.req(ju, "status", at), at + ".status"));
+  if (!us) r.fail(at + ".status", "expected solved, partial or failed");
+  u.status = *us;
+  if (ju.contains("message")) u.message = r.text(ju["message"], at + ".message");
+  if (ju.contains("reason")) {
+    const auto reason = reason_from_string(r.text(ju["reason"], at + ".reason"));
+    if (!reason) r.fail(at + ".reason", "expected none, stopped, budget, no_route, invalid, conflict or rejected");
+    u.reason = *reason;
+  }
+  if (ju.contains("waypoints")) u.waypoints = read_waypoints(r, ju["waypoints"], at);
+  u.trajectory = read_rows(r, r.req(ju, "trajectory", at), at);
+  if (ju.contains("length_m")) u.length_m = r.number(ju["length_m"], at + ".length_m");
+  if (ju.contains("arrival_s")) u.arrival_s = r.number(ju["arrival_s"], at + ".arrival_s");
+  if (ju.contains("metrics")) u.metrics = r.metrics(ju["metrics"], at + ".metrics");
+  if (ju.contains("stats")) u.stats = read_stats(r, ju["stats"], at);
+  return u;
+}
+
+FormationLog read_formation_log(const Reader& r, const Json& f) {
+  FormationLog log;
+  log.eta_s = r.number(r.req(f, "eta_s", "formation"), "formation.eta_s");
+  if (f.contains("worst_slot_error_m"))
+    log.worst_slot_error_m = r.number(f["worst_slot_error_m"], "formation.worst_slot_error_m");
+  for (const char* key : {"phases", "breaks"}) {
+    if (!f.contains(key)) continue;
+    const std::string at = std::string("formation.") + key;
+    if (!f[key].is_array()) r.fail(at, "expected an array");
+    for (std::size_t k = 0; k < f[key].size(); ++k) {
+      const Json& e = f[key][k];
+      const std::string place = at + "[" + std::to_string(k) + "]";
+      if (std::string(key) == "phases")
+        log.phases.push_back(
+            {r.text(r.req(e, "name", place), place + ".name"), r.number(r.req(e, "end_s", place), place + ".end_s")});
+      else
+        log.breaks.push_back({r.text(r.req(e, "uav", place), place + ".uav"),
+                              r.number(r.req(e, "from_s", place), place + ".from_s"),
+                              r.number(r.req(e, "to_s", place), place + ".to_s")});
+    }
+  }
+  return log;
+}
+
+}  // namespace
+
+Plan parse_plan(const std::string& raw, const std::string& file) {
+  const std::string text = checked_text(raw, file);
+  const Json j = parse_plan_json(text, file);
   const Reader r{file, text};
   if (!j.is_object()) r.fail("", "the top level must be a JSON object");
   if (r.text(r.req(j, "format", ""), "format") != "uavplan-plan") r.fail("format", "expected \"uavplan-plan\"");
@@ -271,85 +370,12 @@ Plan parse_plan(const std::string& raw, const std::string& file) {
   if (!uavs.is_array()) r.fail("uavs", "expected an array");
   for (std::size_t i = 0; i < uavs.size(); ++i) {
     const std::string at = "uavs[" + std::to_string(i) + "]";
-    const Json& ju = uavs[i];
-    UavPlan u;
-    u.id = r.text(r.req(ju, "id", at), at + ".id");
+    UavPlan u = read_uav_plan(r, uavs[i], at);
     if (p.find_uav(u.id)) r.fail(at + ".id", "duplicate UAV id '" + u.id + "'");
-    const auto us = status_from_string(r.text(r.req(ju, "status", at), at + ".status"));
-    if (!us) r.fail(at + ".status", "expected solved, partial or failed");
-    u.status = *us;
-    if (ju.contains("message")) u.message = r.text(ju["message"], at + ".message");
-    if (ju.contains("reason")) {
-      const auto reason = reason_from_string(r.text(ju["reason"], at + ".reason"));
-      if (!reason) r.fail(at + ".reason", "expected none, stopped, budget, no_route, invalid, conflict or rejected");
-      u.reason = *reason;
-    }
-    if (ju.contains("waypoints")) {
-      const Json& w = ju["waypoints"];
-      if (!w.is_array()) r.fail(at + ".waypoints", "expected an array");
-      for (std::size_t k = 0; k < w.size(); ++k) {
-        const std::string wp = at + ".waypoints[" + std::to_string(k) + "]";
-        if (!w[k].is_array() || w[k].size() != 3) r.fail(wp, "expected [x, y, z]");
-        u.waypoints.emplace_back(r.number(w[k][0], wp), r.number(w[k][1], wp), r.number(w[k][2], wp));
-      }
-    }
-    const Json& tr = r.req(ju, "trajectory", at);
-    if (!tr.is_array()) r.fail(at + ".trajectory", "expected an array");
-    for (std::size_t k = 0; k < tr.size(); ++k) {
-      const std::string row = at + ".trajectory[" + std::to_string(k) + "]";
-      if (!tr[k].is_array() || tr[k].size() != 4) r.fail(row, "expected [t, x, y, z]");
-      // The input limits of scenarios hold here too: times from 0 (a mission starts at 0; a UAV
-      // is at its first row before it) to 1e9 s, coordinates within 1e9 m.
-      const double t_s = r.number(tr[k][0], row);
-      if (t_s < 0.0 || t_s > 1e9) r.fail(row, "time must be from 0 to 1e9 s, got " + num_text(t_s));
-      const Vec3 at_m(r.number(tr[k][1], row), r.number(tr[k][2], row), r.number(tr[k][3], row));
-      if (at_m.cwiseAbs().maxCoeff() > 1e9) r.fail(row, "coordinates must be within 1e9 m");
-      u.trajectory.push_back({t_s, at_m});
-    }
-    if (ju.contains("length_m")) u.length_m = r.number(ju["length_m"], at + ".length_m");
-    if (ju.contains("arrival_s")) u.arrival_s = r.number(ju["arrival_s"], at + ".arrival_s");
-    if (ju.contains("metrics")) u.metrics = r.metrics(ju["metrics"], at + ".metrics");
-    if (ju.contains("stats")) {
-      const Json& st = ju["stats"];
-      if (!st.is_object()) r.fail(at + ".stats", "expected an object");
-      const auto count = [&](const char* key) -> std::uint64_t {
-        if (!st.contains(key)) return 0;
-        const double v = r.number(st[key], at + ".stats." + key);
-        if (v < 0 || v > 1.8e19) r.fail(at + ".stats." + key, "expected a count");
-        return static_cast<std::uint64_t>(v);
-      };
-      u.stats.nodes_expanded = count("nodes_expanded");
-      u.stats.open_max = count("open_max");
-      u.stats.grid_cells = count("grid_cells");
-      if (st.contains("cell_m")) u.stats.cell_m = r.number(st["cell_m"], at + ".stats.cell_m");
-    }
     p.uavs.push_back(std::move(u));
   }
   if (j.contains("metrics")) p.metrics = r.metrics(j["metrics"], "metrics");
-  if (j.contains("formation")) {
-    const Json& f = j["formation"];
-    FormationLog log;
-    log.eta_s = r.number(r.req(f, "eta_s", "formation"), "formation.eta_s");
-    if (f.contains("worst_slot_error_m"))
-      log.worst_slot_error_m = r.number(f["worst_slot_error_m"], "formation.worst_slot_error_m");
-    for (const char* key : {"phases", "breaks"}) {
-      if (!f.contains(key)) continue;
-      const std::string at = std::string("formation.") + key;
-      if (!f[key].is_array()) r.fail(at, "expected an array");
-      for (std::size_t k = 0; k < f[key].size(); ++k) {
-        const Json& e = f[key][k];
-        const std::string place = at + "[" + std::to_string(k) + "]";
-        if (std::string(key) == "phases")
-          log.phases.push_back(
-              {r.text(r.req(e, "name", place), place + ".name"), r.number(r.req(e, "end_s", place), place + ".end_s")});
-        else
-          log.breaks.push_back({r.text(r.req(e, "uav", place), place + ".uav"),
-                                r.number(r.req(e, "from_s", place), place + ".from_s"),
-                                r.number(r.req(e, "to_s", place), place + ".to_s")});
-      }
-    }
-    p.formation = std::move(log);
-  }
+  if (j.contains("formation")) p.formation = read_formation_log(r, j["formation"]);
   return p;
 }
 

@@ -106,22 +106,8 @@ ojson profile_json(const World& w, const Trajectory& tr, int samples) {
   return {{"s_m", std::move(s_m)}, {"z_m", std::move(z_m)}, {"ground_m", std::move(ground_m)}};
 }
 
-}  // namespace
-
-std::string report_data_json(const Scenario& sc, const Plan& plan_in, const std::vector<Violation>& violations,
-                             const ReportOptions& opt) {
-  // The metrics shown are those of the trajectories shown, whatever the plan file says.
-  Plan plan = plan_in;
-  compute_metrics(sc, plan);
-  ojson j;
-  j["name"] = sc.name;
-  j["algorithm"] = plan.algorithm;
-  j["seed"] = plan.seed;
-  j["status"] = to_string(plan.status);
-  j["message"] = plan.message;
-  j["mission"] = to_string(sc.mission.type);
-  j["separation_m"] = sc.mission.separation_m;
-  const World& w = sc.world;
+// The world: bounds, obstacles, threats, moving obstacles, terrain.
+void add_world(ojson& j, const World& w, const ReportOptions& opt) {
   j["bounds"] = {{"min", vec(w.bounds().min)}, {"max", vec(w.bounds().max)}};
   j["obstacles"] = ojson::array();
   for (const Obstacle& o : w.obstacles()) j["obstacles"].push_back(obstacle_json(o));
@@ -137,41 +123,35 @@ std::string report_data_json(const Scenario& sc, const Plan& plan_in, const std:
     j["moving"].push_back(std::move(jm));
   }
   j["terrain"] = w.terrain() ? terrain_json(*w.terrain(), opt.max_terrain_cells) : ojson(nullptr);
+}
 
-  // UAVs with their trajectories, colours by their place in the plan (as in the KML export).
-  std::vector<const UavPlan*> flown;
-  double t_end = 0.0;
-  j["uavs"] = ojson::array();
-  for (std::size_t k = 0; k < plan.uavs.size(); ++k) {
-    const UavPlan& u = plan.uavs[k];
-    const UavSpec* spec = sc.find_uav(u.id);
-    ojson traj = ojson::array();
-    for (const auto& s : u.trajectory) traj.push_back({s.t_s, s.p.x(), s.p.y(), s.p.z()});
-    ojson metrics = ojson::object();
-    for (const auto& [key, v] : u.metrics) metrics[key] = round6(v);
-    const bool has_height = w.bounds().extent().z() > 0.0;
-    j["uavs"].push_back(
-        {{"id", u.id},
-         {"status", to_string(u.status)},
-         {"message", u.message},
-         {"colour", uav_colour(k)},
-         {"radius", spec ? spec->radius_m : 0.0},
-         {"min_agl", spec ? spec->min_agl_m : 0.0},
-         {"length_m", u.length_m},
-         {"arrival_s", u.arrival_s},
-         {"trajectory", std::move(traj)},
-         {"metrics", std::move(metrics)},
-         {"profile", has_height && u.trajectory.size() >= 2 ? profile_json(w, u.trajectory, opt.profile_samples)
-                                                            : ojson(nullptr)}});
-    if (u.trajectory.size() >= 2) {
-      flown.push_back(&u);
-      t_end = std::max(t_end, u.trajectory.back().t_s);
-    }
-  }
-  j["t_end_s"] = t_end;
+// One UAV with its trajectory, colour by its place in the plan (as in the KML export).
+ojson uav_json(const Scenario& sc, const UavPlan& u, std::size_t k, const ReportOptions& opt) {
+  const World& w = sc.world;
+  const UavSpec* spec = sc.find_uav(u.id);
+  ojson traj = ojson::array();
+  for (const auto& s : u.trajectory) traj.push_back({s.t_s, s.p.x(), s.p.y(), s.p.z()});
+  ojson metrics = ojson::object();
+  for (const auto& [key, v] : u.metrics) metrics[key] = round6(v);
+  const bool has_height = w.bounds().extent().z() > 0.0;
+  return {{"id", u.id},
+          {"status", to_string(u.status)},
+          {"message", u.message},
+          {"colour", uav_colour(k)},
+          {"radius", spec ? spec->radius_m : 0.0},
+          {"min_agl", spec ? spec->min_agl_m : 0.0},
+          {"length_m", u.length_m},
+          {"arrival_s", u.arrival_s},
+          {"trajectory", std::move(traj)},
+          {"metrics", std::move(metrics)},
+          {"profile", has_height && u.trajectory.size() >= 2 ? profile_json(w, u.trajectory, opt.profile_samples)
+                                                             : ojson(nullptr)}};
+}
 
-  // Charts: altitude, speed and distance to the nearest other UAV on a common time grid.
-  const int n = t_end > 0.0 ? std::max(2, opt.series_samples) : 0;
+// Charts: altitude, speed and distance to the nearest other UAV on a common time grid of the
+// flown UAVs.
+ojson series_json(const Scenario& sc, const std::vector<const UavPlan*>& flown, double t_end, int samples) {
+  const int n = t_end > 0.0 ? std::max(2, samples) : 0;
   ojson times = ojson::array();
   std::vector<std::vector<Vec3>> pos(flown.size());
   for (int i = 0; i < n; ++i) {
@@ -204,17 +184,51 @@ std::string report_data_json(const Scenario& sc, const Plan& plan_in, const std:
                       {"speed_mps", std::move(speed)},
                       {"nearest_m", std::move(nearest)}});
   }
-  j["series"] = {{"t_s", std::move(times)}, {"uavs", std::move(series)}};
-  // A phased mission's phases (P5's form-up ... landing), for bands on the charts.
-  j["phases"] = ojson::array();
-  if (plan.formation) {
-    double from = 0.0;
-    for (const FormationLog::Phase& ph : plan.formation->phases) {
-      j["phases"].push_back({{"name", ph.name}, {"start_s", round6(from)}, {"end_s", round6(ph.end_s)}});
-      from = ph.end_s;
+  return {{"t_s", std::move(times)}, {"uavs", std::move(series)}};
+}
+
+// A phased mission's phases (P5's form-up ... landing), for bands on the charts.
+ojson phases_json(const Plan& plan) {
+  ojson phases = ojson::array();
+  if (!plan.formation) return phases;
+  double from = 0.0;
+  for (const FormationLog::Phase& ph : plan.formation->phases) {
+    phases.push_back({{"name", ph.name}, {"start_s", round6(from)}, {"end_s", round6(ph.end_s)}});
+    from = ph.end_s;
+  }
+  return phases;
+}
+
+}  // namespace
+
+std::string report_data_json(const Scenario& sc, const Plan& plan_in, const std::vector<Violation>& violations,
+                             const ReportOptions& opt) {
+  // The metrics shown are those of the trajectories shown, whatever the plan file says.
+  Plan plan = plan_in;
+  compute_metrics(sc, plan);
+  ojson j;
+  j["name"] = sc.name;
+  j["algorithm"] = plan.algorithm;
+  j["seed"] = plan.seed;
+  j["status"] = to_string(plan.status);
+  j["message"] = plan.message;
+  j["mission"] = to_string(sc.mission.type);
+  j["separation_m"] = sc.mission.separation_m;
+  add_world(j, sc.world, opt);
+  std::vector<const UavPlan*> flown;
+  double t_end = 0.0;
+  j["uavs"] = ojson::array();
+  for (std::size_t k = 0; k < plan.uavs.size(); ++k) {
+    const UavPlan& u = plan.uavs[k];
+    j["uavs"].push_back(uav_json(sc, u, k, opt));
+    if (u.trajectory.size() >= 2) {
+      flown.push_back(&u);
+      t_end = std::max(t_end, u.trajectory.back().t_s);
     }
   }
-
+  j["t_end_s"] = t_end;
+  j["series"] = series_json(sc, flown, t_end, opt.series_samples);
+  j["phases"] = phases_json(plan);
   ojson pm = ojson::object();
   for (const auto& [key, v] : plan.metrics) pm[key] = round6(v);
   j["metrics"] = std::move(pm);

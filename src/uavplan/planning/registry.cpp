@@ -36,19 +36,25 @@ const std::vector<Entry>& entries() {
       {{"cell_astar", "A* on P2's cell graph with the same penalty J (optimal for it; the ant colony's baseline)"},
        [](const Params& p) { return std::make_unique<CellAStarPlanner>(CellAStarOptions::from_params(p)); }},
       {{"rrt", "P1's common RRT: goal bias 0.5, fixed step, uniform samples, no pruning (the baseline)", false},
-       [](const Params& p) { return std::make_unique<RrtPlanner>("rrt", RrtOptions::from_params(p, false)); }},
+       [](const Params& p) {
+         return std::make_unique<RrtPlanner>("rrt", RrtOptions::from_params(p, RrtVariant::common));
+       }},
       {{"improved_rrt",
         "P1's improved RRT: chaotic samples, obstacle-velocity growth bias, 5-look-ahead pruning, shortcut", false},
-       [](const Params& p) { return std::make_unique<RrtPlanner>("improved_rrt", RrtOptions::from_params(p, true)); }},
+       [](const Params& p) {
+         return std::make_unique<RrtPlanner>("improved_rrt", RrtOptions::from_params(p, RrtVariant::improved));
+       }},
       {{"aco_voronoi", "P1 ant colony on the threat Voronoi roadmap: tabu lists, tau^alpha eta^beta, Q / L_k deposits",
         false},
        [](const Params& p) {
-         return std::make_unique<AcoVoronoiPlanner>(AcoVoronoiOptions::from_params(p, true), true);
+         return std::make_unique<AcoVoronoiPlanner>(AcoVoronoiOptions::from_params(p, RoadmapSearch::colony),
+                                                    RoadmapSearch::colony);
        }},
       {{"voronoi_dijkstra",
         "Dijkstra on P1's threat Voronoi roadmap with the same cost (optimal on it; the colony's baseline)", false},
        [](const Params& p) {
-         return std::make_unique<AcoVoronoiPlanner>(AcoVoronoiOptions::from_params(p, false), false);
+         return std::make_unique<AcoVoronoiPlanner>(AcoVoronoiOptions::from_params(p, RoadmapSearch::dijkstra),
+                                                    RoadmapSearch::dijkstra);
        }},
       {{"pso_mpc",
         "P5 multi-step PSO: one waypoint l on per step, (dphi, dh) within the limits, 11-step look-ahead, terminal and "
@@ -60,10 +66,10 @@ const std::vector<Entry>& entries() {
         true},
        [](const Params& p) { return std::make_unique<PsoSinglePlanner>(PsoSingleOptions::from_params(p)); }},
       {{"apf", "P3 improved potential field: capped attraction, sqrt(R)-faded repulsion, 15-degree sector rule", false},
-       [](const Params& p) { return std::make_unique<ApfPlanner>(ApfOptions::from_params(p, true)); }},
+       [](const Params& p) { return std::make_unique<ApfPlanner>(ApfOptions::from_params(p, ApfField::improved)); }},
       {{"apf_traditional", "the traditional potential field (P3's baseline): no cap, no sqrt(R), no sector rule",
         false},
-       [](const Params& p) { return std::make_unique<ApfPlanner>(ApfOptions::from_params(p, false)); }},
+       [](const Params& p) { return std::make_unique<ApfPlanner>(ApfOptions::from_params(p, ApfField::traditional)); }},
   };
   return list;
 }

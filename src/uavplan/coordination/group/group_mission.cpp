@@ -25,7 +25,9 @@ std::string limits_broken(const std::vector<Vec3>& path, const UavSpec& u) {
 }  // namespace
 
 void GroupMission::plan(const Scenario& sc, const MissionContext& ctx, Plan& plan) const {
-  const GroupResult g = plan_group(sc, ApfOptions::from_params(ctx.params, ctx.algorithm == "apf"), ctx.options.stop);
+  const GroupResult g = plan_group(
+      sc, ApfOptions::from_params(ctx.params, ctx.algorithm == "apf" ? ApfField::improved : ApfField::traditional),
+      ctx.options.stop);
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
     GroupUav r = g.uavs[i];
     // The field steers frame by frame under the climb limit only: a path that turns beyond the

@@ -13,7 +13,8 @@ LocalLayer local_layer(const MissionContext& ctx) {
   out.window_m = r.number("window_m", 0.0, 0.0, 1e12);
   r.finish();
   // The global planner's own RRT parameters apply to the local one of the same kind.
-  out.rrt = local == ctx.algorithm ? RrtOptions::from_params(ctx.params, local == "improved_rrt")
+  out.rrt = local == ctx.algorithm ? RrtOptions::from_params(ctx.params, local == "improved_rrt" ? RrtVariant::improved
+                                                                                                 : RrtVariant::common)
             : local == "rrt"       ? RrtOptions::common()
                                    : RrtOptions::improved();
   return out;

@@ -65,7 +65,7 @@ Committed plan_and_time(const Scenario& sc, const Planner& planner, const Missio
     }
     horizon_s += 2.0 * up.length_m / u.speed.cruise_mps;
     Departure d = earliest_departure(sc, u, up.waypoints, horizon_s, committed, opt.delay_step_s, opt.max_sample_dt_s,
-                                     opt.stop, !senses(u));
+                                     opt.stop, senses(u) ? MovingObstacles::sensed : MovingObstacles::avoided);
     if (d.stopped) {
       up.status = Status::failed;
       up.message = kStoppedMessage;
@@ -94,24 +94,20 @@ Committed plan_and_time(const Scenario& sc, const Planner& planner, const Missio
 // When a timed UAV departs: the end of its wait at the start.
 double departure_s(const Trajectory& tr) { return tr.size() >= 2 && tr[1].p == tr[0].p ? tr[1].t_s : 0.0; }
 
-// The UAVs with sensors fly their routes in the loop, with the timed ones as objects to sense.
-void fly_sensing(const Scenario& sc, const MissionContext& ctx, const Committed& committed, Plan& plan) {
-  const MissionOptions& opt = ctx.options;
-  const LocalLayer layer = local_layer(ctx);
-  RollingWindowOptions rw;
-  rw.step_s = sc.mission.step_s;
-  rw.separation_m = sc.mission.separation_m;
-  rw.local = layer.rrt;
-  rw.seed = opt.seed;
-  rw.stop = opt.stop;
+// The UAVs with sensors, in the loop from their lift-off points to their touch-down points once
+// they have climbed; the horizon three times the longest planned flight and two minutes more.
+struct SensingUavs {
   std::vector<LoopUav> loop;
   std::vector<std::size_t> index;  // scenario index of each loop UAV
   std::vector<double> windows;
-  double horizon_s = 0.0;  // three times the longest planned flight and two minutes more
+  double horizon_s = 0.0;
+};
+
+SensingUavs sensing_uavs(const Scenario& sc, const MissionContext& ctx, const Plan& plan, double window_m) {
+  SensingUavs s;
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
     const UavSpec& u = sc.uavs[i];
     if (!senses(u) || plan.uavs[i].status != Status::solved) continue;
-    // In the loop from its lift-off point to its touch-down point, once it has climbed.
     std::vector<Vec3> route = plan.uavs[i].waypoints;
     double depart_s = departure_s(plan.uavs[i].trajectory);
     if (i < ctx.ground.start.size() && ctx.ground.start[i]) {
@@ -119,37 +115,30 @@ void fly_sensing(const Scenario& sc, const MissionContext& ctx, const Committed&
       depart_s += (route.front() - *ctx.ground.start[i]).norm() / u.speed.cruise_mps;
     }
     if (i < ctx.ground.goal.size() && ctx.ground.goal[i]) route.pop_back();
-    loop.push_back({&u, std::move(route), *u.sensor_range_m, depart_s});
-    index.push_back(i);
-    windows.push_back(layer.window_m > 0.0 ? layer.window_m : *u.sensor_range_m);
-    horizon_s = std::max(horizon_s, 120.0 + 3.0 * plan.uavs[i].trajectory.back().t_s);
+    s.loop.push_back({&u, std::move(route), *u.sensor_range_m, depart_s});
+    s.index.push_back(i);
+    s.windows.push_back(window_m > 0.0 ? window_m : *u.sensor_range_m);
+    s.horizon_s = std::max(s.horizon_s, 120.0 + 3.0 * plan.uavs[i].trajectory.back().t_s);
   }
-  if (loop.empty()) return;
-  std::vector<ScriptedUav> scripted;
-  for (const auto& [spec, up] : committed)
-    if (!senses(*spec)) scripted.push_back({spec, &up->trajectory});
-  std::vector<std::string> ids;
-  for (const std::size_t i : index) ids.push_back(sc.uavs[i].id);
-  RollingWindow controller(sc.world, rw, windows, ids);
-  LoopOptions lo;
-  lo.step_s = sc.mission.step_s;
-  lo.horizon_s = horizon_s;
-  lo.max_sample_dt_s = opt.max_sample_dt_s;
-  lo.separation_m = sc.mission.separation_m;
-  const LoopResult flight = fly_closed_loop(sc.world, loop, scripted, controller, lo, opt.stop);
-  for (std::size_t k = 0; k < loop.size(); ++k) {
-    UavPlan& up = plan.uavs[index[k]];
+  return s;
+}
+
+// What each sensing UAV flew, also when it failed (the report shows it).
+void record_flights(const Scenario& sc, const MissionContext& ctx, const SensingUavs& s, const LoopResult& flight,
+                    const RollingWindow& controller, Plan& plan) {
+  for (std::size_t k = 0; k < s.loop.size(); ++k) {
+    UavPlan& up = plan.uavs[s.index[k]];
     const FlightState& f = flight.uavs[k];
     const RollingWindowLog& log = controller.log(k);
     char buf[200];
     std::snprintf(buf, sizeof buf, "flown in the loop (T = %g s): %d local replans, %d holds, %d escapes",
                   sc.mission.step_s, log.replans, log.holds, log.escapes);
     up.stats.plan_ms += log.local_ms;  // wall time stays out of the plan's text (same bytes every run)
-    up.trajectory = f.flown;           // what it flew, also when it failed (the report shows it)
+    up.trajectory = f.flown;
     if (!f.done) {
       up.status = Status::failed;
-      up.reason = flight.stopped && opt.stop.should_stop() ? Reason::stopped : Reason::no_route;
-      up.message = "did not reach its goal by t=" + std::to_string(static_cast<int>(lo.horizon_s)) + " s" +
+      up.reason = flight.stopped && ctx.options.stop.should_stop() ? Reason::stopped : Reason::no_route;
+      up.message = "did not reach its goal by t=" + std::to_string(static_cast<int>(s.horizon_s)) + " s" +
                    (log.trouble.empty() ? "" : ": " + log.trouble);
       continue;
     }
@@ -158,24 +147,56 @@ void fly_sensing(const Scenario& sc, const MissionContext& ctx, const Committed&
     up.length_m = Route{up.waypoints}.length_m();
     up.arrival_s = f.flown.back().t_s;
   }
-  // Against the truth: what they flew must keep clear of everything that moves.
+}
+
+// Against the truth: what they flew must keep clear of everything that moves.
+void check_flown(const Scenario& sc, const Committed& committed, const SensingUavs& s, const RollingWindow& controller,
+                 Plan& plan) {
   Committed all;
   for (const auto& c : committed)
     if (!senses(*c.first)) all.push_back(c);
-  for (const std::size_t i : index)
+  for (const std::size_t i : s.index)
     if (!plan.uavs[i].trajectory.empty()) all.emplace_back(&sc.uavs[i], &plan.uavs[i]);
-  for (std::size_t k = 0; k < index.size(); ++k) {
-    UavPlan& up = plan.uavs[index[k]];
+  for (std::size_t k = 0; k < s.index.size(); ++k) {
+    UavPlan& up = plan.uavs[s.index[k]];
     if (up.status != Status::solved) continue;
     Committed others;
     for (const auto& c : all)
       if (c.second != &up) others.push_back(c);
-    const Conflict c = find_conflict(sc, sc.uavs[index[k]], up.trajectory, others);
+    const Conflict c = find_conflict(sc, sc.uavs[s.index[k]], up.trajectory, others);
     if (!c.any) continue;
     const std::string& trouble = controller.log(k).trouble;
     up.status = Status::failed;
     up.message = "could not avoid " + c.what + (trouble.empty() ? "" : "; " + trouble);
   }
+}
+
+// The UAVs with sensors fly their routes in the loop, with the timed ones as objects to sense.
+void fly_sensing(const Scenario& sc, const MissionContext& ctx, const Committed& committed, Plan& plan) {
+  const MissionOptions& opt = ctx.options;
+  const LocalLayer layer = local_layer(ctx);
+  const SensingUavs s = sensing_uavs(sc, ctx, plan, layer.window_m);
+  if (s.loop.empty()) return;
+  RollingWindowOptions rw;
+  rw.step_s = sc.mission.step_s;
+  rw.separation_m = sc.mission.separation_m;
+  rw.local = layer.rrt;
+  rw.seed = opt.seed;
+  rw.stop = opt.stop;
+  std::vector<ScriptedUav> scripted;
+  for (const auto& [spec, up] : committed)
+    if (!senses(*spec)) scripted.push_back({spec, &up->trajectory});
+  std::vector<std::string> ids;
+  for (const std::size_t i : s.index) ids.push_back(sc.uavs[i].id);
+  RollingWindow controller(sc.world, rw, s.windows, ids);
+  LoopOptions lo;
+  lo.step_s = sc.mission.step_s;
+  lo.horizon_s = s.horizon_s;
+  lo.max_sample_dt_s = opt.max_sample_dt_s;
+  lo.separation_m = sc.mission.separation_m;
+  const LoopResult flight = fly_closed_loop(sc.world, s.loop, scripted, controller, lo, opt.stop);
+  record_flights(sc, ctx, s, flight, controller, plan);
+  check_flown(sc, committed, s, controller, plan);
 }
 
 }  // namespace

@@ -83,6 +83,90 @@ double cell_route_cost(const CellGraph& g, const std::vector<Vec3>& wp) {
 
 namespace {
 
+// A via point is reached from its attach cell and left through the same cell: an out-and-back
+// spike (a 180 degree turn). Cut one side of it where the straight segment is safe.
+void cut_spikes(std::vector<Vec3>& route, std::vector<char>& pinned, const SegmentRule& rule) {
+  for (std::size_t i = 1; i + 1 < route.size(); ++i) {
+    if (!pinned[i] || (route[i - 1] - route[i + 1]).norm() > 1e-9) continue;
+    if (i + 2 < route.size() && rule(route[i], route[i + 2])) {
+      route.erase(route.begin() + static_cast<std::ptrdiff_t>(i) + 1);
+      pinned.erase(pinned.begin() + static_cast<std::ptrdiff_t>(i) + 1);
+    } else if (i >= 2 && rule(route[i - 2], route[i])) {
+      route.erase(route.begin() + static_cast<std::ptrdiff_t>(i) - 1);
+      pinned.erase(pinned.begin() + static_cast<std::ptrdiff_t>(i) - 1);
+    }
+  }
+}
+
+// Collinear runs become one segment (the same cost: every term is additive along a line).
+void merge_collinear(const std::vector<Vec3>& route, const std::vector<char>& pinned, std::vector<Vec3>& wp,
+                     std::vector<char>& pins) {
+  wp.assign(1, route[0]);
+  pins.assign(1, pinned[0]);
+  for (std::size_t i = 1; i < route.size(); ++i) {
+    if (i + 1 < route.size() && !pinned[i]) {
+      const Vec3 a = (route[i] - wp.back()).normalized(), b = (route[i + 1] - route[i]).normalized();
+      if (a.dot(b) > 1.0 - 1e-12) continue;
+    }
+    wp.push_back(route[i]);
+    pins.push_back(pinned[i]);
+  }
+}
+
+// The cell map is conservative; every segment is still checked exactly. Empty, or why not.
+std::string exact_check(const std::vector<Vec3>& wp, const SegmentRule& rule) {
+  const auto f = [](const Vec3& v) {
+    char b[96];
+    std::snprintf(b, sizeof b, "(%.2f, %.2f, %.2f)", v.x(), v.y(), v.z());
+    return std::string(b);
+  };
+  for (std::size_t i = 1; i < wp.size(); ++i)
+    if (!rule(wp[i - 1], wp[i]))
+      return "internal: the cell move " + f(wp[i - 1]) + " -> " + f(wp[i]) + " failed the exact segment check";
+  return {};
+}
+
+// Each leg's cells between the stops' attach nodes: the route through their centres, the stops
+// pinned. False with res's message and reason where a leg has none (`finer_may_help` when finer
+// cells could find one) or the stop came first.
+bool route_legs(const CellWorld& cw, const std::vector<Vec3>& stops, const std::vector<std::int64_t>& nodes,
+                const Problem& problem, const StopCondition& stop, const CellLegSearch& search, PlanResult& res,
+                std::vector<Vec3>& route, std::vector<char>& pinned, bool& finer_may_help) {
+  route.assign(1, stops[0]);
+  pinned.assign(1, 1);
+  for (std::size_t leg = 0; leg + 1 < stops.size(); ++leg) {
+    const bool stopped_before = stop.should_stop();
+    const auto path =
+        stopped_before ? std::nullopt : search(cw.graph, nodes[leg], nodes[leg + 1], static_cast<int>(leg), res.stats);
+    if (!path && (stopped_before || stop.should_stop())) {  // the search was cut short: no advice on the cells
+      res.message = "stopped before the route was complete";
+      res.reason = Reason::stopped;
+      return false;
+    }
+    if (!path) {
+      res.reason = Reason::no_route;
+      res.message =
+          leg_name(leg, stops.size()) + ": no route on the cell map; " + cells_hint(cw.map, problem.uav.max_climb_rad);
+      finer_may_help = true;
+      return false;
+    }
+    for (std::int64_t n : *path) {
+      const Vec3 c = cw.map.centre(n);
+      if ((c - route.back()).norm() > 1e-9) {
+        route.push_back(c);
+        pinned.push_back(0);
+      }
+    }
+    if ((stops[leg + 1] - route.back()).norm() > 1e-9) {
+      route.push_back(stops[leg + 1]);
+      pinned.push_back(1);
+    } else {
+      pinned.back() = 1;
+    }
+  }
+  return true;
+}
+
 // One attempt at the options' cell size. `finer_may_help` is set when it failed because the
 // cells are too coarse for the streets: a stop cannot attach, or a leg has no route.
 PlanResult plan_once(const Problem& problem, const World& world, const CellPlanOptions& options,
@@ -94,7 +178,6 @@ PlanResult plan_once(const Problem& problem, const World& world, const CellPlanO
   const SegmentRule rule(world, problem.uav);
   res.stats.grid_cells = static_cast<std::uint64_t>(map.nodes());
   res.stats.cell_m = map.cell_m();
-
   std::vector<Vec3> stops{problem.uav.start};
   stops.insert(stops.end(), problem.via.begin(), problem.via.end());
   stops.push_back(problem.goal);
@@ -109,77 +192,13 @@ PlanResult plan_once(const Problem& problem, const World& world, const CellPlanO
       return res;
     }
   }
-
-  std::vector<Vec3> route{stops[0]};
-  std::vector<char> pinned{1};
-  for (std::size_t leg = 0; leg + 1 < stops.size(); ++leg) {
-    if (stop.should_stop()) {
-      res.status = Status::failed;
-      res.message = "stopped before the route was complete";
-      res.reason = Reason::stopped;
-      return res;
-    }
-    const auto path = search(cw.graph, nodes[leg], nodes[leg + 1], static_cast<int>(leg), res.stats);
-    if (!path && stop.should_stop()) {  // the search was cut short: no advice on the cells
-      res.message = "stopped before the route was complete";
-      res.reason = Reason::stopped;
-      return res;
-    }
-    if (!path) {
-      res.reason = Reason::no_route;
-      res.message =
-          leg_name(leg, stops.size()) + ": no route on the cell map; " + cells_hint(map, problem.uav.max_climb_rad);
-      finer_may_help = true;
-      return res;
-    }
-    for (std::int64_t n : *path) {
-      const Vec3 c = map.centre(n);
-      if ((c - route.back()).norm() > 1e-9) {
-        route.push_back(c);
-        pinned.push_back(0);
-      }
-    }
-    if ((stops[leg + 1] - route.back()).norm() > 1e-9) {
-      route.push_back(stops[leg + 1]);
-      pinned.push_back(1);
-    } else {
-      pinned.back() = 1;
-    }
-  }
-  // A via point is reached from its attach cell and left through the same cell: an out-and-back
-  // spike (a 180 degree turn). Cut one side of it where the straight segment is safe.
-  for (std::size_t i = 1; i + 1 < route.size(); ++i) {
-    if (!pinned[i] || (route[i - 1] - route[i + 1]).norm() > 1e-9) continue;
-    if (i + 2 < route.size() && rule(route[i], route[i + 2])) {
-      route.erase(route.begin() + static_cast<std::ptrdiff_t>(i) + 1);
-      pinned.erase(pinned.begin() + static_cast<std::ptrdiff_t>(i) + 1);
-    } else if (i >= 2 && rule(route[i - 2], route[i])) {
-      route.erase(route.begin() + static_cast<std::ptrdiff_t>(i) - 1);
-      pinned.erase(pinned.begin() + static_cast<std::ptrdiff_t>(i) - 1);
-    }
-  }
-  // Collinear runs become one segment (the same cost: every term is additive along a line).
-  std::vector<Vec3> wp{route[0]};
-  std::vector<char> pins{pinned[0]};
-  for (std::size_t i = 1; i < route.size(); ++i) {
-    if (i + 1 < route.size() && !pinned[i]) {
-      const Vec3 a = (route[i] - wp.back()).normalized(), b = (route[i + 1] - route[i]).normalized();
-      if (a.dot(b) > 1.0 - 1e-12) continue;
-    }
-    wp.push_back(route[i]);
-    pins.push_back(pinned[i]);
-  }
-  // The cell map is conservative; every segment is still checked exactly.
-  for (std::size_t i = 1; i < wp.size(); ++i)
-    if (!rule(wp[i - 1], wp[i])) {
-      const auto f = [](const Vec3& v) {
-        char b[96];
-        std::snprintf(b, sizeof b, "(%.2f, %.2f, %.2f)", v.x(), v.y(), v.z());
-        return std::string(b);
-      };
-      res.message = "internal: the cell move " + f(wp[i - 1]) + " -> " + f(wp[i]) + " failed the exact segment check";
-      return res;
-    }
+  std::vector<Vec3> route, wp;
+  std::vector<char> pinned, pins;
+  if (!route_legs(cw, stops, nodes, problem, stop, search, res, route, pinned, finer_may_help)) return res;
+  cut_spikes(route, pinned, rule);
+  merge_collinear(route, pinned, wp, pins);
+  res.message = exact_check(wp, rule);
+  if (!res.message.empty()) return res;
   // P2 treats the UAV as a point mass; a UAV with a turn limit or start heading gets its
   // corners shaped (fillets, every new segment checked).
   TurnShaping shaped = shape_turns(wp, pins, problem.uav, rule);

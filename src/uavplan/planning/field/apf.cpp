@@ -13,7 +13,8 @@
 
 namespace uavplan {
 
-ApfOptions ApfOptions::from_params(const Params& params, bool improved) {
+ApfOptions ApfOptions::from_params(const Params& params, ApfField field) {
+  const bool improved = field == ApfField::improved;
   ParamReader r(params, improved ? "apf" : "apf_traditional");
   ApfOptions o;
   o.improved = improved;

@@ -34,6 +34,9 @@
 
 namespace uavplan {
 
+// P3's improved field, or the traditional one it beats.
+enum class ApfField { improved, traditional };
+
 struct ApfOptions {
   bool improved = true;  // P3's field; false: the traditional one
   double step_m = 0.0;   // l; 0 = derived (apf_defaults)
@@ -47,7 +50,7 @@ struct ApfOptions {
   bool smooth = true;         // P3's triple smoothing afterwards (the traditional field: never)
   double smoothing_threshold_deg = 5.0;
 
-  static ApfOptions from_params(const Params& params, bool improved);
+  static ApfOptions from_params(const Params& params, ApfField field);
 };
 
 // Options with every derived value filled for this UAV and world. The derived step is half the

@@ -24,7 +24,7 @@ UavSpec uav() {
 }
 
 ApfOptions opts(bool improved) {
-  ApfOptions o = ApfOptions::from_params({}, improved);
+  ApfOptions o = ApfOptions::from_params({}, improved ? ApfField::improved : ApfField::traditional);
   o.separation_m = 0.5;
   return o;
 }

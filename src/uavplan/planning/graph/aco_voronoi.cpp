@@ -14,7 +14,8 @@ namespace {
 
 constexpr double kMinTau = 1e-12;  // evaporation never takes an edge out of the choice entirely
 
-AcoVoronoiOptions read_options(const Params& params, bool colony) {
+AcoVoronoiOptions read_options(const Params& params, RoadmapSearch search) {
+  const bool colony = search == RoadmapSearch::colony;
   ParamReader r(params, colony ? "aco_voronoi" : "voronoi_dijkstra");
   AcoVoronoiOptions o;
   o.roadmap.k1 = r.number("k1", o.roadmap.k1, 0.0, 1.0);
@@ -135,8 +136,8 @@ std::uint32_t edge_between(const Roadmap& map, std::uint32_t a, std::uint32_t b)
 
 }  // namespace
 
-AcoVoronoiOptions AcoVoronoiOptions::from_params(const Params& params, bool colony) {
-  return read_options(params, colony);
+AcoVoronoiOptions AcoVoronoiOptions::from_params(const Params& params, RoadmapSearch search) {
+  return read_options(params, search);
 }
 
 std::optional<GraphRoute> aco_route(const Roadmap& map, std::uint32_t from, std::uint32_t to,

@@ -17,6 +17,9 @@
 
 namespace uavplan {
 
+// How a route is searched on the roadmap: P1's ant colony, or Dijkstra (its baseline).
+enum class RoadmapSearch { colony, dijkstra };
+
 struct AcoVoronoiOptions {
   RoadmapOptions roadmap;
   int ants = 10;         // m
@@ -37,8 +40,9 @@ struct AcoVoronoiOptions {
   double toward_goal = 1.0;
   bool max_min = false;  // MAX-MIN ant system: only the iteration's best deposits, tau bounded
   double elite = 0.0;    // the best route so far gets elite * Q / L_best more each iteration
-  // The colony's keys, and the roadmap's (k1, threat_prefactor, join_nearest) that both read.
-  static AcoVoronoiOptions from_params(const Params& params, bool colony = true);
+  // The colony's keys (for the colony), and the roadmap's (k1, threat_prefactor, join_nearest)
+  // that both read.
+  static AcoVoronoiOptions from_params(const Params& params, RoadmapSearch search = RoadmapSearch::colony);
 };
 
 struct GraphRoute {
@@ -55,7 +59,8 @@ std::optional<GraphRoute> dijkstra_route(const Roadmap& map, std::uint32_t from,
 
 class AcoVoronoiPlanner final : public Planner {
  public:
-  AcoVoronoiPlanner(AcoVoronoiOptions options, bool colony) : options_(options), colony_(colony) {}
+  AcoVoronoiPlanner(AcoVoronoiOptions options, RoadmapSearch search)
+      : options_(options), colony_(search == RoadmapSearch::colony) {}
   std::string_view name() const override { return colony_ ? "aco_voronoi" : "voronoi_dijkstra"; }
 
  private:

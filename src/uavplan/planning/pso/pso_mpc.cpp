@@ -147,27 +147,25 @@ std::optional<std::array<double, 2>> coarse_best(const F& f, const std::array<do
   return best;
 }
 
+// How a leg ended: Reason::none (flown), stopped, or no_route with why (": ..." after the leg's
+// name).
+struct LegOutcome {
+  Reason reason = Reason::none;
+  std::string why;
+};
+
 // One leg of P5's multi-step planning, from route.back() (arriving along `in`) to `task`: a PSO
-// per waypoint, backing up from dead ends. On success appends the leg's waypoints to `route`,
-// sets `in` and returns ""; else returns why (": ..." after the leg's name, or kStoppedWhy) and
-// leaves both as they were.
-std::string fly_leg(const LegPlanner& lp, const Vec3& task, const std::optional<double>& entry, const Rng& base,
-                    std::uint64_t salt, const StopCondition& stop, std::vector<Vec3>& route_io,
-                    std::optional<Vec3>& in_io, PlanStats& stats) {
-  const double l = lp.l, turn_max = lp.turn_max, dh_max = lp.dh_max;
-  const PsoMpcOptions& options = lp.o;
-  std::vector<Vec3> route = route_io;
-  std::optional<Vec3> in = in_io;
-  Vec3 target = task;
-  if (entry) {  // eq. 10: the fixed final segment, one step l long at the task's height
-    target = task - l * heading_vector(*entry);
-    if (!lp.rule.point_ok(target) || !lp.rule(target, task))
-      return ": the fixed segment into the entry heading is blocked";
-  }
-  Vec3 p = route.back();
-  double psi = in ? std::atan2(in->y(), in->x()) : bearing(p, target);
-  const int cap = static_cast<int>(10.0 * (p - target).norm() / l) + 20;
-  bool arrived = (p - target).norm() <= 1e-9;
+// per waypoint, backing up from dead ends. Flown, it appends the leg's waypoints to `route` and
+// sets `in`; else it leaves both as they were.
+class LegFlight {
+ public:
+  LegFlight(const LegPlanner& lp, const Vec3& task, const std::optional<double>& entry, const Rng& base,
+            std::uint64_t salt, const StopCondition& stop)
+      : lp_(lp), task_(task), entry_(entry), base_(base), salt_(salt), stop_(stop) {}
+
+  LegOutcome fly(std::vector<Vec3>& route_io, std::optional<Vec3>& in_io, PlanStats& stats);
+
+ private:
   // The leg's states before each step, with the turns tried from each that led to dead ends:
   // where no waypoint is feasible it backs up a step and turns another way (at most
   // kMaxBacktracks times a leg; P5 re-runs the swarm, which cannot leave a dead end: that only
@@ -180,96 +178,146 @@ std::string fly_leg(const LegPlanner& lp, const Vec3& task, const std::optional<
     std::vector<double> dead;  // turns (dphi) that led to dead ends
     double chosen = 0.0;
   };
-  constexpr int kMaxBacktracks = 200;
-  std::vector<Before> history;
-  std::vector<double> dead_here;
-  int backtracks = 0;
-  for (int step = 0; static_cast<int>(history.size()) < cap && !arrived; ++step) {  // backtracks are bounded below
-    if (stop.should_stop()) return kStoppedWhy;
-    if ((p - target).norm() < 2.0 * l && lp.closes(p, in, target, entry)) {  // the target is the last waypoint
-      in = target - p;
-      route.push_back(target);
+  static constexpr int kMaxBacktracks = 200;
+
+  PsoResult best_step(int step);
+  bool back_up();
+  void take(const PsoResult& best);
+
+  const LegPlanner& lp_;
+  Vec3 task_;
+  std::optional<double> entry_;
+  const Rng& base_;
+  std::uint64_t salt_;
+  const StopCondition& stop_;
+  Vec3 target_, p_;
+  double psi_ = 0.0;
+  std::vector<Vec3> route_;
+  std::optional<Vec3> in_;
+  std::vector<Before> history_;
+  std::vector<double> dead_here_;
+  int backtracks_ = 0;
+};
+
+// The swarm's best [dphi, dh] from here; f = inf where none is feasible. A coarse look over the
+// turns first: where every heading's look-ahead is blocked, look nearer before the swarm is asked
+// (a blocked swarm spends 20 iterations finding nothing).
+PsoResult LegFlight::best_step(int step) {
+  const double turn_max = lp_.turn_max, dh_max = lp_.dh_max;
+  const PsoMpcOptions& options = lp_.o;
+  const double near = 0.25 * turn_max;
+  int prediction = options.prediction_steps;
+  const Nearby nearby = lp_.nearby(p_, prediction);
+  const auto f = [&](std::span<const double> x) {
+    for (const double d : dead_here_)
+      if (std::abs(x[0] - d) < near) return kInf;
+    return lp_.cost(x, p_, psi_, in_, target_, entry_, prediction, nearby);
+  };
+  const std::array<double, 2> lo{-turn_max, -dh_max}, hi{turn_max, dh_max};
+  std::array<double, 6> seeds{0.0,
+                              0.0,
+                              std::clamp(wrap(bearing(p_, target_) - psi_), -turn_max, turn_max),
+                              std::clamp(target_.z() - p_.z(), -dh_max, dh_max),
+                              0.0,
+                              0.0};
+  while (prediction > 0) {
+    const std::optional<std::array<double, 2>> open = coarse_best(f, lo, hi);
+    if (open) {
+      seeds[4] = (*open)[0], seeds[5] = (*open)[1];
+      break;
+    }
+    prediction /= 2;
+  }
+  Rng rng = base_.split(salt_ + static_cast<std::uint64_t>(step));
+  PsoResult best = pso_minimize(f, lo, hi, options.pso, rng, seeds);
+  // Every candidate's straight look-ahead blocked (a no-fly zone ahead closer than the
+  // prediction reaches, a turn of 30 deg per step cannot clear it): look half as far ahead.
+  while (best.f == kInf && prediction > 0) {
+    prediction /= 2;
+    const PsoResult shorter = pso_minimize(f, lo, hi, options.pso, rng, seeds);
+    best.evaluations += shorter.evaluations;
+    best.f = shorter.f, best.x = shorter.x;
+  }
+  if (best.f == kInf && history_.empty()) {  // once more, with a swarm twice as large (papers.md P5)
+    PsoOptions wider = options.pso;
+    wider.particles *= 2;
+    wider.iterations *= 2;
+    const PsoResult again = pso_minimize(f, lo, hi, wider, rng, seeds);
+    best.evaluations += again.evaluations;
+    best.f = again.f, best.x = again.x;
+  }
+  return best;
+}
+
+// Back one step, the turn taken from there marked dead; false when there is none to back up
+// (or the leg has backed up kMaxBacktracks times).
+bool LegFlight::back_up() {
+  if (history_.empty() || backtracks_ >= kMaxBacktracks) return false;
+  ++backtracks_;
+  Before b = std::move(history_.back());
+  history_.pop_back();
+  b.dead.push_back(b.chosen);
+  p_ = b.p, psi_ = b.psi, in_ = b.in;
+  route_.resize(b.route_size);
+  dead_here_ = std::move(b.dead);
+  return true;
+}
+
+void LegFlight::take(const PsoResult& best) {
+  history_.push_back({p_, psi_, in_, route_.size(), std::move(dead_here_), best.x[0]});
+  dead_here_.clear();
+  psi_ += best.x[0];
+  const Vec3 q = p_ + Vec3(lp_.l * std::cos(psi_), lp_.l * std::sin(psi_), best.x[1]);
+  in_ = q - p_;
+  route_.push_back(q);
+  p_ = q;
+}
+
+LegOutcome LegFlight::fly(std::vector<Vec3>& route_io, std::optional<Vec3>& in_io, PlanStats& stats) {
+  const double l = lp_.l;
+  route_ = route_io;
+  in_ = in_io;
+  target_ = task_;
+  if (entry_) {  // eq. 10: the fixed final segment, one step l long at the task's height
+    target_ = task_ - l * heading_vector(*entry_);
+    if (!lp_.rule.point_ok(target_) || !lp_.rule(target_, task_))
+      return {Reason::no_route, ": the fixed segment into the entry heading is blocked"};
+  }
+  p_ = route_.back();
+  psi_ = in_ ? std::atan2(in_->y(), in_->x()) : bearing(p_, target_);
+  const int cap = static_cast<int>(10.0 * (p_ - target_).norm() / l) + 20;
+  bool arrived = (p_ - target_).norm() <= 1e-9;
+  for (int step = 0; static_cast<int>(history_.size()) < cap && !arrived; ++step) {  // backtracks are bounded
+    if (stop_.should_stop()) return {Reason::stopped, kStoppedWhy};
+    if ((p_ - target_).norm() < 2.0 * l && lp_.closes(p_, in_, target_, entry_)) {  // the target: the last waypoint
+      in_ = target_ - p_;
+      route_.push_back(target_);
       arrived = true;
       break;
     }
-    const double near = 0.25 * turn_max;
-    int prediction = options.prediction_steps;
-    const Nearby nearby = lp.nearby(p, prediction);
-    const auto f = [&](std::span<const double> x) {
-      for (const double d : dead_here)
-        if (std::abs(x[0] - d) < near) return kInf;
-      return lp.cost(x, p, psi, in, target, entry, prediction, nearby);
-    };
-    const std::array<double, 2> lo{-turn_max, -dh_max}, hi{turn_max, dh_max};
-    std::array<double, 6> seeds{0.0,
-                                0.0,
-                                std::clamp(wrap(bearing(p, target) - psi), -turn_max, turn_max),
-                                std::clamp(target.z() - p.z(), -dh_max, dh_max),
-                                0.0,
-                                0.0};
-    // A coarse look over the turns first: where every heading's look-ahead is blocked, look
-    // nearer before the swarm is asked (a blocked swarm spends 20 iterations finding nothing).
-    while (prediction > 0) {
-      const std::optional<std::array<double, 2>> open = coarse_best(f, lo, hi);
-      if (open) {
-        seeds[4] = (*open)[0], seeds[5] = (*open)[1];
-        break;
-      }
-      prediction /= 2;
-    }
-    Rng rng = base.split(salt + static_cast<std::uint64_t>(step));
-    PsoResult best = pso_minimize(f, lo, hi, options.pso, rng, seeds);
-    // Every candidate's straight look-ahead blocked (a no-fly zone ahead closer than the
-    // prediction reaches, a turn of 30 deg per step cannot clear it): look half as far ahead.
-    while (best.f == kInf && prediction > 0) {
-      prediction /= 2;
-      const PsoResult shorter = pso_minimize(f, lo, hi, options.pso, rng, seeds);
-      best.evaluations += shorter.evaluations;
-      best.f = shorter.f, best.x = shorter.x;
-    }
-    if (best.f == kInf && history.empty()) {  // once more, with a swarm twice as large (papers.md P5)
-      PsoOptions wider = options.pso;
-      wider.particles *= 2;
-      wider.iterations *= 2;
-      const PsoResult again = pso_minimize(f, lo, hi, wider, rng, seeds);
-      best.evaluations += again.evaluations;
-      best.f = again.f, best.x = again.x;
-    }
+    const PsoResult best = best_step(step);
     stats.nodes_expanded += static_cast<std::uint64_t>(best.evaluations);
-    if (best.f == kInf) {
-      if (history.empty() || backtracks >= kMaxBacktracks) {
-        char buf[160];
-        std::snprintf(buf, sizeof buf, ": no feasible waypoint %g m on from (%.1f, %.1f, %.1f)", l, p.x(), p.y(),
-                      p.z());
-        return buf;
-      }
-      ++backtracks;
-      Before b = std::move(history.back());
-      history.pop_back();
-      b.dead.push_back(b.chosen);
-      p = b.p, psi = b.psi, in = b.in;
-      route.resize(b.route_size);
-      dead_here = std::move(b.dead);
+    if (best.f != kInf) {
+      take(best);
       continue;
     }
-    history.push_back({p, psi, in, route.size(), std::move(dead_here), best.x[0]});
-    dead_here.clear();
-    psi += best.x[0];
-    const Vec3 q = p + Vec3(l * std::cos(psi), l * std::sin(psi), best.x[1]);
-    in = q - p;
-    route.push_back(q);
-    p = q;
+    if (!back_up()) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, ": no feasible waypoint %g m on from (%.1f, %.1f, %.1f)", l, p_.x(), p_.y(),
+                    p_.z());
+      return {Reason::no_route, buf};
+    }
   }
   if (!arrived)
-    return ": not at its target within " + std::to_string(cap) + " steps of " + std::to_string(static_cast<int>(l)) +
-           " m";
-  if (entry) {
-    in = task - target;
-    route.push_back(task);
+    return {Reason::no_route, ": not at its target within " + std::to_string(cap) + " steps of " +
+                                  std::to_string(static_cast<int>(l)) + " m"};
+  if (entry_) {
+    in_ = task_ - target_;
+    route_.push_back(task_);
   }
-  route_io = std::move(route);
-  in_io = in;
-  return "";
+  route_io = std::move(route_);
+  in_io = in_;
+  return {};
 }
 
 }  // namespace
@@ -325,16 +373,16 @@ PlanResult plan_multi_step(const Problem& pb, const World& world, const StopCond
   for (std::size_t leg = 0; leg < stops.size(); ++leg) {
     const std::optional<double> entry =
         leg < pb.via_entry_heading_rad.size() && leg < pb.via.size() ? pb.via_entry_heading_rad[leg] : std::nullopt;
-    std::string why;
+    LegOutcome leg_end;
     for (const double lt : {l, l_min}) {
       const LegPlanner leg_planner{world, rule, options, lt, dh_max * lt / l, turn_max};
-      why = fly_leg(leg_planner, stops[leg], entry, base, leg * 1000003u + (lt < l ? 500000u : 0u), stop, route, in,
-                    res.stats);
-      if (why.empty() || why == kStoppedWhy || l_min >= l) break;
+      leg_end = LegFlight(leg_planner, stops[leg], entry, base, leg * 1000003u + (lt < l ? 500000u : 0u), stop)
+                    .fly(route, in, res.stats);
+      if (leg_end.reason == Reason::none || leg_end.reason == Reason::stopped || l_min >= l) break;
     }
-    if (!why.empty()) {
-      res.message = why == kStoppedWhy ? why : leg_name(leg, stops.size() + 1) + why;
-      res.reason = why == kStoppedWhy ? Reason::stopped : Reason::no_route;
+    if (leg_end.reason != Reason::none) {
+      res.message = leg_end.reason == Reason::stopped ? leg_end.why : leg_name(leg, stops.size() + 1) + leg_end.why;
+      res.reason = leg_end.reason;
       return res;
     }
   }
@@ -367,7 +415,7 @@ PlanResult PsoMpcPlanner::do_plan(const Problem& pb, const World& world, const S
   PlanResult second = plan_multi_step(pb, world, stop, nearer);
   const bool second_better = second.status == Status::solved
                                  ? !solved || second.route.length_m() < first.route.length_m()
-                                 : !solved && second.message == kStoppedWhy;
+                                 : !solved && second.reason == Reason::stopped;
   PlanResult& kept = second_better ? second : first;
   kept.stats.nodes_expanded = first.stats.nodes_expanded + second.stats.nodes_expanded;
   return std::move(kept);

@@ -26,7 +26,8 @@ RrtOptions RrtOptions::improved() {
   return o;
 }
 
-RrtOptions RrtOptions::from_params(const Params& params, bool improved) {
+RrtOptions RrtOptions::from_params(const Params& params, RrtVariant variant) {
+  const bool improved = variant == RrtVariant::improved;
   ParamReader r(params, improved ? "improved_rrt" : "rrt");
   RrtOptions o = improved ? RrtOptions::improved() : RrtOptions::common();
   o.step_m = r.number("step_m", o.step_m, 0.0, 1e9);
@@ -130,123 +131,140 @@ bool path_ok(const std::vector<Vec3>& path, const EdgeCheck& ok, const PruneLimi
            turn_rad(*in, *limits.end_direction) > limits.max_turn_rad + kAngleTolerance_rad);
 }
 
+// A search whose tree has not left its start after this many iterations is boxed in.
+constexpr std::uint64_t kBoxedInIterations = 2000;
+
 std::string fmt(const Vec3& p) {
   char buf[96];
   std::snprintf(buf, sizeof buf, "(%.1f, %.1f, %.1f)", p.x(), p.y(), p.z());
   return buf;
 }
 
-}  // namespace
+// The tree of one search and how it grows (P1 steps 2-6): goal-biased or sampled targets, steps
+// within the turn and climb limits, edges checked by `ok`.
+class RrtGrowth {
+ public:
+  RrtGrowth(const SegmentRule& rule, double max_turn, const RrtQuery& q, const RrtOptions& opt, const EdgeCheck& ok)
+      : q_(q),
+        opt_(opt),
+        ok_(ok),
+        max_turn_(max_turn),
+        step_(opt.step_in(rule.world().bounds())),
+        max_climb_(std::min(rule.max_climb_rad(), kPi / 2 - 1e-9)),
+        rng_(q.seed),
+        chaos_(rng_.split(1).next_u64(), opt.arcsine_uniform),
+        tree_(q.start, opt.max_nodes),
+        // Step 2 of P1: the newest node within one step of the goal, and the last edge clear.
+        // Under a turn limit a node one step away rarely faces the goal; within four steps the
+        // tree can turn into it.
+        arrive_m_(max_turn < kPi - 1e-9 ? 4.0 * step_ : step_),
+        biased_(opt.lambda != 0.0 && q.bias_velocity_mps.squaredNorm() > 0.0) {
+    goal_tried_.reserve(512);
+    goal_tried_.push_back(0);
+  }
 
-RrtResult rrt_search(const SegmentRule& rule, double max_turn, const RrtQuery& q, const RrtOptions& opt,
-                     const StopCondition& stop) {
-  RrtResult res;
-  const EdgeCheck ok(rule, q);
+  double step() const { return step_; }
+  const RrtTree& tree() const { return tree_; }
+
+  bool arrives(int i) const {
+    const Vec3 last = q_.goal - tree_.pos(i);
+    if (last.norm() > arrive_m_) return false;
+    if (max_turn_ < kPi) {
+      const auto in = incoming(i);
+      if (in && turn_rad(*in, last) > max_turn_ + kAngleTolerance_rad) return false;
+      // The way it comes into the goal (its own edge when the node is on the goal) against the way on.
+      const std::optional<Vec3> into = last.norm() > 0.0 ? std::optional<Vec3>(last) : in;
+      if (q_.goal_direction && into && turn_rad(*into, *q_.goal_direction) > max_turn_ + kAngleTolerance_rad)
+        return false;
+    }
+    return ok_(tree_.pos(i), tree_.along(i), q_.goal);
+  }
+
+  // One iteration (steps 3-6): the node added, or -1 when the step is refused.
+  int grow() {
+    Vec3 target = q_.goal;
+    int near = -1;
+    bool to_goal = rng_.uniform01() < opt_.goal_bias;  // steps 3-4: goal bias
+    if (to_goal) {
+      // Each node grows toward the goal once: a node near the goal whose heading or climb cannot
+      // reach it would otherwise take every goal-biased step.
+      near = tree_.nearest_usable(q_.goal, [&](int i) { return !goal_tried_[static_cast<std::size_t>(i)]; });
+      if (near < 0)
+        to_goal = false;
+      else
+        goal_tried_[static_cast<std::size_t>(near)] = 1;
+    }
+    if (!to_goal) {  // step 5: a sample, chaotic or pseudo-random
+      target = sample();
+      near = tree_.nearest(target);
+    }
+    Vec3 dir = target - tree_.pos(near);
+    const double dist = dir.norm();
+    if (dist <= 1e-12) return -1;
+    dir /= dist;
+    if (!to_goal && biased_) dir += opt_.lambda * q_.bias_velocity_mps / q_.speed_mps;  // P1: + V_b
+    const auto d = limited(dir, incoming(near), max_turn_, max_climb_, q_.planar);
+    if (!d) return -1;
+    // Short of the target only when heading straight at it: a step bent by the limits would
+    // stop beside the target, needing a sharp turn to finish.
+    const bool straight = (*d - dir.normalized()).norm() < 1e-9;
+    const double len = straight ? std::min(step_, dist) : step_;
+    if (len < 1e-3 * step_) return -1;
+    const Vec3 next = tree_.pos(near) + len * *d;
+    if (!ok_(tree_.pos(near), tree_.along(near), next)) return -1;  // step 6
+    const int added = tree_.add(next, near);
+    goal_tried_.push_back(0);
+    return added;
+  }
+
+ private:
+  std::optional<Vec3> incoming(int i) const {
+    const int p = tree_.parent(i);
+    return p < 0 ? q_.start_direction : std::optional<Vec3>(tree_.pos(i) - tree_.pos(p));
+  }
+  Vec3 sample() {
+    Vec3 target = opt_.chaotic ? chaos_.sample(q_.sample_box)
+                               : Vec3(rng_.uniform(q_.sample_box.min.x(), q_.sample_box.max.x()),
+                                      rng_.uniform(q_.sample_box.min.y(), q_.sample_box.max.y()),
+                                      rng_.uniform(q_.sample_box.min.z(), q_.sample_box.max.z()));
+    if (q_.planar) target.z() = q_.start.z();
+    return target;
+  }
+
+  const RrtQuery& q_;
+  const RrtOptions& opt_;
+  const EdgeCheck& ok_;
+  double max_turn_, step_, max_climb_;
+  Rng rng_;
+  ChaoticSampler chaos_;
+  RrtTree tree_;
+  double arrive_m_;
+  bool biased_;
+  std::vector<char> goal_tried_;
+};
+
+// The start and the goal in the free space; true with `res` complete when there is nothing to
+// search (a failure, or the goal at the start).
+bool settled_before_search(const SegmentRule& rule, const RrtQuery& q, RrtResult& res) {
   if (!rule.point_ok(q.start)) {
     res.message = "start " + fmt(q.start) + " is outside the free space";
-    return res;
+    return true;
   }
   if (!rule.point_ok(q.goal)) {
     res.message = "goal " + fmt(q.goal) + " is outside the free space";
-    return res;
+    return true;
   }
   if ((q.goal - q.start).norm() == 0.0) {
     res.ok = true;
     res.path = res.raw = {q.start};
-    return res;
+    return true;
   }
-  const double step = opt.step_in(rule.world().bounds());
-  const double max_climb = std::min(rule.max_climb_rad(), kPi / 2 - 1e-9);
-  Rng rng(q.seed);
-  ChaoticSampler chaos(rng.split(1).next_u64(), opt.arcsine_uniform);
-  RrtTree tree(q.start, opt.max_nodes);
-  const auto incoming = [&](int i) -> std::optional<Vec3> {
-    const int p = tree.parent(i);
-    return p < 0 ? q.start_direction : std::optional<Vec3>(tree.pos(i) - tree.pos(p));
-  };
-  const std::uint64_t max_iterations = 50ull * static_cast<std::uint64_t>(opt.max_nodes);
-  int reached = -1;
-  // Step 2 of P1: the newest node within one step of the goal, and the last edge clear. Under a
-  // turn limit a node one step away rarely faces the goal; within four steps the tree can turn
-  // into it.
-  const double arrive_m = max_turn < kPi - 1e-9 ? 4.0 * step : step;
-  const auto arrives = [&](int i) {
-    const Vec3 last = q.goal - tree.pos(i);
-    if (last.norm() > arrive_m) return false;
-    if (max_turn < kPi) {
-      const auto in = incoming(i);
-      if (in && turn_rad(*in, last) > max_turn + kAngleTolerance_rad) return false;
-      // The way it comes into the goal (its own edge when the node is on the goal) against the way on.
-      const std::optional<Vec3> into = last.norm() > 0.0 ? std::optional<Vec3>(last) : in;
-      if (q.goal_direction && into && turn_rad(*into, *q.goal_direction) > max_turn + kAngleTolerance_rad) return false;
-    }
-    return ok(tree.pos(i), tree.along(i), q.goal);
-  };
-  if (arrives(0)) reached = 0;
-  std::vector<char> goal_tried(1, 0);
-  goal_tried.reserve(512);
-  const bool biased = opt.lambda != 0.0 && q.bias_velocity_mps.squaredNorm() > 0.0;
-  while (reached < 0) {
-    if (stop.should_stop(res.iterations)) {
-      res.message = "stopped after " + std::to_string(tree.size()) + " nodes";
-      res.stopped = true;
-      break;
-    }
-    // A start every move from which is refused (boxed in by keep-outs) is given up early.
-    if (tree.size() >= opt.max_nodes || res.iterations >= max_iterations ||
-        (tree.size() == 1 && res.iterations >= 2000)) {
-      res.message = "no route within " + std::to_string(tree.size()) + " nodes of " +
-                    std::to_string(step).substr(0, 5) + " m; raise planner.params.max_nodes (now " +
-                    std::to_string(opt.max_nodes) + ") or give a shorter step_m for narrow gaps";
-      break;
-    }
-    ++res.iterations;
-    Vec3 target = q.goal;
-    int near = -1;
-    bool to_goal = rng.uniform01() < opt.goal_bias;  // steps 3-4: goal bias
-    if (to_goal) {
-      // Each node grows toward the goal once: a node near the goal whose heading or climb cannot
-      // reach it would otherwise take every goal-biased step.
-      near = tree.nearest_usable(q.goal, [&](int i) { return !goal_tried[static_cast<std::size_t>(i)]; });
-      if (near < 0)
-        to_goal = false;
-      else
-        goal_tried[static_cast<std::size_t>(near)] = 1;
-    }
-    if (!to_goal) {  // step 5: a sample, chaotic or pseudo-random
-      target = opt.chaotic ? chaos.sample(q.sample_box)
-                           : Vec3(rng.uniform(q.sample_box.min.x(), q.sample_box.max.x()),
-                                  rng.uniform(q.sample_box.min.y(), q.sample_box.max.y()),
-                                  rng.uniform(q.sample_box.min.z(), q.sample_box.max.z()));
-      if (q.planar) target.z() = q.start.z();
-      near = tree.nearest(target);
-    }
-    Vec3 dir = target - tree.pos(near);
-    const double dist = dir.norm();
-    if (dist <= 1e-12) continue;
-    dir /= dist;
-    if (!to_goal && biased) dir += opt.lambda * q.bias_velocity_mps / q.speed_mps;  // P1: + V_b
-    const auto d = limited(dir, incoming(near), max_turn, max_climb, q.planar);
-    if (!d) continue;
-    // Short of the target only when heading straight at it: a step bent by the limits would
-    // stop beside the target, needing a sharp turn to finish.
-    const bool straight = (*d - dir.normalized()).norm() < 1e-9;
-    const double len = straight ? std::min(step, dist) : step;
-    if (len < 1e-3 * step) continue;
-    const Vec3 next = tree.pos(near) + len * *d;
-    if (!ok(tree.pos(near), tree.along(near), next)) continue;  // step 6
-    const int added = tree.add(next, near);
-    goal_tried.push_back(0);
-    if (arrives(added)) reached = added;
-  }
-  res.nodes = tree.size();
-  if (reached < 0) return res;
-  res.raw = tree.path_to(reached);  // step 7: backtrack
-  if (res.raw.back() != q.goal) res.raw.push_back(q.goal);
-  res.path = res.raw;
-  res.ok = true;
-  // Step 8 and the shortcut; kept only when the whole route still holds at its new times
-  // (a shorter route reaches each point earlier, and keep-outs move).
+  return false;
+}
+
+// Step 8 and the shortcut; kept only when the whole route still holds at its new times (a
+// shorter route reaches each point earlier, and keep-outs move).
+void shorten(RrtResult& res, const RrtQuery& q, const RrtOptions& opt, double max_turn, const EdgeCheck& ok) {
   const bool timed = std::any_of(q.keep_outs.begin(), q.keep_outs.end(),
                                  [](const MovingKeepOut& k) { return k.velocity_mps.squaredNorm() > 0.0; });
   const PruneLimits limits{q.start_direction, q.goal_direction, max_turn, timed};
@@ -258,6 +276,44 @@ RrtResult rrt_search(const SegmentRule& rule, double max_turn, const RrtQuery& q
     auto cut = shortcut_within_limits(res.path, limits, ok);
     if (path_ok(cut, ok, limits)) res.path = std::move(cut);
   }
+}
+
+}  // namespace
+
+RrtResult rrt_search(const SegmentRule& rule, double max_turn, const RrtQuery& q, const RrtOptions& opt,
+                     const StopCondition& stop) {
+  RrtResult res;
+  const EdgeCheck ok(rule, q);
+  if (settled_before_search(rule, q, res)) return res;
+  RrtGrowth growth(rule, max_turn, q, opt, ok);
+  const std::uint64_t max_iterations = 50ull * static_cast<std::uint64_t>(opt.max_nodes);
+  int reached = growth.arrives(0) ? 0 : -1;
+  while (reached < 0) {
+    const int nodes = growth.tree().size();
+    if (stop.should_stop(res.iterations)) {
+      res.message = "stopped after " + std::to_string(nodes) + " nodes";
+      res.stopped = true;
+      break;
+    }
+    // A start every move from which is refused (boxed in by keep-outs) is given up early.
+    if (nodes >= opt.max_nodes || res.iterations >= max_iterations ||
+        (nodes == 1 && res.iterations >= kBoxedInIterations)) {
+      res.message = "no route within " + std::to_string(nodes) + " nodes of " +
+                    std::to_string(growth.step()).substr(0, 5) + " m; raise planner.params.max_nodes (now " +
+                    std::to_string(opt.max_nodes) + ") or give a shorter step_m for narrow gaps";
+      break;
+    }
+    ++res.iterations;
+    const int added = growth.grow();
+    if (added >= 0 && growth.arrives(added)) reached = added;
+  }
+  res.nodes = growth.tree().size();
+  if (reached < 0) return res;
+  res.raw = growth.tree().path_to(reached);  // step 7: backtrack
+  if (res.raw.back() != q.goal) res.raw.push_back(q.goal);
+  res.path = res.raw;
+  res.ok = true;
+  shorten(res, q, opt, max_turn, ok);
   return res;
 }
 

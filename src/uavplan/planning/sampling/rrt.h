@@ -22,6 +22,9 @@
 
 namespace uavplan {
 
+// P1's improved RRT, or the common one it beats.
+enum class RrtVariant { common, improved };
+
 struct RrtOptions {
   double step_m = 0.0;           // epsilon; 0 = P1's 2 m, or diagonal / 50 for worlds larger than 100 m
   double goal_bias = 0.5;        // p_s: probability of growing toward the goal
@@ -37,7 +40,7 @@ struct RrtOptions {
   static RrtOptions improved();
   // planner.params: step_m, goal_bias, max_nodes, and for the improved one chaotic,
   // arcsine_uniform, lambda, prune, lookahead, shortcut.
-  static RrtOptions from_params(const Params& params, bool improved);
+  static RrtOptions from_params(const Params& params, RrtVariant variant);
   // The step used in a world: step_m, or the default from the world's scale.
   double step_in(const Aabb& bounds) const;
 };

@@ -185,9 +185,10 @@ TEST(Rrt, StepFollowsTheWorldsScale) {
   EXPECT_NEAR(o.step_in(Aabb{Vec3::Zero(), Vec3(600, 600, 0)}), std::sqrt(2.0) * 600 / 50, 1e-9);
   o.step_m = 3.5;
   EXPECT_DOUBLE_EQ(o.step_in(Aabb{Vec3::Zero(), Vec3(600, 600, 0)}), 3.5);
-  EXPECT_THROW(RrtOptions::from_params({{"lambda", "x"}}, true), std::invalid_argument);
-  EXPECT_THROW(RrtOptions::from_params({{"lambda", "1"}}, false), std::invalid_argument);  // improved's only
-  EXPECT_EQ(RrtOptions::from_params({{"chaotic", "false"}}, true).chaotic, false);
+  EXPECT_THROW(RrtOptions::from_params({{"lambda", "x"}}, RrtVariant::improved), std::invalid_argument);
+  EXPECT_THROW(RrtOptions::from_params({{"lambda", "1"}}, RrtVariant::common),
+               std::invalid_argument);  // improved's only
+  EXPECT_EQ(RrtOptions::from_params({{"chaotic", "false"}}, RrtVariant::improved).chaotic, false);
 }
 
 }  // namespace

@@ -78,11 +78,73 @@ std::string fmt_m(double x) {
   return buf;
 }
 
-struct LegResult {
-  bool ok = false;
-  bool stopped = false;
-  std::vector<Vec3> points;  // excluding the leg's first point
-};
+// How one attempt on a grid ended.
+enum class Attempt { found, no_route, stopped };
+
+// The route through every stop on one grid, each leg straight where it is clear, else grid A*
+// between the free cells reached straight from its ends; `pinned` marks the stops.
+Attempt route_on_grid(const VoxelGrid& grid, const UavSpec& uav, const SegmentRule& rule,
+                      const std::vector<Vec3>& stops, bool derived, const StopCondition& stop, PlanResult& res,
+                      std::vector<Vec3>& path, std::vector<char>& pinned) {
+  const Vec3 cs = grid.cell();
+  GridAStar search(grid.cells(), bounding_box_moves(grid.cells(), cs.x(), cs.y(), cs.z(), uav.max_climb_rad),
+                   GridHeuristic::euclidean, cs.x(), cs.y(), cs.z());
+  path.assign(1, stops[0]);
+  pinned.assign(1, 1);
+  for (std::size_t s = 0; s + 1 < stops.size(); ++s) {
+    const Vec3 &a = stops[s], &b = stops[s + 1];
+    if (rule(a, b)) {
+      path.push_back(b);
+      pinned.push_back(1);
+      continue;
+    }
+    const std::int64_t ga = attach(grid, a, rule), gb = attach(grid, b, rule);
+    if (ga < 0 || gb < 0) {
+      res.reason = Reason::no_route;
+      res.message = leg_name(s, stops.size()) + ": no free cell of the " + fmt_m(cs.x()) +
+                    " grid can be reached straight from its " + (ga < 0 ? "start" : "end") +
+                    "; a smaller planner.params.cell_m gives cells in narrower room";
+      return Attempt::no_route;
+    }
+    const GridSearchResult vp = search.search(ga, gb, stop);
+    res.stats.nodes_expanded += vp.expanded;
+    res.stats.open_max = std::max(res.stats.open_max, vp.open_max);
+    if (vp.stopped) {
+      res.message = "stopped before a route was found";
+      res.reason = Reason::stopped;
+      return Attempt::stopped;
+    }
+    if (!vp.found) {
+      res.reason = Reason::no_route;
+      res.message = leg_name(s, stops.size()) + ": no route on a " + std::to_string(grid.nx()) + "x" +
+                    std::to_string(grid.ny()) + "x" + std::to_string(grid.nz()) + " grid of " + fmt_m(cs.x()) +
+                    " cells; a smaller planner.params.cell_m finds narrower gaps" +
+                    (derived ? " (the derived cell was halved while the grid stayed under planner.params.max_cells "
+                               "and --max-memory)"
+                             : "");
+      return Attempt::no_route;
+    }
+    for (const std::int64_t c : vp.cells) {
+      path.push_back(grid.center(c));
+      pinned.push_back(0);
+    }
+    path.push_back(b);
+    pinned.push_back(1);
+  }
+  return Attempt::found;
+}
+
+// The stops' places in a path (in order): pins survive shortcutting by construction.
+std::vector<char> stop_pins(const std::vector<Vec3>& path, const std::vector<Vec3>& stops) {
+  std::vector<char> pins(path.size(), 0);
+  std::size_t s = 0;
+  for (std::size_t i = 0; i < path.size() && s < stops.size(); ++i)
+    if ((path[i] - stops[s]).norm() == 0.0) {
+      pins[i] = 1;
+      ++s;
+    }
+  return pins;
+}
 
 }  // namespace
 
@@ -98,87 +160,30 @@ PlanResult AStarPlanner::do_plan(const Problem& pb, const World& world, const St
       res.message = stop_name(s, stops.size()) + " is closer to an obstacle than the UAV radius, or above the ceiling";
       return res;
     }
-
+  // A derived cell is halved while no route is found and the grid fits.
   const bool derived = options_.cell_m <= 0.0;
   double cell = derived ? auto_cell_m(world, uav.radius_m, options_.target_cells) : options_.cell_m;
   const int attempts = derived ? options_.refinements + 1 : 1;
   std::vector<Vec3> path;
   std::vector<char> pinned;
-  bool found = false;
-  for (int attempt = 0; attempt < attempts && !found; ++attempt, cell *= 0.5) {
+  Attempt attempt = Attempt::no_route;
+  for (int k = 0; k < attempts && attempt == Attempt::no_route; ++k, cell *= 0.5) {
     const Vec3 cell3(cell, cell, layer_height_m(cell, uav.max_climb_rad));
     const double cells = VoxelGrid::cell_count(world.bounds(), cell3);
     // A bit per voxel and a search node (16 bytes) per voxel reached.
     constexpr double kBytesPerVoxel = 16.125;
-    if (attempt > 0 && (cells > static_cast<double>(options_.max_cells) || !grid_fits(cells, kBytesPerVoxel, stop)))
-      break;
+    if (k > 0 && (cells > static_cast<double>(options_.max_cells) || !grid_fits(cells, kBytesPerVoxel, stop))) break;
     require_grid(cells, kBytesPerVoxel, stop,
                  derived ? "the derived cell of " + fmt_m(cell) : "planner.params.cell_m = " + fmt_m(cell));
     const VoxelGrid grid = voxelize(world, cell3, rule.inflation_m(), rule.ceiling_m(), stop);
-    const Vec3 cs = grid.cell();
-    GridAStar search(grid.cells(), bounding_box_moves(grid.cells(), cs.x(), cs.y(), cs.z(), uav.max_climb_rad),
-                     GridHeuristic::euclidean, cs.x(), cs.y(), cs.z());
     res.stats.grid_cells = static_cast<std::uint64_t>(grid.size());
     res.stats.cell_m = grid.cell().x();
-    path.assign(1, stops[0]);
-    pinned.assign(1, 1);
-    found = true;
-    for (std::size_t s = 0; s + 1 < stops.size() && found; ++s) {
-      const Vec3 &a = stops[s], &b = stops[s + 1];
-      if (rule(a, b)) {
-        path.push_back(b);
-        pinned.push_back(1);
-        continue;
-      }
-      const std::int64_t ga = attach(grid, a, rule), gb = attach(grid, b, rule);
-      if (ga < 0 || gb < 0) {
-        found = false;
-        res.reason = Reason::no_route;
-        res.message = leg_name(s, stops.size()) + ": no free cell of the " + fmt_m(cs.x()) +
-                      " grid can be reached straight from its " + (ga < 0 ? "start" : "end") +
-                      "; a smaller planner.params.cell_m gives cells in narrower room";
-        break;
-      }
-      const GridSearchResult vp = search.search(ga, gb, stop);
-      res.stats.nodes_expanded += vp.expanded;
-      res.stats.open_max = std::max(res.stats.open_max, vp.open_max);
-      if (vp.stopped) {
-        res.message = "stopped before a route was found";
-        res.reason = Reason::stopped;
-        return res;
-      }
-      if (!vp.found) {
-        found = false;
-        res.reason = Reason::no_route;
-        res.message = leg_name(s, stops.size()) + ": no route on a " + std::to_string(grid.nx()) + "x" +
-                      std::to_string(grid.ny()) + "x" + std::to_string(grid.nz()) + " grid of " + fmt_m(cs.x()) +
-                      " cells; a smaller planner.params.cell_m finds narrower gaps" +
-                      (derived ? " (the derived cell was halved while the grid stayed under planner.params.max_cells "
-                                 "and --max-memory)"
-                               : "");
-        break;
-      }
-      for (const std::int64_t c : vp.cells) {
-        path.push_back(grid.center(c));
-        pinned.push_back(0);
-      }
-      path.push_back(b);
-      pinned.push_back(1);
-    }
+    attempt = route_on_grid(grid, uav, rule, stops, derived, stop, res, path, pinned);
   }
-  if (!found) return res;
-
+  if (attempt != Attempt::found) return res;
   if (options_.shortcut) {
     path = shortcut(path, pinned, rule);
-    // Pins survive shortcutting by construction; recompute them for the shorter list.
-    std::vector<char> pins(path.size(), 0);
-    std::size_t s = 0;
-    for (std::size_t i = 0; i < path.size() && s < stops.size(); ++i)
-      if ((path[i] - stops[s]).norm() == 0.0) {
-        pins[i] = 1;
-        ++s;
-      }
-    pinned = std::move(pins);
+    pinned = stop_pins(path, stops);
   }
   const TurnShaping shaped =
       enforce_turn_limits(path, pinned, uav.heading_rad, {uav.max_turn_rad, uav.max_climb_rad}, rule);
