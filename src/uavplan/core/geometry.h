@@ -2,6 +2,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <span>
 #include <utility>
@@ -11,6 +12,19 @@
 namespace uavplan {
 
 // Distance from p to segment [a, b]; `t_out` (optional) receives the closest parameter.
+// The cell edge that cuts a box of this extent into about `count` cubes, over its non-zero
+// dimensions (a flat box into squares); 1 for a point.
+inline double cell_for_count_m(const Vec3& extent, double count) {
+  double volume = 1.0;
+  int dims = 0;
+  for (int a = 0; a < 3; ++a)
+    if (extent[a] > 0.0) {
+      volume *= extent[a];
+      ++dims;
+    }
+  return dims == 0 ? 1.0 : std::pow(volume / count, 1.0 / dims);
+}
+
 // The length of the polyline through the points, summed from the first (0 for fewer than two).
 inline double polyline_length_m(std::span<const Vec3> points) {
   double len = 0.0;

@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "uavplan/coordination/contract/separation.h"
+#include "uavplan/core/geometry.h"
 #include "uavplan/core/units.h"
 #include "uavplan/evaluation/ground_legs.h"
 
@@ -21,7 +22,7 @@ P3Score p3_score(std::span<const Vec3> pts, const World& world, const P3Weights&
   P3Score s;
   const std::size_t m = pts.size();
   if (m == 0) return s;
-  for (std::size_t i = 1; i < m; ++i) s.y1 += (pts[i] - pts[i - 1]).norm();
+  s.y1 = polyline_length_m(pts);
   for (const Vec3& p : pts)
     for (const Obstacle& o : world.obstacles()) s.y2 += 1.0 / std::max(point_distance(o, p), 1e-3);
   for (std::size_t i = 1; i + 1 < m; ++i) {
@@ -43,7 +44,7 @@ UavMetrics uav_metrics(const Scenario& sc, const UavSpec& spec, const UavPlan& p
   const auto& tr = plan.trajectory;
   std::vector<Vec3> pts;
   for (const auto& s : tr) pts.push_back(s.p);
-  for (std::size_t i = 1; i < pts.size(); ++i) m.length_m += (pts[i] - pts[i - 1]).norm();
+  m.length_m = flown_length_m(tr);
   // Flight time counts from the first movement to the last.
   std::size_t first = 0, last = 0;
   for (std::size_t i = 1; i < tr.size(); ++i)

@@ -17,8 +17,6 @@ namespace uavplan {
 
 namespace {
 
-std::string num(double x) { return num_text(x); }
-
 using Out = std::vector<Violation>;
 
 void add(Out& out, ViolationKind k, const std::string& uav, std::optional<double> t, std::optional<Vec3> p,
@@ -73,7 +71,7 @@ bool check_rows(const Scenario& sc, const UavSpec& u, const Trajectory& tr, doub
   if (u.goal && (tr.back().p - *u.goal).norm() > arrival_tolerance_m + kPositionTolerance_m)
     add(out, ViolationKind::goal, id, tr.back().t_s, tr.back().p,
         arrival_tolerance_m > 0.0
-            ? "trajectory does not end within " + num(arrival_tolerance_m) + " m of its shared goal"
+            ? "trajectory does not end within " + num_text(arrival_tolerance_m) + " m of its shared goal"
             : "trajectory does not end at the goal");
   const double ceiling = u.ceiling_m ? std::min(*u.ceiling_m, sc.world.bounds().max.z()) : sc.world.bounds().max.z();
   const Aabb bounds = sc.world.bounds().inflated(kDistanceTolerance_m);
@@ -84,7 +82,7 @@ bool check_rows(const Scenario& sc, const UavSpec& u, const Trajectory& tr, doub
       reported_bounds = true;
     }
     if (!reported_ceiling && s.p.z() > ceiling + kDistanceTolerance_m) {
-      add(out, ViolationKind::ceiling, id, s.t_s, s.p, "above the ceiling " + num(ceiling) + " m");
+      add(out, ViolationKind::ceiling, id, s.t_s, s.p, "above the ceiling " + num_text(ceiling) + " m");
       reported_ceiling = true;
     }
   }
@@ -95,8 +93,8 @@ bool check_rows(const Scenario& sc, const UavSpec& u, const Trajectory& tr, doub
 void check_segments(const Scenario& sc, const UavSpec& u, const Trajectory& tr, const GroundLegs& legs, Out& out) {
   const std::string& id = u.id;
   const double keep = keep_off_m(u);
-  const std::string keep_text =
-      u.clearance_m > 0.0 ? "the UAV radius plus clearance " + num(keep) + " m" : "the UAV radius " + num(keep) + " m";
+  const std::string keep_text = u.clearance_m > 0.0 ? "the UAV radius plus clearance " + num_text(keep) + " m"
+                                                    : "the UAV radius " + num_text(keep) + " m";
   for (std::size_t i = 1; i < tr.size(); ++i) {
     const auto &a = tr[i - 1], &b = tr[i];
     const double dt = b.t_s - a.t_s, len = (b.p - a.p).norm();
@@ -106,7 +104,7 @@ void check_segments(const Scenario& sc, const UavSpec& u, const Trajectory& tr, 
     }
     if (dt > 0.0 && len / dt > u.speed.max_mps * (1.0 + 1e-6) + 1e-9)
       add(out, ViolationKind::speed, id, a.t_s, a.p,
-          "speed " + num(len / dt) + " m/s above the maximum " + num(u.speed.max_mps) + " m/s");
+          "speed " + num_text(len / dt) + " m/s above the maximum " + num_text(u.speed.max_mps) + " m/s");
     const bool on_leg = legs.covers(i);
     const double leg_ground = i <= legs.takeoff_end && legs.takeoff ? tr.front().p.z() : tr.back().p.z();
     const double c =
@@ -115,13 +113,13 @@ void check_segments(const Scenario& sc, const UavSpec& u, const Trajectory& tr, 
       const double f = worst_param(sc.world, a.p, b.p);
       const Vec3 at(a.p + f * (b.p - a.p));
       add(out, ViolationKind::obstacle, id, a.t_s + f * dt, at,
-          "clearance " + num(c) + " m to " + nearest_thing(sc.world, at) + ", below " + keep_text);
+          "clearance " + num_text(c) + " m to " + nearest_thing(sc.world, at) + ", below " + keep_text);
     }
     if (u.min_agl_m > 0.0 && !on_leg) {
       const double h = sc.world.lowest_height_above_ground(a.p, b.p);
       if (h < u.min_agl_m - kDistanceTolerance_m)
         add(out, ViolationKind::low_altitude, id, a.t_s, a.p,
-            "height " + num(h) + " m above the ground, below min_agl " + num(u.min_agl_m) + " m");
+            "height " + num_text(h) + " m above the ground, below min_agl " + num_text(u.min_agl_m) + " m");
     }
   }
 }
@@ -132,8 +130,8 @@ void check_moving(const Scenario& sc, const UavSpec& u, const Trajectory& tr, Ou
   const Encounter m = closest_moving_approach(sc.world, tr, &idx);
   if (m.distance_m < keep - kDistanceTolerance_m)
     add(out, ViolationKind::moving_obstacle, u.id, m.t_s, m.where,
-        "gap " + num(m.distance_m) + " m to moving obstacle '" + sc.world.moving()[idx].id + "', below " +
-            (u.clearance_m > 0.0 ? "the UAV radius plus clearance " : "the UAV radius ") + num(keep) + " m");
+        "gap " + num_text(m.distance_m) + " m to moving obstacle '" + sc.world.moving()[idx].id + "', below " +
+            (u.clearance_m > 0.0 ? "the UAV radius plus clearance " : "the UAV radius ") + num_text(keep) + " m");
 }
 
 // Turn and climb on the flown polyline (samples between waypoints are collinear), off the
@@ -147,8 +145,8 @@ void check_limits(const UavSpec& u, const Trajectory& tr, const GroundLegs& legs
     const bool turn = lv.kind == LimitViolation::Kind::turn;
     const auto& s = tr[legs.airborne_begin() + lv.index];
     add(out, turn ? ViolationKind::turn : ViolationKind::climb, u.id, s.t_s, s.p,
-        std::string(turn ? "turn " : "climb ") + num(rad_to_deg(lv.value_rad)) + " deg above the limit " +
-            num(rad_to_deg(turn ? u.max_turn_rad : u.max_climb_rad)) + " deg" +
+        std::string(turn ? "turn " : "climb ") + num_text(rad_to_deg(lv.value_rad)) + " deg above the limit " +
+            num_text(rad_to_deg(turn ? u.max_turn_rad : u.max_climb_rad)) + " deg" +
             (turn && lv.index == 0 && u.heading_rad ? " (against the start heading)" : ""));
   }
 }

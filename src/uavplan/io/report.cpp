@@ -84,8 +84,7 @@ ojson radar_json(const Radar& r) {
 // Height profile along the route: distance flown, altitude and the ground under the UAV at
 // `samples` evenly spaced distances (and every corner, so steps in the route are not cut).
 ojson profile_json(const World& w, const Trajectory& tr, int samples) {
-  double total = 0.0;
-  for (std::size_t i = 1; i < tr.size(); ++i) total += (tr[i].p - tr[i - 1].p).norm();
+  const double total = flown_length_m(tr);
   ojson s_m = ojson::array(), z_m = ojson::array(), ground_m = ojson::array();
   auto add = [&](double s, const Vec3& p) {
     s_m.push_back(round6(s));

@@ -476,34 +476,24 @@ std::pair<std::string, std::string> apply_override(YAML::Node& root, const std::
     throw InputError(file, 0, place, "value is not valid YAML: " + e.msg);
   }
   if (!root.IsMap()) throw InputError(file, 0, place, "the scenario is not a mapping");
+  const KeyPath kp = split_key_path(path);
+  if (!kp.error.empty()) throw InputError(file, 0, place, kp.error);
   YAML::Node cur;
   cur.reset(root);
-  std::size_t i = 0;
-  while (i < path.size()) {
-    if (path[i] == '.') {
-      ++i;
-      continue;
-    }
+  for (std::size_t s = 0; s < kp.steps.size(); ++s) {
+    const KeyPath::Step& step = kp.steps[s];
+    const bool last = s + 1 == kp.steps.size();
     YAML::Node next;
-    if (path[i] == '[') {
-      const auto close = path.find(']', i);
-      if (close == std::string::npos) throw InputError(file, 0, place, "unclosed '['");
-      std::size_t idx = 0;
-      const auto [p, ec] = std::from_chars(path.data() + i + 1, path.data() + close, idx);
-      if (ec != std::errc() || p != path.data() + close) throw InputError(file, 0, place, "bad list index");
-      if (!cur.IsSequence() || idx >= cur.size())
-        throw InputError(file, 0, place, "no list element " + std::to_string(idx));
-      next.reset(cur[idx]);
-      i = close + 1;
+    if (step.index) {
+      if (!cur.IsSequence() || *step.index >= cur.size())
+        throw InputError(file, 0, place, "no list element " + std::to_string(*step.index));
+      next.reset(cur[*step.index]);
     } else {
-      const auto end = path.find_first_of(".[", i);
-      const std::string seg = path.substr(i, end == std::string::npos ? std::string::npos : end - i);
-      if (!cur.IsMap() && !cur.IsNull()) throw InputError(file, 0, place, "'" + seg + "' is not inside a mapping");
-      i = end == std::string::npos ? path.size() : end;
-      if (i < path.size() && !cur[seg].IsDefined()) cur[seg] = YAML::Node(YAML::NodeType::Map);  // create the way
-      next.reset(cur[seg]);
+      if (!cur.IsMap() && !cur.IsNull()) throw InputError(file, 0, place, "'" + step.key + "' is not inside a mapping");
+      if (!last && !cur[step.key].IsDefined()) cur[step.key] = YAML::Node(YAML::NodeType::Map);  // create the way
+      next.reset(cur[step.key]);
     }
-    if (i >= path.size()) {
+    if (last) {
       next = v;  // assigns into the tree (yaml-cpp reference semantics)
       return {path, place};
     }

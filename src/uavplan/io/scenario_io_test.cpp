@@ -5,6 +5,7 @@
 #include <chrono>
 
 #include "uavplan/io/input_error.h"
+#include "uavplan/io/tree_check.h"
 
 namespace uavplan {
 namespace {
@@ -274,6 +275,23 @@ TEST(ScenarioIo, SetErrorsNameTheArgument) {
         << e.what();
   }
   expect_error(kGood, {"--set uavs[0].radius=x", "expected a number"}, "s.yaml", {{"uavs[0].radius", "x"}});
+  // Key paths (io/tree_check.h): an index past the list, a malformed index, nothing after a '.'.
+  expect_error(kGood, {"no list element 3"}, "s.yaml", {{"uavs[3].radius", "1"}});
+  expect_error(kGood, {"bad list index"}, "s.yaml", {{"uavs[x].radius", "1"}});
+  expect_error(kGood, {"unclosed '['"}, "s.yaml", {{"uavs[0.radius", "1"}});
+  expect_error(kGood, {"empty key"}, "s.yaml", {{"planner.params.", "1"}});
+  EXPECT_EQ(parse_scenario(kGood, "s.yaml", {{"uavs[0].radius", "0.75"}}).uavs[0].radius_m, 0.75);
+}
+
+TEST(ScenarioIo, KeyPathsSplitIntoKeysAndIndices) {
+  const KeyPath kp = split_key_path("world.obstacles[12].radius");
+  ASSERT_EQ(kp.steps.size(), 4u);
+  EXPECT_EQ(kp.steps[1].key, "obstacles");
+  EXPECT_EQ(kp.steps[2].index, 12u);
+  EXPECT_EQ(kp.steps[3].key, "radius");
+  EXPECT_TRUE(kp.error.empty());
+  EXPECT_EQ(split_key_path("a[2").error, "unclosed '['");
+  EXPECT_EQ(split_key_path("a[2x]").steps.size(), 1u);
 }
 
 // Margins, the ground and shared goals (issue: outputs a user can trust, items 11, 12, 15, 16).
@@ -316,8 +334,9 @@ TEST(ScenarioIo, EachMissionTypeReadsItsOwnKeys) {
   ASSERT_EQ(route.mission.waypoints.size(), 1u);
   const Scenario independent = parse_scenario(replace(kGood, "type: route", "type: independent"), "s.yaml");
   EXPECT_TRUE(independent.mission.waypoints.empty());
-  const std::string extra = "  waypoints: [[50, 10, 10]]\n  arrival_tolerance: 5\n  shape: [[0, 0, 0]]\n"
-                            "  airfield: {position: [1, 1, 0]}\n";
+  const std::string extra =
+      "  waypoints: [[50, 10, 10]]\n  arrival_tolerance: 5\n  shape: [[0, 0, 0]]\n"
+      "  airfield: {position: [1, 1, 0]}\n";
   const Scenario rendezvous =
       parse_scenario(replace(replace(kGood, "type: route", "type: rendezvous"), "  waypoints: [[50, 10, 10]]\n", extra),
                      "s.yaml", {{"planner.algorithm", "directional_astar"}});

@@ -53,31 +53,49 @@ void check_tree(const YAML::Node& root, const std::string& file, std::size_t max
                      "the file expands (through YAML aliases) to more than " + std::to_string(max_values) + " values");
 }
 
-int line_of(const YAML::Node& root, const std::string& path) {
-  YAML::Node cur;
-  cur.reset(root);
+KeyPath split_key_path(const std::string& path) {
+  KeyPath kp;
+  if (!path.empty() && path.back() == '.') kp.error = "empty key";  // nothing after the last '.'
   std::size_t i = 0;
   while (i < path.size()) {
     if (path[i] == '.') {
       ++i;
       continue;
     }
-    YAML::Node next;
     if (path[i] == '[') {
       const auto close = path.find(']', i);
+      if (close == std::string::npos) {
+        kp.error = "unclosed '['";
+        return kp;
+      }
       std::size_t idx = 0;
-      if (close == std::string::npos ||
-          std::from_chars(path.data() + i + 1, path.data() + close, idx).ec != std::errc() || !cur.IsSequence() ||
-          idx >= cur.size())
-        break;
-      next.reset(cur[idx]);
+      const auto [p, ec] = std::from_chars(path.data() + i + 1, path.data() + close, idx);
+      if (ec != std::errc() || p != path.data() + close) {
+        kp.error = "bad list index";
+        return kp;
+      }
+      kp.steps.push_back({"", idx});
       i = close + 1;
     } else {
       const auto end = path.find_first_of(".[", i);
-      const std::string seg = path.substr(i, end == std::string::npos ? std::string::npos : end - i);
-      if (!cur.IsMap() || !cur[seg].IsDefined()) break;
-      next.reset(cur[seg]);
+      kp.steps.push_back({path.substr(i, end == std::string::npos ? std::string::npos : end - i), std::nullopt});
       i = end == std::string::npos ? path.size() : end;
+    }
+  }
+  return kp;
+}
+
+int line_of(const YAML::Node& root, const std::string& path) {
+  YAML::Node cur;
+  cur.reset(root);
+  for (const KeyPath::Step& step : split_key_path(path).steps) {
+    YAML::Node next;
+    if (step.index) {
+      if (!cur.IsSequence() || *step.index >= cur.size()) break;
+      next.reset(cur[*step.index]);
+    } else {
+      if (!cur.IsMap() || !cur[step.key].IsDefined()) break;
+      next.reset(cur[step.key]);
     }
     cur.reset(next);
   }

@@ -1,12 +1,10 @@
 #include "uavplan/planning/problem.h"
 
+#include "uavplan/core/geometry.h"
+
 namespace uavplan {
 
-double Route::length_m() const {
-  double len = 0.0;
-  for (std::size_t i = 1; i < waypoints.size(); ++i) len += (waypoints[i] - waypoints[i - 1]).norm();
-  return len;
-}
+double Route::length_m() const { return polyline_length_m(waypoints); }
 
 std::string stop_name(std::size_t s, std::size_t stops) {
   if (s == 0) return "start";

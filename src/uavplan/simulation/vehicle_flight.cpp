@@ -1,4 +1,5 @@
 #include "uavplan/simulation/vehicle_flight.h"
+#include "uavplan/core/geometry.h"
 
 #include <algorithm>
 #include <cmath>
@@ -23,8 +24,7 @@ Trajectory fly_route(const UavSpec& u, std::span<const Vec3> waypoints, double d
   s.speed_mps = u.speed.cruise_mps;
   const Vec3 first = waypoints[1] - waypoints[0];
   s.heading_rad = u.heading_rad ? *u.heading_rad : std::atan2(first.y(), first.x());
-  double route_m = 0.0;
-  for (std::size_t k = 1; k < waypoints.size(); ++k) route_m += (waypoints[k] - waypoints[k - 1]).norm();
+  const double route_m = polyline_length_m(waypoints);
   FollowOptions fo;
   fo.sample_s = max_dt_s > 0.0 ? std::min(max_dt_s, 1.0) : 1.0;
   fo.max_time_s = 3.0 * route_m / u.speed.cruise_mps + 600.0;

@@ -1,4 +1,5 @@
 #include "uavplan/coordination/formation/formation_schedule.h"
+#include "uavplan/core/geometry.h"
 
 #include <algorithm>
 #include <cmath>
@@ -75,10 +76,7 @@ std::vector<Vec3> FormationSchedule::path(std::size_t i, double tau0, double tau
 }
 
 double FormationSchedule::length(std::size_t i, double tau0, double tau1) const {
-  const std::vector<Vec3> p = path(i, tau0, tau1);
-  double l = 0.0;
-  for (std::size_t k = 1; k < p.size(); ++k) l += (p[k] - p[k - 1]).norm();
-  return l;
+  return polyline_length_m(path(i, tau0, tau1));
 }
 
 FormationSchedule formation_schedule(const std::vector<Vec3>& route, const std::vector<Vec3>& shape,

@@ -201,13 +201,7 @@ PlanResult plan_once(const Problem& problem, const World& world, const CellPlanO
   if (!res.message.empty()) return res;
   // P2 treats the UAV as a point mass; a UAV with a turn limit or start heading gets its
   // corners shaped (fillets, every new segment checked).
-  TurnShaping shaped = shape_turns(wp, pins, problem.uav, rule);
-  if (!shaped.ok) {
-    res.message = "turn limits: " + shaped.message;
-    return res;
-  }
-  res.route.waypoints = std::move(shaped.waypoints);
-  res.status = Status::solved;
+  finish_with_turns(wp, pins, problem.uav, rule, res);
   return res;
 }
 

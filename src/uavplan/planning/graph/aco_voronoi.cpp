@@ -267,13 +267,7 @@ PlanResult AcoVoronoiPlanner::do_plan(const Problem& pb, const World& world, con
       }
     }
   }
-  TurnShaping shaped = shape_turns(wp, pinned, pb.uav, rule);
-  if (!shaped.ok) {
-    res.message = "turn limits: " + shaped.message;
-    return res;
-  }
-  res.route.waypoints = std::move(shaped.waypoints);
-  res.status = Status::solved;
+  finish_with_turns(wp, pinned, pb.uav, rule, res);
   return res;
 }
 

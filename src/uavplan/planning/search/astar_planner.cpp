@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "uavplan/core/geometry.h"
+#include "uavplan/core/text.h"
 #include "uavplan/planning/grid_budget.h"
 #include "uavplan/planning/search/grid_astar.h"
 #include "uavplan/planning/segment_rule.h"
@@ -26,15 +28,8 @@ AStarOptions AStarOptions::from_params(const Params& params) {
 
 double auto_cell_m(const World& world, double radius_m, std::int64_t target_cells) {
   const Vec3 ext = world.bounds().extent();
-  double volume = 1.0;
-  int dims = 0;
-  for (int a = 0; a < 3; ++a)
-    if (ext[a] > 0.0) {
-      volume *= ext[a];
-      ++dims;
-    }
-  if (dims == 0) return 1.0;
-  double cell = std::pow(volume / static_cast<double>(target_cells), 1.0 / dims);
+  if (ext.maxCoeff() <= 0.0) return 1.0;
+  double cell = cell_for_count_m(ext, static_cast<double>(target_cells));
   if (const TerrainGrid* t = world.terrain()) cell = std::min(cell, t->cell_m());
   // Resolving much finer than the UAV's body buys nothing and costs memory.
   return std::max(cell, 0.5 * radius_m);
@@ -72,11 +67,7 @@ std::int64_t attach(const VoxelGrid& g, const Vec3& p, const SegmentRule& rule) 
   return -1;
 }
 
-std::string fmt_m(double x) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%g m", x);
-  return buf;
-}
+std::string fmt_m(double x) { return num_text(x) + " m"; }
 
 // How one attempt on a grid ended.
 enum class Attempt { found, no_route, stopped };

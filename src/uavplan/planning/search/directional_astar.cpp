@@ -117,15 +117,7 @@ Lattice make_lattice(const World& world, double cell) {
 }
 
 double derived_cell(const World& world, std::int64_t target_points) {
-  const Vec3 ext = world.bounds().extent();
-  double volume = 1.0;
-  int dims = 0;
-  for (int a = 0; a < 3; ++a)
-    if (ext[a] > 0.0) {
-      volume *= ext[a];
-      ++dims;
-    }
-  return dims == 0 ? 1.0 : std::pow(volume / static_cast<double>(target_points), 1.0 / dims);
+  return cell_for_count_m(world.bounds().extent(), static_cast<double>(target_points));
 }
 
 // The turn and climb limits as a cosine and a tangent, checked with dot products: the same

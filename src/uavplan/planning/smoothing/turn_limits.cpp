@@ -151,4 +151,15 @@ TurnShaping shape_turns(std::span<const Vec3> points, std::span<const char> pinn
   return enforce_turn_limits(points, pinned, uav.heading_rad, {uav.max_turn_rad, uav.max_climb_rad}, ok);
 }
 
+void finish_with_turns(std::span<const Vec3> points, std::span<const char> pinned, const UavSpec& uav,
+                       const SegmentPredicate& ok, PlanResult& res) {
+  TurnShaping shaped = shape_turns(points, pinned, uav, ok);
+  if (!shaped.ok) {
+    res.message = "turn limits: " + shaped.message;
+    return;
+  }
+  res.route.waypoints = std::move(shaped.waypoints);
+  res.status = Status::solved;
+}
+
 }  // namespace uavplan

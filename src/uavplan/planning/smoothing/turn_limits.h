@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "uavplan/planning/planner.h"
 #include "uavplan/planning/smoothing/shortcut.h"
 #include "uavplan/vehicle/uav.h"
 
@@ -36,5 +37,10 @@ TurnShaping enforce_turn_limits(std::span<const Vec3> points, std::span<const ch
 // The same for a UAV's limits and start heading; the points unchanged when it has neither.
 TurnShaping shape_turns(std::span<const Vec3> points, std::span<const char> pinned, const UavSpec& uav,
                         const SegmentPredicate& ok);
+
+// A planner's last step: its route through the points with the corners shaped by shape_turns,
+// `res` solved with it, or left failed with "turn limits: ..." when they cannot be.
+void finish_with_turns(std::span<const Vec3> points, std::span<const char> pinned, const UavSpec& uav,
+                       const SegmentPredicate& ok, PlanResult& res);
 
 }  // namespace uavplan
