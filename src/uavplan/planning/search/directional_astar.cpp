@@ -388,242 +388,317 @@ DirectionalRoute DirectionalSearch::run(const World& world, const DirectionalQue
   return run_with_bins(world, q, stop, q.heading_states ? 8 : 1);
 }
 
-DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const DirectionalQuery& q,
-                                                  const StopCondition& stop, std::uint32_t kBins) {
-  DirectionalRoute out;
-  const Lattice lat = make_lattice(world, q.cell_m);
-  // A state is a lattice point and, with kBins = 8, the heading sector it was reached in: a point
-  // reached with another heading is another state, so a point closed while facing a wall can
-  // still be passed facing along it.
-  const bool flat = lat.n[2] == 1;
-  const std::int64_t states = lat.size() * kBins;
-  if (states + 2 >= static_cast<std::int64_t>(SearchBuffers::kNoParent)) {
-    out.message = "lattice too large; give a larger cell_m";
-    return out;
+// One search (P4 sec. 2) on an engine's buffers: what it keeps besides them, each part of an
+// expansion a method. A state is a lattice point and, with 8 bins, the heading sector it was
+// reached in: a point reached with another heading is another state, so a point closed while
+// facing a wall can still be passed facing along it.
+struct DirectionalSearch::Run {
+  Run(DirectionalSearch& engine, const World& w, const DirectionalQuery& query, const StopCondition& st,
+      std::uint32_t bins)
+      : self(engine),
+        world(w),
+        q(query),
+        stop(st),
+        lat(make_lattice(w, query.cell_m)),
+        flat(lat.n[2] == 1),
+        start_id(static_cast<std::uint32_t>(lat.size() * bins)),
+        goal_id(start_id + 1),
+        bin_bits(bins > 1 ? 3u : 0u),  // bins is 1 or 8
+        lim(query),
+        step_m(query.step_cells * query.cell_m),
+        reach(static_cast<int>(std::ceil(query.step_cells)) + 1),
+        goal_hop_m(1.5 * step_m + query.cell_m),
+        cone_table(engine.cones_->table(
+            {query.step_cells, query.max_yaw_rad, query.max_pitch_rad, std::max(1, query.directions), flat})),
+        side(2 * reach + 1),
+        cone_index(static_cast<std::size_t>(side) * side * side, nullptr),
+        stride_y(lat.n[0]),
+        stride_z(static_cast<std::int64_t>(lat.n[0]) * lat.n[1]),
+        inv_sin_pitch(query.climb_bound ? 1.0 / std::sin(std::min(query.max_pitch_rad + kAngleTolerance_rad, kPi / 2))
+                                        : 0.0),
+        bounded(query.heuristic_weight == 1.0 && std::isfinite(query.max_length_m)) {
+    // With a short step no lattice move may keep the climb limit and change level (at 30 deg a
+    // level takes sqrt(3) cells across): then a node on a level from which the goal hop cannot
+    // reach the goal is a dead end, and a search that must climb ends at once.
+    level_locked =
+        !flat && std::abs(q.goal.z() - q.start.z()) > goal_hop_m && !engine.levels_reachable(world, q, cone_table);
+    prepare_clearances();
   }
-  const auto kStart = static_cast<std::uint32_t>(states), kGoal = kStart + 1;
-  const unsigned bin_bits = kBins > 1 ? 3u : 0u;  // kBins is 1 or 8
-  auto position = [&](std::uint32_t id) {
-    return id == kStart ? q.start : id == kGoal ? q.goal : lat.point(id >> bin_bits);
-  };
+
+  DirectionalRoute search();
+
+ private:
+  Vec3 position(std::uint32_t id) const {
+    return id == start_id ? q.start : id == goal_id ? q.goal : lat.point(id >> bin_bits);
+  }
   // Heading sector by octant (signs of x and y, and which is larger): no trigonometry.
-  auto state_of = [&](std::uint32_t point, const Vec3& seg) {
-    if (kBins == 1) return point;
+  std::uint32_t state_of(std::uint32_t point, const Vec3& seg) const {
+    if (bin_bits == 0) return point;
     const std::uint32_t bin =
         (seg.x() < 0 ? 4u : 0u) | (seg.y() < 0 ? 2u : 0u) | (std::abs(seg.x()) < std::abs(seg.y()) ? 1u : 0u);
     return point << bin_bits | bin;
-  };
-  const ConeLimits lim(q);
+  }
   // Everything but the static world, then the exact check.
-  auto segment_limits_ok = [&](const Vec3& a, const Vec3& b) {
+  bool segment_limits_ok(const Vec3& a, const Vec3& b) const {
     if (!world.in_bounds(a) || !world.in_bounds(b) || a.z() > q.ceiling_m || b.z() > q.ceiling_m) return false;
     if (!lim.pitch_ok(b - a)) return false;
     for (const Sphere& s : q.virtual_threats)
       if (point_segment_distance(s.center, a, b) < s.radius_m + q.inflation_m) return false;
     return true;
-  };
-  auto segment_ok = [&](const Vec3& a, const Vec3& b) {
+  }
+  bool segment_ok(const Vec3& a, const Vec3& b) const {
     return segment_limits_ok(a, b) && !world.segment_collides(a, b, q.inflation_m);
-  };
-  const double step_m = q.step_cells * q.cell_m;
+  }
   // Lattice points reached from a lattice point expand through the cone table (children outside
-  // the lattice dropped); only the start and its children take the general path. Points at
-  // least `reach` cells from every face need no bounds check.
-  const int reach = static_cast<int>(std::ceil(q.step_cells)) + 1;
-  // With a short step no lattice move may keep the climb limit and change level (at 30 deg a
-  // level takes sqrt(3) cells across): then a node on a level from which the goal hop cannot
-  // reach the goal is a dead end, and a search that must climb ends at once.
-  const double goal_hop_m = 1.5 * step_m + q.cell_m;
-  DirectionalCones::Table& cone_table =
-      cones_->table({q.step_cells, q.max_yaw_rad, q.max_pitch_rad, std::max(1, q.directions), flat});
-  const bool level_locked =
-      !flat && std::abs(q.goal.z() - q.start.z()) > goal_hop_m && !levels_reachable(world, q, cone_table);
-  auto interior = [&](int i, int j, int k) {
+  // the lattice dropped); only the start and its children take the general path. Points at least
+  // `reach` cells from every face need no bounds check.
+  bool interior(int i, int j, int k) const {
     return i >= reach && i < lat.n[0] - reach && j >= reach && j < lat.n[1] - reach &&
            (flat || (k >= reach && k < lat.n[2] - reach));
-  };
-  // One clearance per lattice point replaces the segment checks of all its children when it
-  // exceeds the longest child plus the inflation (every child segment stays inside that ball).
-  // The cones of this search by heading offset (references into the table stay valid).
-  const int side = 2 * reach + 1;
-  std::vector<const DirectionalCones::Cone*> cone_index(static_cast<std::size_t>(side) * side * side, nullptr);
-  const double clearance_cap_m = (reach + 1) * q.cell_m + q.inflation_m;
-  if (clearance_world_ != &world || clearance_cell_m_ != q.cell_m || clearance_cap_m_ < clearance_cap_m ||
-      clearance_.size() != static_cast<std::size_t>(lat.size())) {
-    clearance_world_ = &world;
-    clearance_cell_m_ = q.cell_m;
-    clearance_cap_m_ = clearance_cap_m;
-    clearance_.assign(static_cast<std::size_t>(lat.size()), std::numeric_limits<float>::quiet_NaN());
   }
-  const std::int64_t stride_y = lat.n[0], stride_z = static_cast<std::int64_t>(lat.n[0]) * lat.n[1];
-
-  buf_.begin(states + 2);
-  buf_.at(kStart).g = 0.0;
   // h: the Euclidean distance (P4 eq. 6); with climb_bound, raised to |dz| / sin(phi_max) where
   // that is larger: every segment climbs at most sin(phi_max) of its length, so no route to the
   // goal is shorter (still a lower bound, and consistent along feasible segments). It changes
   // nothing where the climb is gentle and spares a climb-limited search (a spiral up) most of
   // its expansions.
-  const double inv_sin_pitch =
-      q.climb_bound ? 1.0 / std::sin(std::min(q.max_pitch_rad + kAngleTolerance_rad, kPi / 2)) : 0.0;
-  auto h = [&](const Vec3& to) {
+  double h(const Vec3& to) const {
     return std::max((q.goal - to).norm(), std::abs(q.goal.z() - to.z()) * inv_sin_pitch);
-  };
-  const double h0 = h(q.start);
+  }
+  // One clearance per lattice point replaces the segment checks of all its children when it
+  // exceeds the longest child plus the inflation (every child segment stays inside that ball).
+  void prepare_clearances() {
+    const double cap_m = (reach + 1) * q.cell_m + q.inflation_m;
+    if (self.clearance_world_ != &world || self.clearance_cell_m_ != q.cell_m || self.clearance_cap_m_ < cap_m ||
+        self.clearance_.size() != static_cast<std::size_t>(lat.size())) {
+      self.clearance_world_ = &world;
+      self.clearance_cell_m_ = q.cell_m;
+      self.clearance_cap_m_ = cap_m;
+      self.clearance_.assign(static_cast<std::size_t>(lat.size()), std::numeric_limits<float>::quiet_NaN());
+    }
+  }
+  float clearance(std::uint32_t point, const Vec3& p) {
+    return self.clearance_at(world, point, p, self.clearance_cap_m_);
+  }
+
+  bool stop_now();
+  void relax(std::uint32_t from, double g_from, std::uint32_t id, const Vec3& to, double length_m);
+  void try_goal(std::uint32_t from, double g_from, const Vec3& p, const std::optional<Vec3>& heading);
+  const DirectionalCones::Cone& cone_for(int dx, int dy, int dz);
+  void expand_cone(std::uint32_t id, const SearchBuffers::Node& n, int i, int j, int k, const Vec3& p);
+  void expand_general(std::uint32_t id, const SearchBuffers::Node& n, const Vec3& p);
+  DirectionalRoute finish();
+
+  DirectionalSearch& self;
+  const World& world;
+  const DirectionalQuery& q;
+  const StopCondition& stop;
+  const Lattice lat;
+  const bool flat;
+  const std::uint32_t start_id, goal_id;
+  const unsigned bin_bits;
+  const ConeLimits lim;
+  const double step_m;
+  const int reach;
+  const double goal_hop_m;
+  DirectionalCones::Table& cone_table;
+  bool level_locked = false;
+  // The cones of this search by heading offset (references into the table stay valid).
+  const int side;
+  std::vector<const DirectionalCones::Cone*> cone_index;
+  const std::int64_t stride_y, stride_z;
+  const double inv_sin_pitch;
   // With f = g + h a lower bound on the length through a node, the length bound prunes.
-  const bool bounded = q.heuristic_weight == 1.0 && std::isfinite(q.max_length_m);
+  const bool bounded;
   bool beyond_bound = false;
+  int children = 0;  // of the node being expanded
+  DirectionalRoute out;
+};
+
+// Past max_expansions, or the stop (checked every 256 expansions): `out` says which.
+bool DirectionalSearch::Run::stop_now() {
+  if (static_cast<std::int64_t>(++out.expanded) <= q.max_expansions &&
+      !((out.expanded & 255) == 0 && stop.should_stop(out.expanded)))
+    return false;
+  out.stopped = static_cast<std::int64_t>(out.expanded) <= q.max_expansions;
+  out.message = out.stopped
+                    ? "stopped before a route was found"
+                    : "expansion limit reached (planner.params.max_expansions = " + std::to_string(q.max_expansions) +
+                          "; raise it, or give a larger cell_m)";
+  return true;
+}
+
+void DirectionalSearch::Run::relax(std::uint32_t from, double g_from, std::uint32_t id, const Vec3& to,
+                                   double length_m) {
+  const double ng = g_from + length_m;
+  double f = -1.0;
+  if (bounded) {  // never popped before the search gives up: not worth a place in the list
+    f = ng + h(to);
+    if (f > q.max_length_m) {
+      beyond_bound = true;
+      return;
+    }
+  }
+  SearchBuffers::Node& c = self.buf_.at(id);
+  if (SearchBuffers::closed(c) || ng >= c.g) return;
+  c.g = ng;
+  c.parent = from;
+  self.open_.push(f >= 0.0 ? f : ng + q.heuristic_weight * h(to), ng, id);
+  ++out.generated;
+  out.open_max = std::max<std::uint64_t>(out.open_max, self.open_.size());
+}
+
+// Within reach of the goal: the last segment to the exact goal.
+void DirectionalSearch::Run::try_goal(std::uint32_t from, double g_from, const Vec3& p,
+                                      const std::optional<Vec3>& heading) {
+  const Vec3 to_goal = q.goal - p;
+  if (to_goal.norm() <= 1.5 * step_m + q.cell_m && lim.turn_ok(heading, to_goal) && segment_ok(p, q.goal)) {
+    ++children;
+    relax(from, g_from, goal_id, q.goal, to_goal.norm());
+  }
+}
+
+const DirectionalCones::Cone& DirectionalSearch::Run::cone_for(int dx, int dy, int dz) {
+  if (std::abs(dx) > reach || std::abs(dy) > reach || std::abs(dz) > reach)
+    return self.cones_->cone(cone_table, dx, dy, dz);
+  const DirectionalCones::Cone*& slot =
+      cone_index[static_cast<std::size_t>(((dz + reach) * side + dy + reach) * side + dx + reach)];
+  if (!slot) slot = &self.cones_->cone(cone_table, dx, dy, dz);
+  return *slot;
+}
+
+// A lattice point reached from a lattice point: the children of the cone of its heading.
+void DirectionalSearch::Run::expand_cone(std::uint32_t id, const SearchBuffers::Node& n, int i, int j, int k,
+                                         const Vec3& p) {
+  const std::uint32_t pt = id >> bin_bits;
+  const bool inside = interior(i, j, k);
+  int pi, pj, pk;
+  lat.coords(n.parent >> bin_bits, pi, pj, pk);
+  const DirectionalCones::Cone& cn = cone_for(i - pi, j - pj, k - pk);
+  const double max_len_m = cn.max_length_cells * q.cell_m;
+  const float clearance_p = clearance(pt, p);
+  const bool all_clear = clearance_p >= max_len_m + q.inflation_m;
+  bool near_virtual = false;
+  for (const Sphere& sp : q.virtual_threats)
+    near_virtual = near_virtual || (sp.center - p).norm() - max_len_m < sp.radius_m + q.inflation_m;
+  for (const DirectionalCones::Child& c : cn.children) {
+    if (!inside && (i + c.d[0] < 0 || i + c.d[0] >= lat.n[0] || j + c.d[1] < 0 || j + c.d[1] >= lat.n[1] ||
+                    k + c.d[2] < 0 || k + c.d[2] >= lat.n[2]))
+      continue;
+    const Vec3 to = p + q.cell_m * Vec3(c.d[0], c.d[1], c.d[2]);
+    if (to.z() > q.ceiling_m) continue;
+    if (near_virtual && std::any_of(q.virtual_threats.begin(), q.virtual_threats.end(), [&](const Sphere& sp) {
+          return point_segment_distance(sp.center, p, to) < sp.radius_m + q.inflation_m;
+        }))
+      continue;
+    const auto child_pt = static_cast<std::uint32_t>(pt + c.d[0] + c.d[1] * stride_y + c.d[2] * stride_z);
+    // Clear if the two end clearances cover the segment: every point of it is within
+    // (clearance - inflation) of one end. Blocked if the child itself is within the inflation
+    // (by more than the cache's float rounding). Else the exact check.
+    if (!all_clear) {
+      const double clearance_child = clearance(child_pt, to);
+      if (static_cast<double>(clearance_p) + clearance_child - 2 * q.inflation_m < c.length_cells * q.cell_m &&
+          (clearance_child + 1e-6 * (std::abs(clearance_child) + q.inflation_m) < q.inflation_m ||
+           world.segment_collides(p, to, q.inflation_m)))
+        continue;
+    }
+    ++children;
+    // g adds the lattice length of the move, cell |d|, not |to - p|: the same for every point,
+    // free of the rounding of positions far from the origin.
+    relax(id, n.g, state_of(child_pt, to - p), to, c.length_cells * q.cell_m);
+  }
+  try_goal(id, n.g, p, p - lat.at(pi, pj, pk));
+}
+
+// The start and its children: moves within the limits around the heading (general_children).
+// The start's children are lattice points: their clearances may cover a segment between two
+// lattice points as in the cone path.
+void DirectionalSearch::Run::expand_general(std::uint32_t id, const SearchBuffers::Node& n, const Vec3& p) {
+  std::optional<Vec3> heading;
+  if (id == start_id) {
+    if (q.heading_rad) heading = heading_vector(*q.heading_rad);
+  } else {
+    heading = p - position(n.parent);
+  }
+  const float clearance_p = id == start_id ? 0.0f : clearance(id >> bin_bits, p);
+  general_children(lat, q, lim, flat, p, heading, [&](std::uint32_t child, const Vec3& to) {
+    const double len_m = (to - p).norm();
+    const bool covered = id != start_id && len_m <= (reach + 1) * q.cell_m &&
+                         static_cast<double>(clearance_p) + clearance(child, to) - 2 * q.inflation_m >= len_m;
+    if (covered ? segment_limits_ok(p, to) : segment_ok(p, to)) {
+      ++children;
+      relax(id, n.g, state_of(child, to - p), to, len_m);
+    }
+  });
+  try_goal(id, n.g, p, heading);
+}
+
+DirectionalRoute DirectionalSearch::Run::search() {
+  self.buf_.begin(lat.size() * (bin_bits ? 8 : 1) + 2);
+  self.buf_.at(start_id).g = 0.0;
+  const double h0 = h(q.start);
   // f grows by a fraction of a step per expansion: buckets of half a cell hold a few hundred
   // entries each.
-  open_.reset(h0, 0.5 * q.cell_m);
-  open_.push(h0, 0.0, kStart);
-  while (!open_.empty()) {
-    const OpenList::Entry e = open_.pop();
-    SearchBuffers::Node& n = buf_.at(e.id);
-    // A node's later entries carry its best g and parent (read from the node), so any entry
-    // of a node expands it the same way: only the first one counts.
+  self.open_.reset(h0, 0.5 * q.cell_m);
+  self.open_.push(h0, 0.0, start_id);
+  while (!self.open_.empty()) {
+    const OpenList::Entry e = self.open_.pop();
+    SearchBuffers::Node& n = self.buf_.at(e.id);
+    // A node's later entries carry its best g and parent (read from the node), so any entry of a
+    // node expands it the same way: only the first one counts.
     if (SearchBuffers::closed(n)) continue;
     if (bounded && e.f > q.max_length_m) {
       out.message = "no route within the length bound";
-      return out;
+      return std::move(out);
     }
     SearchBuffers::close(n);
-    if (e.id == kGoal) break;
-    if (static_cast<std::int64_t>(++out.expanded) > q.max_expansions ||
-        ((out.expanded & 255) == 0 && stop.should_stop(out.expanded))) {
-      out.stopped = static_cast<std::int64_t>(out.expanded) <= q.max_expansions;
-      out.message =
-          out.stopped ? "stopped before a route was found"
-                      : "expansion limit reached (planner.params.max_expansions = " + std::to_string(q.max_expansions) +
-                            "; raise it, or give a larger cell_m)";
-      return out;
-    }
+    if (e.id == goal_id) break;
+    if (stop_now()) return std::move(out);
     int i = 0, j = 0, k = 0;  // the lattice coordinates of a lattice node
-    if (e.id < kStart) lat.coords(e.id >> bin_bits, i, j, k);
-    const Vec3 p = e.id < kStart ? lat.at(i, j, k) : position(e.id);
-    const double gn = n.g;
-    int children = 0;
-    auto relax = [&](std::uint32_t id, const Vec3& to, double length_m) {
-      const double ng = gn + length_m;
-      double f = -1.0;
-      if (bounded) {  // never popped before the search gives up: not worth a place in the list
-        f = ng + h(to);
-        if (f > q.max_length_m) {
-          beyond_bound = true;
-          return;
-        }
-      }
-      SearchBuffers::Node& c = buf_.at(id);
-      if (SearchBuffers::closed(c) || ng >= c.g) return;
-      c.g = ng;
-      c.parent = e.id;
-      open_.push(f >= 0.0 ? f : ng + q.heuristic_weight * h(to), ng, id);
-      ++out.generated;
-      out.open_max = std::max<std::uint64_t>(out.open_max, open_.size());
-    };
-    // Within reach of the goal: try the last segment to the exact goal.
-    auto try_goal = [&](const std::optional<Vec3>& heading) {
-      const Vec3 to_goal = q.goal - p;
-      if (to_goal.norm() <= 1.5 * step_m + q.cell_m && lim.turn_ok(heading, to_goal) && segment_ok(p, q.goal)) {
-        ++children;
-        relax(kGoal, q.goal, to_goal.norm());
-      }
-    };
-    if (e.id != kStart && n.parent != kStart) {
-      const std::uint32_t pt = e.id >> bin_bits;
+    if (e.id < start_id) lat.coords(e.id >> bin_bits, i, j, k);
+    const Vec3 p = e.id < start_id ? lat.at(i, j, k) : position(e.id);
+    children = 0;
+    if (e.id != start_id && n.parent != start_id) {
       if (level_locked && std::abs(q.goal.z() - p.z()) > goal_hop_m) {
         ++out.dead_zones;
         continue;
       }
-      {
-        const bool inside = interior(i, j, k);
-        int pi, pj, pk;
-        lat.coords(n.parent >> bin_bits, pi, pj, pk);
-        const int dx = i - pi, dy = j - pj, dz = k - pk;
-        const DirectionalCones::Cone* cone_ptr = nullptr;
-        if (std::abs(dx) <= reach && std::abs(dy) <= reach && std::abs(dz) <= reach) {
-          const DirectionalCones::Cone*& slot =
-              cone_index[static_cast<std::size_t>(((dz + reach) * side + dy + reach) * side + dx + reach)];
-          if (!slot) slot = &cones_->cone(cone_table, dx, dy, dz);
-          cone_ptr = slot;
-        } else {
-          cone_ptr = &cones_->cone(cone_table, dx, dy, dz);
-        }
-        const DirectionalCones::Cone& cn = *cone_ptr;
-        const double max_len_m = cn.max_length_cells * q.cell_m;
-        const float clearance_p = clearance_at(world, pt, p, clearance_cap_m_);
-        const bool all_clear = clearance_p >= max_len_m + q.inflation_m;
-        bool near_virtual = false;
-        for (const Sphere& sp : q.virtual_threats)
-          near_virtual = near_virtual || (sp.center - p).norm() - max_len_m < sp.radius_m + q.inflation_m;
-        for (const DirectionalCones::Child& c : cn.children) {
-          if (!inside && (i + c.d[0] < 0 || i + c.d[0] >= lat.n[0] || j + c.d[1] < 0 || j + c.d[1] >= lat.n[1] ||
-                          k + c.d[2] < 0 || k + c.d[2] >= lat.n[2]))
-            continue;
-          const Vec3 to = p + q.cell_m * Vec3(c.d[0], c.d[1], c.d[2]);
-          if (to.z() > q.ceiling_m) continue;
-          if (near_virtual && std::any_of(q.virtual_threats.begin(), q.virtual_threats.end(), [&](const Sphere& sp) {
-                return point_segment_distance(sp.center, p, to) < sp.radius_m + q.inflation_m;
-              }))
-            continue;
-          const auto child_pt = static_cast<std::uint32_t>(pt + c.d[0] + c.d[1] * stride_y + c.d[2] * stride_z);
-          // Clear if the two end clearances cover the segment: every point of it is within
-          // (clearance - inflation) of one end. Blocked if the child itself is within the
-          // inflation (by more than the cache's float rounding). Else the exact check.
-          if (!all_clear) {
-            const double clearance_child = clearance_at(world, child_pt, to, clearance_cap_m_);
-            if (static_cast<double>(clearance_p) + clearance_child - 2 * q.inflation_m < c.length_cells * q.cell_m &&
-                (clearance_child + 1e-6 * (std::abs(clearance_child) + q.inflation_m) < q.inflation_m ||
-                 world.segment_collides(p, to, q.inflation_m)))
-              continue;
-          }
-          ++children;
-          // g adds the lattice length of the move, cell |d|, not |to - p|: the same for every
-          // point, free of the rounding of positions far from the origin.
-          relax(state_of(child_pt, to - p), to, c.length_cells * q.cell_m);
-        }
-        try_goal(p - lat.at(pi, pj, pk));
-        if (children == 0) ++out.dead_zones;
-        continue;
-      }
-    }
-    std::optional<Vec3> heading;
-    if (e.id == kStart) {
-      if (q.heading_rad) heading = heading_vector(*q.heading_rad);
+      expand_cone(e.id, n, i, j, k, p);
     } else {
-      heading = p - position(n.parent);
+      expand_general(e.id, n, p);
     }
-    // The start's children are lattice points: their clearances may cover a segment between
-    // two lattice points as in the cone path.
-    const float clearance_p = e.id == kStart ? 0.0f : clearance_at(world, e.id >> bin_bits, p, clearance_cap_m_);
-    general_children(lat, q, lim, flat, p, heading, [&](std::uint32_t id, const Vec3& to) {
-      const double len_m = (to - p).norm();
-      const bool covered =
-          e.id != kStart && len_m <= (reach + 1) * q.cell_m &&
-          static_cast<double>(clearance_p) + clearance_at(world, id, to, clearance_cap_m_) - 2 * q.inflation_m >= len_m;
-      if (covered ? segment_limits_ok(p, to) : segment_ok(p, to)) {
-        ++children;
-        relax(state_of(id, to - p), to, len_m);
-      }
-    });
-    try_goal(heading);
     if (children == 0) ++out.dead_zones;  // closed; the next best node is taken (P4 eq. 7)
   }
-  SearchBuffers::Node& goal = buf_.at(kGoal);
+  return finish();
+}
+
+// The route back from the goal, or why there is none.
+DirectionalRoute DirectionalSearch::Run::finish() {
+  SearchBuffers::Node& goal = self.buf_.at(goal_id);
   if (!SearchBuffers::closed(goal)) {
     out.message = beyond_bound ? "no route within the length bound"
                                : "no route within the turn and climb limits (" + std::to_string(out.dead_zones) +
                                      " dead zones); " + limits_hint(q, flat);
-    return out;
+    return std::move(out);
   }
   out.found = true;
   out.length_m = goal.g;
-  for (std::uint32_t id = kGoal;; id = buf_.at(id).parent) {
+  for (std::uint32_t id = goal_id;; id = self.buf_.at(id).parent) {
     out.waypoints.push_back(position(id));
-    if (id == kStart) break;
+    if (id == start_id) break;
   }
   std::reverse(out.waypoints.begin(), out.waypoints.end());
-  return out;
+  return std::move(out);
+}
+
+DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const DirectionalQuery& q,
+                                                  const StopCondition& stop, std::uint32_t bins) {
+  const std::int64_t states = make_lattice(world, q.cell_m).size() * bins;
+  if (states + 2 >= static_cast<std::int64_t>(SearchBuffers::kNoParent)) {
+    DirectionalRoute out;
+    out.message = "lattice too large; give a larger cell_m";
+    return out;
+  }
+  return Run(*this, world, q, stop, bins).search();
 }
 
 void DirectionalAStarPlanner::require_lattice(const World& world, const DirectionalQuery& q, int engines,

@@ -136,6 +136,7 @@ class DirectionalSearch {
   }
 
  private:
+  struct Run;  // one search on these buffers (directional_astar.cpp)
   DirectionalRoute run_with_bins(const World& world, const DirectionalQuery& q, const StopCondition& stop,
                                  std::uint32_t heading_bins);
   // Whether the search can ever change level: some move from the start, its children, or a cone

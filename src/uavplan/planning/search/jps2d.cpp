@@ -39,6 +39,42 @@ bool Jps2d::jump(int& x, int& y, int dx, int dy) const {
   }
 }
 
+int Jps2d::directions(int x, int y, std::uint32_t parent, int dirs[8][2]) const {
+  int nd = 0;
+  if (parent == SearchBuffers::kNoParent) {
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx)
+        if (dx || dy) {
+          dirs[nd][0] = dx;
+          dirs[nd++][1] = dy;
+        }
+    return nd;
+  }
+  int px, py, k;
+  grid_->coords(parent, px, py, k);
+  const int dx = sign(x - px), dy = sign(y - py);
+  if (dx && dy) {
+    dirs[nd][0] = dx, dirs[nd++][1] = 0;
+    dirs[nd][0] = 0, dirs[nd++][1] = dy;
+    dirs[nd][0] = dx, dirs[nd++][1] = dy;
+  } else if (dx) {
+    dirs[nd][0] = dx, dirs[nd++][1] = 0;
+    for (int s = -1; s <= 1; s += 2)
+      if (free(x, y + s) && !free(x - dx, y + s)) {
+        dirs[nd][0] = 0, dirs[nd++][1] = s;
+        dirs[nd][0] = dx, dirs[nd++][1] = s;
+      }
+  } else {
+    dirs[nd][0] = 0, dirs[nd++][1] = dy;
+    for (int s = -1; s <= 1; s += 2)
+      if (free(x + s, y) && !free(x + s, y - dy)) {
+        dirs[nd][0] = s, dirs[nd++][1] = 0;
+        dirs[nd][0] = s, dirs[nd++][1] = dy;
+      }
+  }
+  return nd;
+}
+
 GridSearchResult Jps2d::search(std::int64_t start, std::int64_t goal, const StopCondition& stop) {
   GridSearchResult out;
   const BitGrid& g = *grid_;
@@ -67,39 +103,7 @@ GridSearchResult Jps2d::search(std::int64_t start, std::int64_t goal, const Stop
     }
     int x, y;
     g.coords(e.cell, x, y, k);
-    // Pruned directions: all eight at the start; otherwise natural and forced ones.
-    int nd = 0;
-    if (n.parent == SearchBuffers::kNoParent) {
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx)
-          if (dx || dy) {
-            dirs[nd][0] = dx;
-            dirs[nd++][1] = dy;
-          }
-    } else {
-      int px, py;
-      g.coords(n.parent, px, py, k);
-      const int dx = sign(x - px), dy = sign(y - py);
-      if (dx && dy) {
-        dirs[nd][0] = dx, dirs[nd++][1] = 0;
-        dirs[nd][0] = 0, dirs[nd++][1] = dy;
-        dirs[nd][0] = dx, dirs[nd++][1] = dy;
-      } else if (dx) {
-        dirs[nd][0] = dx, dirs[nd++][1] = 0;
-        for (int s = -1; s <= 1; s += 2)
-          if (free(x, y + s) && !free(x - dx, y + s)) {
-            dirs[nd][0] = 0, dirs[nd++][1] = s;
-            dirs[nd][0] = dx, dirs[nd++][1] = s;
-          }
-      } else {
-        dirs[nd][0] = 0, dirs[nd++][1] = dy;
-        for (int s = -1; s <= 1; s += 2)
-          if (free(x + s, y) && !free(x + s, y - dy)) {
-            dirs[nd][0] = s, dirs[nd++][1] = 0;
-            dirs[nd][0] = s, dirs[nd++][1] = dy;
-          }
-      }
-    }
+    const int nd = directions(x, y, n.parent, dirs);
     for (int d = 0; d < nd; ++d) {
       int jx = x, jy = y;
       if (!jump(jx, jy, dirs[d][0], dirs[d][1])) continue;

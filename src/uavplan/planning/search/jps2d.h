@@ -27,6 +27,9 @@ class Jps2d {
   bool free(int x, int y) const { return !grid_->blocked(x, y, 0); }
   bool jump_straight(int& x, int& y, int dx, int dy) const;
   bool jump(int& x, int& y, int dx, int dy) const;
+  // The pruned directions from (x, y) reached from `parent`: all eight at the start, else the
+  // natural and the forced ones. Returns how many.
+  int directions(int x, int y, std::uint32_t parent, int dirs[8][2]) const;
 
   const BitGrid* grid_;
   int gx_ = 0, gy_ = 0;

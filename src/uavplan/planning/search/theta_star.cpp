@@ -48,80 +48,108 @@ LazyThetaStar::LazyThetaStar(const BitGrid& grid)
   for (const GridMove& m : moves_) offsets_.push_back(grid.index(m.di, m.dj, m.dk) - grid.index(0, 0, 0));
 }
 
+double LazyThetaStar::distance(std::uint32_t a, std::uint32_t b) const {
+  int p[3], q[3];
+  grid_->coords(a, p[0], p[1], p[2]);
+  grid_->coords(b, q[0], q[1], q[2]);
+  return std::sqrt(double(p[0] - q[0]) * (p[0] - q[0]) + double(p[1] - q[1]) * (p[1] - q[1]) +
+                   double(p[2] - q[2]) * (p[2] - q[2]));
+}
+
+bool LazyThetaStar::visible(std::uint32_t a, std::uint32_t b) const {
+  int p[3], q[3];
+  grid_->coords(a, p[0], p[1], p[2]);
+  grid_->coords(b, q[0], q[1], q[2]);
+  return line_of_sight(*grid_, p, q);
+}
+
+void LazyThetaStar::set_vertex(std::uint32_t cell, std::uint32_t mask) {
+  SearchBuffers::Node* n = &buf_.at(cell);
+  if (n->parent == cell || visible(n->parent, cell)) return;
+  double best = std::numeric_limits<double>::infinity();
+  std::uint32_t best_parent = n->parent;
+  for (std::size_t m = 0; m < moves_.size(); ++m) {
+    if ((mask & moves_[m].need) != moves_[m].need) continue;
+    const auto nc = static_cast<std::uint32_t>(cell + offsets_[m]);
+    const SearchBuffers::Node& nn = buf_.at(nc);
+    n = &buf_.at(cell);  // a page may have been allocated: re-take the reference
+    if (SearchBuffers::closed(nn) && nn.g + moves_[m].cost < best) {
+      best = nn.g + moves_[m].cost;
+      best_parent = nc;
+    }
+  }
+  n->g = best;
+  n->parent = best_parent;
+}
+
+void LazyThetaStar::relax_neighbours(std::uint32_t cell, std::uint32_t mask, std::uint32_t goal,
+                                     GridSearchResult& out) {
+  const std::uint32_t parent = buf_.at(cell).parent;
+  const double gp = buf_.at(parent).g;
+  for (std::size_t m = 0; m < moves_.size(); ++m) {
+    if ((mask & moves_[m].need) != moves_[m].need) continue;
+    const auto nc = static_cast<std::uint32_t>(cell + offsets_[m]);
+    SearchBuffers::Node& nn = buf_.at(nc);
+    if (SearchBuffers::closed(nn)) continue;
+    const double ng = gp + distance(parent, nc);
+    if (ng < nn.g) {
+      nn.g = ng;
+      nn.parent = parent;
+      buf_.push(ng + distance(nc, goal), ng, nc);
+      ++out.generated;
+    }
+  }
+}
+
+void LazyThetaStar::keep_pulled_if_shorter(std::int64_t start, std::int64_t goal, const StopCondition& stop,
+                                           GridSearchResult& out) {
+  const GridSearchResult a = grid_search_.search(start, goal, stop);
+  if (!a.found) return;
+  std::vector<std::int64_t> pulled{a.cells.front()};
+  double len = 0.0;
+  for (std::size_t i = 0; i + 1 < a.cells.size();) {
+    std::size_t j = i + 1;
+    while (j + 1 < a.cells.size() &&
+           visible(static_cast<std::uint32_t>(a.cells[i]), static_cast<std::uint32_t>(a.cells[j + 1])))
+      ++j;
+    len += distance(static_cast<std::uint32_t>(a.cells[i]), static_cast<std::uint32_t>(a.cells[j]));
+    pulled.push_back(a.cells[j]);
+    i = j;
+  }
+  if (len < out.cost) {
+    out.cost = len;
+    out.cells = std::move(pulled);
+  }
+  out.expanded += a.expanded;
+  out.generated += a.generated;
+}
+
 GridSearchResult LazyThetaStar::search(std::int64_t start, std::int64_t goal, const StopCondition& stop) {
   GridSearchResult out;
   const BitGrid& g = *grid_;
   if (start < 0 || goal < 0 || start >= g.size() || goal >= g.size() || g.blocked(start) || g.blocked(goal)) return out;
-  int gc[3];
-  g.coords(goal, gc[0], gc[1], gc[2]);
-  auto dist = [&](std::uint32_t a, std::uint32_t b) {
-    int p[3], q[3];
-    g.coords(a, p[0], p[1], p[2]);
-    g.coords(b, q[0], q[1], q[2]);
-    return std::sqrt(double(p[0] - q[0]) * (p[0] - q[0]) + double(p[1] - q[1]) * (p[1] - q[1]) +
-                     double(p[2] - q[2]) * (p[2] - q[2]));
-  };
-  auto los = [&](std::uint32_t a, std::uint32_t b) {
-    int p[3], q[3];
-    g.coords(a, p[0], p[1], p[2]);
-    g.coords(b, q[0], q[1], q[2]);
-    return line_of_sight(g, p, q);
-  };
   const auto s0 = static_cast<std::uint32_t>(start), goal_c = static_cast<std::uint32_t>(goal);
   buf_.begin(g.size());
-  {
-    SearchBuffers::Node& n = buf_.at(s0);
-    n.g = 0.0;
-    n.parent = s0;
-    buf_.push(dist(s0, goal_c), 0.0, s0);
-  }
+  SearchBuffers::Node& n0 = buf_.at(s0);
+  n0.g = 0.0;
+  n0.parent = s0;
+  buf_.push(distance(s0, goal_c), 0.0, s0);
   while (!buf_.open_empty()) {
     out.open_max = std::max<std::uint64_t>(out.open_max, buf_.open_size());
     const SearchBuffers::Entry e = buf_.pop();
-    SearchBuffers::Node* n = &buf_.at(e.cell);
-    if (SearchBuffers::closed(*n) || e.g > n->g) continue;
+    const SearchBuffers::Node& n = buf_.at(e.cell);
+    if (SearchBuffers::closed(n) || e.g > n.g) continue;
     int i, j, k;
     g.coords(e.cell, i, j, k);
     const std::uint32_t mask = g.free_mask(i, j, k);
-    // SetVertex: the parent was assumed visible; if not, take the best closed grid neighbour.
-    if (n->parent != e.cell && !los(n->parent, e.cell)) {
-      double best = std::numeric_limits<double>::infinity();
-      std::uint32_t best_parent = n->parent;
-      for (std::size_t m = 0; m < moves_.size(); ++m) {
-        if ((mask & moves_[m].need) != moves_[m].need) continue;
-        const auto nc = static_cast<std::uint32_t>(e.cell + offsets_[m]);
-        const SearchBuffers::Node& nn = buf_.at(nc);
-        n = &buf_.at(e.cell);  // a page may have been allocated: re-take the reference
-        if (SearchBuffers::closed(nn) && nn.g + moves_[m].cost < best) {
-          best = nn.g + moves_[m].cost;
-          best_parent = nc;
-        }
-      }
-      n->g = best;
-      n->parent = best_parent;
-    }
-    SearchBuffers::close(*n);
+    set_vertex(e.cell, mask);
+    SearchBuffers::close(buf_.at(e.cell));
     if (e.cell == goal_c) break;
     if ((++out.expanded & 1023) == 0 && stop.should_stop(out.expanded)) {
       out.stopped = true;
       return out;
     }
-    const std::uint32_t parent = n->parent;
-    const double gp = buf_.at(parent).g;
-    for (std::size_t m = 0; m < moves_.size(); ++m) {
-      if ((mask & moves_[m].need) != moves_[m].need) continue;
-      const auto nc = static_cast<std::uint32_t>(e.cell + offsets_[m]);
-      SearchBuffers::Node& nn = buf_.at(nc);
-      if (SearchBuffers::closed(nn)) continue;
-      // Path 2, assumed visible (checked lazily when nc is expanded).
-      const double ng = gp + dist(parent, nc);
-      if (ng < nn.g) {
-        nn.g = ng;
-        nn.parent = parent;
-        buf_.push(ng + dist(nc, goal_c), ng, nc);
-        ++out.generated;
-      }
-    }
+    relax_neighbours(e.cell, mask, goal_c, out);
   }
   SearchBuffers::Node& gn = buf_.at(goal_c);
   if (!SearchBuffers::closed(gn)) return out;
@@ -132,28 +160,7 @@ GridSearchResult LazyThetaStar::search(std::int64_t start, std::int64_t goal, co
     if (c == s0) break;
   }
   std::reverse(out.cells.begin(), out.cells.end());
-
-  // The string-pulled optimal grid path, kept when shorter.
-  const GridSearchResult a = grid_search_.search(start, goal, stop);
-  if (a.found) {
-    std::vector<std::int64_t> pulled{a.cells.front()};
-    double len = 0.0;
-    for (std::size_t i = 0; i + 1 < a.cells.size();) {
-      std::size_t j = i + 1;
-      while (j + 1 < a.cells.size() &&
-             los(static_cast<std::uint32_t>(a.cells[i]), static_cast<std::uint32_t>(a.cells[j + 1])))
-        ++j;
-      len += dist(static_cast<std::uint32_t>(a.cells[i]), static_cast<std::uint32_t>(a.cells[j]));
-      pulled.push_back(a.cells[j]);
-      i = j;
-    }
-    if (len < out.cost) {
-      out.cost = len;
-      out.cells = std::move(pulled);
-    }
-    out.expanded += a.expanded;
-    out.generated += a.generated;
-  }
+  keep_pulled_if_shorter(start, goal, stop, out);
   return out;
 }
 

@@ -27,6 +27,15 @@ class LazyThetaStar {
   GridSearchResult search(std::int64_t start, std::int64_t goal, const StopCondition& stop = {});
 
  private:
+  double distance(std::uint32_t a, std::uint32_t b) const;
+  bool visible(std::uint32_t a, std::uint32_t b) const;
+  // SetVertex: a node's parent was assumed visible; if not, the best closed grid neighbour.
+  void set_vertex(std::uint32_t cell, std::uint32_t mask);
+  // The free neighbours of `cell`, each given the cell's parent (path 2, assumed visible).
+  void relax_neighbours(std::uint32_t cell, std::uint32_t mask, std::uint32_t goal, GridSearchResult& out);
+  // The string-pulled optimal grid path, kept in `out` when shorter.
+  void keep_pulled_if_shorter(std::int64_t start, std::int64_t goal, const StopCondition& stop, GridSearchResult& out);
+
   const BitGrid* grid_;
   std::vector<GridMove> moves_;
   std::vector<std::int64_t> offsets_;
