@@ -168,7 +168,7 @@ std::string section_random(int worlds, bool* ok) {
     plain.mission.waypoint_entry_heading_rad.clear();
     Plan a, m;
     if (verified(plain, "astar", &a) && verified(plain, "pso_mpc", &m)) {
-      const double q = m.uavs.front().length_m / a.uavs.front().length_m;
+      const double q = m.uavs.front().route_length_m / a.uavs.front().route_length_m;
       ratio += q, worst_ratio = std::max(worst_ratio, q), ++compared;
     }
   }

@@ -220,6 +220,7 @@ PYBIND11_MODULE(uavplan, m) {
           "Why it is not solved: none, stopped, budget, no_route, invalid, conflict or rejected")
       .def_property_readonly("message", [](const UavPlan& u) { return u.message; })
       .def_property_readonly("length_m", [](const UavPlan& u) { return u.length_m; })
+      .def_property_readonly("route_length_m", [](const UavPlan& u) { return u.route_length_m; })
       .def_property_readonly("arrival_s", [](const UavPlan& u) { return u.arrival_s; })
       .def_property_readonly("metrics", [](const UavPlan& u) { return u.metrics; })
       .def_property_readonly("expansions", [](const UavPlan& u) { return u.stats.nodes_expanded; })

@@ -193,7 +193,7 @@ void to_scenario(const PlanningView& v, const Scenario& sc, Plan& plan, double m
       up.waypoints.push_back(*v.ground.goal[i]);
       changed = true;
     }
-    if (changed) up.length_m = Route{up.waypoints}.length_m();
+    if (changed) up.route_length_m = Route{up.waypoints}.length_m();
     up.arrival_s = up.trajectory.back().t_s;
   }
 }

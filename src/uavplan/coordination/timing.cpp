@@ -67,7 +67,7 @@ UavPlan flown_plan(const std::string& id, bool ok, std::string message, std::vec
   if (ok) {
     up.waypoints = std::move(waypoints);
     up.waypoints.erase(std::unique(up.waypoints.begin(), up.waypoints.end()), up.waypoints.end());
-    up.length_m = Route{up.waypoints}.length_m();
+    up.route_length_m = Route{up.waypoints}.length_m();
     up.trajectory = std::move(trajectory);
     up.arrival_s = up.trajectory.back().t_s;
   }

@@ -87,8 +87,10 @@ void compute_metrics(const Scenario& sc, Plan& plan) {
   std::vector<const UavPlan*> flown;
   for (UavPlan& up : plan.uavs) {
     const UavSpec* spec = sc.find_uav(up.id);
+    if (up.trajectory.empty()) up.length_m = 0.0;  // flew nothing
     if (!spec || up.trajectory.empty()) continue;
     const UavMetrics m = uav_metrics(sc, *spec, up);
+    up.length_m = m.length_m;
     up.metrics = {{"length_m", m.length_m},
                   {"flight_time_s", m.flight_time_s},
                   {"max_turn_deg", m.max_turn_deg},

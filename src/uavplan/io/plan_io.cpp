@@ -186,6 +186,7 @@ std::string plan_to_json(const Plan& plan, const PlanWriteOptions& options) {
     ju["waypoints"] = std::move(waypoints);
     ju["trajectory"] = Json::binary({}, uavs.size());  // write_rows writes it
     ju["length_m"] = u.length_m;
+    ju["route_length_m"] = u.route_length_m;
     ju["arrival_s"] = u.arrival_s;
     ju["metrics"] = metrics_json(u.metrics);
     ju["stats"] = {{"nodes_expanded", u.stats.nodes_expanded},
@@ -314,6 +315,7 @@ UavPlan read_uav_plan(const Reader& r, const Json& ju, const std::string& at) {
   if (ju.contains("waypoints")) u.waypoints = read_waypoints(r, ju["waypoints"], at);
   u.trajectory = read_rows(r, r.req(ju, "trajectory", at), at);
   if (ju.contains("length_m")) u.length_m = r.number(ju["length_m"], at + ".length_m");
+  if (ju.contains("route_length_m")) u.route_length_m = r.number(ju["route_length_m"], at + ".route_length_m");
   if (ju.contains("arrival_s")) u.arrival_s = r.number(ju["arrival_s"], at + ".arrival_s");
   if (ju.contains("metrics")) u.metrics = r.metrics(ju["metrics"], at + ".metrics");
   if (ju.contains("stats")) u.stats = read_stats(r, ju["stats"], at);

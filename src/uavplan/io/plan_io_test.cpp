@@ -20,6 +20,7 @@ Plan sample_plan() {
   a.waypoints = {{0, 0, 10}, {1.0 / 3.0, 2, 10}};
   a.trajectory = {{0.0, Vec3(0, 0, 10)}, {0.1234567890123, Vec3(1.0 / 3.0, 2, 10)}};
   a.length_m = 2.0276;
+  a.route_length_m = 2.5;
   a.metrics["length_m"] = 2.0276;
   UavPlan b;
   b.id = "b";
@@ -38,6 +39,8 @@ TEST(PlanIo, RoundTripIsExact) {
   EXPECT_EQ(q.uavs[0].trajectory[1].p, p.uavs[0].trajectory[1].p);
   EXPECT_EQ(q.uavs[1].status, Status::failed);
   EXPECT_EQ(q.uavs[0].metrics, p.uavs[0].metrics) << "metrics are read back (the report shows them)";
+  EXPECT_EQ(q.uavs[0].length_m, 2.0276);
+  EXPECT_EQ(q.uavs[0].route_length_m, 2.5);
   EXPECT_EQ(plan_to_json(q).size() > 0, true);
   EXPECT_EQ(text, plan_to_json(p));  // deterministic
   EXPECT_NE(text.find("\"timing\": {}"), std::string::npos);

@@ -20,7 +20,11 @@ struct UavPlan {
   std::string message;
   std::vector<Vec3> waypoints;
   Trajectory trajectory;
+  // Two lengths: the distance flown (the trajectory's polyline, as metrics.length_m, the CLI
+  // table, the report and results.csv show it; set with the metrics), and the planned route's
+  // (the waypoints' polyline; longer or shorter where the flight cuts or widens its corners).
   double length_m = 0.0;
+  double route_length_m = 0.0;
   double arrival_s = 0.0;
   PlanStats stats;
   std::map<std::string, double> metrics;  // filled by evaluation

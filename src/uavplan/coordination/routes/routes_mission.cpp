@@ -51,11 +51,11 @@ Committed plan_and_time(const Scenario& sc, const Planner& planner, const Missio
     up.message = r.message;
     up.stats = r.stats;
     up.waypoints = r.route.waypoints;
-    up.length_m = r.route.length_m();
+    up.route_length_m = r.route.length_m();
     if (up.status != Status::solved) continue;
     if (i < ground.start.size() && ground.start[i]) up.waypoints.insert(up.waypoints.begin(), *ground.start[i]);
     if (i < ground.goal.size() && ground.goal[i]) up.waypoints.push_back(*ground.goal[i]);
-    up.length_m = Route{up.waypoints}.length_m();
+    up.route_length_m = Route{up.waypoints}.length_m();
     if (u.model && fly_route(u, up.waypoints, 0.0, opt.max_sample_dt_s, sc.mission.waypoints).empty()) {
       up.status = Status::failed;
       up.message =
@@ -63,7 +63,7 @@ Committed plan_and_time(const Scenario& sc, const Planner& planner, const Missio
       up.reason = Reason::no_route;
       continue;
     }
-    horizon_s += 2.0 * up.length_m / u.speed.cruise_mps;
+    horizon_s += 2.0 * up.route_length_m / u.speed.cruise_mps;
     Departure d = earliest_departure(sc, u, up.waypoints, horizon_s, committed, opt.delay_step_s, opt.max_sample_dt_s,
                                      opt.stop, senses(u) ? MovingObstacles::sensed : MovingObstacles::avoided);
     if (d.stopped) {
@@ -144,7 +144,7 @@ void record_flights(const Scenario& sc, const MissionContext& ctx, const Sensing
     }
     up.message = buf;
     up.waypoints = trajectory_corners(f.flown);
-    up.length_m = Route{up.waypoints}.length_m();
+    up.route_length_m = Route{up.waypoints}.length_m();
     up.arrival_s = f.flown.back().t_s;
   }
 }
