@@ -99,6 +99,8 @@ try {
     return {
       cells, legend, uavs: d.uavs.map((u) => [u.id, u.colour]), radars: d.threats.length, moving: d.moving.length,
       profiled: d.uavs.filter((u) => u.profile).length, shells: r.radarShells, tracks: r.movingTracks, axisLabels: r.axisLabels,
+      drawn: r.drawn, zLabelGap: r.zLabelGap(), goals: d.uavs.filter((u) => u.goal).length,
+      viaPoints: (d.via_points || []).length, taskPoints: (d.task_points || []).length, airfield: !!d.airfield,
       north: !!document.querySelector('#north svg'), scale: document.querySelector('#scalebar span').textContent,
       scaleWidth: document.querySelector('#scalebar .bar').getBoundingClientRect().width,
       logScale: [...document.querySelectorAll('.uplot .u-title')].some((t) => /log scale/.test(t.textContent)),
@@ -124,6 +126,15 @@ try {
   if (info.profiled && info.profile !== 1) fail('no height-above-ground profile');
   if (info.radars && info.shells < info.radars) fail(`${info.radars} radars but ${info.shells} range shells`);
   if (info.tracks !== info.moving) fail(`${info.moving} moving obstacles but ${info.tracks} tracks`);
+  // What the mission asks for is on the map, for failed UAVs too: every start and goal, the via
+  // points, the task points, the runway; the z labels one clear of the next.
+  const dr = info.drawn;
+  if (dr.starts !== info.uavs.length) fail(`${info.uavs.length} UAVs but ${dr.starts} start markers`);
+  if (dr.goals !== info.goals) fail(`${info.goals} goals but ${dr.goals} goal markers`);
+  if (dr.viaPoints !== info.viaPoints) fail(`${info.viaPoints} via points but ${dr.viaPoints} drawn`);
+  if (dr.taskPoints !== info.taskPoints) fail(`${info.taskPoints} task points but ${dr.taskPoints} drawn`);
+  if (dr.runway !== info.airfield) fail(`airfield ${info.airfield} but runway drawn ${dr.runway}`);
+  if (!(info.zLabelGap >= 1)) fail(`z-axis labels overlap (gap ${info.zLabelGap} label heights)`);
   // A phased mission: bands on every time chart, and the phase named beside the time slider.
   const phases = await page.evaluate(() => JSON.parse(document.getElementById('uavplan-data').textContent).phases || []);
   if (phases.length) {

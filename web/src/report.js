@@ -66,6 +66,11 @@ if (data.terrain) legend.append(el('span', { class: 'key', style: { '--c': terra
 if (data.threats.length)
   legend.append(el('span', { class: 'key ring', style: { '--c': '#c2410c' } }, 'radar: threat cost = 1, 0.1, 0.01 x distance'));
 if (data.moving.length) legend.append(el('span', { class: 'key dashed', style: { '--c': '#6b7280' } }, 'moving obstacle and its track'));
+legend.append(el('span', { class: 'key', style: { '--c': '#1d232b' } }, 'start (cube) and goal (ring) in the UAV\'s colour'));
+if ((data.via_points || []).length) legend.append(el('span', { class: 'key', style: { '--c': '#6d28d9' } }, 'via point V1, V2, ... (in order)'));
+if ((data.task_points || []).length)
+  legend.append(el('span', { class: 'key ring', style: { '--c': '#0f766e' } }, 'task point T1, T2, ... and the radius it is reached within'));
+if (data.airfield) legend.append(el('span', { class: 'key', style: { '--c': '#374151' } }, 'runway (from its threshold)'));
 left.append(legend);
 
 // ---- 3-D view (z up, the scenario's frame) ----
@@ -128,6 +133,8 @@ function label(text, position, scale) {
   return sprite;
 }
 const axisLabels = [];
+const zLabels = [];  // heights of the z labels, for the test of their spacing
+let zLabelHeight = 0;
 {
   const tick = diag * 0.012, textSize = diag * 0.03, ticks = [];
   const along = (axis, from, to, at) => {
@@ -142,12 +149,20 @@ const axisLabels = [];
     ticks.push(bmin.x, v, bmin.z, bmin.x - tick, v, bmin.z);
     axisLabels.push(label(fmtM(v), new THREE.Vector3(bmin.x - 4 * tick, v, bmin.z), textSize));
   });
-  if (size.z > 0)
-    along('z', bmin.z, bmax.z, (v) => {
-      if (v === bmin.z) return;  // the y axis labels the corner
+  // z: as many labels as fit one above the other, none where the height is a sliver of the
+  // diagonal (a long mission's: the altitude chart gives its heights; a label there would sit on
+  // the y axis's).
+  const zFit = Math.floor(size.z / (1.5 * textSize));
+  zLabelHeight = textSize;
+  if (size.z > 0 && zFit >= 1) {
+    const zStep = Math.max(niceStep(size.z, Math.min(5, zFit)), 1.5 * textSize);
+    for (let v = Math.ceil(bmin.z / zStep) * zStep; v <= bmax.z + 1e-9; v += zStep) {
+      if (v === bmin.z) continue;  // the y axis labels the corner
       ticks.push(bmin.x, bmax.y, v, bmin.x - tick, bmax.y, v);
+      zLabels.push(v);
       axisLabels.push(label(fmtM(v), new THREE.Vector3(bmin.x - 5 * tick, bmax.y, v), textSize));
-    });
+    }
+  }
   axisLabels.push(label('x, east', new THREE.Vector3(centre.x, bmin.y - 7 * tick, bmin.z), textSize * 1.1));
   axisLabels.push(label('y, north', new THREE.Vector3(bmin.x - 9 * tick, centre.y, bmin.z), textSize * 1.1));
   const g = new THREE.BufferGeometry();
@@ -250,6 +265,60 @@ for (const r of data.threats) {
     shellCount++;
   });
 }
+// The mission's places: via points in order, task points with their radius, the runway; each
+// UAV's start (a cube) and goal (a ring) in its colour, drawn for failed UAVs too (with the
+// routes: the routes toggle shows and hides the UAVs' layer).
+function placeLabel(text, position) { label(text, position, diag * 0.02); }
+const drawn = { starts: 0, goals: 0, viaPoints: 0, taskPoints: 0, runway: false };
+const routeGroup = new THREE.Group();
+scene.add(routeGroup);
+(data.via_points || []).forEach((p, k) => {
+  const m = new THREE.Mesh(new THREE.OctahedronGeometry(marker * 1.6), new THREE.MeshLambertMaterial({ color: 0x6d28d9 }));
+  m.position.set(...p);
+  scene.add(m);
+  placeLabel(`V${k + 1}`, new THREE.Vector3(p[0], p[1], p[2] + 4 * marker));
+  drawn.viaPoints++;
+});
+(data.task_points || []).forEach((tp, k) => {
+  const [x, y, z] = tp.position;
+  const ring = Array.from({ length: 97 }, (_, a) =>
+    new THREE.Vector3(x + tp.radius_m * Math.cos(Math.PI * a / 48), y + tp.radius_m * Math.sin(Math.PI * a / 48), z));
+  scene.add(new THREE.Line(new THREE.BufferGeometry().setFromPoints(ring), new THREE.LineBasicMaterial({ color: 0x0f766e })));
+  const m = new THREE.Mesh(new THREE.OctahedronGeometry(marker * 1.6), new THREE.MeshLambertMaterial({ color: 0x0f766e }));
+  m.position.set(x, y, z);
+  scene.add(m);
+  placeLabel(`T${k + 1}`, new THREE.Vector3(x, y, z + 4 * marker));
+  drawn.taskPoints++;
+});
+if (data.airfield) {
+  const a = data.airfield, h = a.runway_heading_deg * Math.PI / 180;
+  const width = Math.max(60, 2 * marker);  // the contract's runway: 30 m either side of the centreline
+  const strip = new THREE.Mesh(new THREE.BoxGeometry(a.runway_length_m, width, Math.max(1, marker * 0.2)),
+    new THREE.MeshLambertMaterial({ color: 0x374151 }));
+  strip.rotation.z = h;
+  strip.position.set(a.position[0] + 0.5 * a.runway_length_m * Math.cos(h), a.position[1] + 0.5 * a.runway_length_m * Math.sin(h),
+    a.position[2]);
+  scene.add(strip);
+  placeLabel('runway', new THREE.Vector3(a.position[0], a.position[1], a.position[2] + 4 * marker));
+  drawn.runway = true;
+}
+for (const u of data.uavs) {
+  const colour = new THREE.Color(u.colour);
+  const body = Math.max(u.radius, marker) * 2.2;
+  if (u.start) {
+    const cube = new THREE.Mesh(new THREE.BoxGeometry(body, body, body), new THREE.MeshLambertMaterial({ color: colour }));
+    cube.position.set(...u.start);
+    routeGroup.add(cube);
+    drawn.starts++;
+  }
+  if (u.goal) {
+    const ring = new THREE.Mesh(new THREE.TorusGeometry(body, body * 0.18, 8, 32), new THREE.MeshBasicMaterial({ color: colour }));
+    ring.position.set(...u.goal);
+    routeGroup.add(ring);
+    drawn.goals++;
+  }
+}
+
 function movingAt(m, t) {
   return m.trajectory ? positionAt(m.trajectory, t) : [0, 1, 2].map((k) => m.position[k] + t * m.velocity[k]);
 }
@@ -293,8 +362,6 @@ function simplified(traj, tol) {
 }
 
 // Routes as screen-space wide lines, and one marker per UAV that the time slider moves.
-const routeGroup = new THREE.Group();
-scene.add(routeGroup);
 const lineMaterials = [];
 const uavMarkers = [];
 for (const u of data.uavs) {
@@ -514,6 +581,15 @@ window.uavplanReport = {
   chartsWithPhaseBands: () => chartsBanded.size,
   timeLabel: () => timeLabel.textContent,
   axisLabels: axisLabels.length,
+  // What the mission asks for, as drawn: starts, goals, via points, task points, the runway; and
+  // the smallest gap between two z labels, in label heights (under 1: they run together).
+  drawn,
+  zLabelGap: () => {
+    const zs = [...zLabels].sort((a, b) => a - b);
+    let gap = Infinity;
+    for (let i = 1; i < zs.length; i++) gap = Math.min(gap, (zs[i] - zs[i - 1]) / zLabelHeight);
+    return gap;
+  },
   setTime,
   setRoutesVisible(v) { routesToggle.checked = v; routeGroup.visible = v; renderer.render(scene, camera); },
 };

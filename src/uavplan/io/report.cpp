@@ -124,6 +124,22 @@ void add_world(ojson& j, const World& w, const ReportOptions& opt) {
   j["terrain"] = w.terrain() ? terrain_json(*w.terrain(), opt.max_terrain_cells) : ojson(nullptr);
 }
 
+// What the mission asks for on the map: a route's via points, P5's task points and airfield.
+void add_mission_places(ojson& j, const MissionSpec& m) {
+  j["via_points"] = ojson::array();
+  for (const Vec3& v : m.waypoints) j["via_points"].push_back(vec(v));
+  j["task_points"] = ojson::array();
+  for (const TaskPoint& tp : m.task_points)
+    j["task_points"].push_back(
+        {{"position", vec(tp.position)},
+         {"radius_m", tp.radius_m},
+         {"entry_heading_deg", tp.entry_heading_rad ? ojson(rad_to_deg(*tp.entry_heading_rad)) : ojson(nullptr)}});
+  j["airfield"] = m.airfield ? ojson({{"position", vec(m.airfield->position)},
+                                      {"runway_heading_deg", rad_to_deg(m.airfield->runway_heading_rad)},
+                                      {"runway_length_m", m.airfield->runway_length_m}})
+                             : ojson(nullptr);
+}
+
 // One UAV with its trajectory, colour by its place in the plan (as in the KML export).
 ojson uav_json(const Scenario& sc, const UavPlan& u, std::size_t k, const ReportOptions& opt) {
   const World& w = sc.world;
@@ -134,6 +150,8 @@ ojson uav_json(const Scenario& sc, const UavPlan& u, std::size_t k, const Report
   for (const auto& [key, v] : u.metrics) metrics[key] = round6(v);
   const bool has_height = w.bounds().extent().z() > 0.0;
   return {{"id", u.id},
+          {"start", spec ? vec(spec->start) : ojson(nullptr)},
+          {"goal", spec && spec->goal ? vec(*spec->goal) : ojson(nullptr)},
           {"status", to_string(u.status)},
           {"message", u.message},
           {"colour", uav_colour(k)},
@@ -214,6 +232,7 @@ std::string report_data_json(const Scenario& sc, const Plan& plan_in, const std:
   j["mission"] = to_string(sc.mission.type);
   j["separation_m"] = sc.mission.separation_m;
   add_world(j, sc.world, opt);
+  add_mission_places(j, sc.mission);
   std::vector<const UavPlan*> flown;
   double t_end = 0.0;
   j["uavs"] = ojson::array();
