@@ -83,6 +83,8 @@ Plan plan_mission(const Scenario& sc, const MissionOptions& opt) {
       plan.uavs.push_back(std::move(up));
     }
   }
+  // The distance each flew (the metrics, after verification, say the same).
+  for (UavPlan& u : plan.uavs) u.length_m = flown_length_m(u.trajectory);
   // A UAV a mission failed without saying why in a word: stopped, or no route it could fly.
   for (UavPlan& u : plan.uavs)
     if (u.status != Status::solved && u.reason == Reason::none)

@@ -31,8 +31,10 @@ TEST(MissionPlanner, CrossingUavsKeepTheirSeparationByDepartureDelay) {
   const Encounter e = closest_approach(p.uavs[0].trajectory, p.uavs[1].trajectory);
   EXPECT_GE(e.distance_m, 10.0);
   // The first UAV departs at once, the second waits.
-  EXPECT_NEAR(p.uavs[0].arrival_s, p.uavs[0].length_m / 5.0, 1e-9);
-  EXPECT_GT(p.uavs[1].arrival_s, p.uavs[1].length_m / 5.0);
+  EXPECT_NEAR(p.uavs[0].arrival_s, p.uavs[0].route_length_m / 5.0, 1e-9);
+  EXPECT_GT(p.uavs[1].arrival_s, p.uavs[1].route_length_m / 5.0);
+  // The distance flown, with the planned route's beside it (a straight crossing: the same).
+  EXPECT_NEAR(p.uavs[0].length_m, p.uavs[0].route_length_m, 1e-9);
 }
 
 TEST(MissionPlanner, MissingGoalFailsThatUavOnly) {

@@ -290,8 +290,7 @@ class Lengthener {
  public:
   Lengthener(const Scenario& sc, std::size_t s, const DirectionalQuery& query, const DirectionalAStarOptions& opt,
              const LengthWindow& window, Searches& searches, RendezvousResult& res)
-      : sc_(sc),
-        s_(s),
+      : s_(s),
         u_(sc.uavs[s]),
         r_(res.uavs[s]),
         res_(res),
@@ -369,7 +368,6 @@ class Lengthener {
   }
   bool loiter_fits(double extra) const { return extra / (2 * kPi) >= r_min_; }
 
-  const Scenario& sc_;
   std::size_t s_;
   const UavSpec& u_;
   RendezvousUav& r_;
