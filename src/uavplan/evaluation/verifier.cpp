@@ -17,11 +17,10 @@ namespace uavplan {
 
 namespace {
 
-using Out = std::vector<Violation>;
-
-void add(Out& out, ViolationKind k, const std::string& uav, std::optional<double> t, std::optional<Vec3> p,
-         std::string msg) {
-  add_violation(out, k, uav, t, p, std::move(msg));
+// What a UAV keeps off obstacles and movers, in words: "the UAV radius 0.5 m", or "the UAV
+// radius plus clearance 2.5 m".
+std::string keep_off_text(const UavSpec& u) {
+  return (u.clearance_m > 0.0 ? "the UAV radius plus clearance " : "the UAV radius ") + num_text(keep_off_m(u)) + " m";
 }
 
 // What the clearance at p is measured to, by name: "obstacle hangar" (its id), "obstacle 3 (box)"
@@ -59,30 +58,32 @@ double worst_param(const World& w, const Vec3& a, const Vec3& b) {
 
 // The rows themselves: finite, from the start to the goal, inside the bounds and below the
 // ceiling. False when they are not numbers at all (nothing else can be checked).
-bool check_rows(const Scenario& sc, const UavSpec& u, const Trajectory& tr, double arrival_tolerance_m, Out& out) {
+bool check_rows(const Scenario& sc, const UavSpec& u, const Trajectory& tr, double arrival_tolerance_m,
+                Violations& out) {
   const std::string& id = u.id;
   for (const auto& s : tr)
     if (!std::isfinite(s.t_s) || !s.p.allFinite()) {
-      add(out, ViolationKind::trajectory, id, std::nullopt, std::nullopt, "non-finite trajectory row");
+      add_violation(out, ViolationKind::trajectory, id, std::nullopt, std::nullopt, "non-finite trajectory row");
       return false;
     }
   if ((tr.front().p - u.start).norm() > kPositionTolerance_m)
-    add(out, ViolationKind::start, id, tr.front().t_s, tr.front().p, "trajectory does not begin at the start");
+    add_violation(out, ViolationKind::start, id, tr.front().t_s, tr.front().p,
+                  "trajectory does not begin at the start");
   if (u.goal && (tr.back().p - *u.goal).norm() > arrival_tolerance_m + kPositionTolerance_m)
-    add(out, ViolationKind::goal, id, tr.back().t_s, tr.back().p,
-        arrival_tolerance_m > 0.0
-            ? "trajectory does not end within " + num_text(arrival_tolerance_m) + " m of its shared goal"
-            : "trajectory does not end at the goal");
+    add_violation(out, ViolationKind::goal, id, tr.back().t_s, tr.back().p,
+                  arrival_tolerance_m > 0.0
+                      ? "trajectory does not end within " + num_text(arrival_tolerance_m) + " m of its shared goal"
+                      : "trajectory does not end at the goal");
   const double ceiling = u.ceiling_m ? std::min(*u.ceiling_m, sc.world.bounds().max.z()) : sc.world.bounds().max.z();
   const Aabb bounds = sc.world.bounds().inflated(kDistanceTolerance_m);
   bool reported_bounds = false, reported_ceiling = false;
   for (const auto& s : tr) {
     if (!reported_bounds && !bounds.contains(s.p)) {
-      add(out, ViolationKind::bounds, id, s.t_s, s.p, "outside the world bounds");
+      add_violation(out, ViolationKind::bounds, id, s.t_s, s.p, "outside the world bounds");
       reported_bounds = true;
     }
     if (!reported_ceiling && s.p.z() > ceiling + kDistanceTolerance_m) {
-      add(out, ViolationKind::ceiling, id, s.t_s, s.p, "above the ceiling " + num_text(ceiling) + " m");
+      add_violation(out, ViolationKind::ceiling, id, s.t_s, s.p, "above the ceiling " + num_text(ceiling) + " m");
       reported_ceiling = true;
     }
   }
@@ -90,21 +91,22 @@ bool check_rows(const Scenario& sc, const UavSpec& u, const Trajectory& tr, doub
 }
 
 // Segment by segment: timing, speed, static obstacles and height above the ground.
-void check_segments(const Scenario& sc, const UavSpec& u, const Trajectory& tr, const GroundLegs& legs, Out& out) {
+void check_segments(const Scenario& sc, const UavSpec& u, const Trajectory& tr, const GroundLegs& legs,
+                    Violations& out) {
   const std::string& id = u.id;
   const double keep = keep_off_m(u);
-  const std::string keep_text = u.clearance_m > 0.0 ? "the UAV radius plus clearance " + num_text(keep) + " m"
-                                                    : "the UAV radius " + num_text(keep) + " m";
+  const std::string keep_text = keep_off_text(u);
   for (std::size_t i = 1; i < tr.size(); ++i) {
     const auto &a = tr[i - 1], &b = tr[i];
     const double dt = b.t_s - a.t_s, len = (b.p - a.p).norm();
     if (dt < 0.0 || (dt == 0.0 && len > kPositionTolerance_m)) {
-      add(out, ViolationKind::trajectory, id, a.t_s, a.p, dt < 0.0 ? "time goes backwards" : "position jumps");
+      add_violation(out, ViolationKind::trajectory, id, a.t_s, a.p,
+                    dt < 0.0 ? "time goes backwards" : "position jumps");
       continue;
     }
     if (dt > 0.0 && len / dt > u.speed.max_mps * (1.0 + 1e-6) + 1e-9)
-      add(out, ViolationKind::speed, id, a.t_s, a.p,
-          "speed " + num_text(len / dt) + " m/s above the maximum " + num_text(u.speed.max_mps) + " m/s");
+      add_violation(out, ViolationKind::speed, id, a.t_s, a.p,
+                    "speed " + num_text(len / dt) + " m/s above the maximum " + num_text(u.speed.max_mps) + " m/s");
     const bool on_leg = legs.covers(i);
     const double leg_ground = i <= legs.takeoff_end && legs.takeoff ? tr.front().p.z() : tr.back().p.z();
     const double c =
@@ -112,31 +114,31 @@ void check_segments(const Scenario& sc, const UavSpec& u, const Trajectory& tr, 
     if (c < keep - kDistanceTolerance_m) {
       const double f = worst_param(sc.world, a.p, b.p);
       const Vec3 at(a.p + f * (b.p - a.p));
-      add(out, ViolationKind::obstacle, id, a.t_s + f * dt, at,
-          "clearance " + num_text(c) + " m to " + nearest_thing(sc.world, at) + ", below " + keep_text);
+      add_violation(out, ViolationKind::obstacle, id, a.t_s + f * dt, at,
+                    "clearance " + num_text(c) + " m to " + nearest_thing(sc.world, at) + ", below " + keep_text);
     }
     if (u.min_agl_m > 0.0 && !on_leg) {
       const double h = sc.world.lowest_height_above_ground(a.p, b.p);
       if (h < u.min_agl_m - kDistanceTolerance_m)
-        add(out, ViolationKind::low_altitude, id, a.t_s, a.p,
-            "height " + num_text(h) + " m above the ground, below min_agl " + num_text(u.min_agl_m) + " m");
+        add_violation(out, ViolationKind::low_altitude, id, a.t_s, a.p,
+                      "height " + num_text(h) + " m above the ground, below min_agl " + num_text(u.min_agl_m) + " m");
     }
   }
 }
 
-void check_moving(const Scenario& sc, const UavSpec& u, const Trajectory& tr, Out& out) {
+void check_moving(const Scenario& sc, const UavSpec& u, const Trajectory& tr, Violations& out) {
   const double keep = keep_off_m(u);
   int idx = -1;
   const Encounter m = closest_moving_approach(sc.world, tr, &idx);
   if (m.distance_m < keep - kDistanceTolerance_m)
-    add(out, ViolationKind::moving_obstacle, u.id, m.t_s, m.where,
-        "gap " + num_text(m.distance_m) + " m to moving obstacle '" + sc.world.moving()[idx].id + "', below " +
-            (u.clearance_m > 0.0 ? "the UAV radius plus clearance " : "the UAV radius ") + num_text(keep) + " m");
+    add_violation(out, ViolationKind::moving_obstacle, u.id, m.t_s, m.where,
+                  "gap " + num_text(m.distance_m) + " m to moving obstacle '" + sc.world.moving()[idx].id +
+                      "', below " + keep_off_text(u));
 }
 
 // Turn and climb on the flown polyline (samples between waypoints are collinear), off the
 // ground legs (a vertical take-off neither climbs within a limit nor keeps a start heading).
-void check_limits(const UavSpec& u, const Trajectory& tr, const GroundLegs& legs, Out& out) {
+void check_limits(const UavSpec& u, const Trajectory& tr, const GroundLegs& legs, Violations& out) {
   std::vector<Vec3> pts;
   for (std::size_t k = legs.airborne_begin(); k <= legs.airborne_end(tr.size()); ++k) pts.push_back(tr[k].p);
   UavSpec limits = u;
@@ -144,16 +146,16 @@ void check_limits(const UavSpec& u, const Trajectory& tr, const GroundLegs& legs
   for (const auto& lv : check_route_limits(pts, limits)) {
     const bool turn = lv.kind == LimitViolation::Kind::turn;
     const auto& s = tr[legs.airborne_begin() + lv.index];
-    add(out, turn ? ViolationKind::turn : ViolationKind::climb, u.id, s.t_s, s.p,
-        std::string(turn ? "turn " : "climb ") + num_text(rad_to_deg(lv.value_rad)) + " deg above the limit " +
-            num_text(rad_to_deg(turn ? u.max_turn_rad : u.max_climb_rad)) + " deg" +
-            (turn && lv.index == 0 && u.heading_rad ? " (against the start heading)" : ""));
+    add_violation(out, turn ? ViolationKind::turn : ViolationKind::climb, u.id, s.t_s, s.p,
+                  std::string(turn ? "turn " : "climb ") + num_text(rad_to_deg(lv.value_rad)) +
+                      " deg above the limit " + num_text(rad_to_deg(turn ? u.max_turn_rad : u.max_climb_rad)) + " deg" +
+                      (turn && lv.index == 0 && u.heading_rad ? " (against the start heading)" : ""));
   }
 }
 
 // Every rule of one UAV's flight; the mission adds its own.
 void check_uav(const Scenario& sc, const Mission& mission, const UavSpec& u, const Trajectory& tr,
-               double arrival_tolerance_m, Out& out) {
+               double arrival_tolerance_m, Violations& out) {
   if (!check_rows(sc, u, tr, arrival_tolerance_m, out)) return;
   const GroundLegs legs = ground_legs(sc.world, tr);
   check_segments(sc, u, tr, legs, out);
@@ -163,7 +165,7 @@ void check_uav(const Scenario& sc, const Mission& mission, const UavSpec& u, con
 }
 
 // Separation of every pair the swept boxes do not rule out, by the mission's rule.
-void check_pairs(const Scenario& sc, const Mission& mission, const FlownUavs& flown, Out& out) {
+void check_pairs(const Scenario& sc, const Mission& mission, const FlownUavs& flown, Violations& out) {
   std::vector<const Trajectory*> trs;
   for (const auto& f : flown) trs.push_back(&f.second->trajectory);
   const SweptBoxes boxes(trs);  // pairs never near enough to conflict are skipped
@@ -180,25 +182,26 @@ void check_pairs(const Scenario& sc, const Mission& mission, const FlownUavs& fl
 }  // namespace
 
 std::vector<Violation> verify_plan(const Scenario& sc, const Plan& plan) {
-  Out out;
+  Violations out;
   const Mission* mission = find_mission(sc.mission.type);
   if (!mission)
     throw std::invalid_argument("no mission registered for type " + std::string(to_string(sc.mission.type)));
   for (const auto& up : plan.uavs)
     if (!sc.find_uav(up.id))
-      add(out, ViolationKind::unknown_uav, up.id, std::nullopt, std::nullopt, "the scenario has no UAV with this id");
+      add_violation(out, ViolationKind::unknown_uav, up.id, std::nullopt, std::nullopt,
+                    "the scenario has no UAV with this id");
   FlownUavs flown;
   const std::vector<Arrival> arrivals = arrival_points(sc);
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
     const UavSpec& u = sc.uavs[i];
     const UavPlan* up = plan.find_uav(u.id);
     if (!up) {
-      add(out, ViolationKind::not_planned, u.id, std::nullopt, std::nullopt, "missing from the plan");
+      add_violation(out, ViolationKind::not_planned, u.id, std::nullopt, std::nullopt, "missing from the plan");
       continue;
     }
     if (up->trajectory.empty()) {
-      add(out, ViolationKind::not_planned, u.id, std::nullopt, std::nullopt,
-          "no trajectory" + (up->message.empty() ? std::string() : " (" + up->message + ")"));
+      add_violation(out, ViolationKind::not_planned, u.id, std::nullopt, std::nullopt,
+                    "no trajectory" + (up->message.empty() ? std::string() : " (" + up->message + ")"));
       continue;
     }
     check_uav(sc, *mission, u, up->trajectory, arrivals[i].tolerance_m, out);
