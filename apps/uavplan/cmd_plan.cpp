@@ -55,6 +55,9 @@ void print_summary(const Plan& plan, const std::string& path) {
     if (u.status != Status::solved) std::printf("%s: %s\n", u.id.c_str(), u.message.c_str());
   const auto sep = plan.metrics.find("min_separation_m");
   if (sep != plan.metrics.end()) std::printf("min separation between UAVs: %.3f m\n", sep->second);
+  if (plan.formation && plan.formation->arrival_spread_s)
+    std::printf("arrivals (each UAV at its goal to stay) within %.3f s of one another\n",
+                *plan.formation->arrival_spread_s);
   std::printf("status: %s, algorithm %s, seed %llu, %.1f ms; plan written to %s\n",
               std::string(to_string(plan.status)).c_str(), plan.algorithm.c_str(),
               static_cast<unsigned long long>(plan.seed), plan.plan_ms, path.c_str());

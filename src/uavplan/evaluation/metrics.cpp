@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "uavplan/coordination/contract/arrival_points.h"
 #include "uavplan/coordination/contract/separation.h"
 #include "uavplan/core/geometry.h"
 #include "uavplan/core/units.h"
@@ -85,6 +86,7 @@ void compute_metrics(const Scenario& sc, Plan& plan) {
   double min_sep = World::kInf, t_min = World::kInf, t_max = -World::kInf, l_min = World::kInf, l_max = -World::kInf;
   double total = 0.0, p3_total = 0.0;
   std::vector<const UavPlan*> flown;
+  const std::vector<Arrival> arrivals = arrival_points(sc);
   for (UavPlan& up : plan.uavs) {
     const UavSpec* spec = sc.find_uav(up.id);
     if (up.trajectory.empty()) up.length_m = 0.0;  // flew nothing
@@ -104,8 +106,12 @@ void compute_metrics(const Scenario& sc, Plan& plan) {
     if (std::isfinite(m.min_agl_m)) up.metrics["min_agl_m"] = m.min_agl_m;
     total += m.length_m;
     p3_total += m.p3.sc;
-    t_min = std::min(t_min, up.trajectory.back().t_s);
-    t_max = std::max(t_max, up.trajectory.back().t_s);
+    // Arrival (contract): at its goal to stay; a UAV without a goal (it lands) at its last row.
+    const std::size_t i = static_cast<std::size_t>(spec - sc.uavs.data());
+    up.arrival_s = spec->goal ? arrival_time_s(up.trajectory, *spec->goal, arrival_radius_m(*spec, arrivals[i]))
+                              : up.trajectory.back().t_s;
+    t_min = std::min(t_min, up.arrival_s);
+    t_max = std::max(t_max, up.arrival_s);
     l_min = std::min(l_min, m.length_m);
     l_max = std::max(l_max, m.length_m);
     flown.push_back(&up);
@@ -140,7 +146,7 @@ void compute_metrics(const Scenario& sc, Plan& plan) {
   }
   plan.metrics["total_length_m"] = total;
   if (sc.mission.type == MissionType::group) plan.metrics["p3_group_score"] = p3_total;  // P3's score, of a group
-  plan.metrics["arrival_spread_s"] = t_max - t_min;
+  if (std::isfinite(t_max)) plan.metrics["arrival_spread_s"] = t_max - t_min;            // inf: a UAV never arrives
   plan.metrics["length_spread_m"] = l_max - l_min;
   if (std::isfinite(min_sep)) plan.metrics["min_separation_m"] = min_sep;
 }

@@ -1,9 +1,12 @@
 #include "uavplan/coordination/formation/formation_mission.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 
+#include "uavplan/coordination/contract/arrival_points.h"
 #include "uavplan/coordination/formation/formation_flight.h"
 #include "uavplan/coordination/routes/local_layer.h"
 #include "uavplan/coordination/timing.h"
@@ -59,6 +62,15 @@ std::vector<double> windows_of(const Scenario& sc, const LocalLayer& layer) {
 
 // What they flew must keep clear of everything that moves and of each other, and arrive within
 // the tolerance of one another.
+// The spread of the solved UAVs' arrivals (contract: at the goal to stay).
+double arrival_spread_s(const Plan& plan) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const UavPlan& up : plan.uavs)
+    if (up.status == Status::solved && std::isfinite(up.arrival_s))
+      lo = std::min(lo, up.arrival_s), hi = std::max(hi, up.arrival_s);
+  return hi >= lo ? hi - lo : 0.0;
+}
+
 void check_flown(const Scenario& sc, const FormationFlight& flight, Plan& plan) {
   Committed all;
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) all.emplace_back(&sc.uavs[i], &plan.uavs[i]);
@@ -77,6 +89,7 @@ void check_flown(const Scenario& sc, const FormationFlight& flight, Plan& plan) 
     first = std::min(first, up.arrival_s);
     last = std::max(last, up.arrival_s);
   }
+  if (!std::isfinite(last)) return;  // a UAV that never stays at its goal: the verifier says so
   (void)flight;
   if (last - first <= sc.mission.arrival_tolerance_s + 1e-9) return;
   char buf[200];
@@ -131,12 +144,14 @@ void FormationMission::plan(const Scenario& sc, const MissionContext& ctx, Plan&
   const LoopResult flown = fly_closed_loop(sc.world, loop, {}, flight, lo, ctx.options.stop);
 
   double eta = 0.0;
+  const std::vector<Arrival> arrivals = arrival_points(sc);
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
     const FlightState& f = flown.uavs[i];
     const RollingWindowLog& log = guard.log(i);
     // Done at the horizon while some UAV is still out of its slot: waiting, not arrived.
     const bool arrived = f.done && !flight.waiting();
     UavPlan up = flown_plan(sc.uavs[i].id, arrived, "", trajectory_corners(f.flown), f.flown);
+    up.arrival_s = arrival_time_s(f.flown, goals[i], arrival_radius_m(sc.uavs[i], arrivals[i]));
     up.stats = i == 0 ? ref.stats : PlanStats{};
     up.stats.plan_ms += log.local_ms;
     char buf[200];
@@ -146,12 +161,13 @@ void FormationMission::plan(const Scenario& sc, const MissionContext& ctx, Plan&
     up.message = arrived  ? std::string(buf)
                  : f.done ? "waited for the formation to re-form" + by
                           : "did not reach its goal" + by + (log.trouble.empty() ? "" : ": " + log.trouble);
-    if (arrived) eta = std::max(eta, up.arrival_s);
+    if (arrived && std::isfinite(up.arrival_s)) eta = std::max(eta, up.arrival_s);
     plan.uavs.push_back(std::move(up));
   }
   check_flown(sc, flight, plan);
   FormationLog out;
   out.eta_s = eta;
+  out.arrival_spread_s = arrival_spread_s(plan);
   out.worst_slot_error_m = flight.worst_slot_error_m();
   out.phases = {{"form_up", std::max(0.0, flight.formed_s())}, {"formation", eta}};
   for (const FormationBreak& b : flight.breaks())
