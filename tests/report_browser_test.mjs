@@ -147,6 +147,27 @@ try {
     }
     await page.evaluate(() => window.uavplanReport.setTime(0));
   }
+  // Each UAV's state as the slider shows it: flying on a moving piece, waiting where it holds
+  // still (before its arrival), arrived once at its goal to stay; never flying while it waits.
+  const states = await page.evaluate(() => {
+    const d = JSON.parse(document.getElementById('uavplan-data').textContent);
+    const out = [];
+    for (const [i, u] of d.uavs.entries()) {
+      const tr = u.trajectory;
+      for (let k = 1; k < tr.length; k++) {
+        const t = (tr[k - 1][0] + tr[k][0]) / 2;
+        if (!(tr[k][0] > tr[k - 1][0])) continue;
+        const moving = Math.hypot(tr[k][1] - tr[k - 1][1], tr[k][2] - tr[k - 1][2], tr[k][3] - tr[k - 1][3]) > 1e-6;
+        const want = typeof u.arrival_s === 'number' && t >= u.arrival_s ? 'arrived' : moving ? 'flying' : 'waiting';
+        const got = window.uavplanReport.uavStates(t)[i];
+        if (got !== want) { out.push(`${u.id} at t = ${t}: shown ${got}, is ${want}`); break; }
+      }
+    }
+    window.uavplanReport.setTime(0);
+    return { wrong: out, label: document.getElementById('uav-states').textContent };
+  });
+  for (const w of states.wrong) fail(w);
+  if (!/\d+ (flying|waiting|arrived)/.test(states.label)) fail(`no UAV states beside the time slider ('${states.label}')`);
   if (info.pageWidth > 1400) fail(`the page is ${info.pageWidth} px wide in a 1400 px window`);
   await page.screenshot({ path: shotPath, fullPage: true });
   for (const e of errors) fail(e);

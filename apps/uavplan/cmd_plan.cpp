@@ -40,21 +40,29 @@ std::optional<Overrides> parse_sets(const std::vector<std::string>& sets) {
 }
 
 void print_summary(const Plan& plan, const std::string& path) {
-  std::printf("%-12s %-8s %10s %9s %9s %10s %10s\n", "uav", "status", "length_m", "time_s", "turn_deg", "climb_deg",
-              "clear_m");
+  std::printf("%-12s %-8s %10s %9s %9s %9s %10s %10s\n", "uav", "status", "length_m", "time_s", "arrival_s",
+              "turn_deg", "climb_deg", "clear_m");
   for (const UavPlan& u : plan.uavs) {
     auto m = [&](const char* k) {
       const auto it = u.metrics.find(k);
       return it == u.metrics.end() ? std::string("-") : std::to_string(it->second).substr(0, 9);
     };
-    std::printf("%-12s %-8s %10s %9s %9s %10s %10s\n", u.id.c_str(), std::string(to_string(u.status)).c_str(),
-                m("length_m").c_str(), m("flight_time_s").c_str(), m("max_turn_deg").c_str(),
+    std::printf("%-12s %-8s %10s %9s %9s %9s %10s %10s\n", u.id.c_str(), std::string(to_string(u.status)).c_str(),
+                m("length_m").c_str(), m("flight_time_s").c_str(), m("arrival_s").c_str(), m("max_turn_deg").c_str(),
                 m("max_climb_deg").c_str(), m("min_clearance_m").c_str());
   }
   for (const UavPlan& u : plan.uavs)
     if (u.status != Status::solved) std::printf("%s: %s\n", u.id.c_str(), u.message.c_str());
   const auto sep = plan.metrics.find("min_separation_m");
   if (sep != plan.metrics.end()) std::printf("min separation between UAVs: %.3f m\n", sep->second);
+  if (plan.formation && plan.formation->arrival_spread_s)
+    std::printf("arrivals (each UAV at its goal to stay) within %.3f s of one another\n",
+                *plan.formation->arrival_spread_s);
+  const auto metric = [&](const char* k) { return plan.metrics.count(k) ? plan.metrics.at(k) : 0.0; };
+  if (plan.formation)
+    std::printf("in shape %.1f s (all UAVs together), %d breaks, %d reversals, backing up %.1f m\n",
+                metric("time_in_shape_s"), static_cast<int>(metric("breaks")), static_cast<int>(metric("reversals")),
+                metric("backing_up_m"));
   std::printf("status: %s, algorithm %s, seed %llu, %.1f ms; plan written to %s\n",
               std::string(to_string(plan.status)).c_str(), plan.algorithm.c_str(),
               static_cast<unsigned long long>(plan.seed), plan.plan_ms, path.c_str());

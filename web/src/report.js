@@ -30,6 +30,7 @@ function metricText(u, key) {
   if (u.trajectory.length < 2) return `not flown (${u.status})`;
   if (key === 'min_clearance_m') return 'no obstacle';
   if (key === 'min_agl_m') return 'flat world';
+  if (key === 'arrival_s') return 'never at its goal to stay';
   return 'not computed';
 }
 const terrainBrown = '#8c7b5e';
@@ -54,10 +55,11 @@ main.append(left, right);
 const view = el('div', { id: 'view' });
 const slider = el('input', { type: 'range', min: '0', max: String(data.t_end_s || 0), step: 'any', value: '0', id: 'time' });
 const timeLabel = el('span', { class: 'muted', id: 'time-label' }, 't = 0 s');
+const statesLabel = el('span', { class: 'muted', id: 'uav-states' }, '');
 const play = el('button', { type: 'button', id: 'play' }, 'Play');
 const routesToggle = el('input', { type: 'checkbox', checked: '', id: 'routes' });
 left.append(view,
-  el('div', { class: 'controls' }, play, slider, timeLabel,
+  el('div', { class: 'controls' }, play, slider, timeLabel, statesLabel,
     el('label', {}, routesToggle, ' routes')));
 const legend = el('div', { class: 'legend', id: 'legend' });
 for (const u of data.uavs) legend.append(el('span', { class: 'uav', style: { '--c': u.colour } }, `${u.id} (${u.status})`));
@@ -393,6 +395,21 @@ function positionAt(traj, t) {
   return [1, 2, 3].map((k) => a[k] + s * (b[k] - a[k]));
 }
 
+// A UAV's state at t: arrived once it is at its goal to stay (its arrival_s), waiting where it
+// holds still before that (before its departure, or for the others), else flying.
+function stateAt(u, t) {
+  if (typeof u.arrival_s === 'number' && t >= u.arrival_s) return 'arrived';
+  const traj = u.trajectory;
+  if (traj.length < 2 || t >= traj[traj.length - 1][0]) return traj.length < 2 ? 'not flown' : 'arrived';
+  const a = positionAt(traj, t), b = positionAt(traj, Math.min(t + 1e-3, traj[traj.length - 1][0]));
+  return Math.hypot(b[0] - a[0], b[1] - a[1], b[2] - a[2]) > 1e-9 ? 'flying' : 'waiting';
+}
+function statesText(t) {
+  const n = { flying: 0, waiting: 0, arrived: 0 };
+  for (const u of data.uavs) if (u.trajectory.length >= 2) n[stateAt(u, t)] += 1;
+  return Object.entries(n).filter(([, k]) => k > 0).map(([s, k]) => `${k} ${s}`).join(', ');
+}
+
 // A phased mission's phase at time t (the last one holds to the end).
 const phases = data.phases || [];
 function phaseAt(t) {
@@ -405,6 +422,7 @@ function setTime(t) {
   slider.value = String(currentTime);
   const phase = phaseAt(currentTime);
   timeLabel.textContent = `t = ${currentTime.toFixed(1)} s${phase ? ` \u00b7 ${phase.name}` : ''}`;
+  statesLabel.textContent = statesText(currentTime);
   for (const { u, dot } of uavMarkers) dot.position.set(...positionAt(u.trajectory, currentTime));
   for (const { m, mesh } of movers) mesh.position.set(...movingAt(m, currentTime));
   for (const c of charts) c.setCursor({ left: c.valToPos(currentTime, 'x'), top: 10 }, false);
@@ -517,8 +535,10 @@ if (profiled.length) {
 
 // ---- metrics and verification ----
 left.append(el('h2', {}, 'Metrics per UAV'));
-const cols = [['length_m', 'length (m)'], ['flight_time_s', 'flight time (s)'], ['max_turn_deg', 'max turn (deg)'],
-  ['max_climb_deg', 'max climb (deg)'], ['min_clearance_m', 'min clearance (m)'], ['min_agl_m', 'min AGL (m)']];
+const cols = [['length_m', 'length (m)'], ['flight_time_s', 'flight time (s)'], ['arrival_s', 'arrival (s)'],
+  ['max_turn_deg', 'max turn (deg)'], ['max_climb_deg', 'max climb (deg)'], ['min_clearance_m', 'min clearance (m)'],
+  ['min_agl_m', 'min AGL (m)'], ['reversals', 'reversals']];
+if (data.uavs.some((u) => 'time_in_shape_s' in u.metrics)) cols.push(['time_in_shape_s', 'in shape (s)'], ['breaks', 'breaks'], ['backing_up_m', 'backing up (m)']);
 const table = el('table', { id: 'uav-metrics' },
   el('tr', {}, el('th', {}, 'uav'), el('th', {}, 'status'), ...cols.map(([, h]) => el('th', {}, h))));
 for (const u of data.uavs)
@@ -580,6 +600,7 @@ window.uavplanReport = {
   phases: phases.length,
   chartsWithPhaseBands: () => chartsBanded.size,
   timeLabel: () => timeLabel.textContent,
+  uavStates: (t) => data.uavs.map((u) => stateAt(u, t)),
   axisLabels: axisLabels.length,
   // What the mission asks for, as drawn: starts, goals, via points, task points, the runway; and
   // the smallest gap between two z labels, in label heights (under 1: they run together).

@@ -4,10 +4,12 @@
 #include <cmath>
 #include <cstdint>
 
+#include "uavplan/coordination/contract/arrival_points.h"
 #include "uavplan/coordination/contract/separation.h"
 #include "uavplan/core/geometry.h"
 #include "uavplan/core/units.h"
 #include "uavplan/evaluation/ground_legs.h"
+#include "uavplan/simulation/trajectory.h"
 
 namespace uavplan {
 
@@ -37,6 +39,61 @@ P3Score p3_score(std::span<const Vec3> pts, const World& world, const P3Weights&
   s.s3 = s.y3;
   s.sc = w.k1 * s.s1 + w.k2 * s.s2 + w.k3 * s.s3;
   return s;
+}
+
+int count_reversals(const Trajectory& tr, double over_deg, double within_s) {
+  const double cos_limit = std::cos(deg_to_rad(over_deg));
+  int count = 0;
+  std::size_t k = 1;
+  while (k < tr.size()) {
+    const Vec3 a = tr[k].p - tr[k - 1].p;
+    if (a.norm() <= 1e-9) {
+      ++k;
+      continue;
+    }
+    std::size_t m = k + 1;
+    for (; m < tr.size() && tr[m - 1].t_s - tr[k].t_s <= within_s; ++m) {
+      const Vec3 b = tr[m].p - tr[m - 1].p;
+      if (b.norm() > 1e-9 && a.dot(b) < cos_limit * a.norm() * b.norm()) break;
+    }
+    if (m < tr.size() && tr[m - 1].t_s - tr[k].t_s <= within_s) {
+      ++count;
+      k = m + 1;  // the reversal's second leg does not start another
+    } else {
+      ++k;
+    }
+  }
+  return count;
+}
+
+double backing_up_m(const Trajectory& own, std::span<const Trajectory* const> group, double from_s, double to_s) {
+  double back = 0.0;
+  for (std::size_t k = 1; k < own.size(); ++k) {
+    const Vec3 d = own[k].p - own[k - 1].p;
+    if (d.norm() <= 1e-9 || group.empty() || own[k - 1].t_s < from_s || own[k].t_s > to_s) continue;
+    Vec3 mean = Vec3::Zero();
+    for (const Trajectory* g : group)
+      mean += (position_at(*g, own[k].t_s) - position_at(*g, own[k - 1].t_s)) / static_cast<double>(group.size());
+    if (mean.norm() < 0.1 * d.norm()) continue;
+    back += std::max(0.0, -d.dot(mean.normalized()));
+  }
+  return back;
+}
+
+ShapeWindow shape_window(const FormationLog& log, double arrival_s) {
+  if (log.phases.empty()) return {};
+  ShapeWindow w{log.phases.front().end_s, arrival_s};
+  for (std::size_t k = 1; k < log.phases.size(); ++k)
+    if (log.phases[k].name == "dismiss") w.to_s = std::min(w.to_s, log.phases[k - 1].end_s);
+  return w;
+}
+
+double time_in_shape_s(const FormationLog& log, const std::string& uav, double arrival_s) {
+  const auto [from, to] = shape_window(log, arrival_s);
+  double held = std::max(0.0, to - from);
+  for (const FormationLog::Break& b : log.breaks)
+    if (b.uav == uav) held -= std::max(0.0, std::min(b.to_s, to) - std::max(b.from_s, from));
+  return std::max(0.0, held);
 }
 
 UavMetrics uav_metrics(const Scenario& sc, const UavSpec& spec, const UavPlan& plan) {
@@ -78,13 +135,42 @@ UavMetrics uav_metrics(const Scenario& sc, const UavSpec& spec, const UavPlan& p
   }
   m.p1_cost = p1_route_cost(plan.waypoints, sc.world);
   m.p3 = p3_score(plan.waypoints, sc.world);
+  m.reversals = count_reversals(tr);
   return m;
 }
+
+namespace {
+
+// A formation's flight quality per UAV and in total: time in shape, breaks, backing up.
+void add_formation_metrics(Plan& plan, const std::vector<const UavPlan*>& flown) {
+  if (!plan.formation) return;
+  std::vector<const Trajectory*> group;
+  for (const UavPlan* up : flown) group.push_back(&up->trajectory);
+  double in_shape = 0.0, back = 0.0;
+  for (UavPlan& up : plan.uavs) {
+    if (up.trajectory.empty() || up.metrics.empty()) continue;
+    double breaks = 0.0;
+    for (const FormationLog::Break& b : plan.formation->breaks) breaks += b.uav == up.id;
+    const double held = time_in_shape_s(*plan.formation, up.id, up.arrival_s);
+    const ShapeWindow w = shape_window(*plan.formation, up.arrival_s);
+    const double backed = backing_up_m(up.trajectory, group, w.from_s, w.to_s);
+    up.metrics["time_in_shape_s"] = held;
+    up.metrics["breaks"] = breaks;
+    up.metrics["backing_up_m"] = backed;
+    in_shape += held, back += backed;
+  }
+  plan.metrics["time_in_shape_s"] = in_shape;
+  plan.metrics["breaks"] = static_cast<double>(plan.formation->breaks.size());
+  plan.metrics["backing_up_m"] = back;
+}
+
+}  // namespace
 
 void compute_metrics(const Scenario& sc, Plan& plan) {
   double min_sep = World::kInf, t_min = World::kInf, t_max = -World::kInf, l_min = World::kInf, l_max = -World::kInf;
   double total = 0.0, p3_total = 0.0;
   std::vector<const UavPlan*> flown;
+  const std::vector<Arrival> arrivals = arrival_points(sc);
   for (UavPlan& up : plan.uavs) {
     const UavSpec* spec = sc.find_uav(up.id);
     if (up.trajectory.empty()) up.length_m = 0.0;  // flew nothing
@@ -99,19 +185,26 @@ void compute_metrics(const Scenario& sc, Plan& plan) {
                   {"p3_score", m.p3.sc},
                   {"p3_y1", m.p3.y1},
                   {"p3_y2", m.p3.y2},
-                  {"p3_y3", m.p3.y3}};
+                  {"p3_y3", m.p3.y3},
+                  {"reversals", m.reversals}};
     if (std::isfinite(m.min_clearance_m)) up.metrics["min_clearance_m"] = m.min_clearance_m;
     if (std::isfinite(m.min_agl_m)) up.metrics["min_agl_m"] = m.min_agl_m;
     total += m.length_m;
     p3_total += m.p3.sc;
-    t_min = std::min(t_min, up.trajectory.back().t_s);
-    t_max = std::max(t_max, up.trajectory.back().t_s);
+    // Arrival (contract): at its goal to stay; a UAV without a goal (it lands) at its last row.
+    const std::size_t i = static_cast<std::size_t>(spec - sc.uavs.data());
+    up.arrival_s = spec->goal ? arrival_time_s(up.trajectory, *spec->goal, arrival_radius_m(*spec, arrivals[i]))
+                              : up.trajectory.back().t_s;
+    if (std::isfinite(up.arrival_s)) up.metrics["arrival_s"] = up.arrival_s;
+    t_min = std::min(t_min, up.arrival_s);
+    t_max = std::max(t_max, up.arrival_s);
     l_min = std::min(l_min, m.length_m);
     l_max = std::max(l_max, m.length_m);
     flown.push_back(&up);
   }
   plan.metrics.clear();
   if (flown.empty()) return;
+  add_formation_metrics(plan, flown);
   {
     // Smallest separation: pairs in the order of their lower bounds, until a bound clears the
     // smallest distance found.
@@ -140,8 +233,11 @@ void compute_metrics(const Scenario& sc, Plan& plan) {
   }
   plan.metrics["total_length_m"] = total;
   if (sc.mission.type == MissionType::group) plan.metrics["p3_group_score"] = p3_total;  // P3's score, of a group
-  plan.metrics["arrival_spread_s"] = t_max - t_min;
+  if (std::isfinite(t_max)) plan.metrics["arrival_spread_s"] = t_max - t_min;            // inf: a UAV never arrives
   plan.metrics["length_spread_m"] = l_max - l_min;
+  double reversals = 0.0;
+  for (const UavPlan* up : flown) reversals += up->metrics.at("reversals");
+  plan.metrics["reversals"] = reversals;
   if (std::isfinite(min_sep)) plan.metrics["min_separation_m"] = min_sep;
 }
 

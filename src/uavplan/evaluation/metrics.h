@@ -2,6 +2,7 @@
 #pragma once
 
 #include <span>
+#include <string>
 
 #include "uavplan/coordination/contract/plan.h"
 #include "uavplan/coordination/contract/scenario.h"
@@ -37,8 +38,29 @@ struct UavMetrics {
   double min_agl_m = 0.0;        // lowest height above the ground (+inf in a flat world)
   double p1_cost = 0.0;
   P3Score p3;
+  int reversals = 0;  // count_reversals
 };
 UavMetrics uav_metrics(const Scenario& sc, const UavSpec& spec, const UavPlan& plan);
+
+// Flight quality. A reversal: the direction of flight turns by more than `over_deg` within
+// `within_s` seconds (a UAV shuttling back and forth, or backing up at a corner); each counted
+// once, from where it begins. Rows where the UAV does not move are skipped (a hover between two
+// legs is not a turn, but the window runs on in time).
+inline constexpr double kReversalTurn_deg = 120.0;
+inline constexpr double kReversalWindow_s = 3.0;
+int count_reversals(const Trajectory& trajectory, double over_deg = kReversalTurn_deg,
+                    double within_s = kReversalWindow_s);
+// Of a UAV in a group, between from_s and to_s: the distance it flies against the group's
+// direction of travel (the mean of the group's displacements over each of its trajectory's
+// pieces), counted only while the group moves at 10 % of the UAV's own speed or more.
+double backing_up_m(const Trajectory& own, std::span<const Trajectory* const> group, double from_s, double to_s);
+// Of a formation UAV: where it flies in shape, from the form-up's end to its arrival (or the
+// start of the "dismiss" phase, P5); and the time it holds its slot there (less its breaks).
+struct ShapeWindow {
+  double from_s = 0.0, to_s = 0.0;
+};
+ShapeWindow shape_window(const FormationLog& log, double arrival_s);
+double time_in_shape_s(const FormationLog& log, const std::string& uav, double arrival_s);
 
 // Fills plan.metrics (min_separation_m, arrival_spread_s, length_spread_m, total_length_m,
 // p3_group_score) and each UAV's metrics.

@@ -205,6 +205,7 @@ std::string plan_to_json(const Plan& plan, const PlanWriteOptions& options) {
         {"eta_s", r6(plan.formation->eta_s)}, {"phases", std::move(phases)}, {"breaks", std::move(breaks)}};
     if (plan.formation->worst_slot_error_m)
       j["formation"]["worst_slot_error_m"] = r6(*plan.formation->worst_slot_error_m);
+    if (plan.formation->arrival_spread_s) j["formation"]["arrival_spread_s"] = r6(*plan.formation->arrival_spread_s);
   }
   j["metrics"] = metrics_json(plan.metrics);
   j["timing"] = Json::object();
@@ -327,6 +328,8 @@ FormationLog read_formation_log(const Reader& r, const Json& f) {
   log.eta_s = r.number(r.req(f, "eta_s", "formation"), "formation.eta_s");
   if (f.contains("worst_slot_error_m"))
     log.worst_slot_error_m = r.number(f["worst_slot_error_m"], "formation.worst_slot_error_m");
+  if (f.contains("arrival_spread_s"))
+    log.arrival_spread_s = r.number(f["arrival_spread_s"], "formation.arrival_spread_s");
   for (const char* key : {"phases", "breaks"}) {
     if (!f.contains(key)) continue;
     const std::string at = std::string("formation.") + key;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <numeric>
 
@@ -141,6 +142,24 @@ std::vector<Arrival> arrival_points(const Scenario& sc) {
     }
   }
   return out;
+}
+
+double arrival_radius_m(const UavSpec& uav, const Arrival& arrival) {
+  return std::max(uav.radius_m, kMinArrivalRadius_m) + arrival.tolerance_m;
+}
+
+// The last row outside the ball decides: the segment from it into the ball enters once (a ball
+// is convex and the segment's end inside), at the smaller root of |a + s (b - a) - goal| = r.
+double arrival_time_s(const Trajectory& tr, const Vec3& goal, double within_m) {
+  if (tr.empty() || (tr.back().p - goal).norm() > within_m) return std::numeric_limits<double>::infinity();
+  std::size_t k = tr.size() - 1;
+  while (k > 0 && (tr[k - 1].p - goal).norm() <= within_m) --k;
+  if (k == 0) return tr.front().t_s;
+  const Vec3 a = tr[k - 1].p - goal, d = tr[k].p - tr[k - 1].p;
+  const double dd = d.squaredNorm(), ad = a.dot(d), aa = a.squaredNorm() - within_m * within_m;
+  const double disc = std::max(0.0, ad * ad - dd * aa);
+  const double s = dd > 0.0 ? std::clamp((-ad - std::sqrt(disc)) / dd, 0.0, 1.0) : 1.0;
+  return tr[k - 1].t_s + s * (tr[k].t_s - tr[k - 1].t_s);
 }
 
 }  // namespace uavplan

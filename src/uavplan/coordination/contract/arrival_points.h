@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "uavplan/coordination/contract/scenario.h"
+#include "uavplan/simulation/trajectory.h"
 
 namespace uavplan {
 
@@ -25,6 +26,13 @@ struct Arrival {
 
 // Per UAV in scenario order; a UAV without a goal gets its start and tolerance 0.
 std::vector<Arrival> arrival_points(const Scenario& scenario);
+
+// Arrival (contract): the time a UAV reaches its goal, within its radius (0.5 m at least) plus
+// the goal's tolerance, and stays there to the end of its trajectory; +inf when its trajectory
+// does not end there. Hovering at the goal while others come is arriving early.
+inline constexpr double kMinArrivalRadius_m = 0.5;
+double arrival_radius_m(const UavSpec& uav, const Arrival& arrival);
+double arrival_time_s(const Trajectory& trajectory, const Vec3& goal, double within_m);
 
 // The spacing of UAVs at a shared goal: mission.goal_spacing, else the separation; never below
 // the separation of the pair or their radii plus clearances (a smaller value has no effect).

@@ -44,6 +44,9 @@ struct FormationLog {
   // The farthest any UAV was from its slot at a period's start while the shape was held (none:
   // the mission does not keep a schedule).
   std::optional<double> worst_slot_error_m;
+  // formation: the spread of the UAVs' arrivals (each at its goal to stay), against
+  // mission.arrival_tolerance_s.
+  std::optional<double> arrival_spread_s;
   std::vector<Phase> phases;
   std::vector<Break> breaks;
 };

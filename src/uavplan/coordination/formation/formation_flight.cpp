@@ -75,11 +75,11 @@ std::vector<Track> FormationFlight::trusted_out(std::size_t i, std::vector<Track
   return out;
 }
 
-// One period along its nominal path at its clock rate (never past hold_s), the rest of the path
-// after it as the route ahead.
-void FormationFlight::fly_slot(double t, std::size_t i, FlightState& s, double hold_s) {
+// One period along its nominal path at its clock rate times `pace` (never past hold_s), the rest
+// of the path after it as the route ahead.
+void FormationFlight::fly_slot(double t, std::size_t i, FlightState& s, double hold_s, double pace) {
   Member& m = members_[i];
-  const double next = std::min({m.tau_s + m.rate * opt_.step_s, sched_.end_s(), std::max(hold_s, m.tau_s)});
+  const double next = std::min({m.tau_s + pace * m.rate * opt_.step_s, sched_.end_s(), std::max(hold_s, m.tau_s)});
   std::vector<Vec3> route = sched_.path(i, m.tau_s, sched_.end_s());
   const double now_m = sched_.length(i, m.tau_s, next);
   route.erase(route.begin());
@@ -114,9 +114,20 @@ void FormationFlight::find_on_path(std::size_t i, const FlightState& s) {
   }
 }
 
+// Whether p lies on UAV i's nominal path from where the approach begins to its goal.
+bool FormationFlight::on_approach(std::size_t i, const Vec3& p) const {
+  const std::vector<Vec3>& path = sched_.slots[i];
+  for (std::size_t k = sched_.final_knot; k + 1 < path.size(); ++k) {
+    const Vec3 seg = path[k + 1] - path[k];
+    const double f = seg.squaredNorm() > 0.0 ? std::clamp((p - path[k]).dot(seg) / seg.squaredNorm(), 0.0, 1.0) : 0.0;
+    if ((p - path[k] - f * seg).norm() <= 1e-6 * std::max(1.0, seg.norm())) return true;
+  }
+  return false;
+}
+
 // A UAV out of its slot never finishes alone: its route ends where the others wait for it (the
-// end leg's start) or, on the end leg, where it rejoins its path short of its goal (where it left
-// its slot when it would rejoin at the goal itself).
+// approach's start) or, on the approach, where it rejoins its path short of its goal (where it
+// left its slot when it would rejoin at the goal itself).
 void FormationFlight::clip_route(std::size_t i, FlightState& s) const {
   const Vec3 wait = sched_.slots[i][sched_.final_knot], goal = sched_.slots[i].back();
   const auto it = std::find(s.route.begin(), s.route.end(), wait);
@@ -125,11 +136,10 @@ void FormationFlight::clip_route(std::size_t i, FlightState& s) const {
   } else if (!s.route.empty() && s.route.back() == goal && wait != goal) {
     s.route.pop_back();
     const Vec3 left = sched_.at(i, members_[i].tau_s);
-    const Vec3 leg = goal - wait;
-    const bool rejoins = !s.route.empty() && Vec3(s.route.back() - wait).cross(leg).norm() <= 1e-6 * leg.norm();
+    const bool rejoins = !s.route.empty() && on_approach(i, s.route.back());
     if (!rejoins && (s.position - left).norm() > 1e-9) s.route.push_back(left);
   }
-  // Where it waits is its goal when the end leg has no length: it hovers there until the others
+  // Where it waits is its goal when the approach has no length: it hovers there until the others
   // are in their slots (it has not arrived before them).
   if (s.route.empty() && (s.position - goal).norm() <= 1e-6) s.route.push_back(s.position);
   s.done = s.route.empty();
@@ -218,8 +228,10 @@ void FormationFlight::control(double t, std::span<FlightState> uavs, std::span<c
       any_broken = false;
     }
   }
-  // In their slots they wait at the end leg's start while any UAV is out of its slot.
+  // While any UAV is out of its slot the formation slows and waits for it where the approach
+  // begins: the UAVs reach their goals together, in shape.
   const double hold_s = any_broken ? sched_.knots_s[sched_.final_knot] : sched_.end_s();
+  const double pace = any_broken ? opt_.slow_pace : 1.0;
   for (std::size_t i = 0; i < uavs.size(); ++i) {
     Member& m = members_[i];
     FlightState& s = uavs[i];
@@ -238,7 +250,7 @@ void FormationFlight::control(double t, std::span<FlightState> uavs, std::span<c
     const double tau_before = m.tau_s;
     if (m.mode == Mode::formed && formed_s_ >= 0.0)
       worst_slot_error_m_ = std::max(worst_slot_error_m_, (s.position - sched_.at(i, m.tau_s)).norm());
-    fly_slot(t, i, s, hold_s);
+    fly_slot(t, i, s, hold_s, m.mode == Mode::formed ? pace : 1.0);
     if (formed_s_ < 0.0 && m.tau_s >= sched_.knots_s[sched_.form_up_knot]) formed_s_ = t + opt_.step_s;
     intent_[i] = commanded(t, s, opt_.step_s);
     if (!guard_.threatened(t, i, s, tracks)) continue;

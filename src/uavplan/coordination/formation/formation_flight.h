@@ -7,8 +7,9 @@
 // its path and clear for `reform_after_steps` periods, the formation re-forms by P1 eq. 8-9 in
 // N-UAV form, on the shared clock: the UAV furthest behind catches up at V_max while each other
 // UAV flies just fast enough to be in its slot when it arrives (the foremost hovers), and from
-// then on all fly the schedule together. UAVs in their slots wait at the start of the end leg
-// for any that are out of theirs, so all arrive together.
+// then on all fly the schedule together. While a UAV is out of its slot the others slow down
+// (`slow_pace`) and wait for it where the approach to the goals begins (never at their goals),
+// so that all arrive together, in shape.
 #pragma once
 
 #include <optional>
@@ -26,6 +27,9 @@ struct FormationFlightOptions {
   int reform_after_steps = 5;
   double max_speed_mps = 0.0;  // V_max: the slowest UAV's top speed
   double cruise_mps = 0.0;     // the schedule's speed
+  // The formation's pace while a UAV is out of its slot (a fraction of cruise_mps): half, or the
+  // slowest pace its UAVs can fly, so that the one out of its slot has less to catch up.
+  double slow_pace = 0.5;
 };
 
 // A UAV's command for the coming period as its mates hear it: a straight line at a velocity, and
@@ -63,7 +67,8 @@ class FormationFlight final : public FlightController {
     std::size_t knot = 0;  // the knot its path position was last found before
   };
   std::vector<Track> trusted_out(std::size_t i, std::vector<Track> tracks, std::span<const FlightState> uavs) const;
-  void fly_slot(double t_s, std::size_t i, FlightState& s, double hold_s);
+  void fly_slot(double t_s, std::size_t i, FlightState& s, double hold_s, double pace);
+  bool on_approach(std::size_t i, const Vec3& p) const;
   void find_on_path(std::size_t i, const FlightState& s);
   void clip_route(std::size_t i, FlightState& s) const;
   double lead_tau_s() const;

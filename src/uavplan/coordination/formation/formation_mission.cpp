@@ -1,9 +1,12 @@
 #include "uavplan/coordination/formation/formation_mission.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 
+#include "uavplan/coordination/contract/arrival_points.h"
 #include "uavplan/coordination/formation/formation_flight.h"
 #include "uavplan/coordination/routes/local_layer.h"
 #include "uavplan/coordination/timing.h"
@@ -57,12 +60,30 @@ std::vector<double> windows_of(const Scenario& sc, const LocalLayer& layer) {
   return w;
 }
 
+// The spread of the solved UAVs' arrivals (contract: at the goal to stay).
+double arrival_spread_s(const Plan& plan) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const UavPlan& up : plan.uavs)
+    if (up.status == Status::solved && std::isfinite(up.arrival_s))
+      lo = std::min(lo, up.arrival_s), hi = std::max(hi, up.arrival_s);
+  return hi >= lo ? hi - lo : 0.0;
+}
+
+// The approach to the goals (formation_schedule.h): one period's flight, and at least four
+// arrival radii, so that no UAV is within its arrival radius before the formation comes in.
+double approach_m(const Scenario& sc, double cruise_mps) {
+  const std::vector<Arrival> arrivals = arrival_points(sc);
+  double widest = 0.0;
+  for (std::size_t i = 0; i < sc.uavs.size(); ++i) widest = std::max(widest, arrival_radius_m(sc.uavs[i], arrivals[i]));
+  return std::max(cruise_mps * sc.mission.step_s, 4.0 * widest);
+}
+
 // What they flew must keep clear of everything that moves and of each other, and arrive within
-// the tolerance of one another.
-void check_flown(const Scenario& sc, const FormationFlight& flight, Plan& plan) {
+// the tolerance of one another; if not, the plan names the first and the last to arrive.
+void check_flown(const Scenario& sc, Plan& plan) {
   Committed all;
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) all.emplace_back(&sc.uavs[i], &plan.uavs[i]);
-  double first = World::kInf, last = -World::kInf;
+  const UavPlan *first = nullptr, *last = nullptr;
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
     UavPlan& up = plan.uavs[i];
     if (up.status != Status::solved) continue;
@@ -74,15 +95,16 @@ void check_flown(const Scenario& sc, const FormationFlight& flight, Plan& plan) 
       up.status = Status::failed;
       up.message = "could not avoid " + c.what;
     }
-    first = std::min(first, up.arrival_s);
-    last = std::max(last, up.arrival_s);
+    if (!first || up.arrival_s < first->arrival_s) first = &up;
+    if (!last || up.arrival_s > last->arrival_s) last = &up;
   }
-  (void)flight;
-  if (last - first <= sc.mission.arrival_tolerance_s + 1e-9) return;
-  char buf[200];
+  if (!first || last->arrival_s - first->arrival_s <= sc.mission.arrival_tolerance_s + 1e-9) return;
+  char buf[300];
   std::snprintf(buf, sizeof buf,
-                "arrivals %.1f s apart, more than arrival_tolerance_s = %g s (out of its slot too late to re-form)",
-                last - first, sc.mission.arrival_tolerance_s);
+                "arrivals %.1f s apart ('%s' at its goal at %.1f s, '%s' at %.1f s), more than "
+                "arrival_tolerance_s = %g s: '%s' could not re-form before the goals",
+                last->arrival_s - first->arrival_s, first->id.c_str(), first->arrival_s, last->id.c_str(),
+                last->arrival_s, sc.mission.arrival_tolerance_s, last->id.c_str());
   for (UavPlan& up : plan.uavs)
     if (up.status == Status::solved) up.status = Status::failed, up.message = buf;
 }
@@ -92,19 +114,24 @@ void check_flown(const Scenario& sc, const FormationFlight& flight, Plan& plan) 
 void FormationMission::plan(const Scenario& sc, const MissionContext& ctx, Plan& plan) const {
   const LocalLayer layer = local_layer(ctx);
   std::vector<Vec3> starts, goals;
-  double cruise = World::kInf, vmax = World::kInf;
+  double cruise = World::kInf, vmax = World::kInf, vmin = 0.0;
   for (const UavSpec& u : sc.uavs) {
     if (!u.goal) throw std::invalid_argument("a formation UAV needs a goal ('" + u.id + "' has none)");
     starts.push_back(u.start);
     goals.push_back(*u.goal);
     cruise = std::min(cruise, u.speed.cruise_mps);
     vmax = std::min(vmax, u.speed.max_mps);
+    vmin = std::max(vmin, u.speed.min_mps);
   }
   if (sc.mission.shape.size() != sc.uavs.size())
     throw std::invalid_argument("a formation mission needs one slot per UAV");
   const PlanResult ref = reference_route(sc, ctx, centroid(starts), centroid(goals));
   if (ref.status != Status::solved) return fail_all(sc, "the formation's reference route: " + ref.message, plan);
-  const FormationSchedule sched = formation_schedule(ref.route.waypoints, sc.mission.shape, starts, goals, cruise);
+  FormationScheduleOptions so{cruise, approach_m(sc, cruise), {}};
+  so.slot_clear = [&sc](std::size_t i, const Vec3& a, const Vec3& b) {
+    return sc.world.segment_valid(a, b, keep_off_m(sc.uavs[i]));
+  };
+  const FormationSchedule sched = formation_schedule(ref.route.waypoints, sc.mission.shape, starts, goals, so);
 
   RollingWindowOptions rw;
   rw.step_s = sc.mission.step_s;
@@ -115,8 +142,9 @@ void FormationMission::plan(const Scenario& sc, const MissionContext& ctx, Plan&
   std::vector<std::string> ids;
   for (const UavSpec& u : sc.uavs) ids.push_back(u.id);
   RollingWindow guard(sc.world, rw, windows_of(sc, layer), ids);
-  FormationFlight flight(
-      sched, {sc.mission.step_s, sc.mission.separation_m, sc.mission.reform_after_steps, vmax, cruise}, guard);
+  FormationFlightOptions fo{sc.mission.step_s, sc.mission.separation_m, sc.mission.reform_after_steps, vmax, cruise};
+  fo.slow_pace = std::clamp(vmin / cruise, fo.slow_pace, 1.0);
+  FormationFlight flight(sched, fo, guard);
   std::vector<LoopUav> loop;
   for (std::size_t i = 0; i < sc.uavs.size(); ++i)
     loop.push_back({&sc.uavs[i],
@@ -131,12 +159,14 @@ void FormationMission::plan(const Scenario& sc, const MissionContext& ctx, Plan&
   const LoopResult flown = fly_closed_loop(sc.world, loop, {}, flight, lo, ctx.options.stop);
 
   double eta = 0.0;
+  const std::vector<Arrival> arrivals = arrival_points(sc);
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
     const FlightState& f = flown.uavs[i];
     const RollingWindowLog& log = guard.log(i);
     // Done at the horizon while some UAV is still out of its slot: waiting, not arrived.
     const bool arrived = f.done && !flight.waiting();
     UavPlan up = flown_plan(sc.uavs[i].id, arrived, "", trajectory_corners(f.flown), f.flown);
+    up.arrival_s = arrival_time_s(f.flown, goals[i], arrival_radius_m(sc.uavs[i], arrivals[i]));
     up.stats = i == 0 ? ref.stats : PlanStats{};
     up.stats.plan_ms += log.local_ms;
     char buf[200];
@@ -146,12 +176,13 @@ void FormationMission::plan(const Scenario& sc, const MissionContext& ctx, Plan&
     up.message = arrived  ? std::string(buf)
                  : f.done ? "waited for the formation to re-form" + by
                           : "did not reach its goal" + by + (log.trouble.empty() ? "" : ": " + log.trouble);
-    if (arrived) eta = std::max(eta, up.arrival_s);
+    if (arrived && std::isfinite(up.arrival_s)) eta = std::max(eta, up.arrival_s);
     plan.uavs.push_back(std::move(up));
   }
-  check_flown(sc, flight, plan);
+  check_flown(sc, plan);
   FormationLog out;
   out.eta_s = eta;
+  out.arrival_spread_s = arrival_spread_s(plan);
   out.worst_slot_error_m = flight.worst_slot_error_m();
   out.phases = {{"form_up", std::max(0.0, flight.formed_s())}, {"formation", eta}};
   for (const FormationBreak& b : flight.breaks())

@@ -1,8 +1,10 @@
 // The formation mission's part of the contract (P1): its shape, re-forming and arrival
 // tolerance, as read and as verified.
 #include <algorithm>
+#include <cmath>
 #include <string>
 
+#include "uavplan/coordination/contract/arrival_points.h"
 #include "uavplan/coordination/formation/formation_mission.h"
 #include "uavplan/core/text.h"
 
@@ -36,15 +38,24 @@ void FormationMission::read_section(const Section& m, const Section& /*uavs*/, S
   if (m.has("arrival_tolerance_s")) sc.mission.arrival_tolerance_s = m.at("arrival_tolerance_s")->non_negative();
 }
 
-// The UAVs' arrival times (their trajectories' ends) within arrival_tolerance_s of one another.
+// The UAVs' arrivals (contract: at the goal to stay) within arrival_tolerance_s of one another.
 void FormationMission::check_plan(const Scenario& sc, const FlownUavs& flown, Violations& out) const {
   if (flown.size() < 2) return;
+  const std::vector<Arrival> arrivals = arrival_points(sc);
   double lo = World::kInf, hi = -World::kInf;
-  for (const auto& f : flown)
-    lo = std::min(lo, f.second->trajectory.back().t_s), hi = std::max(hi, f.second->trajectory.back().t_s);
+  std::string first, last;
+  for (const auto& [u, up] : flown) {
+    if (!u->goal) continue;
+    const std::size_t i = static_cast<std::size_t>(u - sc.uavs.data());
+    const double t = arrival_time_s(up->trajectory, *u->goal, arrival_radius_m(*u, arrivals[i]));
+    if (!std::isfinite(t)) continue;  // never there: the goal check says so
+    if (t < lo) lo = t, first = u->id;
+    if (t > hi) hi = t, last = u->id;
+  }
   if (hi - lo > sc.mission.arrival_tolerance_s + 1e-6)
     add_violation(out, ViolationKind::arrival_spread, "", std::nullopt, std::nullopt,
-                  "arrival times differ by " + num_text(hi - lo) + " s, above arrival_tolerance_s " +
+                  "arrival times differ by " + num_text(hi - lo) + " s (" + first + " at its goal to stay at " +
+                      num_text(lo) + " s, " + last + " at " + num_text(hi) + " s), above arrival_tolerance_s " +
                       num_text(sc.mission.arrival_tolerance_s) + " s");
 }
 

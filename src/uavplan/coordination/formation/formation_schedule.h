@@ -3,10 +3,16 @@
 // position per UAV at each. Between knots a UAV flies straight at a constant speed:
 //  - form-up: from its start to its slot at the route's first point, all arriving together;
 //  - each route segment: the slot's translate of the segment, at the formation's speed;
-//  - each corner: the slot turns about the corner (a chord), the widest turn at that speed;
-//  - end: from the slot at the last point to the UAV's goal (its slot at the end), together.
+//  - each corner: an arc inside it (twice the shape's reach, narrower where the segments are
+//    short), the shape turning with its heading so that no slot backs up; where no arc fits or
+//    one would not be clear, the shape turns about the corner (chords), the widest turn at that
+//    speed;
+//  - approach: `approach_m` before the route's end the shape turns as the goals lie and flies
+//    the rest of the route so, its last leg into the goals (each UAV's slot at the end), all
+//    arriving together: every UAV moves until the end, none waits at its goal for the others.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "uavplan/core/vec.h"
@@ -17,7 +23,7 @@ struct FormationSchedule {
   std::vector<double> knots_s;           // tau_k, from 0
   std::vector<std::vector<Vec3>> slots;  // per UAV, its position at each knot
   std::size_t form_up_knot = 1;          // the knot where the formation is formed (route start)
-  std::size_t final_knot = 0;            // the knot where the end leg to the goals begins
+  std::size_t final_knot = 0;            // the knot where the approach to the goals begins
 
   double end_s() const { return knots_s.back(); }
   // UAV i's nominal position at clock tau.
@@ -31,9 +37,18 @@ struct FormationSchedule {
 };
 
 // The shape's slots are taken relative to their centroid (the reference point). `route` is the
-// reference's route (at least one point), `speed_mps` the formation's speed.
+// reference's route (at least one point), `speed_mps` the formation's speed, `approach_m` the
+// approach's length along the route (0: the end leg from the route's end into the goals only).
+struct FormationScheduleOptions {
+  double speed_mps = 1.0;
+  double approach_m = 0.0;
+  // Whether UAV i may fly straight from a to b (static obstacles, bounds); a corner's arc cuts
+  // inside the route, so it is flown only where every slot's chords are clear (none: all are).
+  std::function<bool(std::size_t i, const Vec3& a, const Vec3& b)> slot_clear;
+};
 FormationSchedule formation_schedule(const std::vector<Vec3>& route, const std::vector<Vec3>& shape,
-                                     const std::vector<Vec3>& starts, const std::vector<Vec3>& goals, double speed_mps);
+                                     const std::vector<Vec3>& starts, const std::vector<Vec3>& goals,
+                                     const FormationScheduleOptions& options);
 
 // The smallest distance between UAVs i and j on the schedule within knot interval k (their
 // relative motion is linear there).

@@ -21,33 +21,64 @@ TEST(FormationSchedule, SlotsTurnWithTheRouteAndShareOneClock) {
     starts.push_back(route[0] + (o - c));
     goals.push_back(route[2] + Vec3(-(o - c).y(), (o - c).x(), 0));  // heading north: forward is +y
   }
-  const FormationSchedule s = formation_schedule(route, kWedge, starts, goals, 5.0);
+  const FormationSchedule s = formation_schedule(route, kWedge, starts, goals, {5.0, 0.0, {}});
   ASSERT_EQ(s.slots.size(), 3u);
   for (const auto& p : s.slots) EXPECT_EQ(p.size(), s.knots_s.size());
   EXPECT_NEAR(s.knots_s[s.form_up_knot], 0.0, 1e-12);  // already in their slots
-  // First segment: every slot flies the route's translate at 5 m/s (20 s).
-  EXPECT_NEAR(s.knots_s[2] - s.knots_s[1], 20.0, 1e-9);
-  for (std::size_t i = 0; i < 3; ++i) EXPECT_NEAR((s.slots[i][2] - s.slots[i][1] - Vec3(100, 0, 0)).norm(), 0.0, 1e-9);
-  // The corner: the shape turns about it as a rigid body in chords of at most 20 deg (90 deg: 5),
-  // the widest chord setting each one's time.
+  // The corner is an arc of radius twice the shape's reach (the wings at 5.27 m), entered and
+  // left that far from the corner (a 90 deg turn).
+  const double radius = 2.0 * std::hypot(5.0 - 10.0 / 3.0, 5.0);
+  EXPECT_NEAR(s.knots_s[2] - s.knots_s[1], (100.0 - radius) / 5.0, 1e-9);
+  for (std::size_t i = 0; i < 3; ++i)
+    EXPECT_NEAR((s.slots[i][2] - s.slots[i][1] - Vec3(100.0 - radius, 0, 0)).norm(), 0.0, 1e-9);
+  // On the arc the shape turns with the heading in chords of at most 20 deg (90 deg: 5), a rigid
+  // body, the widest chord setting each one's time; no slot backs up (each moves forward).
   const std::size_t turned = 2 + 5;
   ASSERT_EQ(s.knots_s.size(), turned + 3);  // then the second segment and the (empty) end leg
   double corner_s = 0.0;
   for (std::size_t k = 2; k < turned; ++k) {
     double widest = 0.0;
+    const double mid_heading = (static_cast<double>(k - 2) + 0.5) * (M_PI / 2.0) / 5.0;
+    const Vec3 forward(std::cos(mid_heading), std::sin(mid_heading), 0.0);
     for (std::size_t i = 0; i < 3; ++i) {
-      widest = std::max(widest, (s.slots[i][k + 1] - s.slots[i][k]).norm());
-      EXPECT_NEAR((s.slots[i][k + 1] - Vec3(100, 0, 0)).norm(), (s.slots[i][2] - Vec3(100, 0, 0)).norm(), 1e-9);
+      const Vec3 d = s.slots[i][k + 1] - s.slots[i][k];
+      widest = std::max(widest, d.norm());
+      EXPECT_GT(d.dot(forward), 0.0) << "slot " << i << " backs up in chord " << k;
+      for (std::size_t j = i + 1; j < 3; ++j)
+        EXPECT_NEAR((s.slots[i][k + 1] - s.slots[j][k + 1]).norm(), (s.slots[i][2] - s.slots[j][2]).norm(), 1e-9);
     }
     EXPECT_NEAR(s.knots_s[k + 1] - s.knots_s[k], widest / 5.0, 1e-9);
     corner_s += widest / 5.0;
   }
-  EXPECT_NEAR((s.slots[0][turned] - Vec3(100, 0, 0) - Vec3(0, 10.0 / 3.0, 0)).norm(), 0.0, 1e-9);  // apex ahead, north
-  EXPECT_NEAR(s.end_s(), 20.0 + corner_s + 20.0, 1e-9);  // goals are the last slots: no end leg
+  EXPECT_NEAR((s.slots[0][turned] - Vec3(100, radius, 0) - Vec3(0, 10.0 / 3.0, 0)).norm(), 0.0, 1e-9);  // apex north
+  EXPECT_NEAR(s.end_s(), 2.0 * (100.0 - radius) / 5.0 + corner_s, 1e-9);  // goals are the last slots
   for (std::size_t i = 0; i < 3; ++i) EXPECT_NEAR((s.at(i, s.end_s()) - goals[i]).norm(), 0.0, 1e-9);
   // The shape keeps them apart all the way (in a chord, at least cos 10 deg of their distance).
   for (std::size_t k = 0; k + 1 < s.knots_s.size(); ++k)
     EXPECT_GE(schedule_gap_m(s, 1, 2, k), 10.0 * std::cos(M_PI / 18.0) - 1e-9);
+}
+
+// Where an arc would cut into an obstacle, the shape turns about the corner instead; with an
+// approach, it turns as the goals lie before them and every UAV moves until the end.
+TEST(FormationSchedule, ArcsOnlyWhereClearAndAnApproachWhereNoneWaitsAtItsGoal) {
+  const std::vector<Vec3> route{{0, 0, 0}, {100, 0, 0}, {100, 100, 0}};
+  std::vector<Vec3> starts, goals;
+  const Vec3 c(-10.0 / 3.0, 0, 0);
+  for (const Vec3& o : kWedge) starts.push_back(o - c), goals.push_back(route[2] + Vec3(-(o - c).y(), (o - c).x(), 0));
+  FormationScheduleOptions opt{5.0, 0.0, {}};
+  opt.slot_clear = [](std::size_t, const Vec3& a, const Vec3& b) {
+    return std::max(a.y(), b.y()) < 1.0 || a.x() > 99.0;
+  };
+  const FormationSchedule pivot = formation_schedule(route, kWedge, starts, goals, opt);
+  EXPECT_NEAR(pivot.knots_s[2] - pivot.knots_s[1], 20.0, 1e-9);  // the whole segment, then the turn about the corner
+  opt = {5.0, 30.0, {}};
+  const FormationSchedule s = formation_schedule(route, kWedge, starts, goals, opt);
+  const double approach_s = s.end_s() - s.knots_s[s.final_knot];
+  EXPECT_NEAR(approach_s, 30.0 / 5.0, 1e-9);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_NEAR((s.slots[i][s.final_knot] - goals[i]).norm(), 30.0, 1e-9);
+    EXPECT_NEAR((s.at(i, s.end_s() - 0.1) - goals[i]).norm(), 0.5, 1e-9);  // still moving in
+  }
 }
 
 TEST(FormationSchedule, AColumnTurningRoundNeverRunsThroughItself) {
@@ -56,7 +87,7 @@ TEST(FormationSchedule, AColumnTurningRoundNeverRunsThroughItself) {
   const std::vector<Vec3> route{{0, 0, 0}, {100, 0, 0}, {100, 1e-9, 0}, {0, 1e-9, 0}};
   std::vector<Vec3> starts, goals;
   for (const Vec3& o : column) starts.push_back(Vec3(6, 0, 0) + o), goals.push_back(Vec3(-6, 0, 0) - o);
-  const FormationSchedule s = formation_schedule(route, column, starts, goals, 5.0);
+  const FormationSchedule s = formation_schedule(route, column, starts, goals, {5.0, 0.0, {}});
   for (std::size_t k = 0; k + 1 < s.knots_s.size(); ++k)
     for (std::size_t i = 0; i < 3; ++i)
       for (std::size_t j = i + 1; j < 3; ++j)
@@ -110,9 +141,14 @@ TEST(FormationMission, LeavesItsSlotToAvoidAndReformsWithOneEta) {
              c = position_at(p.uavs[2].trajectory, t);
   EXPECT_NEAR((a - b).norm(), std::hypot(5.0, 5.0), 1e-6);
   EXPECT_NEAR((b - c).norm(), 10.0, 1e-6);
-  // One ETA: they arrive together, each at its goal; never faster than V_max.
+  // One ETA: they arrive together (each at its goal to stay, within arrival_tolerance_s of the
+  // last), none waiting at its goal for the others; never faster than V_max.
+  ASSERT_TRUE(p.formation->arrival_spread_s);
+  EXPECT_LE(*p.formation->arrival_spread_s, sc.mission.arrival_tolerance_s);
   for (std::size_t i = 0; i < 3; ++i) {
-    EXPECT_NEAR(p.uavs[i].trajectory.back().t_s, p.formation->eta_s, 1e-9);
+    EXPECT_LE(p.uavs[i].arrival_s, p.formation->eta_s);
+    EXPECT_GE(p.uavs[i].arrival_s, p.formation->eta_s - sc.mission.arrival_tolerance_s);
+    EXPECT_GT(p.uavs[i].arrival_s, p.uavs[i].trajectory.back().t_s - 1.0) << "waited at its goal";
     EXPECT_NEAR((p.uavs[i].trajectory.back().p - *sc.uavs[i].goal).norm(), 0.0, 1e-6);
     const Trajectory& tr = p.uavs[i].trajectory;
     for (std::size_t k = 1; k < tr.size(); ++k)
