@@ -217,6 +217,69 @@ Scenario random_formation_world(std::uint64_t seed) {
   return sc;
 }
 
+Scenario random_via_world(std::uint64_t seed) {
+  Rng r(seed);
+  const double size = r.uniform(200, 600);
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3::Zero(), Vec3(size, size, 0.0)};
+  std::vector<Vec3> route{Vec3(r.uniform(0.05, 0.2) * size, r.uniform(0.05, 0.95) * size, 0.0)};
+  const int vias = static_cast<int>(r.uniform_int(1, 3));
+  for (int k = 1; k <= vias + 1; ++k)
+    route.emplace_back((0.05 + 0.9 * k / (vias + 1.0)) * size, r.uniform(0.1, 0.9) * size, 0.0);
+  // Cylinders off the route (at least 25 m from each leg).
+  for (int k = static_cast<int>(r.uniform_int(0, 6)); k > 0; --k) {
+    const Vec2 c(r.uniform(0, size), r.uniform(0, size));
+    const double radius = r.uniform(5, 20);
+    bool clear = true;
+    for (std::size_t m = 1; m < route.size(); ++m) {
+      const Vec2 a = route[m - 1].head<2>(), d = route[m].head<2>() - a;
+      const double f = std::clamp((c - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+      clear = clear && (a + f * d - c).norm() > radius + 25.0;
+    }
+    if (clear) ws.obstacles.push_back(Cylinder{c, radius, -1.0, 1.0});
+  }
+  const double v = r.uniform(3, 8);
+  double along = 0.0;
+  for (int k = 1; k <= vias; ++k) {
+    const Vec3 a = route[static_cast<std::size_t>(k) - 1], b = route[static_cast<std::size_t>(k)];
+    along += (b - a).norm();
+    if (r.uniform01() < 0.2) continue;
+    const Vec3 dir = (b - a).normalized(), left(-dir.y(), dir.x(), 0.0);
+    MovingObstacle m;
+    m.id = "m" + std::to_string(k);
+    m.radius_m = r.uniform(1.0, 2.5);
+    const int kind = static_cast<int>(r.uniform_int(0, 2));
+    // A parked one leaves the via point a way past it (its radius, a UAV's and 1.5 m).
+    const double short_m = r.uniform(kind == 0 ? m.radius_m + 2.5 : 2.0, 10.0);
+    const Vec3 meet = b - short_m * dir;
+    const double t_meet = (along - short_m) / v;
+    Vec3 vel = Vec3::Zero();  // parked
+    if (kind > 0) vel = r.uniform(0.5, 2.0) * (kind == 1 ? left : Vec3(-dir));
+    m.position = meet - vel * t_meet;
+    m.velocity_mps = vel;
+    ws.moving.push_back(m);
+  }
+  Scenario sc;
+  sc.name = "via" + std::to_string(seed);
+  sc.world = World(std::move(ws));
+  sc.mission.type = MissionType::route;
+  sc.mission.separation_m = r.uniform(1.5, 3.0);
+  sc.mission.waypoints.assign(route.begin() + 1, route.end() - 1);
+  const double sensor = r.uniform(20, 60);
+  const int n = static_cast<int>(r.uniform_int(1, 3));
+  for (int i = 0; i < n; ++i) {
+    UavSpec u;
+    u.id = "u" + std::to_string(i + 1);
+    u.radius_m = r.uniform(0.3, 0.6);
+    u.start = route.front() + Vec3(0.0, 8.0 * i, 0.0);
+    u.goal = route.back() + Vec3(0.0, 8.0 * i, 0.0);
+    u.speed = {0, v, v};
+    u.sensor_range_m = sensor;
+    sc.uavs.push_back(u);
+  }
+  return sc;
+}
+
 Scenario random_p5_world(std::uint64_t seed) {
   Rng r(seed);
   const double size = r.uniform(100000, 1000000), height = 10000;

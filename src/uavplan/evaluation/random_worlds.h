@@ -25,6 +25,13 @@ Scenario random_world(std::uint64_t seed, const RandomWorldOptions& options = {}
 // meeting head-on or turning across the straight line between the two places.
 Scenario random_formation_world(std::uint64_t seed);
 
+// P1's local layer on a route: a flat field of 200-600 m with 0-6 cylinders, a `route` mission
+// of 1-3 via points, 1-3 UAVs with 20-60 m sensors, and a moving obstacle before most via points
+// (parked, crossing or head-on), meeting the first UAV 2-10 m short of the via point (a parked
+// one leaves room to pass the via point beside it): a detour around it that rejoined one step
+// past the obstacle would skip the via point.
+Scenario random_via_world(std::uint64_t seed);
+
 // P5's coarse planning at scale (issue targets): 100-1000 km square, 10 km high, 5-20 no-fly
 // cylinders of 10-60 km, one fixed-wing UAV (70/150/200 m/s, 30 deg turns, P5's autopilot model)
 // from near one corner, 1-3 via points with random entry headings (multiples of 45 deg), a goal.

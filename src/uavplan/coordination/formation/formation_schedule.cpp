@@ -180,7 +180,7 @@ FormationSchedule formation_schedule(const std::vector<Vec3>& route, const std::
   const double v = opt.speed_mps;
   Vec3 centroid = Vec3::Zero();
   for (const Vec3& o : shape) centroid += o / static_cast<double>(n);
-  const std::vector<double> psi = headings(route);
+  const std::vector<double> route_psi = headings(route);
   FormationSchedule s;
   s.slots.assign(n, {});
   // A leg to per-UAV positions, as long as its longest move at speed v takes.
@@ -203,6 +203,8 @@ FormationSchedule formation_schedule(const std::vector<Vec3>& route, const std::
     const int chords = std::max(1, static_cast<int>(std::ceil(std::abs(turn) / (M_PI / 9.0) - 1e-9)));
     for (int c = 1; c <= chords; ++c) leg(slots_at(p, from + turn * c / chords));
   };
+  const Approach a = split_for_approach(route, opt.approach_m);
+  const std::vector<double> psi = a.cruise.size() > 1 ? headings(a.cruise) : std::vector<double>{route_psi.front()};
   s.knots_s.push_back(0.0);
   for (std::size_t i = 0; i < n; ++i) s.slots[i].push_back(starts[i]);
   // Form-up: into the shape as the starts lie, then turned to the route's first heading.
@@ -210,7 +212,6 @@ FormationSchedule formation_schedule(const std::vector<Vec3>& route, const std::
   leg(slots_at(route.front(), start_heading));
   if (std::abs(turn_between(start_heading, psi.front())) > 1e-9) turn_about(route.front(), start_heading, psi.front());
   s.form_up_knot = s.knots_s.size() - 1;
-  const Approach a = split_for_approach(route, opt.approach_m);
   const std::vector<Arc> arcs = corner_arcs(a.cruise, psi, shape, centroid, opt, slots_at);
   for (std::size_t k = 0; k + 1 < a.cruise.size(); ++k) {
     if (k > 0 && arcs[k].ok) {  // the corner
@@ -223,7 +224,7 @@ FormationSchedule formation_schedule(const std::vector<Vec3>& route, const std::
   // The approach: turned as the goals lie where it begins (the shape fits the route's body in
   // any heading), then as that shape along the rest of the route, the last leg into the goals.
   const double cruise_heading = a.cruise.size() > 1 ? psi[a.cruise.size() - 2] : psi.front();
-  const double goal_heading = fitted_heading(shape, centroid, goals, psi.back());
+  const double goal_heading = fitted_heading(shape, centroid, goals, route_psi.back());
   if (std::abs(turn_between(cruise_heading, goal_heading)) > 1e-9)
     turn_about(a.cruise.back(), cruise_heading, goal_heading);
   s.final_knot = s.knots_s.size() - 1;

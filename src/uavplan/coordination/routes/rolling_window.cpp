@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "uavplan/core/rng.h"
 
@@ -50,6 +51,14 @@ struct Ahead {
     return pts.back();
   }
 };
+
+// How far along the route ahead its next via point lies (+inf: none ahead).
+double next_via_along(const Ahead& a, const std::vector<Vec3>& via) {
+  for (std::size_t k = 1; k < a.pts.size(); ++k)
+    for (const Vec3& p : via)
+      if ((a.pts[k] - p).norm() <= 1e-6) return a.along[k];
+  return std::numeric_limits<double>::infinity();
+}
 
 Ahead ahead_of(const FlightState& s) {
   Ahead a;
@@ -218,12 +227,12 @@ bool RollingWindow::replan(double t, std::size_t i, FlightState& s, const std::v
     if (rule.point_ok(p) && clear_at(p, t + join_s / v, discs)) break;
     join_s += uav_step;
   }
-  join_s = std::min(join_s, ahead.along.back());
+  join_s = std::min({join_s, ahead.along.back(), next_via_along(ahead, opt_.via_points)});
   std::size_t rest = 0;
   const Vec3 join = ahead.at(join_s, &rest);
   if (rest < ahead.pts.size() && (ahead.pts[rest] - join).norm() <= 1e-9) ++rest;  // joins at a vertex
   if (!clear_at(join, t + join_s / v, discs)) {  // even the goal is taken then: no route can end there
-    why = "its goal is inside a disc";
+    why = join_s < ahead.along.back() ? "its next via point is inside a disc" : "its goal is inside a disc";
     return false;
   }
   RrtQuery q;

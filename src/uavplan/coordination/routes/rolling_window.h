@@ -3,7 +3,8 @@
 // its own (for another UAV: the separation, at least the two radii), V_b from eq. 7. When one
 // touches its route ahead inside the window, it replans with the local RRT from where it is to
 // a rejoin point on the route: the first point past the last touch plus one UAV step that is
-// clear when the UAV gets there.
+// clear when the UAV gets there, and never past the next via point ahead (a detour passes
+// through it).
 //
 // Our additions, where the paper is silent or its disc is not enough:
 //  - the disc is carried along V_b: the route ahead is checked against where the disc will be
@@ -37,6 +38,9 @@ struct RollingWindowOptions {
   RrtOptions local = RrtOptions::improved();
   std::uint64_t seed = 1;
   StopCondition stop;
+  // Points every route passes in order (a route mission's via points): a local route rejoins
+  // the route before the next one ahead, or at it, never past it.
+  std::vector<Vec3> via_points;
 };
 
 struct ReplanEvent {

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 namespace uavplan {
 namespace {
 
@@ -65,6 +67,41 @@ TEST(RollingWindow, AnObstacleThatTurnsAfterBeingSeenIsAvoidedFromTheUavsObserva
   // The same UAV, told nothing about obstacles (no sensor): it would have flown into it.
   const std::vector<Vec3> straight{Vec3(10, 50, 0), Vec3(190, 50, 0)};
   EXPECT_LT(closest_moving_approach(w, time_route(straight, 5.0, 0.0, 1.0)).distance_m, 0.5);
+}
+
+// The closest the flown polyline comes to p.
+double closest_to(const Trajectory& tr, const Vec3& p) {
+  double best = World::kInf;
+  for (std::size_t k = 1; k < tr.size(); ++k) {
+    const Vec3 seg = tr[k].p - tr[k - 1].p;
+    const double f =
+        seg.squaredNorm() > 0.0 ? std::clamp((p - tr[k - 1].p).dot(seg) / seg.squaredNorm(), 0.0, 1.0) : 0.0;
+    best = std::min(best, (tr[k - 1].p + f * seg - p).norm());
+  }
+  return best;
+}
+
+TEST(RollingWindow, ADetourNeverRejoinsPastTheNextViaPoint) {
+  // An obstacle holds still 5 m short of the via point at x = 100: the first clear point one
+  // step past it lies beyond the via point, so the detour must end at the via point itself.
+  const World w = flat({MovingObstacle{"parked", 2.0, Vec3(95, 50, 0), Vec3::Zero()}});
+  const UavSpec u = p1_uav(60.0);
+  const Vec3 via(100, 50, 0);
+  for (const bool told : {false, true}) {
+    RollingWindowOptions opt;
+    if (told) opt.via_points = {via};
+    RollingWindow rw(w, opt, {*u.sensor_range_m}, {u.id});
+    const std::vector<LoopUav> uavs{{&u, {u.start, via, *u.goal}, *u.sensor_range_m, 0.0}};
+    const LoopResult loop = fly_closed_loop(w, uavs, {}, rw, {}, {});
+    ASSERT_TRUE(loop.uavs[0].done);
+    ASSERT_GE(rw.log(0).replans, 1);
+    EXPECT_GE(closest_moving_approach(w, loop.uavs[0].flown).distance_m, 0.5);
+    if (told) {
+      EXPECT_LE(closest_to(loop.uavs[0].flown, via), 1e-6) << "the detour skipped the via point";
+    } else {
+      EXPECT_GT(closest_to(loop.uavs[0].flown, via), 0.1) << "the test no longer needs the rule";
+    }
+  }
 }
 
 TEST(RollingWindow, AnObstacleOutsideTheSensorRangeIsNeverUsed) {

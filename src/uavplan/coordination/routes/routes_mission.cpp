@@ -183,6 +183,7 @@ void fly_sensing(const Scenario& sc, const MissionContext& ctx, const Committed&
   rw.local = layer.rrt;
   rw.seed = opt.seed;
   rw.stop = opt.stop;
+  rw.via_points = sc.mission.waypoints;
   std::vector<ScriptedUav> scripted;
   for (const auto& [spec, up] : committed)
     if (!senses(*spec)) scripted.push_back({spec, &up->trajectory});
