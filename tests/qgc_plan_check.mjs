@@ -57,6 +57,17 @@ function checkPlan(file) {
       fail(file, `${at}.Altitude differs from params[6]`);
   });
   if (m.items[0].command !== 22) fail(file, 'the first item is not a takeoff (22)');
+  // Commanded timing (PX4 and ArduPilot fly their own default speed otherwise): a speed item
+  // before the first waypoint, airspeed (type 0) for fixed wing, ground speed (1) for multirotors.
+  const firstWaypoint = m.items.findIndex((it) => it.command === 16);
+  const firstSpeed = m.items.findIndex((it) => it.command === 178);
+  if (firstWaypoint >= 0 && (firstSpeed < 0 || firstSpeed > firstWaypoint))
+    fail(file, 'no DO_CHANGE_SPEED (178) before the first waypoint: the vehicle would fly its own default speed');
+  for (const it of m.items.filter((i) => i.command === 178)) {
+    const want = m.vehicleType === 1 ? 0 : 1;
+    if (it.params[0] !== want) fail(file, `DO_CHANGE_SPEED type ${it.params[0]}, expected ${want} for vehicleType ${m.vehicleType}`);
+    if (!(it.params[1] > 0)) fail(file, `DO_CHANGE_SPEED speed ${it.params[1]} is not positive`);
+  }
   if (![20, 21, 16, 17].includes(m.items[m.items.length - 1].command))
     fail(file, 'the mission does not end in land, return, loiter or a waypoint');
   const fence = j.geoFence;
@@ -115,13 +126,26 @@ function checkAgainstCsv(file, plan, csvFile) {
   if (rows[0] !== 't,x,y,z,lat,lon,alt') { fail(csvFile, 'header is not t,x,y,z,lat,lon,alt'); return; }
   const pts = rows.slice(1).map((r) => r.split(',').map(Number));
   if (!pts.every((p) => p.length === 7 && p.every(Number.isFinite))) { fail(csvFile, 'a row is not 7 numbers'); return; }
-  for (let k = 1; k < pts.length; k++) if (!(pts[k][0] >= pts[k - 1][0])) fail(csvFile, `time goes back at row ${k + 1}`);
-  let from = 0;
-  for (const it of plan.mission.items.filter((i) => i.command === 16)) {
+  for (let k = 1; k < pts.length; k++) if (!(pts[k][0] > pts[k - 1][0])) fail(csvFile, `time does not increase at row ${k + 1}`);
+  // Every waypoint on the trajectory in order, and the speed commanded for the leg into it the
+  // leg's mean speed on the trajectory (within the 10 % a speed change is written for, and 1 %).
+  let from = 0, speed = 0;
+  for (const it of plan.mission.items) {
+    if (it.command === 178) speed = it.params[1];
+    if (it.command !== 16) continue;
     let found = -1;
     for (let k = from; k < pts.length; k++)
       if (Math.abs(pts[k][4] - it.params[4]) < 1e-7 && Math.abs(pts[k][5] - it.params[5]) < 1e-7) { found = k; break; }
     if (found < 0) { fail(file, `waypoint (${it.params[4]}, ${it.params[5]}) is not on the trajectory after row ${from + 1}`); return; }
+    let len = 0, moving = 0;
+    for (let k = from + 1; k <= found; k++) {
+      const d = Math.hypot(pts[k][1] - pts[k - 1][1], pts[k][2] - pts[k - 1][2], pts[k][3] - pts[k - 1][3]);
+      len += d;
+      if (d > 1e-6) moving += pts[k][0] - pts[k - 1][0];
+    }
+    const flown = moving > 0 ? len / moving : 0;
+    if (flown > 0 && Math.abs(speed - flown) > 0.11 * flown)
+      fail(file, `the leg into waypoint ${it.doJumpId} is flown at ${flown.toFixed(3)} m/s, the mission commands ${speed} m/s`);
     from = found;
   }
   const last = pts[pts.length - 1];

@@ -69,20 +69,23 @@ TEST(GeoFrame, AltitudeIsOriginPlusLocalHeightEvenFarAway) {
 TEST(Export, MissionFollowsTheTrajectory) {
   const Scenario sc = scenario_with();
   const auto items = mission_items(sc, exported(sc), {});
-  // takeoff, the 4 s hold, one waypoint for the collinear east legs, the speed change, north, land.
-  EXPECT_EQ(commands(items),
-            (std::vector<int>{kCmdTakeoff, kCmdLoiterTime, kCmdWaypoint, kCmdChangeSpeed, kCmdWaypoint, kCmdLand}));
+  // takeoff, the 4 s hold, the planned speed, one waypoint for the collinear east legs, the speed
+  // change, north, land.
+  EXPECT_EQ(commands(items), (std::vector<int>{kCmdTakeoff, kCmdLoiterTime, kCmdChangeSpeed, kCmdWaypoint,
+                                               kCmdChangeSpeed, kCmdWaypoint, kCmdLand}));
   EXPECT_DOUBLE_EQ(items[1].params[0], 4.0);
-  EXPECT_DOUBLE_EQ(items[3].params[1], 10.0);
+  EXPECT_DOUBLE_EQ(items[2].params[0], 1.0);  // multirotor: ground speed
+  EXPECT_DOUBLE_EQ(items[2].params[1], 5.0);  // commanded before the first leg
+  EXPECT_DOUBLE_EQ(items[4].params[1], 10.0);
   EXPECT_NEAR(items[0].params[6], 10.0, 1e-3);  // takeoff to the start's height above home
-  EXPECT_NEAR(items[2].params[3], 90.0, 1e-6);  // east is compass yaw 90
-  EXPECT_NEAR(items[4].params[3], 0.0, 1e-6);   // north is 0
-  EXPECT_NEAR(items[5].params[6], 0.0, 1e-9);   // lands on the ground under its goal
+  EXPECT_NEAR(items[3].params[3], 90.0, 1e-6);  // east is compass yaw 90
+  EXPECT_NEAR(items[5].params[3], 0.0, 1e-6);   // north is 0
+  EXPECT_NEAR(items[6].params[6], 0.0, 1e-9);   // lands on the ground under its goal
   const GeoFrame f(*sc.origin);
   const LatLonAlt end = f.to_wgs84(Vec3(100, 100, 10));
-  EXPECT_NEAR(items[4].params[4], end.lat_deg, 1e-9);
-  EXPECT_NEAR(items[4].params[5], end.lon_deg, 1e-9);
-  EXPECT_EQ(items[3].frame, kFrameMission);  // DO commands carry no position
+  EXPECT_NEAR(items[5].params[4], end.lat_deg, 1e-9);
+  EXPECT_NEAR(items[5].params[5], end.lon_deg, 1e-9);
+  EXPECT_EQ(items[4].frame, kFrameMission);  // DO commands carry no position
   for (const auto& it : items)
     if (it.command != kCmdChangeSpeed) {
       EXPECT_EQ(it.frame, kFrameGlobalRelativeAlt);
@@ -98,10 +101,13 @@ TEST(Export, SpeedChangesBelowTenPercentMerge) {
                   {30.0, Vec3(151, 0, 10)},
                   {40.0, Vec3(151, 52, 10)}};
   EXPECT_EQ(commands(mission_items(sc, exported(sc, {}, u), {})),
-            (std::vector<int>{kCmdTakeoff, kCmdWaypoint, kCmdWaypoint, kCmdLand}));
+            (std::vector<int>{kCmdTakeoff, kCmdChangeSpeed, kCmdWaypoint, kCmdWaypoint, kCmdLand}));
   u.trajectory.back() = {40.0, Vec3(151, 60, 10)};  // 6 m/s: 20 % faster
   EXPECT_EQ(commands(mission_items(sc, exported(sc, {}, u), {})),
-            (std::vector<int>{kCmdTakeoff, kCmdWaypoint, kCmdChangeSpeed, kCmdWaypoint, kCmdLand}));
+            (std::vector<int>{kCmdTakeoff, kCmdChangeSpeed, kCmdWaypoint, kCmdChangeSpeed, kCmdWaypoint, kCmdLand}));
+  ExportOptions fixed_wing;
+  fixed_wing.vehicle = VehicleKind::fixed_wing;
+  EXPECT_DOUBLE_EQ(mission_items(sc, exported(sc, {}, u), fixed_wing)[1].params[0], 0.0);  // airspeed
 }
 
 TEST(Export, EveryEndIsFlownAndVerified) {
@@ -138,8 +144,9 @@ TEST(Export, FixedWingLandsOnAGlideOrCircles) {
   opt.vehicle = VehicleKind::fixed_wing;
   ExportedUav e = exported(sc, opt);
   const auto items = mission_items(sc, e, opt);
-  EXPECT_EQ(commands(items), (std::vector<int>{kCmdTakeoff, kCmdLoiterTime, kCmdWaypoint, kCmdChangeSpeed,
-                                               kCmdLandStart, kCmdWaypoint, kCmdLand}));
+  EXPECT_EQ(commands(items), (std::vector<int>{kCmdTakeoff, kCmdLoiterTime, kCmdChangeSpeed, kCmdWaypoint,
+                                               kCmdChangeSpeed, kCmdLandStart, kCmdWaypoint, kCmdLand}));
+  EXPECT_DOUBLE_EQ(items[2].params[0], 0.0);  // fixed wing: airspeed
   ASSERT_TRUE(e.touchdown && e.approach);
   EXPECT_EQ(*e.approach, Vec3(100, 100, 10));
   EXPECT_NEAR(e.touchdown->y() - 100, 10.0 / std::tan(deg_to_rad(5.0)), 1e-6);  // straight on, 5 degrees
@@ -202,7 +209,7 @@ TEST(Export, QgcPlanFollowsTheLoaderRules) {
     EXPECT_TRUE(it["Altitude"].is_number());
     EXPECT_TRUE(it["AltitudeMode"].is_number());
   }
-  EXPECT_EQ(do_items, 1);  // the speed change
+  EXPECT_EQ(do_items, 2);  // the planned speed and its change
   EXPECT_EQ(j["geoFence"]["version"], 2);
   EXPECT_EQ(j["geoFence"]["circles"].size(), 1u);
   ASSERT_EQ(j["geoFence"]["polygons"].size(), 2u);  // bounds (inclusion) and the tall box

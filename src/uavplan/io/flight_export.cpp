@@ -17,12 +17,16 @@ constexpr double kSampleDt_s = 1.0;  // rows of the added legs, at most this far
 constexpr double kTurnStep_s = 2.0;  // a turn back flies legs this long (at cruise speed)
 constexpr double kClearTolerance_m = 1e-6;
 
-// `pts` flown at v_mps from the last row.
+// `pts` flown at v_mps from the last row (a point where the UAV already is adds no row: time
+// strictly increases, as interpolators need).
 void append_flight(Trajectory& tr, const std::vector<Vec3>& pts, double v_mps) {
   std::vector<Vec3> w{tr.back().p};
-  w.insert(w.end(), pts.begin(), pts.end());
-  const Trajectory t = time_route(w, v_mps, tr.back().t_s, kSampleDt_s);
-  tr.insert(tr.end(), t.begin() + 1, t.end());
+  for (const Vec3& p : pts)
+    if ((p - w.back()).norm() > 0.0) w.push_back(p);
+  if (w.size() < 2) return;
+  const double from_s = tr.back().t_s;
+  for (const TrajectorySample& row : time_route(w, v_mps, from_s, kSampleDt_s))
+    if (row.t_s > from_s) tr.push_back(row);  // (time_route also writes the hold up to from_s)
 }
 
 // Horizontal unit direction of the last leg that moves horizontally, else of the heading, else east.

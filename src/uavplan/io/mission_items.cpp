@@ -22,8 +22,8 @@ double compass_yaw_deg(const Vec3& d) {
 
 class Items {
  public:
-  Items(const GeoFrame& frame, double home_amsl_m, double cruise_mps, const ExportOptions& opt)
-      : frame_(frame), home_amsl_m_(home_amsl_m), speed_mps_(cruise_mps), opt_(opt) {}
+  Items(const GeoFrame& frame, double home_amsl_m, const ExportOptions& opt)
+      : frame_(frame), home_amsl_m_(home_amsl_m), opt_(opt) {}
 
   void at(int command, const Vec3& p, std::array<double, 4> head) {
     const LatLonAlt g = frame_.to_wgs84(p);
@@ -45,10 +45,14 @@ class Items {
     it.params = {round_m(head[0]), round_m(head[1]), round_m(head[2]), round_m(head[3]), 0, 0, 0};
     items_.push_back(it);
   }
-  // A DO_CHANGE_SPEED when the leg's speed differs from the current one by the fraction or more.
+  // A DO_CHANGE_SPEED before the first leg (the vehicle's own default speed is not the plan's)
+  // and wherever a leg's speed differs from the current one by the fraction or more. Fixed
+  // wing: airspeed (speed type 0, as QGroundControl writes it; ArduPlane's type 1 only sets a
+  // minimum ground speed), equal to the planned ground speed in still air; multirotor: ground
+  // speed (type 1). Throttle unchanged (-1).
   void speed(double mps) {
-    if (std::abs(mps - speed_mps_) < opt_.speed_change_fraction * speed_mps_) return;
-    command(kCmdChangeSpeed, {1.0, mps, -1.0, 0});  // ground speed, m/s, throttle unchanged
+    if (speed_mps_ > 0.0 && std::abs(mps - speed_mps_) < opt_.speed_change_fraction * speed_mps_) return;
+    command(kCmdChangeSpeed, {opt_.vehicle == VehicleKind::fixed_wing ? 0.0 : 1.0, mps, -1.0, 0});
     speed_mps_ = mps;
   }
   // Rows [from, to] of the trajectory: holds, straight legs, speed changes.
@@ -87,7 +91,7 @@ class Items {
  private:
   const GeoFrame& frame_;
   double home_amsl_m_;
-  double speed_mps_;
+  double speed_mps_ = 0.0;  // commanded so far (0: none yet)
   const ExportOptions& opt_;
   std::vector<MissionItem> items_;
 };
@@ -100,7 +104,7 @@ std::vector<MissionItem> mission_items(const Scenario& sc, const ExportedUav& e,
   const GeoFrame frame(*sc.origin);
   const Trajectory& tr = e.plan.trajectory;
   const double cruise = e.spec->speed.cruise_mps;
-  Items m(frame, frame.to_wgs84(e.home).alt_m, cruise, opt);
+  Items m(frame, frame.to_wgs84(e.home).alt_m, opt);
   const Vec3 first = tr[std::min(e.body_begin + 1, tr.size() - 1)].p - tr[e.body_begin].p;
   m.at(kCmdTakeoff, e.takeoff_to, {0, 0, 0, compass_yaw_deg(first)});
   m.body(tr, e.body_begin, e.body_end);

@@ -1,8 +1,9 @@
 // The mission a UAV flies, as MAVLink mission items, read off its exported flight
 // (flight_export.h): a take-off to the top of its take-off leg, a loiter where the trajectory
 // holds still (MAV_CMD_NAV_LOITER_TIME, the hold's seconds), a waypoint at every change of
-// direction, a speed change (DO_CHANGE_SPEED, ground speed) before a leg whose speed differs by
-// the options' fraction or more, then its end: NAV_LAND at the touch-down point (fixed wing:
+// direction, the planned speed (DO_CHANGE_SPEED: airspeed for fixed wing, ground speed for
+// multirotors) before the first leg and before a leg whose speed differs by the options'
+// fraction or more, then its end: NAV_LAND at the touch-down point (fixed wing:
 // DO_LAND_START before the approach waypoint), the return waypoints and RETURN_TO_LAUNCH,
 // NAV_LOITER_UNLIM (radius 0 multirotor, the loiter radius fixed wing), or nothing.
 // Positions are WGS84 with altitudes relative to home (on the origin's datum, geo.h).
