@@ -58,7 +58,7 @@ int count_reversals(const Trajectory& tr, double over_deg, double within_s) {
     }
     if (m < tr.size() && tr[m - 1].t_s - tr[k].t_s <= within_s) {
       ++count;
-      k = m + 1;  // the reversal's second leg does not start another
+      k = m;  // from the leg it turned back on (east, west, east: two)
     } else {
       ++k;
     }

@@ -4,6 +4,9 @@
 
 #include <cmath>
 
+#include "uavplan/coordination/mission_planner.h"
+#include "uavplan/evaluation/random_worlds.h"
+
 namespace uavplan {
 namespace {
 
@@ -62,6 +65,87 @@ TEST(Metrics, LengthIsTheFlownLengthBesideTheRoutes) {
   plan.uavs[0].trajectory.clear();
   compute_metrics(sc, plan);
   EXPECT_EQ(plan.uavs[0].length_m, 0.0) << "a UAV that flew nothing";
+}
+
+// A reversal: the direction of flight turning by more than 120 deg within 3 s, hovers skipped.
+TEST(Metrics, ReversalsAreSharpTurnsBackWithinSeconds) {
+  const auto track = [](std::vector<std::pair<double, Vec3>> rows) {
+    Trajectory tr;
+    for (const auto& [t, p] : rows) tr.push_back({t, p});
+    return tr;
+  };
+  // East, back west, east again: two reversals; a 90 deg corner is none.
+  EXPECT_EQ(count_reversals(track({{0, {0, 0, 0}}, {1, {5, 0, 0}}, {2, {1, 0, 0}}, {3, {6, 0, 0}}})), 2);
+  EXPECT_EQ(count_reversals(track({{0, {0, 0, 0}}, {1, {5, 0, 0}}, {2, {5, 5, 0}}})), 0);
+  // Back after a 1 s hover still counts; after a 5 s hover it is a new leg, not a reversal.
+  EXPECT_EQ(count_reversals(track({{0, {0, 0, 0}}, {1, {5, 0, 0}}, {2, {5, 0, 0}}, {3, {1, 0, 0}}})), 1);
+  EXPECT_EQ(count_reversals(track({{0, {0, 0, 0}}, {1, {5, 0, 0}}, {6, {5, 0, 0}}, {7, {1, 0, 0}}})), 0);
+}
+
+// Time in shape: from the form-up's end to arrival, less the UAV's breaks; backing up: distance
+// flown against the group's mean direction of travel.
+TEST(Metrics, TimeInShapeAndBackingUp) {
+  FormationLog log;
+  log.phases = {{"form_up", 10.0}, {"formation", 100.0}};
+  log.breaks = {{"u1", 30.0, 45.0}, {"u2", 95.0, 120.0}};
+  EXPECT_DOUBLE_EQ(time_in_shape_s(log, "u1", 100.0), 75.0);
+  EXPECT_DOUBLE_EQ(time_in_shape_s(log, "u2", 100.0), 85.0);  // its break runs past its arrival
+  EXPECT_DOUBLE_EQ(time_in_shape_s(log, "u3", 60.0), 50.0);
+  log.phases = {{"form_up", 10.0}, {"mission", 50.0}, {"return", 80.0}, {"dismiss", 90.0}};
+  EXPECT_DOUBLE_EQ(time_in_shape_s(log, "u3", 200.0), 70.0);  // P5: up to the dismissal
+  // Three fly east; one of them backs up 2 m in the middle second.
+  Trajectory a{{0, {0, 0, 0}}, {1, {5, 0, 0}}, {2, {10, 0, 0}}}, b{{0, {0, 5, 0}}, {1, {5, 5, 0}}, {2, {10, 5, 0}}},
+      c{{0, {0, -5, 0}}, {1, {-2, -5, 0}}, {2, {10, -5, 0}}};
+  const std::vector<const Trajectory*> group{&a, &b, &c};
+  EXPECT_DOUBLE_EQ(backing_up_m(a, group, 0.0, 2.0), 0.0);
+  EXPECT_DOUBLE_EQ(backing_up_m(c, group, 0.0, 2.0), 2.0);
+  EXPECT_DOUBLE_EQ(backing_up_m(c, group, 1.0, 2.0), 0.0);  // outside the window
+}
+
+// P1's wedge around two no-fly cylinders with nothing moving: the wingmen follow the turning
+// reference without shuttling (no reversal once formed, though no turn limit is given), do not
+// back up, and arrive together, each at its goal to stay.
+TEST(Metrics, AWedgeTurningAroundObstaclesNeitherShuttlesNorBacksUp) {
+  const std::vector<Vec3> wedge{{0, 0, 0}, {-5, 5, 0}, {-5, -5, 0}};
+  const Vec3 centroid(-10.0 / 3.0, 0, 0);
+  for (const double dy : {-60.0, -20.0, 25.0, 70.0}) {
+    Scenario sc;
+    sc.name = "wedge_turns";
+    WorldSpec ws;
+    ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(400, 300, 0)};
+    ws.obstacles.push_back(Cylinder{Vec2(130, 150 + dy), 30.0, -1.0, 1.0});
+    ws.obstacles.push_back(Cylinder{Vec2(270, 150 - dy), 30.0, -1.0, 1.0});
+    for (int k = 0; k < 6; ++k) ws.radars.push_back({Vec3(60.0 + 55.0 * k, k % 2 ? 40.0 : 260.0, 0.0), 1e5});
+    sc.world = World(std::move(ws));
+    sc.mission.type = MissionType::formation;
+    sc.mission.separation_m = 2.0;
+    sc.mission.shape = wedge;
+    for (std::size_t i = 0; i < 3; ++i) {
+      UavSpec u;
+      u.id = "u" + std::to_string(i + 1);
+      u.start = Vec3(30, 150, 0) + (wedge[i] - centroid);
+      u.goal = Vec3(370, 150, 0) + (wedge[i] - centroid);
+      u.radius_m = 0.5;
+      u.speed = {0, 5, 5};
+      sc.uavs.push_back(u);
+    }
+    MissionOptions opt;
+    opt.algorithm = "aco_voronoi";
+    Plan plan = plan_mission(sc, opt);
+    ASSERT_EQ(plan.status, Status::solved) << "dy " << dy << ": " << plan.uavs[0].message;
+    compute_metrics(sc, plan);
+    ASSERT_TRUE(plan.formation);
+    EXPECT_TRUE(plan.formation->breaks.empty()) << "dy " << dy;
+    EXPECT_LE(plan.metrics.at("arrival_spread_s"), sc.mission.arrival_tolerance_s) << "dy " << dy;
+    const double formed_s = plan.formation->phases.front().end_s;
+    for (const UavPlan& u : plan.uavs) {
+      Trajectory formed;
+      for (const TrajectorySample& row : u.trajectory)
+        if (row.t_s >= formed_s) formed.push_back(row);
+      EXPECT_EQ(count_reversals(formed), 0) << "dy " << dy << " " << u.id << " shuttles";
+      EXPECT_LT(u.metrics.at("backing_up_m"), 0.01 * u.metrics.at("length_m")) << "dy " << dy << " " << u.id;
+    }
+  }
 }
 
 }  // namespace

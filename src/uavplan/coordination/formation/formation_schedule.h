@@ -2,14 +2,17 @@
 // turning with the reference route's heading. All UAVs share one clock: knots tau_k with a
 // position per UAV at each. Between knots a UAV flies straight at a constant speed:
 //  - form-up: from its start to its slot at the route's first point, all arriving together;
-//  - each route segment: the slot's translate of the segment, at the formation's speed;
-//  - each corner: an arc inside it (twice the shape's reach, narrower where the segments are
-//    short), the shape turning with its heading so that no slot backs up; where no arc fits or
-//    one would not be clear, the shape turns about the corner (chords), the widest turn at that
-//    speed;
-//  - approach: `approach_m` before the route's end the shape turns as the goals lie and flies
-//    the rest of the route so, its last leg into the goals (each UAV's slot at the end), all
-//    arriving together: every UAV moves until the end, none waits at its goal for the others.
+//  - cruise: the reference pursues the route (pure pursuit, a turn radius of twice the shape's
+//    reach, 5 deg of turn a step at most), the shape turning with its heading, so that a graph
+//    route's many short edges are one smooth curve and no slot backs up at a corner;
+//  - where any slot's chord of that path is not clear (opt.slot_clear), along the route itself:
+//    its near-collinear wiggles (points within 1 % of the shape's reach of the straight line past
+//    them) flown straight past, each segment as the slot's translate, each corner an arc inside
+//    it where one fits and is clear, else the shape turning about the corner (chords);
+//  - approach: `approach_m` before the route's end the shape turns as the goals lie (as it goes
+//    in where the way is straight and long enough for no slot to back up, else where the
+//    approach begins) and flies into the goals (each UAV's slot at the end), all arriving
+//    together: every UAV moves until the end, none waits at its goal for the others.
 #pragma once
 
 #include <functional>

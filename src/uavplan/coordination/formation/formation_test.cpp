@@ -12,6 +12,12 @@ namespace {
 
 const std::vector<Vec3> kWedge{{0, 0, 0}, {-5, 5, 0}, {-5, -5, 0}};
 
+// The shape's heading at knot k: from the wedge's centroid to its apex (slot 0).
+double wedge_heading(const FormationSchedule& s, std::size_t k) {
+  const Vec3 c = (s.slots[0][k] + s.slots[1][k] + s.slots[2][k]) / 3.0;
+  return std::atan2(s.slots[0][k].y() - c.y(), s.slots[0][k].x() - c.x());
+}
+
 TEST(FormationSchedule, SlotsTurnWithTheRouteAndShareOneClock) {
   // An L-shaped route east then north; starts at the first slots, goals at the last.
   const std::vector<Vec3> route{{0, 0, 0}, {100, 0, 0}, {100, 100, 0}};
@@ -25,42 +31,40 @@ TEST(FormationSchedule, SlotsTurnWithTheRouteAndShareOneClock) {
   ASSERT_EQ(s.slots.size(), 3u);
   for (const auto& p : s.slots) EXPECT_EQ(p.size(), s.knots_s.size());
   EXPECT_NEAR(s.knots_s[s.form_up_knot], 0.0, 1e-12);  // already in their slots
-  // The corner is an arc of radius twice the shape's reach (the wings at 5.27 m), entered and
-  // left that far from the corner (a 90 deg turn).
+  // The reference pursues the route (a radius of twice the shape's reach, 5.27 m): a rigid shape
+  // turning with its heading by 5 deg a step at most, never more than that radius off the route,
+  // no slot backing up, each leg as long as its widest move takes at 5 m/s.
   const double radius = 2.0 * std::hypot(5.0 - 10.0 / 3.0, 5.0);
-  EXPECT_NEAR(s.knots_s[2] - s.knots_s[1], (100.0 - radius) / 5.0, 1e-9);
-  for (std::size_t i = 0; i < 3; ++i)
-    EXPECT_NEAR((s.slots[i][2] - s.slots[i][1] - Vec3(100.0 - radius, 0, 0)).norm(), 0.0, 1e-9);
-  // On the arc the shape turns with the heading in chords of at most 20 deg (90 deg: 5), a rigid
-  // body, the widest chord setting each one's time; no slot backs up (each moves forward).
-  const std::size_t turned = 2 + 5;
-  ASSERT_EQ(s.knots_s.size(), turned + 3);  // then the second segment and the (empty) end leg
-  double corner_s = 0.0;
-  for (std::size_t k = 2; k < turned; ++k) {
+  for (std::size_t k = s.form_up_knot; k + 1 < s.knots_s.size(); ++k) {
     double widest = 0.0;
-    const double mid_heading = (static_cast<double>(k - 2) + 0.5) * (M_PI / 2.0) / 5.0;
-    const Vec3 forward(std::cos(mid_heading), std::sin(mid_heading), 0.0);
+    const double h0 = wedge_heading(s, k), h1 = wedge_heading(s, k + 1);
+    EXPECT_LE(std::abs(std::remainder(h1 - h0, 2.0 * M_PI)), M_PI / 36.0 + 1e-9) << k;
+    const Vec3 forward(std::cos(h0), std::sin(h0), 0.0);
     for (std::size_t i = 0; i < 3; ++i) {
       const Vec3 d = s.slots[i][k + 1] - s.slots[i][k];
       widest = std::max(widest, d.norm());
-      EXPECT_GT(d.dot(forward), 0.0) << "slot " << i << " backs up in chord " << k;
+      EXPECT_GE(d.dot(forward), -1e-3) << "slot " << i << " backs up in leg " << k;
       for (std::size_t j = i + 1; j < 3; ++j)
-        EXPECT_NEAR((s.slots[i][k + 1] - s.slots[j][k + 1]).norm(), (s.slots[i][2] - s.slots[j][2]).norm(), 1e-9);
+        EXPECT_NEAR((s.slots[i][k + 1] - s.slots[j][k + 1]).norm(), (kWedge[i] - kWedge[j]).norm(), 1e-9);
     }
     EXPECT_NEAR(s.knots_s[k + 1] - s.knots_s[k], widest / 5.0, 1e-9);
-    corner_s += widest / 5.0;
+    const Vec3 ref = (s.slots[0][k] + s.slots[1][k] + s.slots[2][k]) / 3.0;
+    EXPECT_LE(std::min(std::hypot(ref.y(), std::max(0.0, ref.x() - 100.0)),
+                       std::hypot(ref.x() - 100.0, std::min(0.0, ref.y()))),
+              radius)
+        << k;
   }
-  EXPECT_NEAR((s.slots[0][turned] - Vec3(100, radius, 0) - Vec3(0, 10.0 / 3.0, 0)).norm(), 0.0, 1e-9);  // apex north
-  EXPECT_NEAR(s.end_s(), 2.0 * (100.0 - radius) / 5.0 + corner_s, 1e-9);  // goals are the last slots
   for (std::size_t i = 0; i < 3; ++i) EXPECT_NEAR((s.at(i, s.end_s()) - goals[i]).norm(), 0.0, 1e-9);
+  EXPECT_GT(s.end_s(), 2.0 * (100.0 - radius) / 5.0);
+  EXPECT_LT(s.end_s(), 45.0);  // 200 m at 5 m/s, less the corner cut, plus the wings' wider turn
   // The shape keeps them apart all the way (in a chord, at least cos 10 deg of their distance).
   for (std::size_t k = 0; k + 1 < s.knots_s.size(); ++k)
     EXPECT_GE(schedule_gap_m(s, 1, 2, k), 10.0 * std::cos(M_PI / 18.0) - 1e-9);
 }
 
-// Where an arc would cut into an obstacle, the shape turns about the corner instead; with an
-// approach, it turns as the goals lie before them and every UAV moves until the end.
-TEST(FormationSchedule, ArcsOnlyWhereClearAndAnApproachWhereNoneWaitsAtItsGoal) {
+// Where a smooth path or an arc would cut into an obstacle, the shape turns with the route
+// itself, about the corner.
+TEST(FormationSchedule, AboutTheCornerWhereNothingElseIsClear) {
   const std::vector<Vec3> route{{0, 0, 0}, {100, 0, 0}, {100, 100, 0}};
   std::vector<Vec3> starts, goals;
   const Vec3 c(-10.0 / 3.0, 0, 0);
@@ -71,13 +75,23 @@ TEST(FormationSchedule, ArcsOnlyWhereClearAndAnApproachWhereNoneWaitsAtItsGoal) 
   };
   const FormationSchedule pivot = formation_schedule(route, kWedge, starts, goals, opt);
   EXPECT_NEAR(pivot.knots_s[2] - pivot.knots_s[1], 20.0, 1e-9);  // the whole segment, then the turn about the corner
-  opt = {5.0, 30.0, {}};
-  const FormationSchedule s = formation_schedule(route, kWedge, starts, goals, opt);
-  const double approach_s = s.end_s() - s.knots_s[s.final_knot];
-  EXPECT_NEAR(approach_s, 30.0 / 5.0, 1e-9);
+  for (std::size_t i = 0; i < 3; ++i) EXPECT_NEAR((pivot.slots[i][2] - pivot.slots[i][1]).y(), 0.0, 1e-9);
+}
+
+// With an approach, the shape turns as the goals lie before them and every UAV moves until the
+// end: none waits at its goal for the others.
+TEST(FormationSchedule, AnApproachWhereNoneWaitsAtItsGoal) {
+  const std::vector<Vec3> route{{0, 0, 0}, {100, 0, 0}, {100, 100, 0}};
+  std::vector<Vec3> starts, goals;
+  const Vec3 c(-10.0 / 3.0, 0, 0);
+  for (const Vec3& o : kWedge) starts.push_back(o - c), goals.push_back(route[2] + Vec3(-(o - c).y(), (o - c).x(), 0));
+  const FormationSchedule s = formation_schedule(route, kWedge, starts, goals, {5.0, 30.0, {}});
+  // The last 30 m of the route in shape, into the goals at 5 m/s (the pursued path meets the
+  // route where the approach begins, heading north to within a degree).
+  EXPECT_NEAR(s.end_s() - s.knots_s[s.final_knot], 30.0 / 5.0, 1e-2);
   for (std::size_t i = 0; i < 3; ++i) {
-    EXPECT_NEAR((s.slots[i][s.final_knot] - goals[i]).norm(), 30.0, 1e-9);
-    EXPECT_NEAR((s.at(i, s.end_s() - 0.1) - goals[i]).norm(), 0.5, 1e-9);  // still moving in
+    EXPECT_NEAR((s.slots[i][s.final_knot] - goals[i]).norm(), 30.0, 0.1);
+    EXPECT_NEAR((s.at(i, s.end_s() - 0.1) - goals[i]).norm(), 0.5, 1e-2);  // still moving in
   }
 }
 

@@ -160,8 +160,10 @@ bool RollingWindow::threatened(double t, std::size_t i, const FlightState& s, co
   if (s.route.empty() || t + 1e-9 < s.depart_s) return !clear_to_stay(t, i, s, threats);
   std::vector<MovingKeepOut> discs;
   for (const ThreatDisc& d : threats) discs.push_back(d.disc);
-  return touches(ahead_of(s), discs, SegmentRule(world_, *s.spec), heading_of(s), s.spec->max_turn_rad, t,
-                 s.spec->speed.cruise_mps, window_m_[i])
+  // At the speed it was given (a formation's slot may fly slower or faster than cruise).
+  const double v = s.speed_mps > 1e-9 ? s.speed_mps : s.spec->speed.cruise_mps;
+  return touches(ahead_of(s), discs, SegmentRule(world_, *s.spec), heading_of(s), s.spec->max_turn_rad, t, v,
+                 window_m_[i])
       .any;
 }
 
