@@ -63,6 +63,8 @@ function checkPlan(file) {
   const firstSpeed = m.items.findIndex((it) => it.command === 178);
   if (firstWaypoint >= 0 && (firstSpeed < 0 || firstSpeed > firstWaypoint))
     fail(file, 'no DO_CHANGE_SPEED (178) before the first waypoint: the vehicle would fly its own default speed');
+  if (m.vehicleType === 1 && !(m.items[0].params[0] > 0))
+    fail(file, `fixed-wing NAV_TAKEOFF minimum pitch ${m.items[0].params[0]}: ArduPlane would climb out at its own few degrees`);
   for (const it of m.items.filter((i) => i.command === 178)) {
     const want = m.vehicleType === 1 ? 0 : 1;
     if (it.params[0] !== want) fail(file, `DO_CHANGE_SPEED type ${it.params[0]}, expected ${want} for vehicleType ${m.vehicleType}`);

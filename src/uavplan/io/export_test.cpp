@@ -146,7 +146,8 @@ TEST(Export, FixedWingLandsOnAGlideOrCircles) {
   const auto items = mission_items(sc, e, opt);
   EXPECT_EQ(commands(items), (std::vector<int>{kCmdTakeoff, kCmdLoiterTime, kCmdChangeSpeed, kCmdWaypoint,
                                                kCmdChangeSpeed, kCmdLandStart, kCmdWaypoint, kCmdLand}));
-  EXPECT_DOUBLE_EQ(items[2].params[0], 0.0);  // fixed wing: airspeed
+  EXPECT_DOUBLE_EQ(items[2].params[0], 0.0);   // fixed wing: airspeed
+  EXPECT_DOUBLE_EQ(items[0].params[0], 10.0);  // NAV_TAKEOFF's minimum pitch: the verified climb-out
   ASSERT_TRUE(e.touchdown && e.approach);
   EXPECT_EQ(*e.approach, Vec3(100, 100, 10));
   EXPECT_NEAR(e.touchdown->y() - 100, 10.0 / std::tan(deg_to_rad(5.0)), 1e-6);  // straight on, 5 degrees
@@ -439,6 +440,30 @@ TEST(ExportSimplify, ChordsThatDoNotHoldAreNotFlown) {
   const VerifiedExport e = verified_export(m.sc, m.plan, coarse);
   ASSERT_TRUE(e.holds());
   EXPECT_EQ(e.uavs[0].plan.trajectory.size(), verified_export(m.sc, m.plan, all_rows).uavs[0].plan.trajectory.size());
+}
+
+// PX4 up to v1.14 refuses a first waypoint more than MIS_DIST_1WP (900 m) from home and legs
+// longer than MIS_DIST_WPS (900 m): the export says so, naming the parameter; ArduPilot has no
+// such rule.
+TEST(Export, Px4DistanceRulesAreNamed) {
+  Scenario sc = scenario_with();
+  UavPlan u = sample_uav();
+  u.trajectory = {{0.0, Vec3(0, 0, 10)}, {100.0, Vec3(500, 0, 10)}, {300.0, Vec3(500, 950, 10)}};
+  std::vector<std::string> notes;
+  qgc_plan_json(sc, exported(sc, {}, u), {}, &notes);
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("MIS_DIST_WPS"), std::string::npos) << notes[0];
+  EXPECT_NE(notes[0].find("950 m"), std::string::npos) << notes[0];
+  u.trajectory = {{0.0, Vec3(0, 0, 10)}, {190.0, Vec3(950, 0, 10)}, {200.0, Vec3(950, 50, 10)}};
+  notes.clear();
+  qgc_plan_json(sc, exported(sc, {}, u), {}, &notes);
+  ASSERT_EQ(notes.size(), 1u);  // its legs are short
+  EXPECT_NE(notes[0].find("MIS_DIST_1WP"), std::string::npos) << notes[0];
+  ExportOptions ardupilot;
+  ardupilot.firmware = Firmware::ardupilot;
+  notes.clear();
+  qgc_plan_json(sc, exported(sc, ardupilot, u), ardupilot, &notes);
+  EXPECT_TRUE(notes.empty());
 }
 
 }  // namespace

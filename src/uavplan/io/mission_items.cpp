@@ -1,5 +1,6 @@
 #include "uavplan/io/mission_items.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -106,7 +107,12 @@ std::vector<MissionItem> mission_items(const Scenario& sc, const ExportedUav& e,
   const double cruise = e.spec->speed.cruise_mps;
   Items m(frame, frame.to_wgs84(e.home).alt_m, opt);
   const Vec3 first = tr[std::min(e.body_begin + 1, tr.size() - 1)].p - tr[e.body_begin].p;
-  m.at(kCmdTakeoff, e.takeoff_to, {0, 0, 0, compass_yaw_deg(first)});
+  // Fixed wing: param1 is the minimum pitch of the climb-out (ArduPlane climbs at it, else at a
+  // few degrees; PX4 takes it as the minimum pitch too): the climb that was verified.
+  const double pitch_deg = opt.vehicle == VehicleKind::fixed_wing
+                               ? std::min(kFixedWingClimbOut_deg, e.spec->max_climb_rad * 180.0 / std::numbers::pi)
+                               : 0.0;
+  m.at(kCmdTakeoff, e.takeoff_to, {pitch_deg, 0, 0, compass_yaw_deg(first)});
   m.body(tr, e.body_begin, e.body_end);
   switch (e.end) {
     case MissionEnd::land:

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "uavplan/core/geometry.h"
 #include "uavplan/core/text.h"
@@ -92,6 +93,28 @@ ojson fence_json(const Scenario& sc, const ExportedUav& e, const GeoFrame& frame
   return {{"circles", std::move(circles)}, {"polygons", std::move(polygons)}, {"version", 2}};
 }
 
+// PX4 up to v1.14 refuses a mission whose first waypoint lies more than MIS_DIST_1WP from home
+// or with a leg longer than MIS_DIST_WPS (both 900 m by default; PX4 main checks neither): say
+// so, naming the parameter, rather than leave the pilot to meet the refusal.
+void px4_distance_notes(const GeoFrame& frame, const Vec3& home, const std::vector<MissionItem>& items,
+                        std::vector<std::string>* notes) {
+  constexpr double kPx4Default_m = 900.0;
+  std::optional<Vec3> prev;
+  double longest = 0.0;
+  for (const MissionItem& it : items) {
+    if (!it.positioned() || it.command == kCmdTakeoff) continue;
+    const Vec3 p = frame.to_local(it.params[4], it.params[5], 0.0);
+    if (!prev && (p - Vec3(home.x(), home.y(), 0.0)).norm() > kPx4Default_m)
+      notes->push_back("the first waypoint is " + num_text(std::round((p - Vec3(home.x(), home.y(), 0.0)).norm())) +
+                       " m from home: PX4 v1.14 refuses it unless MIS_DIST_1WP is raised (default 900 m) or 0");
+    if (prev) longest = std::max(longest, (p - *prev).norm());
+    prev = p;
+  }
+  if (longest > kPx4Default_m)
+    notes->push_back("a leg of " + num_text(std::round(longest)) +
+                     " m: PX4 up to v1.14 refuses legs over MIS_DIST_WPS (default 900 m); raise it or set it to 0");
+}
+
 }  // namespace
 
 std::string qgc_plan_json(const Scenario& sc, const ExportedUav& e, const ExportOptions& opt,
@@ -103,6 +126,7 @@ std::string qgc_plan_json(const Scenario& sc, const ExportedUav& e, const Export
   ojson j;
   j["fileType"] = "Plan";
   j["geoFence"] = fence_json(sc, e, frame, opt, notes);
+  if (notes && opt.firmware == Firmware::px4) px4_distance_notes(frame, e.home, items, notes);
   j["groundStation"] = "uavplan";
   j["mission"] = {{"cruiseSpeed", e.spec->speed.cruise_mps},
                   {"firmwareType", opt.firmware == Firmware::px4 ? 12 : 3},
