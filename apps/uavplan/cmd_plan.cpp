@@ -40,8 +40,8 @@ std::optional<Overrides> parse_sets(const std::vector<std::string>& sets) {
 }
 
 void print_summary(const Plan& plan, const std::string& path) {
-  std::printf("%-12s %-8s %10s %9s %9s %9s %10s %10s\n", "uav", "status", "length_m", "time_s", "arrival_s",
-              "turn_deg", "climb_deg", "clear_m");
+  std::printf("%-12s %-8s %10s %9s %9s %9s %10s %10s\n", "uav", "status", "length_m", "time_s", "arrival_s", "turn_deg",
+              "climb_deg", "clear_m");
   for (const UavPlan& u : plan.uavs) {
     auto m = [&](const char* k) {
       const auto it = u.metrics.find(k);

@@ -31,6 +31,7 @@ ExportedUav exported(const Scenario& sc, const ExportOptions& opt = {}, UavPlan 
 
 std::vector<int> commands(const std::vector<MissionItem>& items) {
   std::vector<int> c;
+  c.reserve(items.size());
   for (const auto& it : items) c.push_back(it.command);
   return c;
 }
@@ -221,6 +222,7 @@ TEST(Export, QgcPlanFollowsTheLoaderRules) {
 
 TEST(Export, FenceKeepsTheLargestExclusionsAndSaysWhatItDropped) {
   std::vector<Obstacle> towers;
+  towers.reserve(20);
   for (int k = 0; k < 20; ++k) towers.push_back(Box{Vec3(200 + 30 * k, 500, 0), Vec3(210 + 30 * k + k, 510 + k, 80)});
   const Scenario sc = scenario_with(towers);
   ExportOptions opt;
