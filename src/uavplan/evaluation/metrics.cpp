@@ -145,6 +145,7 @@ namespace {
 void add_formation_metrics(Plan& plan, const std::vector<const UavPlan*>& flown) {
   if (!plan.formation) return;
   std::vector<const Trajectory*> group;
+  group.reserve(flown.size());
   for (const UavPlan* up : flown) group.push_back(&up->trajectory);
   double in_shape = 0.0, back = 0.0;
   for (UavPlan& up : plan.uavs) {

@@ -69,7 +69,7 @@ TEST(Metrics, LengthIsTheFlownLengthBesideTheRoutes) {
 
 // A reversal: the direction of flight turning by more than 120 deg within 3 s, hovers skipped.
 TEST(Metrics, ReversalsAreSharpTurnsBackWithinSeconds) {
-  const auto track = [](std::vector<std::pair<double, Vec3>> rows) {
+  const auto track = [](const std::vector<std::pair<double, Vec3>>& rows) {
     Trajectory tr;
     for (const auto& [t, p] : rows) tr.push_back({t, p});
     return tr;

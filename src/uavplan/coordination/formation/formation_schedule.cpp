@@ -165,7 +165,8 @@ std::vector<Vec3> without_wiggles(const std::vector<Vec3>& cruise, double tol_m,
   while (k + 1 < cruise.size()) {
     std::size_t far = k + 1;
     for (std::size_t m = k + 2; m < cruise.size(); ++m) {
-      const Vec3 a = cruise[k], d = cruise[m] - a;
+      const Vec3& a = cruise[k];
+      const Vec3 d = cruise[m] - a;
       bool near = d.head<2>().norm() > 1e-9;
       for (std::size_t j = k + 1; j < m && near; ++j) {
         const double f = std::clamp((cruise[j] - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
