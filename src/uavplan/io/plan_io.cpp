@@ -187,7 +187,7 @@ std::string plan_to_json(const Plan& plan, const PlanWriteOptions& options) {
     ju["trajectory"] = Json::binary({}, uavs.size());  // write_rows writes it
     ju["length_m"] = u.length_m;
     ju["route_length_m"] = u.route_length_m;
-    ju["arrival_s"] = u.arrival_s;
+    if (std::isfinite(u.arrival_s)) ju["arrival_s"] = u.arrival_s;  // none: never at its goal to stay
     ju["metrics"] = metrics_json(u.metrics);
     ju["stats"] = {{"nodes_expanded", u.stats.nodes_expanded},
                    {"open_max", u.stats.open_max},

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "uavplan/io/input_error.h"
 
 namespace uavplan {
@@ -25,6 +27,7 @@ Plan sample_plan() {
   UavPlan b;
   b.id = "b";
   b.message = "no route";
+  b.arrival_s = std::numeric_limits<double>::infinity();  // never at its goal to stay
   p.uavs = {a, b};
   return p;
 }
@@ -38,6 +41,7 @@ TEST(PlanIo, RoundTripIsExact) {
   EXPECT_EQ(q.uavs[0].trajectory[1].t_s, p.uavs[0].trajectory[1].t_s);
   EXPECT_EQ(q.uavs[0].trajectory[1].p, p.uavs[0].trajectory[1].p);
   EXPECT_EQ(q.uavs[1].status, Status::failed);
+  EXPECT_EQ(text.find("null"), std::string::npos) << "a UAV that never arrives has no arrival_s, not null";
   EXPECT_EQ(q.uavs[0].metrics, p.uavs[0].metrics) << "metrics are read back (the report shows them)";
   EXPECT_EQ(q.uavs[0].length_m, 2.0276);
   EXPECT_EQ(q.uavs[0].route_length_m, 2.5);
