@@ -249,5 +249,22 @@ TEST(Verifier, SharedGoalsAreNoExemption) {
   EXPECT_THAT(kinds(sc, p, "b"), ::testing::Contains(K::goal));
 }
 
+// A formation's arrival (contract): at the goal to stay. One that hovers at its goal while its
+// mate comes arrived early, though both trajectories end together; the spread of the arrivals
+// is held against arrival_tolerance_s.
+TEST(Verifier, FormationArrivalsAreAtTheGoalToStay) {
+  Scenario sc = base_scenario();
+  sc.mission.type = MissionType::formation;
+  sc.mission.shape = {{0, 0, 0}, {0, 10, 0}};
+  sc.mission.arrival_tolerance_s = 2.0;
+  Plan p = base_plan(sc);  // both fly 20 m at 5 m/s: arrive at 4 s
+  EXPECT_TRUE(kinds(sc, p).empty());
+  fly(p, 1, {{10, 20, 20}, {30, 20, 20}}, 5.0, 10.0);        // b leaves at 10 s: arrives at 14 s
+  p.uavs[0].trajectory.push_back({14.0, *sc.uavs[0].goal});  // a hovers at its goal until then
+  EXPECT_THAT(kinds(sc, p), ElementsAre(K::arrival_spread));
+  fly(p, 0, {{10, 10, 20}, {30, 10, 20}}, 5.0, 9.0);  // a leaves at 9 s: 1 s apart
+  EXPECT_TRUE(kinds(sc, p).empty());
+}
+
 }  // namespace
 }  // namespace uavplan
