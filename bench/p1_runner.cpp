@@ -1,4 +1,5 @@
 #include "p1_runner.h"
+#include "claims.h"
 #include "stats.h"
 
 #include <algorithm>
@@ -155,7 +156,8 @@ const char* shape_kind(const std::vector<Vec3>& shape) {
 // called solved must hold under the verifier.
 std::string unseen_worlds(int worlds, bool* ok) {
   struct Tally {
-    int worlds = 0, uavs = 0, solved = 0, bad = 0;
+    int worlds = 0;
+    Claims claims;
     double spread_s = 0.0, reversals = 0.0, in_shape_s = 0.0;
     std::vector<double> ms;
   };
@@ -173,14 +175,12 @@ std::string unseen_worlds(int worlds, bool* ok) {
     for (Tally* t : {&by_kind[shape_kind(sc.mission.shape)], &by_kind["all"]}) {
       ++t->worlds;
       t->ms.push_back(took);
+      t->claims.add(plan, violations);
       for (const UavPlan& u : plan.uavs) {
-        ++t->uavs;
         if (u.status != Status::solved) continue;
-        ++t->solved;
         t->reversals += u.metrics.at("reversals");
         t->in_shape_s += u.metrics.count("time_in_shape_s") ? u.metrics.at("time_in_shape_s") : 0.0;
         if (plan.status == Status::solved) t->spread_s = std::max(t->spread_s, plan.metrics["arrival_spread_s"]);
-        t->bad += std::any_of(violations.begin(), violations.end(), [&](const Violation& v) { return v.uav == u.id; });
       }
     }
   }
@@ -194,12 +194,13 @@ std::string unseen_worlds(int worlds, bool* ok) {
   for (const char* kind : {"wedge", "line abreast", "column", "all"}) {
     Tally& t = by_kind[kind];
     char buf[200];
-    const double solved = std::max(t.solved, 1);
-    std::snprintf(buf, sizeof buf, "%-14s %6d %6d %7d %8.1f %11d %10.2f %15.3f %15.1f %14.2f\n", kind, t.worlds, t.uavs,
-                  t.solved, t.uavs ? 100.0 * t.solved / t.uavs : 0.0, t.bad, median(t.ms), t.spread_s,
-                  t.in_shape_s / solved, t.reversals / solved);
+    const Claims& c = t.claims;
+    const double solved = std::max(c.solved, 1);
+    std::snprintf(buf, sizeof buf, "%-14s %6d %6d %7d %8.1f %11d %10.2f %15.3f %15.1f %14.2f\n", kind, t.worlds, c.uavs,
+                  c.solved, c.solved_pct(), c.bad, median(t.ms), t.spread_s, t.in_shape_s / solved,
+                  t.reversals / solved);
     out += buf;
-    if (t.bad > 0 || (std::string(kind) == "all" && t.solved < 0.95 * t.uavs)) *ok = false;
+    if (c.bad > 0 || (std::string(kind) == "all" && c.solved_pct() < 95.0)) *ok = false;
   }
   return out;
 }
@@ -207,7 +208,8 @@ std::string unseen_worlds(int worlds, bool* ok) {
 // P1's local layer on routes with via points and movers just short of them
 // (evaluation/random_worlds.h): a detour keeps every via point; what is solved must hold.
 std::string via_worlds(int worlds, bool* ok) {
-  int uavs = 0, solved = 0, bad = 0, movers = 0;
+  Claims claims;
+  std::size_t movers = 0;
   std::vector<double> ms;
   for (int w = 1; w <= worlds; ++w) {
     const Scenario sc = random_via_world(static_cast<std::uint64_t>(w));
@@ -217,24 +219,18 @@ std::string via_worlds(int worlds, bool* ok) {
     const auto t0 = Clock::now();
     const Plan plan = plan_mission(sc, opt);
     ms.push_back(ms_since(t0));
-    const auto violations = verify_plan(sc, plan);
-    for (const UavPlan& u : plan.uavs) {
-      ++uavs;
-      if (u.status != Status::solved) continue;
-      ++solved;
-      bad += std::any_of(violations.begin(), violations.end(), [&](const Violation& v) { return v.uav == u.id; });
-    }
-    for (const auto& m : sc.world.moving()) movers += !m.id.empty();
+    claims.add(plan, verify_plan(sc, plan));
+    movers += sc.world.moving().size();
   }
   std::string out =
       "\nRoutes with via points and moving obstacles 2-10 m short of them (200-600 m, 1-3 via points, 1-3 UAVs,\n"
       "20-60 m sensors, parked / crossing / head-on movers; improved RRT; target: no bad claim, 95 % solved)\n";
   out += "worlds   uavs  solved  solved %  bad claims  movers  median ms\n";
   char buf[200];
-  std::snprintf(buf, sizeof buf, "%6d %6d %7d %8.1f %11d %7d %10.2f\n", worlds, uavs, solved,
-                uavs ? 100.0 * solved / uavs : 0.0, bad, movers, median(ms));
+  std::snprintf(buf, sizeof buf, "%6d %6d %7d %8.1f %11d %7zu %10.2f\n", worlds, claims.uavs, claims.solved,
+                claims.solved_pct(), claims.bad, movers, median(ms));
   out += buf;
-  if (bad > 0 || solved < 0.95 * uavs) *ok = false;
+  if (claims.bad > 0 || claims.solved_pct() < 95.0) *ok = false;
   return out;
 }
 

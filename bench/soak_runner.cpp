@@ -1,4 +1,5 @@
 #include "soak_runner.h"
+#include "claims.h"
 
 #include <algorithm>
 #include <chrono>
@@ -30,7 +31,7 @@ std::string run_soak(const SoakOptions& opt, bool* all_held) {
   out += buf;
   bool held = true;
   for (const Kind& k : kinds) {
-    int uavs = 0, solved = 0, bad = 0;
+    Claims claims;
     std::vector<double> ms;
     RandomWorldOptions wo;
     wo.mission = k.mission;
@@ -43,19 +44,13 @@ std::string run_soak(const SoakOptions& opt, bool* all_held) {
       const auto t0 = std::chrono::steady_clock::now();
       const Plan plan = plan_mission(sc, mo);
       ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-      const auto violations = verify_plan(sc, plan);
-      for (const UavPlan& u : plan.uavs) {
-        ++uavs;
-        if (u.status != Status::solved) continue;
-        ++solved;
-        bad += std::any_of(violations.begin(), violations.end(), [&](const Violation& v) { return v.uav == u.id; });
-      }
+      claims.add(plan, verify_plan(sc, plan));
     }
     std::sort(ms.begin(), ms.end());
-    held = held && bad == 0;
+    held = held && claims.bad == 0;
     std::snprintf(buf, sizeof buf, "%-20s %-12s %7d %8d %10d %10.2f %10.1f\n", k.algorithm.c_str(),
-                  std::string(to_string(k.mission)).c_str(), uavs, solved, bad, ms.empty() ? 0.0 : ms[ms.size() / 2],
-                  ms.empty() ? 0.0 : ms.back());
+                  std::string(to_string(k.mission)).c_str(), claims.uavs, claims.solved, claims.bad,
+                  ms.empty() ? 0.0 : ms[ms.size() / 2], ms.empty() ? 0.0 : ms.back());
     out += buf;
   }
   if (all_held) *all_held = held;

@@ -88,8 +88,8 @@ ShapeWindow shape_window(const FormationLog& log, double arrival_s) {
   return w;
 }
 
-double time_in_shape_s(const FormationLog& log, const std::string& uav, double arrival_s) {
-  const auto [from, to] = shape_window(log, arrival_s);
+double time_in_shape_s(const FormationLog& log, const std::string& uav, const ShapeWindow& window) {
+  const auto [from, to] = window;
   double held = std::max(0.0, to - from);
   for (const FormationLog::Break& b : log.breaks)
     if (b.uav == uav) held -= std::max(0.0, std::min(b.to_s, to) - std::max(b.from_s, from));
@@ -152,8 +152,8 @@ void add_formation_metrics(Plan& plan, const std::vector<const UavPlan*>& flown)
     if (up.trajectory.empty() || up.metrics.empty()) continue;
     double breaks = 0.0;
     for (const FormationLog::Break& b : plan.formation->breaks) breaks += b.uav == up.id;
-    const double held = time_in_shape_s(*plan.formation, up.id, up.arrival_s);
     const ShapeWindow w = shape_window(*plan.formation, up.arrival_s);
+    const double held = time_in_shape_s(*plan.formation, up.id, w);
     const double backed = backing_up_m(up.trajectory, group, w.from_s, w.to_s);
     up.metrics["time_in_shape_s"] = held;
     up.metrics["breaks"] = breaks;
@@ -194,8 +194,7 @@ void compute_metrics(const Scenario& sc, Plan& plan) {
     p3_total += m.p3.sc;
     // Arrival (contract): at its goal to stay; a UAV without a goal (it lands) at its last row.
     const std::size_t i = static_cast<std::size_t>(spec - sc.uavs.data());
-    up.arrival_s = spec->goal ? arrival_time_s(up.trajectory, *spec->goal, arrival_radius_m(*spec, arrivals[i]))
-                              : up.trajectory.back().t_s;
+    up.arrival_s = spec->goal ? arrival_s(*spec, arrivals[i], up.trajectory) : up.trajectory.back().t_s;
     if (std::isfinite(up.arrival_s)) up.metrics["arrival_s"] = up.arrival_s;
     t_min = std::min(t_min, up.arrival_s);
     t_max = std::max(t_max, up.arrival_s);
@@ -210,6 +209,7 @@ void compute_metrics(const Scenario& sc, Plan& plan) {
     // Smallest separation: pairs in the order of their lower bounds, until a bound clears the
     // smallest distance found.
     std::vector<const Trajectory*> trs;
+    trs.reserve(flown.size());
     for (const UavPlan* up : flown) trs.push_back(&up->trajectory);
     const SweptBoxes boxes(trs);
     struct Pair {

@@ -60,7 +60,7 @@ struct ShapeWindow {
   double from_s = 0.0, to_s = 0.0;
 };
 ShapeWindow shape_window(const FormationLog& log, double arrival_s);
-double time_in_shape_s(const FormationLog& log, const std::string& uav, double arrival_s);
+double time_in_shape_s(const FormationLog& log, const std::string& uav, const ShapeWindow& window);
 
 // Fills plan.metrics (min_separation_m, arrival_spread_s, length_spread_m, total_length_m,
 // p3_group_score) and each UAV's metrics.

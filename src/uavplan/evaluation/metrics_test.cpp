@@ -88,11 +88,11 @@ TEST(Metrics, TimeInShapeAndBackingUp) {
   FormationLog log;
   log.phases = {{"form_up", 10.0}, {"formation", 100.0}};
   log.breaks = {{"u1", 30.0, 45.0}, {"u2", 95.0, 120.0}};
-  EXPECT_DOUBLE_EQ(time_in_shape_s(log, "u1", 100.0), 75.0);
-  EXPECT_DOUBLE_EQ(time_in_shape_s(log, "u2", 100.0), 85.0);  // its break runs past its arrival
-  EXPECT_DOUBLE_EQ(time_in_shape_s(log, "u3", 60.0), 50.0);
+  EXPECT_DOUBLE_EQ(time_in_shape_s(log, "u1", shape_window(log, 100.0)), 75.0);
+  EXPECT_DOUBLE_EQ(time_in_shape_s(log, "u2", shape_window(log, 100.0)), 85.0);  // its break runs past its arrival
+  EXPECT_DOUBLE_EQ(time_in_shape_s(log, "u3", shape_window(log, 60.0)), 50.0);
   log.phases = {{"form_up", 10.0}, {"mission", 50.0}, {"return", 80.0}, {"dismiss", 90.0}};
-  EXPECT_DOUBLE_EQ(time_in_shape_s(log, "u3", 200.0), 70.0);  // P5: up to the dismissal
+  EXPECT_DOUBLE_EQ(time_in_shape_s(log, "u3", shape_window(log, 200.0)), 70.0);  // P5: up to the dismissal
   // Three fly east; one of them backs up 2 m in the middle second.
   Trajectory a{{0, {0, 0, 0}}, {1, {5, 0, 0}}, {2, {10, 0, 0}}}, b{{0, {0, 5, 0}}, {1, {5, 5, 0}}, {2, {10, 5, 0}}},
       c{{0, {0, -5, 0}}, {1, {-2, -5, 0}}, {2, {10, -5, 0}}};

@@ -17,16 +17,15 @@ constexpr double kSampleDt_s = 1.0;  // rows of the added legs, at most this far
 constexpr double kTurnStep_s = 2.0;  // a turn back flies legs this long (at cruise speed)
 constexpr double kClearTolerance_m = 1e-6;
 
-// `pts` flown at v_mps from the last row (a point where the UAV already is adds no row: time
-// strictly increases, as interpolators need).
+// `pts` flown at v_mps from the last row; only rows after it, so that time strictly increases
+// (interpolators need it): time_route also writes the hold up to the departure, and a point
+// where the UAV already is takes no time.
 void append_flight(Trajectory& tr, const std::vector<Vec3>& pts, double v_mps) {
   std::vector<Vec3> w{tr.back().p};
-  for (const Vec3& p : pts)
-    if ((p - w.back()).norm() > 0.0) w.push_back(p);
-  if (w.size() < 2) return;
+  w.insert(w.end(), pts.begin(), pts.end());
   const double from_s = tr.back().t_s;
   for (const TrajectorySample& row : time_route(w, v_mps, from_s, kSampleDt_s))
-    if (row.t_s > from_s) tr.push_back(row);  // (time_route also writes the hold up to from_s)
+    if (row.t_s > from_s) tr.push_back(row);
 }
 
 // Horizontal unit direction of the last leg that moves horizontally, else of the heading, else east.

@@ -162,4 +162,9 @@ double arrival_time_s(const Trajectory& tr, const Vec3& goal, double within_m) {
   return tr[k - 1].t_s + s * (tr[k].t_s - tr[k - 1].t_s);
 }
 
+double arrival_s(const UavSpec& uav, const Arrival& arrival, const Trajectory& trajectory) {
+  if (!uav.goal) return std::numeric_limits<double>::infinity();
+  return arrival_time_s(trajectory, *uav.goal, arrival_radius_m(uav, arrival));
+}
+
 }  // namespace uavplan

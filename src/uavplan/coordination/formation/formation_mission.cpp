@@ -60,13 +60,20 @@ std::vector<double> windows_of(const Scenario& sc, const LocalLayer& layer) {
   return w;
 }
 
-// The spread of the solved UAVs' arrivals (contract: at the goal to stay).
-double arrival_spread_s(const Plan& plan) {
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (const UavPlan& up : plan.uavs)
-    if (up.status == Status::solved && std::isfinite(up.arrival_s))
-      lo = std::min(lo, up.arrival_s), hi = std::max(hi, up.arrival_s);
-  return hi >= lo ? hi - lo : 0.0;
+// The first and the last of the solved UAVs to arrive (contract: at the goal to stay).
+struct ArrivalSpread {
+  const UavPlan* first = nullptr;
+  const UavPlan* last = nullptr;
+  double s() const { return first ? last->arrival_s - first->arrival_s : 0.0; }
+};
+ArrivalSpread arrival_spread(const Plan& plan) {
+  ArrivalSpread a;
+  for (const UavPlan& up : plan.uavs) {
+    if (up.status != Status::solved || !std::isfinite(up.arrival_s)) continue;
+    if (!a.first || up.arrival_s < a.first->arrival_s) a.first = &up;
+    if (!a.last || up.arrival_s > a.last->arrival_s) a.last = &up;
+  }
+  return a;
 }
 
 // The approach to the goals (formation_schedule.h): one period's flight, and at least four
@@ -79,11 +86,11 @@ double approach_m(const Scenario& sc, double cruise_mps) {
 }
 
 // What they flew must keep clear of everything that moves and of each other, and arrive within
-// the tolerance of one another; if not, the plan names the first and the last to arrive.
-void check_flown(const Scenario& sc, Plan& plan) {
+// the tolerance of one another (`spread`, of the UAVs solved so far); if not, the plan names the
+// first and the last to arrive.
+void check_flown(const Scenario& sc, const ArrivalSpread& spread, Plan& plan) {
   Committed all;
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) all.emplace_back(&sc.uavs[i], &plan.uavs[i]);
-  const UavPlan *first = nullptr, *last = nullptr;
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
     UavPlan& up = plan.uavs[i];
     if (up.status != Status::solved) continue;
@@ -95,16 +102,14 @@ void check_flown(const Scenario& sc, Plan& plan) {
       up.status = Status::failed;
       up.message = "could not avoid " + c.what;
     }
-    if (!first || up.arrival_s < first->arrival_s) first = &up;
-    if (!last || up.arrival_s > last->arrival_s) last = &up;
   }
-  if (!first || last->arrival_s - first->arrival_s <= sc.mission.arrival_tolerance_s + 1e-9) return;
+  if (spread.s() <= sc.mission.arrival_tolerance_s + 1e-9) return;
   char buf[300];
   std::snprintf(buf, sizeof buf,
                 "arrivals %.1f s apart ('%s' at its goal at %.1f s, '%s' at %.1f s), more than "
                 "arrival_tolerance_s = %g s: '%s' could not re-form before the goals",
-                last->arrival_s - first->arrival_s, first->id.c_str(), first->arrival_s, last->id.c_str(),
-                last->arrival_s, sc.mission.arrival_tolerance_s, last->id.c_str());
+                spread.s(), spread.first->id.c_str(), spread.first->arrival_s, spread.last->id.c_str(),
+                spread.last->arrival_s, sc.mission.arrival_tolerance_s, spread.last->id.c_str());
   for (UavPlan& up : plan.uavs)
     if (up.status == Status::solved) up.status = Status::failed, up.message = buf;
 }
@@ -166,7 +171,7 @@ void FormationMission::plan(const Scenario& sc, const MissionContext& ctx, Plan&
     // Done at the horizon while some UAV is still out of its slot: waiting, not arrived.
     const bool arrived = f.done && !flight.waiting();
     UavPlan up = flown_plan(sc.uavs[i].id, arrived, "", trajectory_corners(f.flown), f.flown);
-    up.arrival_s = arrival_time_s(f.flown, goals[i], arrival_radius_m(sc.uavs[i], arrivals[i]));
+    up.arrival_s = arrival_s(sc.uavs[i], arrivals[i], f.flown);
     up.stats = i == 0 ? ref.stats : PlanStats{};
     up.stats.plan_ms += log.local_ms;
     char buf[200];
@@ -179,10 +184,11 @@ void FormationMission::plan(const Scenario& sc, const MissionContext& ctx, Plan&
     if (arrived && std::isfinite(up.arrival_s)) eta = std::max(eta, up.arrival_s);
     plan.uavs.push_back(std::move(up));
   }
-  check_flown(sc, plan);
+  const ArrivalSpread spread = arrival_spread(plan);
+  check_flown(sc, spread, plan);
   FormationLog out;
   out.eta_s = eta;
-  out.arrival_spread_s = arrival_spread_s(plan);
+  out.arrival_spread_s = spread.s();
   out.worst_slot_error_m = flight.worst_slot_error_m();
   out.phases = {{"form_up", std::max(0.0, flight.formed_s())}, {"formation", eta}};
   for (const FormationBreak& b : flight.breaks())

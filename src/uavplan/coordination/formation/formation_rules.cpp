@@ -45,9 +45,8 @@ void FormationMission::check_plan(const Scenario& sc, const FlownUavs& flown, Vi
   double lo = World::kInf, hi = -World::kInf;
   std::string first, last;
   for (const auto& [u, up] : flown) {
-    if (!u->goal) continue;
     const std::size_t i = static_cast<std::size_t>(u - sc.uavs.data());
-    const double t = arrival_time_s(up->trajectory, *u->goal, arrival_radius_m(*u, arrivals[i]));
+    const double t = arrival_s(*u, arrivals[i], up->trajectory);
     if (!std::isfinite(t)) continue;  // never there: the goal check says so
     if (t < lo) lo = t, first = u->id;
     if (t > hi) hi = t, last = u->id;

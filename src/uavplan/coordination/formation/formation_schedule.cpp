@@ -74,6 +74,12 @@ Approach split_for_approach(const std::vector<Vec3>& route, double approach_m) {
   return a;
 }
 
+// Where the reference point is and its heading.
+struct Pose {
+  Vec3 p = Vec3::Zero();
+  double heading_rad = 0.0;
+};
+
 // A corner flown as an arc (P1's formation keeps flying through a turn): the reference point
 // leaves the route `tangent_m` before the corner and rejoins it as far after, on a circle of
 // radius_m, the shape turning with the arc's heading. No slot backs up when the circle is wider
@@ -116,13 +122,12 @@ Arc corner_arc(const Vec3& before, const Vec3& corner, const Vec3& after, double
 }
 
 // Each interior point of the route's cruise part as an arc where one fits and every slot's
-// chords are clear (opt.slot_clear), else none (the shape turns about the corner). In route
+// chords are clear (`clear`), else none (the shape turns about the corner). In route
 // order, a corner may take what of the segment before it the corner before left, and half of
 // the segment after it (all of the last).
-template <class SlotsAt>
+template <class Clear>
 std::vector<Arc> corner_arcs(const std::vector<Vec3>& cruise, const std::vector<double>& psi,
-                             const std::vector<Vec3>& shape, const Vec3& centroid, const FormationScheduleOptions& opt,
-                             const SlotsAt& slots_at) {
+                             const std::vector<Vec3>& shape, const Vec3& centroid, const Clear& clear) {
   double reach = 0.0, left = 0.0, right = 0.0;
   for (const Vec3& o : shape) {
     const Vec3 d = o - centroid;
@@ -138,12 +143,9 @@ std::vector<Arc> corner_arcs(const std::vector<Vec3>& cruise, const std::vector<
     Arc arc = corner_arc(cruise[k - 1], cruise[k], cruise[k + 1], psi[k - 1], psi[k], reach, inner, room);
     used = 0.0;
     if (!arc.ok) continue;
-    std::vector<Vec3> prev = slots_at(arc.t1, arc.from);
-    for (int c = 1; c <= arc.chords && arc.ok && opt.slot_clear; ++c) {
-      const std::vector<Vec3> next = slots_at(arc.at(c), arc.heading(c));
-      for (std::size_t i = 0; i < shape.size() && arc.ok; ++i) arc.ok = opt.slot_clear(i, prev[i], next[i]);
-      prev = next;
-    }
+    std::vector<Pose> poses{{arc.t1, arc.from}};
+    for (int c = 1; c <= arc.chords; ++c) poses.push_back({arc.at(c), arc.heading(c)});
+    arc.ok = clear(poses);
     if (arc.ok) used = (arc.t2 - cruise[k]).norm();
     arcs[k] = arc;
   }
@@ -157,9 +159,8 @@ constexpr double kWiggleOfReach = 0.01;
 // The cruise part without the route's near-collinear wiggles (a graph route's short edges, on
 // which no arc fits, each a turn on the spot): a point goes where the straight line past it
 // strays from it by at most `tol_m` and every slot's translate of that line is clear.
-template <class SlotsAt>
-std::vector<Vec3> without_wiggles(const std::vector<Vec3>& cruise, double tol_m, const FormationScheduleOptions& opt,
-                                  const SlotsAt& slots_at) {
+template <class Clear>
+std::vector<Vec3> without_wiggles(const std::vector<Vec3>& cruise, double tol_m, const Clear& clear) {
   std::vector<Vec3> out{cruise.front()};
   std::size_t k = 0;
   while (k + 1 < cruise.size()) {
@@ -172,10 +173,9 @@ std::vector<Vec3> without_wiggles(const std::vector<Vec3>& cruise, double tol_m,
         const double f = std::clamp((cruise[j] - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
         near = (a + f * d - cruise[j]).norm() <= tol_m;
       }
-      if (near && opt.slot_clear) {
+      if (near) {
         const double psi = std::atan2(d.y(), d.x());
-        const std::vector<Vec3> from = slots_at(a, psi), to = slots_at(cruise[m], psi);
-        for (std::size_t i = 0; i < from.size() && near; ++i) near = opt.slot_clear(i, from[i], to[i]);
+        near = clear(std::vector<Pose>{{a, psi}, {cruise[m], psi}});
       }
       if (!near) break;
       far = m;
@@ -185,12 +185,6 @@ std::vector<Vec3> without_wiggles(const std::vector<Vec3>& cruise, double tol_m,
   }
   return out;
 }
-
-// Where the reference point is and its heading.
-struct Pose {
-  Vec3 p = Vec3::Zero();
-  double heading_rad = 0.0;
-};
 
 // Steps turning by no more than this are straight on (one pose for a straight run).
 constexpr double kStraight_rad = 1e-3;
@@ -239,7 +233,7 @@ std::vector<Pose> pursued(const std::vector<Vec3>& route, double heading_rad, do
       if (at >= s && dist < best) best = dist, best_s = at;
     }
     s = std::max(s, best_s);
-    while (seg + 2 < route.size() && cum[seg + 1] < s) ++seg;
+    next.p.z() = along_polyline(route, cum, s, &seg).z();  // climbing as the route climbs
     const bool straight =
         out.size() >= 2 && std::abs(turn) <= kStraight_rad &&
         std::abs(turn_between(out[out.size() - 2].heading_rad, out.back().heading_rad)) <= kStraight_rad;
@@ -342,14 +336,14 @@ class Builder {
 // The cruise part: pursued (a smooth path) where every slot's chords are clear, else along the
 // route itself, its corners as arcs or turns about the corner. Returns the heading at its end.
 double fly_cruise(Builder& b, const std::vector<Vec3>& cruise, const std::vector<double>& psi,
-                  const std::vector<Vec3>& shape, const FormationScheduleOptions& opt) {
+                  const std::vector<Vec3>& shape) {
   const std::vector<Pose> poses = pursued(cruise, psi.front(), 2.0 * b.reach_m());
   if (!poses.empty() && b.clear(poses)) {
     for (std::size_t k = 1; k < poses.size(); ++k) b.pose(poses[k]);
     return poses.back().heading_rad;
   }
-  const auto slots_at = [&b](const Vec3& p, double h) { return b.slots_at(p, h); };
-  const std::vector<Arc> arcs = corner_arcs(cruise, psi, shape, b.centroid(), opt, slots_at);
+  const auto clear = [&b](const std::vector<Pose>& p) { return b.clear(p); };
+  const std::vector<Arc> arcs = corner_arcs(cruise, psi, shape, b.centroid(), clear);
   for (std::size_t k = 0; k + 1 < cruise.size(); ++k) {
     if (k > 0 && arcs[k].ok) {  // the corner
       for (int c = 1; c <= arcs[k].chords; ++c) b.pose({arcs[k].at(c), arcs[k].heading(c)});
@@ -390,10 +384,10 @@ FormationSchedule formation_schedule(const std::vector<Vec3>& route, const std::
                                      const std::vector<Vec3>& starts, const std::vector<Vec3>& goals,
                                      const FormationScheduleOptions& opt) {
   Builder b(shape, opt);
-  const auto slots_at = [&b](const Vec3& p, double h) { return b.slots_at(p, h); };
+  const auto clear = [&b](const std::vector<Pose>& p) { return b.clear(p); };
   const std::vector<double> route_psi = headings(route);
   Approach a = split_for_approach(route, opt.approach_m);
-  a.cruise = without_wiggles(a.cruise, kWiggleOfReach * b.reach_m(), opt, slots_at);
+  a.cruise = without_wiggles(a.cruise, kWiggleOfReach * b.reach_m(), clear);
   const std::vector<double> psi = a.cruise.size() > 1 ? headings(a.cruise) : std::vector<double>{route_psi.front()};
   // Form-up: into the shape as the starts lie, then turned to the route's first heading.
   b.start(starts);
@@ -402,7 +396,7 @@ FormationSchedule formation_schedule(const std::vector<Vec3>& route, const std::
   if (std::abs(turn_between(start_heading, psi.front())) > 1e-9)
     b.turn_about(route.front(), start_heading, psi.front());
   b.schedule().form_up_knot = b.schedule().knots_s.size() - 1;
-  const double cruise_heading = fly_cruise(b, a.cruise, psi, shape, opt);
+  const double cruise_heading = fly_cruise(b, a.cruise, psi, shape);
   fly_approach(b, a, cruise_heading, fitted_heading(shape, b.centroid(), goals, route_psi.back()), goals);
   return std::move(b.schedule());
 }
