@@ -1,12 +1,15 @@
 #include "uavplan/io/export.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
 
+#include "uavplan/core/text.h"
 #include "uavplan/io/files.h"
+#include "uavplan/io/geo.h"
 #include "uavplan/io/gis_export.h"
 #include "uavplan/io/input_error.h"
 #include "uavplan/io/qgc_export.h"
@@ -166,6 +169,19 @@ std::vector<ExportFile> export_files(const Scenario& sc, const VerifiedExport& f
     }
   }
   return files;
+}
+
+std::vector<std::string> frame_notes(const Scenario& sc, const VerifiedExport& flights) {
+  constexpr double kNotedShrink = 1e-3;
+  double far_m = 0.0;
+  for (const ExportedUav& e : flights.uavs)
+    for (const TrajectorySample& row : e.plan.trajectory) far_m = std::max(far_m, row.p.head<2>().norm());
+  const double shrink = far_m * far_m * kGroundShrinkPerRange2;
+  if (!sc.origin || shrink < kNotedShrink) return {};
+  return {"the flights reach " + num_text(std::round(far_m / 1000.0)) +
+          " km from the origin: on the ground, distances across the bearing from it are up to " +
+          num_text(std::round(shrink * 1e4) / 100.0) +
+          " % shorter than planned (azimuthal equidistant frame; distances from the origin are exact)"};
 }
 
 void write_export(const std::string& dir, const std::vector<ExportFile>& files, const std::vector<ExportFile>& with) {

@@ -1,6 +1,7 @@
 #include "uavplan/io/export.h"
 
 #include <gtest/gtest.h>
+#include <GeographicLib/Geodesic.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -65,6 +66,43 @@ TEST(GeoFrame, AltitudeIsOriginPlusLocalHeightEvenFarAway) {
   // Horizontally: 65 km east is 65 km along the ground (to within the tangent plane's 1 m).
   const LatLonAlt e = f.to_wgs84(Vec3(65000, 0, 100));
   EXPECT_NEAR((e.lon_deg - 110.0) * 111'320.0 * std::cos(30.0 * kPi / 180.0), 65000.0, 150.0);
+}
+
+TEST(GeoFrame, KeepsDistancesOverLargeAreas) {
+  // P5's mission reaches 900 km from its origin: the distance and bearing from the origin are
+  // exact, and a 1 km leg across the bearing is at most rho^2 / (6 R^2) shorter, never longer.
+  const GeoFrame f(GeoOrigin{46.8, 8.2, 500.0});
+  const GeographicLib::Geodesic& g = GeographicLib::Geodesic::WGS84();
+  const double rho = 900'000.0, R = 6'371'000.0;
+  for (const double bearing_deg : {0.0, 45.0, 135.0, 250.0}) {
+    const double b = bearing_deg * kPi / 180.0;
+    const Vec3 p(rho * std::sin(b), rho * std::cos(b), 0.0);
+    const LatLonAlt a = f.to_wgs84(p);
+    double s12 = 0, azi1 = 0, azi2 = 0;
+    g.Inverse(46.8, 8.2, a.lat_deg, a.lon_deg, s12, azi1, azi2);
+    EXPECT_NEAR(s12, rho, 1e-3) << bearing_deg;
+    EXPECT_NEAR(std::remainder(azi1 - bearing_deg, 360.0), 0.0, 1e-9) << bearing_deg;
+    const Vec3 across = p + 1000.0 * Vec3(std::cos(b), -std::sin(b), 0.0);
+    const LatLonAlt c = f.to_wgs84(across);
+    g.Inverse(a.lat_deg, a.lon_deg, c.lat_deg, c.lon_deg, s12);
+    EXPECT_LE(s12, 1000.0 + 1e-3) << bearing_deg;
+    EXPECT_GE(s12, 1000.0 * (1.0 - 1.01 * rho * rho / (6.0 * R * R))) << bearing_deg;
+    EXPECT_LT((f.to_local(c.lat_deg, c.lon_deg, c.alt_m) - across).norm(), 1e-6);
+  }
+}
+
+TEST(GeoFrame, ExportSaysHowMuchFarDistancesShrink) {
+  Scenario sc = scenario_with();
+  sc.origin = GeoOrigin{46.8, 8.2, 500.0};
+  VerifiedExport flights;
+  flights.uavs.emplace_back();
+  flights.uavs.back().plan.trajectory = {{0.0, Vec3(0, 0, 100)}, {100.0, Vec3(50'000, 0, 100)}};
+  EXPECT_TRUE(frame_notes(sc, flights).empty());  // 0.001 %
+  flights.uavs.back().plan.trajectory.push_back({6000.0, Vec3(600'000, 700'000, 100)});
+  const std::vector<std::string> notes = frame_notes(sc, flights);
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("922 km"), std::string::npos) << notes[0];
+  EXPECT_NE(notes[0].find("0.35 %"), std::string::npos) << notes[0];
 }
 
 TEST(Export, MissionFollowsTheTrajectory) {
