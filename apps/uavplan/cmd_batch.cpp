@@ -62,7 +62,7 @@ std::string host_name() {
   return ::gethostname(buf, sizeof buf - 1) == 0 ? std::string(buf) : std::string("unknown");
 }
 
-void write_ompl_logs(const BatchArgs& a, const Sweep& sweep, const std::vector<RunRecord>& all, double total_s,
+void write_ompl_logs(const BatchArgs& a, const Sweep& sweep, const std::vector<RunRecord>& all,
                      const std::string& started) {
   // One experiment per scenario: one file for one scenario, FILE-<scenario stem>.log for several.
   const std::vector<std::string>& scenarios = sweep.scenarios;
@@ -79,7 +79,6 @@ void write_ompl_logs(const BatchArgs& a, const Sweep& sweep, const std::vector<R
     h.setup = "sweep " + sweep.source + "\nscenario " + scenarios[i] + "\n";
     h.time_limit_s = sweep.time_limit_s;
     h.memory_limit_mb = double(a.max_memory_bytes) / (1024.0 * 1024.0);
-    h.total_s = total_s;
     fs::path file = a.ompl_log;
     if (scenarios.size() > 1)
       file = file.parent_path() /
@@ -198,7 +197,7 @@ int write_results(const BatchArgs& a, const Loaded& l, const std::vector<RunReco
       "%zu of %zu runs done (%zu this time, %.1f s, %d rank%s x %d jobs), %zu solved; results in %s/results.csv\n",
       all.size(), l.runs.size(), all.size() - before, total_s, mpi.size(), mpi.size() > 1 ? "s" : "",
       jobs > 0 ? jobs : int(std::max(1u, std::thread::hardware_concurrency())), solved, a.out_dir.c_str());
-  if (!a.ompl_log.empty()) write_ompl_logs(a, l.sweep, all, total_s, started);
+  if (!a.ompl_log.empty()) write_ompl_logs(a, l.sweep, all, started);
   if (stopped && all.size() < l.runs.size()) {
     std::cerr << "uavplan: interrupted after the runs under way; --resume continues the " << l.runs.size() - all.size()
               << " runs left\n";

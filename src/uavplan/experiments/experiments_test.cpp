@@ -70,6 +70,7 @@ RunRecord record(std::size_t index, const std::string& status, double length) {
   r.outcome.uavs = 2;
   r.outcome.message = "a, \"quoted\" message";
   r.outcome.plan_ms = 12.5 + double(index);
+  r.outcome.wall_ms = 100.0 + double(index);
   r.plan_file = run_plan_file(index);
   return r;
 }
@@ -110,8 +111,9 @@ TEST(OmplLog, FollowsTheGrammar) {
   h.date = "2026-01-01 00:00:00";
   h.setup = "line one\nline two";
   h.time_limit_s = 5.0;
-  h.total_s = 1.5;
   const std::string log = ompl_log(runs, h);
+  // This experiment's runs, 100 + 101 + 102 ms: not the batch's whole time.
+  EXPECT_NE(log.find("\n0.303 seconds spent to collect the data\n"), std::string::npos) << log;
   EXPECT_EQ(log.rfind("uavplan version ", 0), 0u);
   EXPECT_NE(log.find("\nExperiment my_sweep\n"), std::string::npos);
   EXPECT_NE(log.find("\n<<<|\nline one\nline two\n|>>>\n1 is the random seed\n5 seconds per run\n"), std::string::npos);

@@ -74,7 +74,9 @@ std::string ompl_log(const std::vector<RunRecord>& runs, const OmplLogHeader& h)
   for (const auto& name : order)
     if (by_planner[name].size() != common) common = 0;
   if (common) out += std::to_string(common) + " runs per planner\n";
-  out += real(h.total_s) + " seconds spent to collect the data\n";
+  double spent_ms = 0.0;
+  for (const RunRecord& r : runs) spent_ms += r.outcome.wall_ms;
+  out += real(spent_ms / 1000.0) + " seconds spent to collect the data\n";
   out += std::to_string(order.size()) + " planners\n";
   for (const std::string& name : order) {
     const auto& rs = by_planner[name];
