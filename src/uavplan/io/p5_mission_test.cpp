@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "uavplan/coordination/contract/runway.h"
 #include "uavplan/coordination/mission_planner.h"
 #include "uavplan/evaluation/verifier.h"
 #include "uavplan/io/flight_export.h"
@@ -66,6 +67,35 @@ TEST(P5Mission, TheVerifierCatchesAMissedRunwayAndATaskPointMissed) {
   bool task = false;
   for (const Violation& v : verify_plan(sc, plan)) task = task || v.kind == ViolationKind::via_point;
   EXPECT_TRUE(task);
+}
+
+// The runway holds one UAV at a time, from lining up to climbing out and from touchdown to the
+// end of the roll-out; the verifier fails a plan where a UAV lands while another rolls out.
+TEST(P5Mission, TheRunwayHoldsOneUavAtATime) {
+  const Scenario sc = load_scenario(kScenario);
+  const Plan plan = plan_mission(sc, MissionOptions{});
+  ASSERT_EQ(plan.status, Status::solved) << plan.message;
+  const Airfield& af = *sc.mission.airfield;
+  std::vector<std::vector<TimeSpan>> occ;
+  for (const UavPlan& u : plan.uavs) {
+    occ.push_back(runway_occupancy(af, u.trajectory));
+    EXPECT_EQ(occ.back().size(), 2u) << u.id;  // the take-off and the landing
+  }
+  for (std::size_t i = 0; i < occ.size(); ++i)
+    for (std::size_t j = i + 1; j < occ.size(); ++j)
+      EXPECT_FALSE(runway_overlap(occ[i], occ[j])) << plan.uavs[i].id << " " << plan.uavs[j].id;
+  // The first to land held back in the air (time only, no row moved) until it touches down 5 s
+  // after another's touchdown.
+  std::size_t first = 0, other = 1;
+  if (occ[other].back().from_s < occ[first].back().from_s) std::swap(first, other);
+  Plan late = plan;
+  const double shift = occ[other].back().from_s + 5.0 - occ[first].back().from_s;
+  ASSERT_GT(shift, 0.0);
+  for (TrajectorySample& row : late.uavs[first].trajectory)
+    if (row.t_s > occ[first].front().to_s + 60.0) row.t_s += shift;
+  bool runway = false;
+  for (const Violation& v : verify_plan(sc, late)) runway = runway || v.kind == ViolationKind::runway;
+  EXPECT_TRUE(runway);
 }
 
 std::string text_of(const std::string& path) {

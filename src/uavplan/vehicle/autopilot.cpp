@@ -38,7 +38,8 @@ void AutopilotModel::advance(AutopilotState& state, const AutopilotCommand& c, d
     dx[0] = x[4] * std::cos(x[5]);
     dx[1] = x[4] * std::sin(x[5]);
     dx[2] = x[3];
-    double zdd = -x[3] / p_.tau_zdot_s + (c.altitude_m - x[2]) / p_.tau_z_s;
+    double zdd = std::clamp(-x[3] / p_.tau_zdot_s + (c.altitude_m - x[2]) / p_.tau_z_s, -lim_.max_vertical_accel_mps2,
+                            lim_.max_vertical_accel_mps2);
     if ((x[3] >= climb && zdd > 0.0) || (x[3] <= -climb && zdd < 0.0)) zdd = 0.0;
     dx[3] = zdd;
     dx[4] = (v_c - x[4]) / p_.tau_v_s;

@@ -6,7 +6,7 @@
 //   phi' = (phi_c - phi)/tau_heading   (the difference wrapped to (-pi, pi]),
 // integrated with Boost.Odeint (fixed-step RK4), with the vehicle's limits as saturations: the
 // commanded speed within [min, max], the turn rate within max_turn_rate, the climb rate within
-// max_climb_rate. And a waypoint follower that flies a route through it.
+// max_climb_rate, the vertical acceleration within max_vertical_accel. And a waypoint follower that flies a route through it.
 #pragma once
 
 #include <limits>
@@ -22,6 +22,8 @@ struct AutopilotLimits {
   SpeedLimits speed;
   double max_turn_rate_rad_s = std::numeric_limits<double>::infinity();
   double max_climb_rate_mps = std::numeric_limits<double>::infinity();
+  // |z''|: an autopilot's vertical acceleration limit (PX4's TECS: FW_T_VERT_ACC).
+  double max_vertical_accel_mps2 = std::numeric_limits<double>::infinity();
 };
 
 struct AutopilotState {

@@ -40,6 +40,8 @@ std::string_view to_string(ViolationKind k) {
       return "length_spread";
     case ViolationKind::arrival_spread:
       return "arrival_spread";
+    case ViolationKind::runway:
+      return "runway";
   }
   return "?";
 }

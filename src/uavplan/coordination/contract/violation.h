@@ -34,6 +34,7 @@ enum class ViolationKind {
   via_point,       // a via point missed or visited out of order
   length_spread,   // rendezvous: route lengths differ by more than the tolerance
   arrival_spread,  // formation: arrival times differ by more than arrival_tolerance_s
+  runway,          // formation_mission: two UAVs on the runway at once (contract/runway.h)
 };
 
 std::string_view to_string(ViolationKind k);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "uavplan/coordination/contract/runway.h"
 #include "uavplan/coordination/contract/separation.h"
 #include "uavplan/coordination/contract/task_points.h"
 #include "uavplan/coordination/formation/formation_mission.h"
@@ -114,6 +115,12 @@ void PhasedFormationMission::check_pair(const Scenario& sc, const UavSpec& a, co
     add_violation(out, ViolationKind::separation, a.id, e.t_s, e.where,
                   "distance " + num_text(e.distance_m) + " m to '" + b.id + "', below " + num_text(e.need_m) + " m" +
                       (e.need_m < need_m ? " (their bodies, on the ground)" : ""));
+  if (!sc.mission.airfield) return;
+  const Airfield& af = *sc.mission.airfield;
+  if (const auto o = runway_overlap(runway_occupancy(af, ta), runway_occupancy(af, tb)))
+    add_violation(out, ViolationKind::runway, a.id, o->from_s, position_at(ta, o->from_s),
+                  "on the runway with '" + b.id + "' from t=" + num_text(o->from_s) + " to " + num_text(o->to_s) +
+                      " s (it holds one UAV at a time)");
 }
 
 void PhasedFormationMission::check_plan(const Scenario& sc, const FlownUavs& flown, Violations& out) const {

@@ -7,6 +7,7 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "uavplan/coordination/contract/runway.h"
 #include "uavplan/coordination/contract/separation.h"
 #include "uavplan/coordination/formation_mission/formation_group.h"
 #include "uavplan/coordination/formation_mission/landing.h"
@@ -24,7 +25,8 @@ constexpr double kTaskPointMatch_m = 1.0;
 
 // The model a UAV flies through: its own, or papers.md P5's defaults (time constants; the turn rate of
 // a 30 deg bank at cruise; climb at most 20 m/s and within its climb angle at its least speed;
-// the horizontal speed at most what leaves the maximum speed in 3-D while climbing).
+// the horizontal speed at most what leaves the maximum speed in 3-D while climbing; the vertical
+// acceleration at most max_vertical_accel_mps2).
 AutopilotModel mission_model(const UavSpec& u, const FormationMissionOptions& o) {
   const AutopilotModel own = autopilot_of(u);
   AutopilotLimits lim = own.limits();
@@ -33,6 +35,9 @@ AutopilotModel mission_model(const UavSpec& u, const FormationMissionOptions& o)
   if (u.max_climb_rad < kPi / 2 - 1e-9)
     climb = std::min(climb, 0.95 * std::max(u.speed.min_mps, 1.0) * std::tan(u.max_climb_rad));
   lim.max_climb_rate_mps = climb;
+  // An altitude order that jumps (a layer left for the shape's heights) must not flip the climb
+  // within a row: a turn over the limit in the vertical.
+  lim.max_vertical_accel_mps2 = o.max_vertical_accel_mps2;
   // The model holds the horizontal speed; climbing at full rate it must stay within the maximum.
   lim.speed.max_mps = std::sqrt(std::max(0.0, u.speed.max_mps * u.speed.max_mps - climb * climb)) * (1.0 - 1e-6);
   lim.speed.cruise_mps = std::min(lim.speed.cruise_mps, lim.speed.max_mps);
@@ -47,46 +52,91 @@ struct GroundRun {
   AutopilotState lift_off;
 };
 
-// Take-off in turn, the nearest to the threshold first: each taxis once the one before has begun
-// its roll, and lifts off at least takeoff_interval_s after it.
-std::vector<GroundRun> departures(const Scenario& sc, const std::vector<Vec3>& starts, const FormationMissionOptions& o,
-                                  double dt_s, std::vector<std::size_t>& order) {
-  const Airfield& af = *sc.mission.airfield;
-  const Vec3 dir(std::cos(af.runway_heading_rad), std::sin(af.runway_heading_rad), 0.0);
-  const std::size_t n = sc.uavs.size();
-  order.resize(n);
+// Take-off in turn, the nearest to the threshold first.
+std::vector<std::size_t> takeoff_order(const Scenario& sc, const std::vector<Vec3>& starts) {
+  const Vec3& thr = sc.mission.airfield->position;
+  std::vector<std::size_t> order(sc.uavs.size());
   std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return (starts[a] - af.position).norm() < (starts[b] - af.position).norm();
-  });
-  std::vector<GroundRun> out(n);
-  double prev_lift = -1e300, prev_roll = 0.0;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return (starts[a] - thr).norm() < (starts[b] - thr).norm(); });
+  return order;
+}
+
+// The altitude layers of the form-up, the first to take off highest.
+std::vector<double> layers(const std::vector<std::size_t>& order, const FormationMissionOptions& o) {
+  const std::size_t n = order.size();
+  std::vector<double> layer(n);
+  for (std::size_t k = 0; k < n; ++k)
+    layer[order[k]] = o.layer_spacing_m * (static_cast<double>(n - 1 - k) - 0.5 * (n - 1));
+  return layer;
+}
+
+// Parked until it taxis to the threshold, then the roll from rest to lift-off at `lift_s`.
+GroundRun ground_run(const Airfield& af, const Vec3& start, double lift_s, double v_lo, double acc,
+                     const FormationMissionOptions& o) {
+  const Vec3 dir(std::cos(af.runway_heading_rad), std::sin(af.runway_heading_rad), 0.0);
+  const double roll_s = v_lo / acc, roll_m = 0.5 * v_lo * roll_s;
+  const double roll_start = lift_s - roll_s, taxi_start = roll_start - (start - af.position).norm() / o.taxi_mps;
+  GroundRun d;
+  d.ground.push_back({0.0, start});
+  if (taxi_start > 0.0) d.ground.push_back({taxi_start, start});
+  append_straight_run(d.ground, af.position, o.taxi_mps, o.taxi_mps, 1.0);
+  if (d.ground.back().t_s < roll_start) d.ground.push_back({roll_start, af.position});
+  const Vec3 lift_at = af.position + roll_m * dir;
+  append_straight_run(d.ground, lift_at, 0.0, v_lo, 1.0);
+  d.lift_s = lift_s;
+  d.lift_off.position = lift_at;
+  d.lift_off.speed_mps = v_lo;
+  d.lift_off.heading_rad = af.runway_heading_rad;
+  return d;
+}
+
+// How long after lift-off a UAV climbing out on `climb` is still on the runway (contract/runway.h).
+double on_runway_after_lift_s(const Airfield& af, const AutopilotModel& m, AutopilotState s,
+                              const AutopilotCommand& climb, double dt_s) {
+  constexpr double kLongestClimbOut_s = 600.0;
+  double t = 0.0;
+  for (; on_runway(af, s.position) && t < kLongestClimbOut_s; t += dt_s) m.advance(s, climb, dt_s);
+  return t;
+}
+
+// Take-off in turn (`order`): each lines up once the one before has climbed off the runway
+// (contract: one UAV on it at a time; `margin_s` for the rows recorded after the exit), and lifts
+// off at least takeoff_interval_s after it. climb_to_m: each UAV's altitude while it climbs out.
+std::vector<GroundRun> departures(const Scenario& sc, const std::vector<Vec3>& starts,
+                                  const std::vector<std::size_t>& order, const std::vector<AutopilotModel>& models,
+                                  const std::vector<double>& climb_to_m, const FormationMissionOptions& o, double dt_s,
+                                  double margin_s) {
+  const Airfield& af = *sc.mission.airfield;
+  std::vector<GroundRun> out(sc.uavs.size());
+  double prev_lift = -1e300, runway_free = 0.0;
   for (const std::size_t i : order) {
     const UavSpec& u = sc.uavs[i];
     const double v_lo = lift_off_mps(u);
     const double acc =
         std::max(o.min_roll_accel_mps2, v_lo * v_lo / (2.0 * o.lift_off_within_runway * af.runway_length_m));
-    const double roll_s = v_lo / acc, roll_m = 0.5 * v_lo * roll_s;
-    const Vec3 thr(af.position.x(), af.position.y(), af.position.z());
-    const double taxi_s = (starts[i] - thr).norm() / o.taxi_mps;
-    double lift = std::max({prev_lift + o.takeoff_interval_s, taxi_s + roll_s, prev_roll + taxi_s + roll_s});
-    lift = std::ceil(lift / dt_s - 1e-9) * dt_s;
-    const double roll_start = lift - roll_s, taxi_start = roll_start - taxi_s;
-    GroundRun& d = out[i];
-    d.ground.push_back({0.0, starts[i]});
-    if (taxi_start > 0.0) d.ground.push_back({taxi_start, starts[i]});
-    append_straight_run(d.ground, thr, o.taxi_mps, o.taxi_mps, 1.0);
-    if (d.ground.back().t_s < roll_start) d.ground.push_back({roll_start, thr});
-    const Vec3 lift_at = thr + roll_m * dir;
-    append_straight_run(d.ground, lift_at, 0.0, v_lo, 1.0);
-    d.lift_s = lift;
-    d.lift_off.position = lift_at;
-    d.lift_off.speed_mps = v_lo;
-    d.lift_off.heading_rad = af.runway_heading_rad;
+    const double ground_s = (starts[i] - af.position).norm() / o.taxi_mps + v_lo / acc;
+    const auto on_step = [&](double t) { return std::ceil(t / dt_s - 1e-9) * dt_s; };
+    double lift = on_step(std::max(prev_lift + o.takeoff_interval_s, ground_s));
+    GroundRun d = ground_run(af, starts[i], lift, v_lo, acc, o);
+    const std::vector<TimeSpan> occ = runway_occupancy(af, d.ground);
+    if (!occ.empty() && occ.front().from_s < runway_free) {  // lines up later, all of it shifted
+      lift = on_step(lift + runway_free - occ.front().from_s);
+      d = ground_run(af, starts[i], lift, v_lo, acc, o);
+    }
+    const AutopilotCommand climb{v_lo, climb_to_m[i], af.runway_heading_rad};
+    runway_free = lift + on_runway_after_lift_s(af, models[i], d.lift_off, climb, dt_s) + margin_s;
     prev_lift = lift;
-    prev_roll = roll_start;
+    out[i] = std::move(d);
   }
   return out;
+}
+
+std::vector<double> climb_altitudes(double z_form, const std::vector<double>& layer) {
+  std::vector<double> z;
+  z.reserve(layer.size());
+  for (const double l : layer) z.push_back(z_form + l);
+  return z;
 }
 
 // The formation as one body: its slots' mean, its half-width, the widest UAV, the slowest
@@ -172,15 +222,15 @@ class PhasedFlight {
         z_form_(z_form),
         fly_over_(task_fly_over(sc, wps, last_task_)),
         steer_(wps, fly_over_, body.cruise_mps / body.turn_rate_rad_s, o.steering_switch_m),
-        dep_(departures(sc, starts, o, go_.dt_s, order_)),
+        order_(takeoff_order(sc, starts)),
+        layer_(layers(order_, o)),
+        dep_(departures(sc, starts, order_, models, climb_altitudes(z_form, layer_), o, go_.dt_s,
+                        go_.record_s + go_.dt_s)),
         group_(models, sc.mission.shape, sc.mission.topology.empty() ? complete_topology(n_) : sc.mission.topology, go_,
                0.0),
         route_s_(3.0 * route_m / body.cruise_mps + o.step_timeout_s),
         models_(models) {
-    layer_.resize(n_);
     up_.resize(n_);
-    for (std::size_t k = 0; k < n_; ++k)
-      layer_[order_[k]] = o.layer_spacing_m * (static_cast<double>(n_ - 1 - k) - 0.5 * (n_ - 1));
     for (std::size_t i = 0; i < n_; ++i) up_[i] = sc.mission.shape[i].z() - body.mean_slot.z();
     order_now_.speed_mps = body.cruise_mps;
     order_now_.heading_rad = af_.runway_heading_rad;
@@ -257,11 +307,12 @@ class PhasedFlight {
   std::vector<char> fly_over_;
   RouteSteering steer_;
   std::vector<std::size_t> order_;  // of take-off
+  std::vector<double> layer_;
   std::vector<GroundRun> dep_;
   FormationGroup group_;
   double route_s_;  // a route phase not ended within this much flight fails the mission
   std::vector<AutopilotModel> models_;
-  std::vector<double> layer_, up_, offsets_;
+  std::vector<double> up_, offsets_;
   FormationOrder order_now_;
   bool route_left_ = true;
   FormationLog log_;
@@ -341,8 +392,11 @@ bool PhasedFlight::land() {
   std::vector<std::size_t> landed;
   for (const std::size_t i : land) {
     const auto conflicts = [&](const Trajectory& f) {
+      const std::vector<TimeSpan> runway = runway_occupancy(af_, f);
       for (const std::size_t j : landed)
-        if (airfield_encounter(sc_, sc_.uavs[i], f, sc_.uavs[j], landings_[j], t_d).conflict) return true;
+        if (airfield_encounter(sc_, sc_.uavs[i], f, sc_.uavs[j], landings_[j], t_d).conflict ||
+            runway_overlap(runway, runway_occupancy(af_, landings_[j])))
+          return true;
       return false;
     };
     LandingResult r = plan_landing(af_, models_[i], group_.state(i), t_d, o_.landing, conflicts);
@@ -361,21 +415,28 @@ bool PhasedFlight::land() {
   return true;
 }
 
-// In the air the separation, on the ground their bodies (the contract's rule): a pair that
-// breaks it fails both.
-void check_airfield_separation(const Scenario& sc, Plan& plan) {
+// In the air the separation, on the ground their bodies, the runway one at a time (the
+// contract's rules): a pair that breaks one fails both.
+void check_airfield_rules(const Scenario& sc, Plan& plan) {
   const std::size_t n = sc.uavs.size();
+  const Airfield& af = *sc.mission.airfield;
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i + 1; j < n; ++j) {
-      const AirfieldEncounter e =
-          airfield_encounter(sc, sc.uavs[i], plan.uavs[i].trajectory, sc.uavs[j], plan.uavs[j].trajectory);
-      if (!e.conflict) continue;
+      const Trajectory &ti = plan.uavs[i].trajectory, &tj = plan.uavs[j].trajectory;
+      const AirfieldEncounter e = airfield_encounter(sc, sc.uavs[i], ti, sc.uavs[j], tj);
+      const auto runway = runway_overlap(runway_occupancy(af, ti), runway_occupancy(af, tj));
+      if (!e.conflict && !runway) continue;
       char buf[160];
-      std::snprintf(buf, sizeof buf, "%.1f m from %s at t = %.1f s, below %.1f m", e.distance_m, sc.uavs[j].id.c_str(),
-                    e.t_s, e.need_m);
+      if (e.conflict)
+        std::snprintf(buf, sizeof buf, "%.1f m from %s at t = %.1f s, below %.1f m", e.distance_m,
+                      sc.uavs[j].id.c_str(), e.t_s, e.need_m);
+      else
+        std::snprintf(buf, sizeof buf, "on the runway with %s from t = %.1f to %.1f s", sc.uavs[j].id.c_str(),
+                      runway->from_s, runway->to_s);
       for (const std::size_t k : {i, j}) {
         plan.uavs[k].status = Status::failed;
-        if (plan.uavs[k].message.empty()) plan.uavs[k].message = k == i ? buf : "too close to " + sc.uavs[i].id;
+        if (plan.uavs[k].message.empty())
+          plan.uavs[k].message = k == i ? buf : (e.conflict ? "too close to " : "on the runway with ") + sc.uavs[i].id;
       }
     }
 }
@@ -438,7 +499,7 @@ void PhasedFormationMission::plan(const Scenario& sc, const MissionContext& ctx,
     plan.uavs.push_back(
         flown_plan(sc.uavs[i].id, ok, ok ? "" : flight.failure(), std::move(w), ok ? std::move(tr) : Trajectory{}));
   }
-  if (ok) check_airfield_separation(sc, plan);
+  if (ok) check_airfield_rules(sc, plan);
   plan.formation = flight.log();
 }
 

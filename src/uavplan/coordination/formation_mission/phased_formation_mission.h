@@ -37,6 +37,7 @@ struct FormationMissionOptions {
   // its own climb-rate limit climbs at most this fast (papers.md P5).
   double bank_deg = 30.0;
   double max_climb_rate_mps = 20.0;
+  double max_vertical_accel_mps2 = 7.0;  // PX4's TECS default FW_T_VERT_ACC
   // The formation turns at this fraction of its slowest UAV's turn rate (margin for the shape
   // turning as a body); its route is planned for a body widened by the overshoot of a turn of
   // overshoot_turn_deg.
