@@ -57,6 +57,9 @@ function checkPlan(file) {
       fail(file, `${at}.Altitude differs from params[6]`);
   });
   if (m.items[0].command !== 22) fail(file, 'the first item is not a takeoff (22)');
+  else if (!(m.items[0].params[6] > 0))
+    fail(file, `take-off to ${m.items[0].params[6]} m above home: PX4 refuses a take-off that is not above home`);
+  checkFixedWingLanding(file, m);
   // Commanded timing (PX4 and ArduPilot fly their own default speed otherwise): a speed item
   // before the first waypoint, airspeed (type 0) for fixed wing, ground speed (1) for multirotors.
   const firstWaypoint = m.items.findIndex((it) => it.command === 16);
@@ -92,6 +95,30 @@ function checkPlan(file) {
       !rally.points.every((p) => p.length === 3 && latOk(p[0]) && lonOk(p[1]) && isNum(p[2])))
     fail(file, 'rallyPoints is not {version 2, points: [[lat, lon, alt]]} (MAVSDK requires it)');
   return j;
+}
+
+// PX4's distance between two positions (its get_distance_to_next_waypoint: a sphere of 6371 km).
+function px4DistanceM(lat1, lon1, lat2, lon2) {
+  const r = Math.PI / 180, dLat = (lat2 - lat1) * r, dLon = (lon2 - lon1) * r;
+  const a = Math.sin(dLat / 2) ** 2 + Math.cos(lat1 * r) * Math.cos(lat2 * r) * Math.sin(dLon / 2) ** 2;
+  return 6371000 * 2 * Math.atan2(Math.sqrt(a), Math.sqrt(1 - a));
+}
+
+// PX4's fixed-wing landing pattern: DO_LAND_START, then the approach waypoint, then NAV_LAND,
+// the glide between them within FW_LND_ANG (5 deg by default; PX4 allows 0.1 deg more).
+function checkFixedWingLanding(file, m) {
+  const n = m.items.length;
+  if (m.vehicleType !== 1 || m.items[n - 1].command !== 21) return;
+  const start = m.items.findIndex((it) => it.command === 189);
+  if (start < 0) { fail(file, 'a fixed-wing landing without DO_LAND_START (189)'); return; }
+  const between = m.items.slice(start + 1, n - 1).filter((it) => NAV_WITH_POSITION.has(it.command));
+  if (between.length !== 1 || between[0].command !== 16) {
+    fail(file, 'DO_LAND_START is not followed by one approach waypoint and then NAV_LAND');
+    return;
+  }
+  const a = between[0].params, l = m.items[n - 1].params;
+  const glide = Math.atan2(a[6] - l[6], px4DistanceM(a[4], a[5], l[4], l[5])) * 180 / Math.PI;
+  if (glide > 5.1) fail(file, `the landing glide is ${glide.toFixed(3)} deg, over PX4's FW_LND_ANG 5 deg`);
 }
 
 function checkWpl(file, plan) {
@@ -130,14 +157,20 @@ function checkAgainstCsv(file, plan, csvFile) {
   if (!pts.every((p) => p.length === 7 && p.every(Number.isFinite))) { fail(csvFile, 'a row is not 7 numbers'); return; }
   for (let k = 1; k < pts.length; k++) if (!(pts[k][0] > pts[k - 1][0])) fail(csvFile, `time does not increase at row ${k + 1}`);
   // Every waypoint on the trajectory in order, and the speed commanded for the leg into it the
-  // leg's mean speed on the trajectory (within the 10 % a speed change is written for, and 1 %).
-  let from = 0, speed = 0;
+  // leg's mean speed on the trajectory (within the 10 % of it a speed change is written for).
+  // The first leg begins where the take-off ends (a runway take-off's taxi and roll come before).
+  const homeAlt = plan.mission.plannedHomePosition[2];
+  const at = (it, k0) => {  // the first row from k0 at the item's position (altitude relative to home)
+    for (let k = k0; k < pts.length; k++)
+      if (Math.abs(pts[k][4] - it.params[4]) < 1e-7 && Math.abs(pts[k][5] - it.params[5]) < 1e-7 &&
+          Math.abs(pts[k][6] - (homeAlt + it.params[6])) < 1e-3) return k;
+    return -1;
+  };
+  let from = Math.max(0, at(plan.mission.items[0], 0)), speed = 0;
   for (const it of plan.mission.items) {
     if (it.command === 178) speed = it.params[1];
     if (it.command !== 16) continue;
-    let found = -1;
-    for (let k = from; k < pts.length; k++)
-      if (Math.abs(pts[k][4] - it.params[4]) < 1e-7 && Math.abs(pts[k][5] - it.params[5]) < 1e-7) { found = k; break; }
+    const found = at(it, from);
     if (found < 0) { fail(file, `waypoint (${it.params[4]}, ${it.params[5]}) is not on the trajectory after row ${from + 1}`); return; }
     let len = 0, moving = 0;
     for (let k = from + 1; k <= found; k++) {
@@ -146,14 +179,18 @@ function checkAgainstCsv(file, plan, csvFile) {
       if (d > 1e-6) moving += pts[k][0] - pts[k - 1][0];
     }
     const flown = moving > 0 ? len / moving : 0;
-    if (flown > 0 && Math.abs(speed - flown) > 0.11 * flown)
+    if (flown > 0 && Math.abs(speed - flown) > 0.1 * speed + 1e-4)
       fail(file, `the leg into waypoint ${it.doJumpId} is flown at ${flown.toFixed(3)} m/s, the mission commands ${speed} m/s`);
     from = found;
   }
-  const last = pts[pts.length - 1];
+  // The landing at the trajectory's end, or where its last run on the ground begins (a fixed
+  // wing's roll-out after touch-down).
   const end = plan.mission.items[plan.mission.items.length - 1];
-  if (end.command === 21 && (Math.abs(end.params[4] - last[4]) > 1e-7 || Math.abs(end.params[5] - last[5]) > 1e-7))
-    fail(file, 'the landing is not at the trajectory\'s end');
+  let ground = pts.length - 1;
+  while (ground > 0 && Math.abs(pts[ground - 1][6] - pts[pts.length - 1][6]) < 1e-6) ground--;
+  const touch = pts[plan.mission.vehicleType === 1 ? ground : pts.length - 1];
+  if (end.command === 21 && (Math.abs(end.params[4] - touch[4]) > 1e-7 || Math.abs(end.params[5] - touch[5]) > 1e-7))
+    fail(file, 'the landing is not at the trajectory\'s end (nor where its roll-out begins)');
 }
 
 if (!dir || ids.length === 0) { console.error('usage: node qgc_plan_check.mjs DIR UAV_ID...'); process.exit(2); }

@@ -11,9 +11,13 @@ namespace uavplan::cli {
 std::optional<std::string> export_request_problem(const Scenario& sc, const ExportArgs& a) {
   if (a.formats.empty()) {
     if (a.options_given)
-      return std::string("--firmware, --vehicle, --end, --fence and --force apply to --export: give the formats too");
+      return std::string(
+          "--firmware, --vehicle, --end, --fence, --flat-altitude and --force apply to --export: give the formats too");
     return std::nullopt;
   }
+  if (sc.mission.airfield && a.vehicle == "multirotor")
+    return "a formation_mission takes off and lands on its runway, as a fixed wing does: export it with --vehicle "
+           "fixedwing (the default for it)";
   for (const std::string& f : a.formats)
     if (needs_origin(*export_format_from_string(f)) && !sc.origin)
       return "scenario '" + sc.name + "' has no origin: add origin: {lat, lon, alt} to export " + f +
@@ -32,7 +36,9 @@ void add_export_options(CLI::App& cmd, ExportArgs& a, bool formats_required) {
   cmd.add_option("--firmware", a.firmware, "Autopilot of the .plan: px4 (firmwareType 12) or ardupilot (3)")
       ->check(CLI::IsMember({"px4", "ardupilot"}))
       ->each(given);
-  cmd.add_option("--vehicle", a.vehicle, "Vehicle type of the .plan: multirotor or fixedwing")
+  cmd.add_option("--vehicle", a.vehicle,
+                 "Vehicle type of the .plan: multirotor or fixedwing (default: fixedwing for a formation_mission, "
+                 "which flies from a runway; else multirotor)")
       ->check(CLI::IsMember({"multirotor", "fixedwing"}))
       ->each(given);
   cmd.add_option("--end", a.end,
@@ -45,13 +51,20 @@ void add_export_options(CLI::App& cmd, ExportArgs& a, bool formats_required) {
          "Geofence of the .plan: none, bounds (the world's bounds and the 16 largest exclusions; default) or all")
       ->check(CLI::IsMember({"none", "bounds", "all"}))
       ->each(given);
+  cmd.add_option("--flat-altitude", a.flat_altitude_m,
+                 "A flat (2-D) world's plan is flown this many metres above home (default 20): its obstacles are "
+                 "columns at every height")
+      ->check(CLI::Range(0.5, 10000.0))
+      ->each(given);
   cmd.add_flag("--force", a.force, "Write the UAVs that hold even when others do not (those are named on stderr)")
       ->each(given);
 }
 
 int prepare_exports(const std::string& scenario_path, const Scenario& sc, const Plan& plan, const ExportArgs& a,
                     PreparedExport& out) {
-  const ExportOptions opt = export_options(a.firmware, a.vehicle, a.end, a.fence);  // CLI11 checked the spellings
+  const std::string vehicle = !a.vehicle.empty() ? a.vehicle : sc.mission.airfield ? "fixedwing" : "multirotor";
+  ExportOptions opt = export_options(a.firmware, vehicle, a.end, a.fence);  // CLI11 checked the spellings
+  opt.flat_altitude_m = a.flat_altitude_m;
   try {
     const VerifiedExport flights = verified_export(sc, plan, opt);
     out.left_out = flights.left_out;
@@ -69,6 +82,7 @@ int prepare_exports(const std::string& scenario_path, const Scenario& sc, const 
       auto more = export_files(sc, flights, *export_format_from_string(name), opt, &out.notes);
       out.files.insert(out.files.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
     }
+    for (std::string& n : frame_notes(sc, flights)) out.notes.push_back(std::move(n));
   } catch (const ExportError& e) {
     std::cerr << scenario_path << ": export: " << e.what() << "\n";
     return kExitBadInput;

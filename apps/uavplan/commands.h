@@ -38,10 +38,11 @@ bool load_scenario_and_plan(const std::string& scenario_path, const std::string&
 struct ExportArgs {
   std::vector<std::string> formats;
   std::string firmware = "px4";
-  std::string vehicle = "multirotor";
+  std::string vehicle;  // empty: fixedwing for a formation_mission (its runway), else multirotor
   std::string end = "land";
   std::string fence = "bounds";
-  bool force = false;          // write the UAVs that hold when others do not
+  double flat_altitude_m = ExportOptions{}.flat_altitude_m;  // a flat world's plan flies this high
+  bool force = false;                                        // write the UAVs that hold when others do not
   bool options_given = false;  // --firmware, --vehicle, --end, --fence or --force on the command line
 };
 void add_export_options(CLI::App& cmd, ExportArgs& a, bool formats_required);

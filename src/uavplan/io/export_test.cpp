@@ -206,6 +206,58 @@ TEST(Export, FixedWingLandsOnAGlideOrCircles) {
   EXPECT_NE(v.left_out[0].find("cannot fly its planned vertical take-off"), std::string::npos) << v.left_out[0];
 }
 
+// A flat (2-D) world's plan flies at the flat altitude: the take-off climbs to it above home,
+// the route is the plan's at that height, the landing comes down from it; a fixed wing is refused.
+TEST(Export, AFlatWorldsPlanFliesAtTheFlatAltitude) {
+  Scenario sc = scenario_with();
+  WorldSpec w;
+  w.bounds = Aabb{Vec3(0, 0, 0), Vec3(1000, 1000, 0)};
+  sc.world = World(std::move(w));
+  sc.uavs[0].start = Vec3::Zero();
+  UavPlan u = sample_uav();
+  for (TrajectorySample& row : u.trajectory) row.p.z() = 0.0;
+  ExportOptions opt;
+  opt.flat_altitude_m = 25.0;
+  const ExportedUav e = exported(sc, opt, u);
+  EXPECT_DOUBLE_EQ(e.home.z(), 0.0);
+  EXPECT_DOUBLE_EQ(e.takeoff_to.z(), 25.0);
+  const Trajectory& tr = e.plan.trajectory;
+  for (std::size_t k = 0; k <= e.body_end; ++k) EXPECT_DOUBLE_EQ(tr[k].p.z(), 25.0) << k;
+  EXPECT_EQ(tr.back().p, Vec3(100, 100, 0));
+  EXPECT_GT(tr.back().t_s, 34.0);
+  const std::vector<MissionItem> items = mission_items(sc, e, opt);
+  EXPECT_EQ(items.front().command, kCmdTakeoff);
+  EXPECT_NEAR(items.front().params[6], 25.0, 1e-9);
+  EXPECT_EQ(items.back().command, kCmdLand);
+  opt.vehicle = VehicleKind::fixed_wing;
+  const VerifiedExport fw = verified_export(sc, plan_of({u}), opt);
+  ASSERT_EQ(fw.left_out.size(), 1u);
+  EXPECT_NE(fw.left_out[0].find("flat (2-D)"), std::string::npos) << fw.left_out[0];
+}
+
+// A vertical take-off blocked below the start (a roof under it) goes up beside it, from the
+// nearest clear spot, and flies level to the start; the mission says so with a waypoint there.
+TEST(Export, ABlockedTakeOffGoesUpBesideTheStart) {
+  const Scenario sc = scenario_with({Box{Vec3(-5, -5, 0), Vec3(3, 3, 6)}});
+  const ExportedUav e = exported(sc);
+  EXPECT_NEAR(e.home.z(), 0.0, 1e-9);
+  EXPECT_GT(e.home.head<2>().norm(), 3.0);
+  EXPECT_DOUBLE_EQ(e.takeoff_to.z(), 10.0);
+  const std::vector<MissionItem> items = mission_items(sc, e, {});
+  ASSERT_GE(items.size(), 3u);
+  EXPECT_EQ(items[0].command, kCmdTakeoff);
+  EXPECT_EQ(items[1].command, kCmdChangeSpeed);
+  EXPECT_EQ(items[2].command, kCmdWaypoint);
+  const LatLonAlt start = GeoFrame(*sc.origin).to_wgs84(Vec3(0, 0, 10));
+  EXPECT_NEAR(items[2].params[4], start.lat_deg, 1e-8);
+  EXPECT_NEAR(items[2].params[5], start.lon_deg, 1e-8);
+  const Trajectory rows = exported_rows(e);
+  EXPECT_EQ(rows[0].p, e.home);
+  EXPECT_EQ(rows[1].p, e.takeoff_to);
+  EXPECT_EQ(rows[2].p, Vec3(0, 0, 10));
+  EXPECT_DOUBLE_EQ(rows[2].t_s, 0.0);
+}
+
 TEST(Export, OnlyWhatHoldsLeavesTheTool) {
   const Scenario sc = scenario_with({Box{Vec3(40, -20, 0), Vec3(60, 20, 50)}});  // across the east leg
   VerifiedExport v = verified_export(sc, plan_of({sample_uav()}), {});
@@ -303,10 +355,13 @@ TEST(Export, GeoJsonIsLonLatAltWithIds) {
   const auto j = nlohmann::json::parse(plan_geojson(sc, v));
   const auto& route = j["features"][0];
   EXPECT_EQ(route["geometry"]["type"], "LineString");
-  // The hold collapses, the straight legs keep their ends, the landing is added.
-  EXPECT_EQ(route["geometry"]["coordinates"].size(), 4u) << route.dump();
+  // The take-off from the ground below the start, the hold collapsed, the straight legs' ends,
+  // the landing.
+  EXPECT_EQ(route["geometry"]["coordinates"].size(), 5u) << route.dump();
   EXPECT_NEAR(route["geometry"]["coordinates"][0][0].get<double>(), 8.5456, 1e-9);  // lon first
   EXPECT_NEAR(route["geometry"]["coordinates"][0][1].get<double>(), 47.3977, 1e-9);
+  EXPECT_NEAR(route["geometry"]["coordinates"][0][2].get<double>(), 488.0, 1e-9);  // home on the ground
+  EXPECT_NEAR(route["geometry"]["coordinates"][1][2].get<double>(), 498.0, 1e-9);  // the start
   EXPECT_EQ(j["features"][1]["properties"]["id"], "obstacle 0");
   EXPECT_EQ(j["features"][2]["properties"]["id"], "tower");
   const auto& ring = j["features"][1]["geometry"]["coordinates"][0];
@@ -327,7 +382,8 @@ TEST(Export, ClearErrorsAndCsvWithoutOrigin) {
   EXPECT_THROW(export_files(sc, v, ExportFormat::qgc), ExportError);
   const auto csv = export_files(sc, v, ExportFormat::csv);
   ASSERT_EQ(csv.size(), 1u);
-  EXPECT_EQ(csv[0].content.rfind("t,x,y,z\n0,0,0,10\n", 0), 0u);
+  // The take-off below the airborne start, at cruise speed before t = 0.
+  EXPECT_EQ(csv[0].content.rfind("t,x,y,z\n-2,0,0,0\n0,0,0,10\n", 0), 0u) << csv[0].content;
 }
 
 TEST(Export, FileNamesAreSafeAndDistinct) {

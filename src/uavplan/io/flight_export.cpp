@@ -16,6 +16,11 @@ namespace {
 constexpr double kSampleDt_s = 1.0;  // rows of the added legs, at most this far apart
 constexpr double kTurnStep_s = 2.0;  // a turn back flies legs this long (at cruise speed)
 constexpr double kClearTolerance_m = 1e-6;
+// A blocked vertical take-off is tried from rings around the start (Builder::beside).
+constexpr int kBesideSteps = 10, kBesideDirections = 16;
+constexpr double kCollinearCos = 1.0 - 1e-9;  // legs this parallel are one straight leg
+// PX4 accepts a landing glide up to FW_LND_ANG plus this (its feasibility check's slack).
+constexpr double kGlideSlack_deg = 0.1;
 
 // `pts` flown at v_mps from the last row; only rows after it, so that time strictly increases
 // (interpolators need it): time_route also writes the hold up to the departure, and a point
@@ -57,7 +62,12 @@ double signed_angle(const Vec3& from, const Vec3& to) {
 // A straight leg to or from the ground at height ground_z: why it is not clear, or empty.
 std::string leg_problem(const World& w, const Vec3& a, const Vec3& b, double keep, double ground_z,
                         const std::string& what) {
-  if (!w.in_bounds(a) || !w.in_bounds(b)) return what + " leaves the world bounds";
+  if (!w.in_bounds(a) || !w.in_bounds(b)) {
+    const auto outside = [&](const Vec3& p) {
+      return (w.bounds().min - p).cwiseMax(p - w.bounds().max).cwiseMax(Vec3::Zero()).norm();
+    };
+    return what + " leaves the world bounds by " + num_text(std::ceil(std::max(outside(a), outside(b)))) + " m";
+  }
   const double c = w.ground_leg_clearance(a, b, keep, ground_z);
   if (c >= keep - kClearTolerance_m) return {};
   return what + " comes within " + num_text(c) + " m of an obstacle or the terrain (radius plus clearance " +
@@ -76,21 +86,64 @@ Vec3 ground_along(const World& w, const Vec3& air, const Vec3& dir, double angle
 
 class Builder {
  public:
-  Builder(const Scenario& sc, const ExportOptions& opt) : w_(sc.world), opt_(opt) {}
+  Builder(const Scenario& sc, const ExportOptions& opt) : w_(sc.world), airfield_(sc.mission.airfield), opt_(opt) {}
 
   // The UAV's exported flight, or why it cannot be.
   std::string build(const UavSpec& u, const UavPlan& up, ExportedUav& e) const {
     e.spec = &u;
     e.plan = up;
     const GroundLegs legs = ground_legs(w_, up.trajectory);
+    if (airfield_ && legs.takeoff && legs.landing) return runway_flight(legs, e);
     if (std::string why = takeoff(u, legs, e); !why.empty()) return why;
     return ending(u, legs, e);
   }
 
  private:
+  // A formation_mission's flight from the runway to the runway (P5): the autopilot's take-off
+  // from the threshold, lined up (the taxi to it is the ground crew's), climbing out along the
+  // runway until above it (contract: kAirborneAbove_m); the route; its landing pattern from
+  // where the straight final glide begins to the touch-down, then the roll-out.
+  std::string runway_flight(const GroundLegs& legs, ExportedUav& e) const {
+    if (!fixed_wing())
+      return "a formation_mission UAV takes off and lands on the runway, as a fixed wing does: export it with "
+             "--vehicle fixedwing";
+    const Trajectory& tr = e.plan.trajectory;
+    const Airfield& af = *airfield_;
+    std::size_t roll = 0;  // lined up at the threshold, the last row there before lift-off
+    for (std::size_t k = 0; k < legs.takeoff_end; ++k)
+      if ((tr[k].p - af.position).norm() <= kClearTolerance_m) roll = k;
+    std::size_t top = roll;
+    while (top + 1 < tr.size() && tr[top].p.z() <= af.position.z() + kAirborneAbove_m) ++top;
+    std::size_t touch = legs.landing_begin;
+    while (touch + 1 < tr.size() && !w_.on_ground(tr[touch].p)) ++touch;
+    std::size_t approach = touch - 1;  // back along the straight final glide
+    const Vec3 glide = (tr[touch].p - tr[approach].p).normalized();
+    while (approach > top + 1 && (tr[approach].p - tr[approach - 1].p).normalized().dot(glide) > kCollinearCos)
+      --approach;
+    const Vec3 final_leg = tr[touch].p - tr[approach].p;
+    const double glide_deg = rad_to_deg(std::atan2(-final_leg.z(), final_leg.head<2>().norm()));
+    if (glide_deg > kFixedWingGlide_deg + kGlideSlack_deg)
+      return "its final glide of " + num_text(glide_deg) + " deg is steeper than PX4's FW_LND_ANG " +
+             num_text(kFixedWingGlide_deg) + " deg";
+    e.home = tr[roll].p;
+    e.takeoff_to = tr[top].p;
+    e.body_begin = top;
+    e.body_end = approach;
+    e.end = MissionEnd::land;
+    e.approach = tr[approach].p;
+    e.touchdown = tr[touch].p;
+    e.departure_s = tr[roll].t_s;
+    return {};
+  }
+
   bool fixed_wing() const { return opt_.vehicle == VehicleKind::fixed_wing; }
 
+  bool flat() const { return w_.bounds().max.z() - w_.bounds().min.z() <= kClearTolerance_m; }
+
   std::string takeoff(const UavSpec& u, const GroundLegs& legs, ExportedUav& e) const {
+    if (flat() && fixed_wing())
+      return "a flat (2-D) world's plan is exported for multirotors: a fixed wing's climb-out and glide need room "
+             "the plan's plane does not hold";
     const Trajectory& tr = e.plan.trajectory;
     const Vec3 s = tr.front().p;
     const double keep = keep_off_m(u);
@@ -104,15 +157,54 @@ class Builder {
       return {};
     }
     e.takeoff_to = s;
+    e.takeoff_before = true;
     if (!fixed_wing()) {
       e.home = Vec3(s.x(), s.y(), w_.ground_z(s.x(), s.y()));
-      return leg_problem(w_, e.home, s, keep, e.home.z(), "its take-off straight up to its start");
+      const std::string why = leg_problem(w_, e.home, s, keep, e.home.z(), "its take-off straight up to its start");
+      if (why.empty() || beside(s, keep, e)) return {};
+      return why + ", and so does one from any spot within " + num_text(kBesideSteps * beside_step_m(keep)) + " m";
     }
+    // Fixed wing: the climb-out into the start's heading, else turned by up to the turn limit
+    // (the turn at the start within it).
     const double climb = std::min(u.max_climb_rad, deg_to_rad(kFixedWingClimbOut_deg));
-    e.home = ground_along(w_, s, -first_heading(tr, u), climb);
-    return leg_problem(w_, e.home, s, keep, e.home.z(),
-                       "its climb-out to its start (" + num_text(rad_to_deg(climb)) + " deg)");
+    const Vec3 head = first_heading(tr, u);
+    std::string first;
+    // The largest turn in the plane whose 3-D angle with the climb is within the limit.
+    const double most = std::acos(std::min(1.0, std::cos(std::min(u.max_turn_rad, kPi / 2)) / std::cos(climb)));
+    for (const double a : {0.0, 0.5, -0.5, 1.0, -1.0}) {
+      const Vec3 home = ground_along(w_, s, -rotated(head, a * most), climb);
+      const std::string why = leg_problem(w_, home, s, keep, home.z(),
+                                          "its climb-out to its start (" + num_text(rad_to_deg(climb)) + " deg over " +
+                                              num_text(std::round((s - home).head<2>().norm())) + " m)");
+      if (why.empty()) {
+        e.home = home;
+        return {};
+      }
+      if (first.empty()) first = why;
+    }
+    return first + ", and so does one turned by up to its turn limit";
   }
+
+  // A multirotor whose column below its start is blocked (sloped ground, an overhang, an obstacle
+  // beside it): straight up from the nearest clear spot on rings around the start, then level
+  // to it. Sets home and takeoff_to; false when none is clear.
+  bool beside(const Vec3& s, double keep, ExportedUav& e) const {
+    const double below = w_.bounds().min.z() - 1.0;  // the level leg keeps off the ground too
+    for (int ring = 1; ring <= kBesideSteps; ++ring)
+      for (int k = 0; k < kBesideDirections; ++k) {
+        const double r = ring * beside_step_m(keep), a = 2.0 * kPi * k / kBesideDirections;
+        const double x = s.x() + r * std::cos(a), y = s.y() + r * std::sin(a);
+        const Vec3 home(x, y, w_.ground_z(x, y)), top(x, y, s.z());
+        if (top.z() < home.z() + keep || !leg_problem(w_, home, top, keep, home.z(), "").empty() ||
+            !leg_problem(w_, top, s, keep, below, "").empty())
+          continue;
+        e.home = home;
+        e.takeoff_to = top;
+        return true;
+      }
+    return false;
+  }
+  static double beside_step_m(double keep) { return std::max(2.0 * keep, 1.0); }
 
   std::string ending(const UavSpec& u, const GroundLegs& legs, ExportedUav& e) const {
     Trajectory& tr = e.plan.trajectory;
@@ -154,9 +246,20 @@ class Builder {
     const Vec3 f = tr.back().p, dir = final_heading(tr, tr.size() - 1, u);
     const double turn = std::min(u.max_turn_rad, kPi / 2);
     std::string first;
+    Vec3 last = dir;  // the last leg that moves, in 3-D
+    for (std::size_t k = tr.size() - 1; k > 0; --k)
+      if ((tr[k].p - tr[k - 1].p).norm() > 1e-9) {
+        last = (tr[k].p - tr[k - 1].p).normalized();
+        break;
+      }
     for (const double a : {0.0, 0.5 * turn, -0.5 * turn, turn, -turn}) {
       const Vec3 d = rotated(dir, a);
       const Vec3 t = ground_along(w_, f, d, deg_to_rad(kFixedWingGlide_deg));
+      // The turn into the glide is a 3-D angle: turned by the whole limit and pitched down, over it.
+      if (std::acos(std::clamp(last.dot((t - f).normalized()), -1.0, 1.0)) > u.max_turn_rad) {
+        if (first.empty()) first = "the turn into it is over the turn limit";
+        continue;
+      }
       const std::string why = leg_problem(w_, f, t, keep_off_m(u), t.z(), "the glide");
       if (why.empty()) {
         e.approach = f;
@@ -209,6 +312,7 @@ class Builder {
   }
 
   const World& w_;
+  const std::optional<Airfield>& airfield_;
   const ExportOptions& opt_;
 };
 
@@ -324,6 +428,36 @@ double simplify_tolerance_m(const ExportedUav& e, const ExportOptions& opt) {
 
 }  // namespace
 
+namespace {
+
+// A flat world's flight lifted to opt.flat_altitude_m (ExportOptions), its end brought down.
+void lift_flat(ExportedUav& e, const ExportOptions& opt) {
+  const double lift = opt.flat_altitude_m;
+  for (TrajectorySample& row : e.plan.trajectory) row.p.z() += lift;
+  e.takeoff_to.z() += lift;
+  for (Vec3& p : e.return_points) p.z() += lift;
+  if (e.end == MissionEnd::land && e.touchdown)
+    append_flight(e.plan.trajectory, {*e.touchdown}, e.spec->speed.cruise_mps);
+  if (e.end == MissionEnd::rtl) append_flight(e.plan.trajectory, {e.home}, e.spec->speed.cruise_mps);
+}
+
+}  // namespace
+
+Trajectory exported_rows(const ExportedUav& e) {
+  const Trajectory& tr = e.plan.trajectory;
+  if (!e.takeoff_before || tr.empty()) return tr;
+  std::vector<Vec3> up{e.home};
+  if ((e.takeoff_to - e.home).norm() > 0.0) up.push_back(e.takeoff_to);
+  if ((tr.front().p - up.back()).norm() > 0.0) up.push_back(tr.front().p);
+  double len_m = 0.0;
+  for (std::size_t k = 1; k < up.size(); ++k) len_m += (up[k] - up[k - 1]).norm();
+  Trajectory out{{tr.front().t_s - len_m / e.spec->speed.cruise_mps, up.front()}};
+  for (std::size_t k = 1; k + 1 < up.size(); ++k)
+    out.push_back({out.back().t_s + (up[k] - up[k - 1]).norm() / e.spec->speed.cruise_mps, up[k]});
+  out.insert(out.end(), tr.begin(), tr.end());
+  return out;
+}
+
 VerifiedExport verified_export(const Scenario& sc, const Plan& plan, const ExportOptions& opt) {
   VerifiedExport out;
   for (const UavPlan& u : plan.uavs)
@@ -378,6 +512,8 @@ VerifiedExport verified_export(const Scenario& sc, const Plan& plan, const Expor
         out.left_out.push_back(e.spec->id + ": " + why);
       }
   std::erase_if(out.uavs, [&](const ExportedUav& e) { return failed.count(e.spec->id) > 0; });
+  if (sc.world.bounds().max.z() - sc.world.bounds().min.z() <= kClearTolerance_m)
+    for (ExportedUav& e : out.uavs) lift_flat(e, opt);
   return out;
 }
 

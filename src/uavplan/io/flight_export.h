@@ -59,6 +59,10 @@ struct ExportOptions {
   // straight legs are one mission item already). The chords are verified with everything else
   // that flies; if they do not hold, every UAV flies all its rows.
   double simplify_m = -1.0;
+  // A flat (2-D) world's plan is flown this high above its home (multirotors): its obstacles are
+  // columns at every height, so the distances verified in the plane hold up there; the take-off
+  // climbs to it and the landing (or the return home) comes down from it.
+  double flat_altitude_m = 20.0;
 };
 
 inline constexpr double kFixedWingGlide_deg = 5.0;      // PX4 FW_LND_ANG default
@@ -77,7 +81,13 @@ struct ExportedUav {
   std::optional<Vec3> touchdown;    // land: where it touches down
   std::vector<Vec3> return_points;  // rtl: the turn back and the point above home
   double loiter_radius_m = 0.0;     // loiter (and fixed-wing rtl at home)
+  double departure_s = 0.0;         // runway take-off: when its roll begins (the mission's start)
+  bool takeoff_before = false;      // an airborne start: its take-off is flown before t = 0
 };
+
+// The rows the files show: the plan's, after the take-off of an airborne start, timed at cruise
+// speed before t = 0 (home, the top of the take-off, the start).
+Trajectory exported_rows(const ExportedUav& uav);
 
 struct VerifiedExport {
   std::vector<ExportedUav> uavs;      // what may be written, in plan order

@@ -93,7 +93,7 @@ std::string plan_geojson(const Scenario& sc, const VerifiedExport& flights) {
   ojson features = ojson::array();
   for (const ExportedUav& e : flights.uavs) {
     ojson coords = ojson::array();
-    for (const Vec3& p : flown_points(e.plan.trajectory)) coords.push_back(lonlatalt(frame, p));
+    for (const Vec3& p : flown_points(exported_rows(e))) coords.push_back(lonlatalt(frame, p));
     if (coords.size() < 2) continue;  // a LineString needs two distinct positions
     features.push_back(ojson{{"type", "Feature"},
                              {"properties",
@@ -147,7 +147,7 @@ std::string plan_kml(const Scenario& sc, const VerifiedExport& flights) {
   for (const ExportedUav& e : flights.uavs) {
     std::size_t colour = 0;  // the UAV's colour in the report: its index in the scenario
     while (colour < sc.uavs.size() && sc.uavs[colour].id != e.spec->id) ++colour;
-    const std::vector<Vec3> pts = flown_points(e.plan.trajectory);
+    const std::vector<Vec3> pts = flown_points(exported_rows(e));
     if (pts.size() < 2) continue;
     out += "<Placemark><name>" + xml_escape(e.spec->id) + "</name><description>end " + std::string(to_string(e.end)) +
            ", length " + short_num(e.plan.length_m) + " m, arrival " + short_num(e.plan.arrival_s) +
@@ -178,7 +178,7 @@ std::string trajectory_csv(const Scenario& sc, const ExportedUav& e) {
   std::optional<GeoFrame> frame;
   if (sc.origin) frame.emplace(*sc.origin);
   std::string out = frame ? "t,x,y,z,lat,lon,alt\n" : "t,x,y,z\n";
-  for (const auto& s : e.plan.trajectory) {
+  for (const auto& s : exported_rows(e)) {
     out += short_num(s.t_s) + "," + short_num(s.p.x()) + "," + short_num(s.p.y()) + "," + short_num(s.p.z());
     if (frame) {
       const LatLonAlt g = rounded(frame->to_wgs84(s.p));

@@ -4,8 +4,10 @@
 #include <cmath>
 #include <numbers>
 
+#include "uavplan/core/text.h"
 #include "uavplan/io/export_common.h"
 #include "uavplan/io/geo.h"
+#include "uavplan/io/input_error.h"
 
 namespace uavplan {
 namespace {
@@ -82,7 +84,10 @@ class Items {
         if (d.dot(dir) / len < kCollinearCos || std::abs(vj - v) > opt_.speed_change_fraction * v) break;
         ++j;
       }
-      speed(v);
+      // Commanded: the mean speed of the legs flown as one (what the leg's timing needs).
+      double len = 0.0;
+      for (std::size_t k = i; k < j; ++k) len += (tr[k + 1].p - tr[k].p).norm();
+      speed(len / std::max(tr[j].t_s - tr[i].t_s, 1e-12));
       at(kCmdWaypoint, tr[j].p, {0, 0, 0, compass_yaw_deg(dir)});
       i = j;
     }
@@ -102,6 +107,14 @@ class Items {
 std::vector<MissionItem> mission_items(const Scenario& sc, const ExportedUav& e, const ExportOptions& opt) {
   if (!sc.origin)
     throw ExportError("scenario '" + sc.name + "' has no origin: add origin: {lat, lon, alt} to export to WGS84");
+  // A flight at ground level (a flat world's plan) has no take-off an autopilot accepts (PX4:
+  // "Takeoff altitude below home altitude").
+  constexpr double kLeastTakeoff_m = 0.1;
+  if (e.takeoff_to.z() - e.home.z() < kLeastTakeoff_m)
+    throw ExportError("UAV '" + printable(e.spec->id) + "' flies at ground level (its take-off climbs " +
+                      num_text(e.takeoff_to.z() - e.home.z()) +
+                      " m): an autopilot refuses a take-off to its home's altitude; plan it in a world with height "
+                      "and a start above the ground, or export csv, geojson or kml");
   const GeoFrame frame(*sc.origin);
   const Trajectory& tr = e.plan.trajectory;
   const double cruise = e.spec->speed.cruise_mps;
@@ -113,6 +126,10 @@ std::vector<MissionItem> mission_items(const Scenario& sc, const ExportedUav& e,
                                ? std::min(kFixedWingClimbOut_deg, e.spec->max_climb_rad * 180.0 / std::numbers::pi)
                                : 0.0;
   m.at(kCmdTakeoff, e.takeoff_to, {pitch_deg, 0, 0, compass_yaw_deg(first)});
+  if ((tr[e.body_begin].p - e.takeoff_to).norm() > kHoldMove_m) {  // a take-off beside the start
+    m.speed(cruise);
+    m.at(kCmdWaypoint, tr[e.body_begin].p, {0, 0, 0, compass_yaw_deg(tr[e.body_begin].p - e.takeoff_to)});
+  }
   m.body(tr, e.body_begin, e.body_end);
   switch (e.end) {
     case MissionEnd::land:

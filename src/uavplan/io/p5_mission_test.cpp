@@ -7,10 +7,12 @@
 #include <iterator>
 
 #include "uavplan/coordination/contract/runway.h"
+#include "uavplan/coordination/contract/separation.h"
 #include "uavplan/coordination/mission_planner.h"
 #include "uavplan/evaluation/verifier.h"
 #include "uavplan/io/flight_export.h"
 #include "uavplan/io/input_error.h"
+#include "uavplan/io/mission_items.h"
 #include "uavplan/io/plan_io.h"
 #include "uavplan/io/scenario_io.h"
 
@@ -41,15 +43,41 @@ TEST(P5Mission, AllFivePhasesFlownAndVerified) {
   EXPECT_EQ(plan_to_json(plan), plan_to_json(again));
 }
 
-// The verified plan exports whole: landed UAVs are gone, not parked on one another at the
-// runway's stop point (the export's own check keeps the mission's airfield rule).
-TEST(P5Mission, EveryUavExports) {
+// The verified plan exports whole, as fixed wing (landed UAVs are gone, not parked on one
+// another at the runway's stop point): the take-off from the threshold along the runway, the
+// flight as planned, PX4's landing pattern onto the planned touch-down within FW_LND_ANG; a
+// multirotor export is refused with what to do.
+TEST(P5Mission, EveryUavExportsAsFixedWing) {
   const Scenario sc = load_scenario(kScenario);
   const Plan plan = plan_mission(sc, MissionOptions{});
   ASSERT_EQ(plan.status, Status::solved) << plan.message;
-  const VerifiedExport e = verified_export(sc, plan, ExportOptions{});
+  ExportOptions opt;
+  opt.vehicle = VehicleKind::fixed_wing;
+  const VerifiedExport e = verified_export(sc, plan, opt);
   EXPECT_EQ(e.uavs.size(), sc.uavs.size());
   for (const std::string& why : e.left_out) ADD_FAILURE() << why;
+  const Airfield& af = *sc.mission.airfield;
+  for (const ExportedUav& x : e.uavs) {
+    EXPECT_LT((x.home - af.position).norm(), 1e-6) << x.spec->id;  // lined up at the threshold
+    EXPECT_GT(x.takeoff_to.z(), af.position.z() + kAirborneAbove_m) << x.spec->id;
+    EXPECT_NEAR(x.takeoff_to.y(), af.position.y(), 1e-6) << x.spec->id;  // straight out along the runway
+    ASSERT_TRUE(x.approach && x.touchdown) << x.spec->id;
+    EXPECT_NEAR(x.touchdown->z(), af.position.z(), 1e-9);
+    const Vec3 glide = *x.approach - *x.touchdown;
+    EXPECT_LE(std::atan2(glide.z(), glide.head<2>().norm()), deg_to_rad(kFixedWingGlide_deg)) << x.spec->id;
+    EXPECT_GT(x.departure_s, 0.0);
+    const std::vector<MissionItem> items = mission_items(sc, x, opt);
+    EXPECT_EQ(items.front().command, kCmdTakeoff);
+    EXPECT_GT(items.front().params[0], 0.0);  // the climb pitch
+    ASSERT_GE(items.size(), 3u);
+    EXPECT_EQ(items[items.size() - 3].command, kCmdLandStart);
+    EXPECT_EQ(items[items.size() - 2].command, kCmdWaypoint);
+    EXPECT_EQ(items.back().command, kCmdLand);
+  }
+  const VerifiedExport mr = verified_export(sc, plan, ExportOptions{});
+  EXPECT_TRUE(mr.uavs.empty());
+  ASSERT_FALSE(mr.left_out.empty());
+  EXPECT_NE(mr.left_out[0].find("--vehicle fixedwing"), std::string::npos) << mr.left_out[0];
 }
 
 // What the verifier must catch in a formation_mission plan: a UAV that does not land on the
