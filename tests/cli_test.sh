@@ -196,6 +196,13 @@ for alg in cellular_aco cell_astar; do
   "$BIN" verify "$SRC/scenarios/p2_city.yaml" "$TMP/p2_$alg/plan.json" >/dev/null 2>&1; check p2.$alg.verify 0 $?
 done
 
+# Anytime: a colony told to run 3000 iterations under a 3 s limit returns its best route so far
+# on every leg (it used to spend the limit on the first leg and fail), and says so.
+"$BIN" plan "$SRC/scenarios/p2_city.yaml" -o "$TMP/p2_anytime" --set iterations=3000 --time-limit 3 >"$TMP/stdout" 2>&1
+check p2.anytime.plan 0 $?
+grep -q "note: the time limit stopped the colony.*best route so far" "$TMP/stdout" ||
+  { echo "FAIL p2.anytime.note: $(cat "$TMP/stdout")"; fails=$((fails + 1)); }
+
 # P2 on OpenStreetMap buildings (GeoJSON through world.buildings): both planners, verified.
 for alg in cellular_aco cell_astar; do
   "$BIN" plan "$SRC/scenarios/nyc_block.yaml" -o "$TMP/nyc_$alg" --algorithm $alg >/dev/null 2>&1; check nyc.$alg.plan 0 $?

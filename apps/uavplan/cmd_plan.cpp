@@ -51,8 +51,16 @@ void print_summary(const Plan& plan, const std::string& path) {
                 m("length_m").c_str(), m("flight_time_s").c_str(), m("arrival_s").c_str(), m("max_turn_deg").c_str(),
                 m("max_climb_deg").c_str(), m("min_clearance_m").c_str());
   }
+  // Why each UAV is not solved; the notes of solved ones (an anytime planner stopped with its best
+  // route, a mission's counts), the first few.
+  constexpr int kNotesShown = 3;
+  int notes = 0;
   for (const UavPlan& u : plan.uavs)
-    if (u.status != Status::solved) std::printf("%s: %s\n", u.id.c_str(), u.message.c_str());
+    if (u.status != Status::solved)
+      std::printf("%s: %s\n", u.id.c_str(), u.message.c_str());
+    else if (!u.message.empty() && notes++ < kNotesShown)
+      std::printf("%s: note: %s\n", u.id.c_str(), u.message.c_str());
+  if (notes > kNotesShown) std::printf("(%d more notes in the plan file)\n", notes - kNotesShown);
   const auto sep = plan.metrics.find("min_separation_m");
   if (sep != plan.metrics.end()) std::printf("min separation between UAVs: %.3f m\n", sep->second);
   if (plan.formation && plan.formation->arrival_spread_s)

@@ -57,9 +57,9 @@ std::optional<std::vector<std::int64_t>> cell_astar_search(const CellGraph& g, s
 
 PlanResult CellAStarPlanner::do_plan(const Problem& problem, const World& world, const StopCondition& stop) const {
   return plan_on_cells(problem, world, options_.cells, stop,
-                       [&stop](const CellGraph& g, std::int64_t a, std::int64_t b, int, PlanStats& s) {
-                         return cell_astar_search(g, a, b, s, stop);
-                       });
+                       // An exact search has no best-so-far: it keeps the whole stop, not a leg's share.
+                       [&stop](const CellGraph& g, std::int64_t a, std::int64_t b, int, PlanStats& s,
+                               const StopCondition&) { return cell_astar_search(g, a, b, s, stop); });
 }
 
 }  // namespace uavplan

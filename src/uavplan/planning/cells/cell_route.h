@@ -23,9 +23,10 @@ struct CellPlanOptions {
   void read(ParamReader& r);
 };
 
-// A node path from `from` to `to` (both included), or nothing.
+// A node path from `from` to `to` (both included), or nothing; `stop` is the leg's own (an
+// anytime search returns its best path when it holds).
 using CellLegSearch = std::function<std::optional<std::vector<std::int64_t>>(
-    const CellGraph& g, std::int64_t from, std::int64_t to, int leg, PlanStats& stats)>;
+    const CellGraph& g, std::int64_t from, std::int64_t to, int leg, PlanStats& stats, const StopCondition& stop)>;
 
 PlanResult plan_on_cells(const Problem& problem, const World& world, const CellPlanOptions& options,
                          const StopCondition& stop, const CellLegSearch& search);

@@ -161,6 +161,22 @@ TEST(CellularAco, NearTheOptimumAndIndependentOfThreads) {
   EXPECT_TRUE(via);
 }
 
+// Anytime: a colony stopped by the time limit returns its best route so far and says so, and
+// each leg of a route with via points gets its share of the time (the first leg's colony does
+// not spend the whole limit).
+TEST(CellularAco, AStoppedColonyKeepsItsBestOnEveryLeg) {
+  const World w = block_world();
+  Problem p = block_problem();
+  p.via = {Vec3(100, 90, 10)};
+  CellularAcoOptions o;
+  o.cells.cell_m = 5;
+  o.iterations = 1000000;
+  const PlanResult r = CellularAcoPlanner(o).plan(p, w, StopCondition::time_limit(1.0));
+  ASSERT_EQ(r.status, Status::solved) << r.message;
+  EXPECT_NE(r.message.find("best route so far"), std::string::npos) << r.message;
+  expect_clear(r, p, w);
+}
+
 // The stop condition holds while a map is built, not only once it is searched (a fine map of a
 // city took 46 s under a 2 s limit): set-up ends with a stopped result, and no advice on cells.
 TEST(CellPlanners, StopHoldsWhileTheMapIsBuilt) {

@@ -208,6 +208,8 @@ class Colony {
 
 }  // namespace
 
+constexpr int kFirstArrivalIterations = 25;  // CellularAcoOptions' default iteration count
+
 std::optional<std::vector<std::int64_t>> cellular_aco_search(const CellGraph& g, std::int64_t from, std::int64_t to,
                                                              const CellularAcoOptions& o, std::uint64_t seed, int leg,
                                                              const StopCondition& stop, PlanStats& stats,
@@ -248,7 +250,13 @@ std::optional<std::vector<std::int64_t>> cellular_aco_search(const CellGraph& g,
         ++arrived_total;
         if (w.cost < best.cost) best = w;
       }
-    if (!std::isfinite(best.cost)) continue;
+    // Until an ant arrives nothing is deposited and every iteration walks the same odds: a colony
+    // with no arrival in kFirstArrivalIterations will find none (the cells are too coarse or the
+    // walks too short); more iterations would only spend the time limit.
+    if (!std::isfinite(best.cost)) {
+      if (it + 1 >= kFirstArrivalIterations) break;
+      continue;
+    }
     if (o.local_update) {
       colony.local_update(best.path);
       best.cost = colony.path_cost(best.path);
@@ -271,10 +279,18 @@ std::optional<std::vector<std::int64_t>> cellular_aco_search(const CellGraph& g,
 }
 
 PlanResult CellularAcoPlanner::do_plan(const Problem& problem, const World& world, const StopCondition& stop) const {
-  return plan_on_cells(problem, world, options_.cells, stop,
-                       [&](const CellGraph& g, std::int64_t a, std::int64_t b, int leg, PlanStats& s) {
-                         return cellular_aco_search(g, a, b, options_, problem.seed, leg, stop, s);
-                       });
+  bool cut_short = false;  // a leg's colony stopped by the time limit with a route: its best so far
+  PlanResult res = plan_on_cells(problem, world, options_.cells, stop,
+                                 [&](const CellGraph& g, std::int64_t a, std::int64_t b, int leg, PlanStats& s,
+                                     const StopCondition& leg_stop) {
+                                   auto path = cellular_aco_search(g, a, b, options_, problem.seed, leg, leg_stop, s);
+                                   cut_short |= path && leg_stop.should_stop();
+                                   return path;
+                                 });
+  if (res.status == Status::solved && cut_short)
+    res.message = "the time limit stopped the colony before its " + std::to_string(options_.iterations) +
+                  " iterations: its best route so far";
+  return res;
 }
 
 }  // namespace uavplan
