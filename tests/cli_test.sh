@@ -121,6 +121,11 @@ expect_bad negative.radius "$(mk 's/radius: 40,/radius: -40,/' negr.yaml)" "posi
 expect_bad negative.cell "$(mk 's/cell: 100/cell: -100/' negc.yaml)" "positive"
 expect_bad start.in.obstacle "$(mk 's/start: \[20, 20, 30\]/start: [230, 230, 30]/' sin.yaml)" "uavs[0].start"
 expect_bad goal.outside "$(mk 's/goal: \[580, 580, 40\]/goal: [580, 680, 40]/' gout.yaml)" "outside the world bounds"
+# A home: on the ground, for a UAV that starts and ends in the air, of a mission planned UAV by UAV.
+home='s/  - {id: u1, start: \[20, 20, 30\]/  - {id: u1, home: [10, 10, 0], start: [20, 20, 30]/'
+expect_bad home.in.air "$(mk "${home/\[10, 10, 0\]/[10, 10, 5]}" hair.yaml)" "uavs[0].home"
+expect_bad home.group "$(mk "$home; s/type: independent/type: group/" hgroup.yaml)" "independent and route missions"
+expect_bad home.ground.start "$(mk "${home/start: \[20, 20, 30\]/start: [20, 20, 0]}" hstart.yaml)" "uavs[0].start"
 expect_bad terrain.rows "$(mk 's/- \[0, 2, 4, 4, 2, 0\]/- [0, 2, 4, 4, 2]/' rows.yaml)" "rows must be equal"
 expect_bad missing.file "$TMP/does-not-exist.yaml" "cannot open"
 # The vehicle's keys (P5): time constants, rate limits, the speed map.
@@ -195,6 +200,15 @@ for alg in cellular_aco cell_astar; do
   "$BIN" plan "$SRC/scenarios/p2_city.yaml" -o "$TMP/p2_$alg" --algorithm $alg >/dev/null 2>&1; check p2.$alg.plan 0 $?
   "$BIN" verify "$SRC/scenarios/p2_city.yaml" "$TMP/p2_$alg/plan.json" >/dev/null 2>&1; check p2.$alg.verify 0 $?
 done
+
+# A home: the plan takes off there, passes the start and the goal and lands there; verified,
+# exported and read back by the firmware rules.
+"$BIN" plan "$(mk "$home" home.yaml)" -o "$TMP/home" --export qgc,wpl,csv >/dev/null 2>&1; check home.plan 0 $?
+"$BIN" verify "$TMP/home.yaml" "$TMP/home/plan.json" >/dev/null 2>&1; check home.verify 0 $?
+node -e 'const t=require(process.argv[1]).uavs[0].trajectory, a=t[0], b=t[t.length-1];
+  process.exit(a[1]===10 && a[2]===10 && a[3]===0 && b[1]===10 && b[2]===10 && b[3]===0 ? 0 : 1)' "$TMP/home/plan.json"
+check home.trajectory 0 $?
+node "$SRC/tests/qgc_plan_check.mjs" "$TMP/home" u1 u2 u3 >/dev/null; check home.export.check 0 $?
 
 # Anytime: a colony told to run 3000 iterations under a 3 s limit returns its best route so far
 # on every leg (it used to spend the limit on the first leg and fail), and says so.

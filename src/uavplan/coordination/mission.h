@@ -39,6 +39,9 @@ inline constexpr const char* kStoppedMessage = "stopped (time limit or interrupt
 // The scenario a mission plans has the UAV lifted off and touching down (planning_view.h).
 struct GroundPoints {
   std::vector<std::optional<Vec3>> start, goal;
+  // Per UAV with a home (its start and goal are the ground there): the UAV's own start and goal,
+  // visited on the way (before and after the mission's via points).
+  std::vector<std::optional<std::pair<Vec3, Vec3>>> home_visits;
 };
 
 // What a mission plans with: the options, the planner chosen for it with its parameters, the

@@ -92,6 +92,7 @@ PlanningView planning_view(const Scenario& sc, GroundLegTiming timing) {
   v.touch_down.assign(n, std::nullopt);
   v.ground.start.assign(n, std::nullopt);
   v.ground.goal.assign(n, std::nullopt);
+  v.ground.home_visits.assign(n, std::nullopt);
   const double agl = planning_min_agl_m(sc);
   bool bodies = false;
   for (const UavSpec& u : sc.uavs) bodies = bodies || u.clearance_m > 0.0;
@@ -107,6 +108,13 @@ PlanningView planning_view(const Scenario& sc, GroundLegTiming timing) {
   for (std::size_t i = 0; i < n; ++i) {
     const UavSpec& u = sc.uavs[i];
     const double lift = lift_height_m(sc, u);
+    if (u.home && goal[i]) {  // up from home, its start and goal on the way, down at home
+      v.lift_off[i] = v.touch_down[i] = *u.home + Vec3(0, 0, lift);
+      v.ground.start[i] = v.ground.goal[i] = *u.home;
+      v.ground.home_visits[i] = std::pair{u.start, *goal[i]};
+      if (timing == GroundLegTiming::shifted) v.takeoff_s = std::max(v.takeoff_s, lift / u.speed.cruise_mps);
+      continue;
+    }
     if (w.on_ground(u.start)) {
       v.lift_off[i] = Vec3(u.start.x(), u.start.y(), w.ground_z(u.start.x(), u.start.y()) + lift);
       v.ground.start[i] = u.start;

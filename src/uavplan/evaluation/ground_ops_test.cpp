@@ -2,6 +2,7 @@
 // planned, verified and measured.
 #include <gtest/gtest.h>
 
+#include "uavplan/coordination/contract/arrival_points.h"
 #include "uavplan/coordination/mission_planner.h"
 #include "uavplan/core/units.h"
 #include "uavplan/evaluation/metrics.h"
@@ -49,6 +50,51 @@ TEST(GroundOps, GroundStartsAndGoalsTakeOffAndLandApart) {
   compute_metrics(sc, p);
   EXPECT_LE(p.uavs[0].metrics.at("max_climb_deg"), 30.0 + 1e-6);
   EXPECT_GE(p.uavs[0].metrics.at("min_agl_m"), 8.0 - 1e-6);
+}
+
+// A UAV with a home takes off there, flies to its start, on to its goal and back, and lands
+// at home: planned, verified and measured (its arrival the first time at its goal); the verifier
+// fails a flight that skips its home or its start.
+TEST(GroundOps, AHomeIsWhereTheFlightBeginsAndEnds) {
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(200, 200, 60)};
+  ws.terrain = TerrainGrid(Vec2(0, 0), 50.0, 4, 4, {0, 2, 4, 6, 0, 3, 6, 9, 1, 4, 8, 12, 0, 2, 4, 6});
+  ws.obstacles.push_back(Box{Vec3(90, 60, 0), Vec3(110, 140, 35)});
+  Scenario sc;
+  sc.world = World(std::move(ws));
+  UavSpec u;
+  u.id = "u1";
+  u.home = Vec3(20, 20, sc.world.ground_z(20, 20));
+  u.start = Vec3(40, 100, 20);
+  u.goal = Vec3(170, 100, 25);
+  u.speed = {0, 5, 5};
+  u.max_climb_rad = deg_to_rad(30);
+  sc.uavs.push_back(u);
+  MissionOptions opt;
+  opt.params = {{"cell_m", "4"}};
+  Plan p = plan_mission(sc, opt);
+  ASSERT_EQ(p.status, Status::solved) << p.message;
+  const Trajectory& tr = p.uavs[0].trajectory;
+  EXPECT_EQ(tr.front().p, *u.home);
+  EXPECT_LT((tr.back().p - *u.home).norm(), 1e-9);
+  EXPECT_TRUE(verify_plan(sc, p).empty()) << describe(verify_plan(sc, p).front());
+  compute_metrics(sc, p);
+  double at_goal = 1e300;
+  for (const TrajectorySample& row : tr)
+    if ((row.p - *u.goal).norm() < 1e-6) at_goal = std::min(at_goal, row.t_s);
+  EXPECT_NEAR(p.uavs[0].arrival_s, at_goal - kMinArrivalRadius_m / 5.0, 1e-6);  // within 0.5 m at 5 m/s
+  EXPECT_LT(p.uavs[0].arrival_s, tr.back().t_s);
+  // A flight from the start (the home skipped) and one straight from home to the goal fail.
+  Plan skip_home = p;
+  std::erase_if(skip_home.uavs[0].trajectory, [&](const TrajectorySample& r) { return r.t_s < at_goal / 4.0; });
+  bool start = false;
+  for (const Violation& v : verify_plan(sc, skip_home)) start = start || v.kind == ViolationKind::start;
+  EXPECT_TRUE(start);
+  Plan direct = p;
+  direct.uavs[0].trajectory = {{0.0, *u.home}, {40.0, *u.goal}, {80.0, *u.home}};
+  start = false;
+  for (const Violation& v : verify_plan(sc, direct)) start = start || v.kind == ViolationKind::start;
+  EXPECT_TRUE(start);
 }
 
 }  // namespace

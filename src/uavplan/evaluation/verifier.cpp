@@ -56,6 +56,23 @@ double worst_param(const World& w, const Vec3& a, const Vec3& b) {
   return best_t;
 }
 
+// A UAV with a home flies from it to its start, on to its goal, and back to it.
+void check_home_flight(const UavSpec& u, const Trajectory& tr, double arrival_tolerance_m, Violations& out) {
+  if ((tr.front().p - *u.home).norm() > kPositionTolerance_m)
+    add_violation(out, ViolationKind::start, u.id, tr.front().t_s, tr.front().p,
+                  "trajectory does not begin at its home");
+  if ((tr.back().p - *u.home).norm() > kPositionTolerance_m)
+    add_violation(out, ViolationKind::goal, u.id, tr.back().t_s, tr.back().p, "trajectory does not end at its home");
+  const double tol = std::max(u.radius_m, kPositionTolerance_m);
+  TrackProgress at;
+  if (!passes_within(tr, u.start, tol, at))
+    add_violation(out, ViolationKind::start, u.id, std::nullopt, u.start,
+                  "does not pass its start (within " + num_text(tol) + " m) after taking off from home");
+  else if (u.goal && !passes_within(tr, *u.goal, std::max(tol, arrival_tolerance_m), at))
+    add_violation(out, ViolationKind::goal, u.id, std::nullopt, *u.goal,
+                  "does not pass its goal after its start before landing at home");
+}
+
 // The rows themselves: finite, from the start to the goal, inside the bounds and below the
 // ceiling. False when they are not numbers at all (nothing else can be checked).
 bool check_rows(const Scenario& sc, const UavSpec& u, const Trajectory& tr, double arrival_tolerance_m,
@@ -66,10 +83,13 @@ bool check_rows(const Scenario& sc, const UavSpec& u, const Trajectory& tr, doub
       add_violation(out, ViolationKind::trajectory, id, std::nullopt, std::nullopt, "non-finite trajectory row");
       return false;
     }
-  if ((tr.front().p - u.start).norm() > kPositionTolerance_m)
+  if (u.home) {
+    check_home_flight(u, tr, arrival_tolerance_m, out);
+  } else if ((tr.front().p - u.start).norm() > kPositionTolerance_m) {
     add_violation(out, ViolationKind::start, id, tr.front().t_s, tr.front().p,
                   "trajectory does not begin at the start");
-  if (u.goal && (tr.back().p - *u.goal).norm() > arrival_tolerance_m + kPositionTolerance_m)
+  }
+  if (!u.home && u.goal && (tr.back().p - *u.goal).norm() > arrival_tolerance_m + kPositionTolerance_m)
     add_violation(out, ViolationKind::goal, id, tr.back().t_s, tr.back().p,
                   arrival_tolerance_m > 0.0
                       ? "trajectory does not end within " + num_text(arrival_tolerance_m) + " m of its shared goal"

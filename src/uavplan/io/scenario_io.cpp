@@ -320,13 +320,14 @@ std::optional<AutopilotParams> read_model(const At& m) {
 }
 
 UavSpec read_uav(const At& u) {
-  u.keys({"id", "start", "heading_deg", "goal", "radius", "speed", "max_turn_deg", "max_climb_deg", "ceiling",
+  u.keys({"id", "start", "heading_deg", "goal", "home", "radius", "speed", "max_turn_deg", "max_climb_deg", "ceiling",
           "sensor_range", "clearance", "min_agl", "max_turn_rate_deg_s", "max_climb_rate", "model"});
   UavSpec s;
   s.id = u.req("id").text();
   if (s.id.empty()) u["id"].fail("must not be empty");
   s.start = u.req("start").vec3();
   if (u.has("goal")) s.goal = u["goal"].vec3();
+  if (u.has("home")) s.home = u["home"].vec3();
   if (u.has("heading_deg")) s.heading_rad = deg_to_rad(u["heading_deg"].number());
   if (u.has("radius")) s.radius_m = u["radius"].non_negative();
   if (u.has("clearance")) s.clearance_m = u["clearance"].non_negative();
@@ -397,6 +398,22 @@ void check_room(const At& obstacles, const World& w) {
   }
 }
 
+// A home on the ground, in the world, with room to lift off, for a UAV that starts and ends in
+// the air of a mission planned UAV by UAV.
+void check_home(const At& ui, const Scenario& sc, const UavSpec& u) {
+  const At h = ui["home"];
+  const World& w = sc.world;
+  if (sc.mission.type != MissionType::independent && sc.mission.type != MissionType::route)
+    h.fail("a home is flown by independent and route missions (a " + std::string(to_string(sc.mission.type)) +
+           " mission's UAVs take off from their starts)");
+  if (!w.in_bounds(*u.home)) h.fail("outside the world bounds");
+  if (!w.on_ground(*u.home)) h.fail("must lie on the ground (z = the ground there, " +
+                                    num_text(w.ground_z(u.home->x(), u.home->y())) + " m)");
+  if (w.on_ground(u.start)) ui["start"].fail("is on the ground with a home: a UAV with a home starts in the air");
+  if (u.goal && w.on_ground(*u.goal)) ui["goal"].fail("is on the ground with a home: a UAV with a home lands there");
+  if (const std::string why = ground_column_problem(sc, u, *u.home); !why.empty()) h.fail("cannot take off: " + why);
+}
+
 void check_uavs_fit(const At& uavs, const Scenario& sc) {
   const World& w = sc.world;
   // (a formation's goals are its slots at the end; a formation_mission's UAVs land on the runway)
@@ -415,6 +432,7 @@ void check_uavs_fit(const At& uavs, const Scenario& sc) {
         ui["start"].fail("closer to " + sc.uavs[j].id + "'s start than their radii: two UAVs cannot start there");
     if (u.min_agl_m > 0.0 && w.bounds().extent().z() <= 0.0)
       ui["min_agl"].fail("a flat world (no height) has no room above its ground");
+    if (u.home) check_home(ui, sc, u);
   }
   const std::vector<PlacementProblem> placed = placement_problems(sc);
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) {

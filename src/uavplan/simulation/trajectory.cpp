@@ -38,6 +38,19 @@ void append_straight_run(Trajectory& tr, const Vec3& to, double v0, double v1, d
   tr.push_back({t0 + dur, to});
 }
 
+bool passes_within(const Trajectory& tr, const Vec3& p, double tol_m, TrackProgress& at) {
+  if (tr.size() == 1) return (tr[0].p - p).norm() <= tol_m;
+  for (; at.segment + 1 < tr.size(); ++at.segment, at.fraction = 0.0) {
+    const Vec3 a = tr[at.segment].p + at.fraction * (tr[at.segment + 1].p - tr[at.segment].p);
+    double t = 0.0;
+    if (point_segment_distance(p, a, tr[at.segment + 1].p, &t) <= tol_m) {
+      at.fraction += t * (1.0 - at.fraction);
+      return true;
+    }
+  }
+  return false;
+}
+
 Vec3 position_at(const Trajectory& tr, double t) {
   if (tr.empty()) return Vec3::Zero();
   if (t <= tr.front().t_s) return tr.front().p;

@@ -28,6 +28,15 @@ void append_straight_run(Trajectory& tr, const Vec3& to, double v0_mps, double v
 
 Vec3 position_at(const Trajectory& tr, double t_s);
 
+// How far along its rows a trajectory has been followed: segment `segment`, `fraction` along it.
+struct TrackProgress {
+  std::size_t segment = 0;
+  double fraction = 0.0;
+};
+// Whether the trajectory, from `at` on, passes within tol_m of p; `at` moves to the first such
+// place (a via point visited in order).
+bool passes_within(const Trajectory& tr, const Vec3& p, double tol_m, TrackProgress& at);
+
 // The distance flown: the length of the polyline through the rows, summed from the first.
 inline double flown_length_m(const Trajectory& tr) {
   double len = 0.0;

@@ -22,6 +22,9 @@ struct UavSpec {
   std::string id;
   Vec3 start = Vec3::Zero();
   std::optional<Vec3> goal;
+  // On the ground: where it takes off and lands when that is neither its start nor its goal (its
+  // flight: home, up, start, ..., goal, back, down).
+  std::optional<Vec3> home;
   std::optional<double> heading_rad;  // initial yaw, 0 = east, pi/2 = north
   double radius_m = 0.5;              // obstacles are inflated by it
   double clearance_m = 0.0;           // extra distance kept from obstacles and terrain

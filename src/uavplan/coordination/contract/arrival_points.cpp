@@ -150,11 +150,11 @@ double arrival_radius_m(const UavSpec& uav, const Arrival& arrival) {
 
 // The last row outside the ball decides: the segment from it into the ball enters once (a ball
 // is convex and the segment's end inside), at the smaller root of |a + s (b - a) - goal| = r.
-double arrival_time_s(const Trajectory& tr, const Vec3& goal, double within_m) {
-  if (tr.empty() || (tr.back().p - goal).norm() > within_m) return std::numeric_limits<double>::infinity();
-  std::size_t k = tr.size() - 1;
-  while (k > 0 && (tr[k - 1].p - goal).norm() <= within_m) --k;
-  if (k == 0) return tr.front().t_s;
+namespace {
+
+// When the segment from row k - 1 to row k enters the ball of radius within_m around goal (its
+// end inside it): the smaller root of |a + s d| = r.
+double entry_s(const Trajectory& tr, std::size_t k, const Vec3& goal, double within_m) {
   const Vec3 a = tr[k - 1].p - goal, d = tr[k].p - tr[k - 1].p;
   const double dd = d.squaredNorm(), ad = a.dot(d), aa = a.squaredNorm() - within_m * within_m;
   const double disc = std::max(0.0, ad * ad - dd * aa);
@@ -162,8 +162,24 @@ double arrival_time_s(const Trajectory& tr, const Vec3& goal, double within_m) {
   return tr[k - 1].t_s + s * (tr[k].t_s - tr[k - 1].t_s);
 }
 
+}  // namespace
+
+double arrival_time_s(const Trajectory& tr, const Vec3& goal, double within_m) {
+  if (tr.empty() || (tr.back().p - goal).norm() > within_m) return std::numeric_limits<double>::infinity();
+  std::size_t k = tr.size() - 1;
+  while (k > 0 && (tr[k - 1].p - goal).norm() <= within_m) --k;
+  return k == 0 ? tr.front().t_s : entry_s(tr, k, goal, within_m);
+}
+
+double first_arrival_s(const Trajectory& tr, const Vec3& goal, double within_m) {
+  for (std::size_t k = 0; k < tr.size(); ++k)
+    if ((tr[k].p - goal).norm() <= within_m) return k == 0 ? tr.front().t_s : entry_s(tr, k, goal, within_m);
+  return std::numeric_limits<double>::infinity();
+}
+
 double arrival_s(const UavSpec& uav, const Arrival& arrival, const Trajectory& trajectory) {
   if (!uav.goal) return std::numeric_limits<double>::infinity();
+  if (uav.home) return first_arrival_s(trajectory, *uav.goal, arrival_radius_m(uav, arrival));
   return arrival_time_s(trajectory, *uav.goal, arrival_radius_m(uav, arrival));
 }
 

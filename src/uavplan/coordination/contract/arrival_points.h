@@ -33,6 +33,8 @@ std::vector<Arrival> arrival_points(const Scenario& scenario);
 inline constexpr double kMinArrivalRadius_m = 0.5;
 double arrival_radius_m(const UavSpec& uav, const Arrival& arrival);
 double arrival_time_s(const Trajectory& trajectory, const Vec3& goal, double within_m);
+// The first time a row comes within the radius (a UAV with a home leaves its goal again).
+double first_arrival_s(const Trajectory& trajectory, const Vec3& goal, double within_m);
 // A UAV's arrival by the contract (+inf: it has no goal or never stays at it).
 double arrival_s(const UavSpec& uav, const Arrival& arrival, const Trajectory& trajectory);
 

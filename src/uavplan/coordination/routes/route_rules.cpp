@@ -42,20 +42,13 @@ void RoutesMission::check_uav(const Scenario& sc, const UavSpec& u, const Trajec
   if (type_ != MissionType::route) return;
   const std::string& id = u.id;
   const double tol = std::max(u.radius_m, kPositionTolerance_m);
-  std::size_t seg = 0;
-  double from = 0.0;  // progress so far: segment `seg`, this fraction along it
+  TrackProgress at;
+  if (u.home) passes_within(tr, u.start, tol, at);  // its via points come after its start
   for (std::size_t v = 0; v < sc.mission.waypoints.size(); ++v) {
     const Vec3& via = sc.mission.waypoints[v];
-    bool hit = tr.size() == 1 && (tr[0].p - via).norm() <= tol;
-    for (; !hit && seg + 1 < tr.size(); ++seg, from = 0.0) {
-      const Vec3 a = tr[seg].p + from * (tr[seg + 1].p - tr[seg].p);
-      double t = 0.0;
-      if (point_segment_distance(via, a, tr[seg + 1].p, &t) <= tol) {
-        from += t * (1.0 - from);
-        hit = true;
-        break;
-      }
-    }
+    const bool hit = passes_within(tr, via, tol, at);
+    const std::size_t seg = at.segment;
+    const double from = at.fraction;
     const std::optional<double> entry =
         v < sc.mission.waypoint_entry_heading_rad.size() ? sc.mission.waypoint_entry_heading_rad[v] : std::nullopt;
     if (hit && entry && tr.size() > 1) {  // the heading it arrives with: the row into the point
