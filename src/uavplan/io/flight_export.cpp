@@ -154,6 +154,8 @@ class Builder {
       e.home = s;
       e.body_begin = legs.takeoff_end;
       e.takeoff_to = tr[legs.takeoff_end].p;
+      for (std::size_t k = 0; k < legs.takeoff_end && tr[k].p == s; ++k)
+        e.departure_s = tr[k].t_s;  // the climb's start
       return {};
     }
     e.takeoff_to = s;

@@ -81,8 +81,10 @@ struct ExportedUav {
   std::optional<Vec3> touchdown;    // land: where it touches down
   std::vector<Vec3> return_points;  // rtl: the turn back and the point above home
   double loiter_radius_m = 0.0;     // loiter (and fixed-wing rtl at home)
-  double departure_s = 0.0;         // runway take-off: when its roll begins (the mission's start)
-  bool takeoff_before = false;      // an airborne start: its take-off is flown before t = 0
+  // When its mission starts (the climb from the ground, a runway roll): a plan that waits on the
+  // ground first (its departure) is flown from this time of the plan.
+  double departure_s = 0.0;
+  bool takeoff_before = false;  // an airborne start: its take-off is flown before t = 0
 };
 
 // The rows the files show: the plan's, after the take-off of an airborne start, timed at cruise

@@ -407,8 +407,8 @@ void check_home(const At& ui, const Scenario& sc, const UavSpec& u) {
     h.fail("a home is flown by independent and route missions (a " + std::string(to_string(sc.mission.type)) +
            " mission's UAVs take off from their starts)");
   if (!w.in_bounds(*u.home)) h.fail("outside the world bounds");
-  if (!w.on_ground(*u.home)) h.fail("must lie on the ground (z = the ground there, " +
-                                    num_text(w.ground_z(u.home->x(), u.home->y())) + " m)");
+  if (!w.on_ground(*u.home))
+    h.fail("must lie on the ground (z = the ground there, " + num_text(w.ground_z(u.home->x(), u.home->y())) + " m)");
   if (w.on_ground(u.start)) ui["start"].fail("is on the ground with a home: a UAV with a home starts in the air");
   if (u.goal && w.on_ground(*u.goal)) ui["goal"].fail("is on the ground with a home: a UAV with a home lands there");
   if (const std::string why = ground_column_problem(sc, u, *u.home); !why.empty()) h.fail("cannot take off: " + why);

@@ -141,9 +141,9 @@ bool route_legs(const CellWorld& cw, const std::vector<Vec3>& stops, const std::
     const double legs_left = static_cast<double>(stops.size() - leg);  // and what follows them
     const StopCondition leg_stop =
         stop.has_time_limit() ? stop | StopCondition::time_limit(stop.seconds_left() / legs_left) : stop;
-    const auto path = stopped_before ? std::nullopt
-                                     : search(cw.graph, nodes[leg], nodes[leg + 1], static_cast<int>(leg), res.stats,
-                                              leg_stop);
+    const auto path = stopped_before
+                          ? std::nullopt
+                          : search(cw.graph, nodes[leg], nodes[leg + 1], static_cast<int>(leg), res.stats, leg_stop);
     if (!path && (stopped_before || stop.should_stop())) {  // the search was cut short: no advice on the cells
       res.message = "stopped before the route was complete";
       res.reason = Reason::stopped;

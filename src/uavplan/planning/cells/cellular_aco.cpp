@@ -280,13 +280,13 @@ std::optional<std::vector<std::int64_t>> cellular_aco_search(const CellGraph& g,
 
 PlanResult CellularAcoPlanner::do_plan(const Problem& problem, const World& world, const StopCondition& stop) const {
   bool cut_short = false;  // a leg's colony stopped by the time limit with a route: its best so far
-  PlanResult res = plan_on_cells(problem, world, options_.cells, stop,
-                                 [&](const CellGraph& g, std::int64_t a, std::int64_t b, int leg, PlanStats& s,
-                                     const StopCondition& leg_stop) {
-                                   auto path = cellular_aco_search(g, a, b, options_, problem.seed, leg, leg_stop, s);
-                                   cut_short |= path && leg_stop.should_stop();
-                                   return path;
-                                 });
+  PlanResult res = plan_on_cells(
+      problem, world, options_.cells, stop,
+      [&](const CellGraph& g, std::int64_t a, std::int64_t b, int leg, PlanStats& s, const StopCondition& leg_stop) {
+        auto path = cellular_aco_search(g, a, b, options_, problem.seed, leg, leg_stop, s);
+        cut_short |= path && leg_stop.should_stop();
+        return path;
+      });
   if (res.status == Status::solved && cut_short)
     res.message = "the time limit stopped the colony before its " + std::to_string(options_.iterations) +
                   " iterations: its best route so far";
