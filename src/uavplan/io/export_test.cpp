@@ -543,6 +543,7 @@ TEST(ExportSimplify, ChordsThatDoNotHoldAreNotFlown) {
 // such rule.
 TEST(Export, Px4DistanceRulesAreNamed) {
   Scenario sc = scenario_with();
+  sc.origin->alt_m = 1500.0;  // distances are horizontal: the altitude does not count
   UavPlan u = sample_uav();
   u.trajectory = {{0.0, Vec3(0, 0, 10)}, {100.0, Vec3(500, 0, 10)}, {300.0, Vec3(500, 950, 10)}};
   std::vector<std::string> notes;

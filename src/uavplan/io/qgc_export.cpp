@@ -99,13 +99,14 @@ ojson fence_json(const Scenario& sc, const ExportedUav& e, const GeoFrame& frame
 void px4_distance_notes(const GeoFrame& frame, const Vec3& home, const std::vector<MissionItem>& items,
                         std::vector<std::string>* notes) {
   constexpr double kPx4Default_m = 900.0;
-  std::optional<Vec3> prev;
+  std::optional<Vec2> prev;
   double longest = 0.0;
   for (const MissionItem& it : items) {
     if (!it.positioned() || it.command == kCmdTakeoff) continue;
-    const Vec3 p = frame.to_local(it.params[4], it.params[5], 0.0);
-    if (!prev && (p - Vec3(home.x(), home.y(), 0.0)).norm() > kPx4Default_m)
-      notes->push_back("the first waypoint is " + num_text(std::round((p - Vec3(home.x(), home.y(), 0.0)).norm())) +
+    // Horizontal distances, as PX4 measures them.
+    const Vec2 p = frame.to_local(it.params[4], it.params[5], frame.origin().alt_m).head<2>();
+    if (!prev && (p - home.head<2>()).norm() > kPx4Default_m)
+      notes->push_back("the first waypoint is " + num_text(std::round((p - home.head<2>()).norm())) +
                        " m from home: PX4 v1.14 refuses it unless MIS_DIST_1WP is raised (default 900 m) or 0");
     if (prev) longest = std::max(longest, (p - *prev).norm());
     prev = p;
