@@ -549,7 +549,8 @@ const planTable = el('table', { id: 'plan-metrics' });
 for (const [k, v] of Object.entries(data.metrics)) planTable.append(el('tr', {}, el('td', {}, k), el('td', {}, fmt(v, 4))));
 left.append(planTable);
 left.append(el('h2', {}, 'Verification'));
-if (holds) left.append(el('p', {}, 'Every check holds: bounds, obstacles, terrain, moving obstacles, separation, turn and climb limits, speed, via points.'));
+if (holds) left.append(el('p', {}, 'Every check holds: bounds, obstacles, terrain, moving obstacles, separation, turn and climb limits, speed, via points' +
+  (data.airfield ? ', the runway one UAV at a time, every UAV landed on it.' : '.')));
 else left.append(el('ul', { class: 'violations' }, ...data.violations.map((v) => el('li', {}, v))));
 for (const u of data.uavs) if (u.message) left.append(el('p', { class: 'muted' }, `${u.id}: ${u.message}`));
 

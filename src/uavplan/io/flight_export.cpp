@@ -19,8 +19,6 @@ constexpr double kClearTolerance_m = 1e-6;
 // A blocked vertical take-off is tried from rings around the start (Builder::beside).
 constexpr int kBesideSteps = 10, kBesideDirections = 16;
 constexpr double kCollinearCos = 1.0 - 1e-9;  // legs this parallel are one straight leg
-// PX4 accepts a landing glide up to FW_LND_ANG plus this (its feasibility check's slack).
-constexpr double kGlideSlack_deg = 0.1;
 
 // `pts` flown at v_mps from the last row; only rows after it, so that time strictly increases
 // (interpolators need it): time_route also writes the hold up to the departure, and a point
@@ -122,7 +120,7 @@ class Builder {
       --approach;
     const Vec3 final_leg = tr[touch].p - tr[approach].p;
     const double glide_deg = rad_to_deg(std::atan2(-final_leg.z(), final_leg.head<2>().norm()));
-    if (glide_deg > kFixedWingGlide_deg + kGlideSlack_deg)
+    if (glide_deg > kFixedWingGlideFlown_deg)
       return "its final glide of " + num_text(glide_deg) + " deg is steeper than PX4's FW_LND_ANG " +
              num_text(kFixedWingGlide_deg) + " deg";
     e.home = tr[roll].p;
@@ -242,7 +240,7 @@ class Builder {
     return {};
   }
 
-  // Fixed wing: a 5-degree glide straight on from the goal, else turned by up to the turn limit.
+  // Fixed wing: a 4.9-degree glide straight on from the goal, else turned by up to the turn limit.
   std::string glide(const UavSpec& u, ExportedUav& e) const {
     Trajectory& tr = e.plan.trajectory;
     const Vec3 f = tr.back().p, dir = final_heading(tr, tr.size() - 1, u);
@@ -256,7 +254,7 @@ class Builder {
       }
     for (const double a : {0.0, 0.5 * turn, -0.5 * turn, turn, -turn}) {
       const Vec3 d = rotated(dir, a);
-      const Vec3 t = ground_along(w_, f, d, deg_to_rad(kFixedWingGlide_deg));
+      const Vec3 t = ground_along(w_, f, d, deg_to_rad(kFixedWingGlideFlown_deg));
       // The turn into the glide is a 3-D angle: turned by the whole limit and pitched down, over it.
       if (std::acos(std::clamp(last.dot((t - f).normalized()), -1.0, 1.0)) > u.max_turn_rad) {
         if (first.empty()) first = "the turn into it is over the turn limit";
@@ -271,7 +269,7 @@ class Builder {
       }
       if (first.empty()) first = why;
     }
-    return "no clear " + num_text(kFixedWingGlide_deg) + "-degree landing glide from its goal within its turn limit (" +
+    return "no clear " + num_text(kFixedWingGlideFlown_deg) + "-degree landing glide from its goal within its turn limit (" +
            first + "): use --end loiter or --end rtl, or a goal with room ahead of it";
   }
 

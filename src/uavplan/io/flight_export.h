@@ -6,8 +6,8 @@
 //    It happens before t = 0, so it is checked against obstacles, terrain and the bounds, not in
 //    time.
 //  - The end (--end): `land` descends vertically from the goal (multirotor; a plan that lands
-//    at its goal already has it) or glides at 5 degrees straight on, or turned by at most the
-//    turn limit, to a touch-down point (fixed wing: DO_LAND_START, approach, NAV_LAND); `rtl`
+//    at its goal already has it) or glides at 4.9 degrees (within FW_LND_ANG 5 by PX4's measure)
+//    straight on, or turned by at most the turn limit, to a touch-down point (fixed wing: DO_LAND_START, approach, NAV_LAND); `rtl`
 //    turns back within the turn limit, flies straight to above home at the goal's height and
 //    comes down (multirotor) or circles there (fixed wing); `loiter` holds at the goal
 //    (multirotor) or circles it at the autopilot's loiter radius (fixed wing: 80 m PX4, 60 m
@@ -65,7 +65,10 @@ struct ExportOptions {
   double flat_altitude_m = 20.0;
 };
 
-inline constexpr double kFixedWingGlide_deg = 5.0;      // PX4 FW_LND_ANG default
+inline constexpr double kFixedWingGlide_deg = 5.0;  // PX4 FW_LND_ANG default: the steepest glide
+// The glide flown: 0.1 deg under it, so that PX4's own distance (on a sphere) still measures the
+// glide within FW_LND_ANG (5.011 deg at exactly 5 in the plan's frame).
+inline constexpr double kFixedWingGlideFlown_deg = 4.9;
 inline constexpr double kFixedWingClimbOut_deg = 10.0;  // PX4 FW_TKO_PITCH_MIN default
 double fixed_wing_loiter_radius_m(Firmware f);          // NAV_LOITER_RAD 80 m / WP_LOITER_RAD 60 m
 
