@@ -210,6 +210,14 @@ node -e 'const t=require(process.argv[1]).uavs[0].trajectory, a=t[0], b=t[t.leng
 check home.trajectory 0 $?
 node "$SRC/tests/qgc_plan_check.mjs" "$TMP/home" u1 u2 u3 >/dev/null; check home.export.check 0 $?
 
+# Not even CSV used to be written when an autopilot could not fly the added legs: without qgc or
+# wpl, the plan is written as planned, saying why (a fixed wing in a flat world).
+"$BIN" plan "$SRC/scenarios/p1_moving.yaml" -o "$TMP/flat" >/dev/null 2>&1
+"$BIN" export "$SRC/scenarios/p1_moving.yaml" "$TMP/flat/plan.json" --format csv --vehicle fixedwing -o "$TMP/flat_csv" \
+  >/dev/null 2>"$TMP/stderr"; check export.csv.without.legs 0 $?
+grep -q "written as planned, without its added legs" "$TMP/stderr" ||
+  { echo "FAIL export.csv.without.legs.note: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
+
 # Anytime: a colony told to run 3000 iterations under a 3 s limit returns its best route so far
 # on every leg (it used to spend the limit on the first leg and fail), and says so.
 "$BIN" plan "$SRC/scenarios/p2_city.yaml" -o "$TMP/p2_anytime" --set iterations=3000 --time-limit 3 >"$TMP/stdout" 2>&1

@@ -1,5 +1,6 @@
 // uavplan export SCENARIO PLAN --format F -o DIR: mission and GIS files of a plan, only of what
 // holds under the verifier.
+#include <algorithm>
 #include <iostream>
 
 #include "commands.h"
@@ -65,6 +66,8 @@ int prepare_exports(const std::string& scenario_path, const Scenario& sc, const 
   const std::string vehicle = !a.vehicle.empty() ? a.vehicle : sc.mission.airfield ? "fixedwing" : "multirotor";
   ExportOptions opt = export_options(a.firmware, vehicle, a.end, a.fence);  // CLI11 checked the spellings
   opt.flat_altitude_m = a.flat_altitude_m;
+  opt.autopilot =
+      std::any_of(a.formats.begin(), a.formats.end(), [](const std::string& f) { return f == "qgc" || f == "wpl"; });
   try {
     const VerifiedExport flights = verified_export(sc, plan, opt);
     out.left_out = flights.left_out;
@@ -83,6 +86,7 @@ int prepare_exports(const std::string& scenario_path, const Scenario& sc, const 
       out.files.insert(out.files.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
     }
     for (std::string& n : frame_notes(sc, flights)) out.notes.push_back(std::move(n));
+    out.notes.insert(out.notes.end(), flights.notes.begin(), flights.notes.end());
   } catch (const ExportError& e) {
     std::cerr << scenario_path << ": export: " << e.what() << "\n";
     return kExitBadInput;

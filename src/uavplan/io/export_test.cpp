@@ -233,6 +233,14 @@ TEST(Export, AFlatWorldsPlanFliesAtTheFlatAltitude) {
   const VerifiedExport fw = verified_export(sc, plan_of({u}), opt);
   ASSERT_EQ(fw.left_out.size(), 1u);
   EXPECT_NE(fw.left_out[0].find("flat (2-D)"), std::string::npos) << fw.left_out[0];
+  // Without an autopilot's file (csv, geojson, kml) it is written as planned, saying why.
+  opt.autopilot = false;
+  const VerifiedExport gis = verified_export(sc, plan_of({u}), opt);
+  EXPECT_TRUE(gis.holds());
+  ASSERT_EQ(gis.uavs.size(), 1u);
+  EXPECT_EQ(gis.uavs[0].plan.trajectory.size(), u.trajectory.size());
+  ASSERT_EQ(gis.notes.size(), 1u);
+  EXPECT_NE(gis.notes[0].find("flat (2-D)"), std::string::npos) << gis.notes[0];
 }
 
 // A vertical take-off blocked below the start (a roof under it) goes up beside it, from the

@@ -86,14 +86,22 @@ class Builder {
  public:
   Builder(const Scenario& sc, const ExportOptions& opt) : w_(sc.world), airfield_(sc.mission.airfield), opt_(opt) {}
 
-  // The UAV's exported flight, or why it cannot be.
-  std::string build(const UavSpec& u, const UavPlan& up, ExportedUav& e) const {
+  // The UAV's exported flight, or why it cannot be. Without an autopilot's file, a flight whose
+  // added legs cannot be flown is the plan's as it is (`note` says why).
+  std::string build(const UavSpec& u, const UavPlan& up, ExportedUav& e, std::string& note) const {
     e.spec = &u;
     e.plan = up;
     const GroundLegs legs = ground_legs(w_, up.trajectory);
-    if (airfield_ && legs.takeoff && legs.landing) return runway_flight(legs, e);
-    if (std::string why = takeoff(u, legs, e); !why.empty()) return why;
-    return ending(u, legs, e);
+    std::string why = airfield_ && legs.takeoff && legs.landing ? runway_flight(legs, e) : takeoff(u, legs, e);
+    if (why.empty() && !(airfield_ && legs.takeoff && legs.landing)) why = ending(u, legs, e);
+    if (why.empty() || opt_.autopilot) return why;
+    note = why;
+    e = ExportedUav{};
+    e.spec = &u;
+    e.plan = up;
+    e.home = e.takeoff_to = up.trajectory.front().p;
+    e.body_end = up.trajectory.size() - 1;
+    return {};
   }
 
  private:
@@ -269,8 +277,9 @@ class Builder {
       }
       if (first.empty()) first = why;
     }
-    return "no clear " + num_text(kFixedWingGlideFlown_deg) + "-degree landing glide from its goal within its turn limit (" +
-           first + "): use --end loiter or --end rtl, or a goal with room ahead of it";
+    return "no clear " + num_text(kFixedWingGlideFlown_deg) +
+           "-degree landing glide from its goal within its turn limit (" + first +
+           "): use --end loiter or --end rtl, or a goal with room ahead of it";
   }
 
   // Back within the turn limit, straight to above home at the goal's height, then down
@@ -480,10 +489,12 @@ VerifiedExport verified_export(const Scenario& sc, const Plan& plan, const Expor
       continue;
     }
     ExportedUav e;
-    if (const std::string why = builder.build(*sc.find_uav(up.id), up, e); !why.empty()) {
+    std::string note;
+    if (const std::string why = builder.build(*sc.find_uav(up.id), up, e, note); !why.empty()) {
       out.left_out.push_back(up.id + ": " + why);
       continue;
     }
+    if (!note.empty()) out.notes.push_back(up.id + ": written as planned, without its added legs: " + note);
     out.uavs.push_back(std::move(e));
   }
   for (const Violation& v : out.violations)

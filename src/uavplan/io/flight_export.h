@@ -63,6 +63,10 @@ struct ExportOptions {
   // columns at every height, so the distances verified in the plane hold up there; the take-off
   // climbs to it and the landing (or the return home) comes down from it.
   double flat_altitude_m = 20.0;
+  // Whether a mission file for an autopilot is written (qgc, wpl). Without one (csv, geojson,
+  // kml) a UAV whose take-off or end legs cannot be flown is still written, as planned, without
+  // them (VerifiedExport::notes says so).
+  bool autopilot = true;
 };
 
 inline constexpr double kFixedWingGlide_deg = 5.0;  // PX4 FW_LND_ANG default: the steepest glide
@@ -98,6 +102,7 @@ struct VerifiedExport {
   std::vector<ExportedUav> uavs;      // what may be written, in plan order
   std::vector<std::string> left_out;  // "ID: why" (and "the plan: why" for mission-level ones)
   std::vector<Violation> violations;  // the verifier's findings behind them
+  std::vector<std::string> notes;     // "ID: ..." UAVs written as planned, without added legs
   bool holds() const { return left_out.empty(); }
 };
 
