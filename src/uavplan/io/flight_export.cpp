@@ -92,11 +92,12 @@ class Builder {
     e.spec = &u;
     e.plan = up;
     const GroundLegs legs = ground_legs(w_, up.trajectory);
-    std::string why = airfield_ && legs.takeoff && legs.landing ? runway_flight(legs, e) : takeoff(u, legs, e);
-    if (why.empty() && !(airfield_ && legs.takeoff && legs.landing)) why = ending(u, legs, e);
+    const bool runway = airfield_ && legs.takeoff && legs.landing;
+    std::string why = runway ? runway_flight(legs, e) : takeoff(u, legs, e);
+    if (why.empty() && !runway) why = ending(u, legs, e);
     if (why.empty() || opt_.autopilot) return why;
     note = why;
-    e = ExportedUav{};
+    e = ExportedUav{};  // as planned: no legs added
     e.spec = &u;
     e.plan = up;
     e.home = e.takeoff_to = up.trajectory.front().p;
@@ -151,37 +152,44 @@ class Builder {
       return "a flat (2-D) world's plan is exported for multirotors: a fixed wing's climb-out and glide need room "
              "the plan's plane does not hold";
     const Trajectory& tr = e.plan.trajectory;
-    const Vec3 s = tr.front().p;
-    const double keep = keep_off_m(u);
     if (legs.takeoff) {
       if (fixed_wing())
         return "a fixed-wing UAV cannot fly its planned vertical take-off: give it an airborne start (its climb-out is "
                "checked) or export it as a multirotor";
-      e.home = s;
+      e.home = tr.front().p;
       e.body_begin = legs.takeoff_end;
       e.takeoff_to = tr[legs.takeoff_end].p;
-      for (std::size_t k = 0; k < legs.takeoff_end && tr[k].p == s; ++k)
+      for (std::size_t k = 0; k < legs.takeoff_end && tr[k].p == e.home; ++k)
         e.departure_s = tr[k].t_s;  // the climb's start
       return {};
     }
-    e.takeoff_to = s;
+    e.takeoff_to = tr.front().p;
     e.takeoff_before = true;
-    if (!fixed_wing()) {
-      e.home = Vec3(s.x(), s.y(), w_.ground_z(s.x(), s.y()));
-      const std::string why = leg_problem(w_, e.home, s, keep, e.home.z(), "its take-off straight up to its start");
-      if (why.empty() || beside(s, keep, e)) return {};
-      return why + ", and so does one from any spot within " + num_text(kBesideSteps * beside_step_m(keep)) + " m";
-    }
-    // Fixed wing: the climb-out into the start's heading, else turned by up to the turn limit
-    // (the turn at the start within it).
+    return fixed_wing() ? climb_out(u, e) : vertical_takeoff(u, e);
+  }
+
+  // A multirotor's take-off below its airborne start, else beside it.
+  std::string vertical_takeoff(const UavSpec& u, ExportedUav& e) const {
+    const Vec3 s = e.plan.trajectory.front().p;
+    const double keep = keep_off_m(u);
+    e.home = Vec3(s.x(), s.y(), w_.ground_z(s.x(), s.y()));
+    const std::string why = leg_problem(w_, e.home, s, keep, e.home.z(), "its take-off straight up to its start");
+    if (why.empty() || beside(s, keep, e)) return {};
+    return why + ", and so does one from any spot within " + num_text(kBesideSteps * beside_step_m(keep)) + " m";
+  }
+
+  // A fixed wing's climb-out into its airborne start's heading, else turned by up to what the turn
+  // limit allows (the turn at the start within it).
+  std::string climb_out(const UavSpec& u, ExportedUav& e) const {
+    const Vec3 s = e.plan.trajectory.front().p;
     const double climb = std::min(u.max_climb_rad, deg_to_rad(kFixedWingClimbOut_deg));
-    const Vec3 head = first_heading(tr, u);
-    std::string first;
+    const Vec3 head = first_heading(e.plan.trajectory, u);
     // The largest turn in the plane whose 3-D angle with the climb is within the limit.
     const double most = std::acos(std::min(1.0, std::cos(std::min(u.max_turn_rad, kPi / 2)) / std::cos(climb)));
+    std::string first;
     for (const double a : {0.0, 0.5, -0.5, 1.0, -1.0}) {
       const Vec3 home = ground_along(w_, s, -rotated(head, a * most), climb);
-      const std::string why = leg_problem(w_, home, s, keep, home.z(),
+      const std::string why = leg_problem(w_, home, s, keep_off_m(u), home.z(),
                                           "its climb-out to its start (" + num_text(rad_to_deg(climb)) + " deg over " +
                                               num_text(std::round((s - home).head<2>().norm())) + " m)");
       if (why.empty()) {
