@@ -225,6 +225,15 @@ check p2.anytime.plan 0 $?
 grep -q "note: the time limit stopped the colony.*best route so far" "$TMP/stdout" ||
   { echo "FAIL p2.anytime.note: $(cat "$TMP/stdout")"; fails=$((fails + 1)); }
 
+# Progress on a terminal: a long plan shows what it is doing and for how long, even while one
+# planner runs without reporting (script(1) gives it a terminal).
+if command -v script >/dev/null; then
+  script -qec "'$BIN' plan '$SRC/scenarios/p2_city.yaml' -o '$TMP/p2_tty' --set iterations=3000 --time-limit 3" \
+    /dev/null >"$TMP/tty.txt" 2>&1
+  grep -q "planning: 0/1 UAVs (2 s)" "$TMP/tty.txt" ||
+    { echo "FAIL progress.heartbeat: $(tr '\r' '\n' <"$TMP/tty.txt" | head -5)"; fails=$((fails + 1)); }
+fi
+
 # P2 on OpenStreetMap buildings (GeoJSON through world.buildings): both planners, verified.
 for alg in cellular_aco cell_astar; do
   "$BIN" plan "$SRC/scenarios/nyc_block.yaml" -o "$TMP/nyc_$alg" --algorithm $alg >/dev/null 2>&1; check nyc.$alg.plan 0 $?

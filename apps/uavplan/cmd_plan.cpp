@@ -129,6 +129,8 @@ int run_plan(const PlanArgs& a) {
   opt.seed = a.seed.value_or(sc.seed.value_or(1));
   opt.stop = stop;
   Progress progress;
+  progress.update("planning");
+  progress.start_heartbeat();
   opt.progress = [&](std::size_t done, std::size_t total) {
     progress.update("planning: " + std::to_string(done) + "/" + std::to_string(total) + " UAVs");
   };
@@ -141,7 +143,9 @@ int run_plan(const PlanArgs& a) {
   }
   for (const std::string& note : plan.notes) std::cerr << a.scenario << ": note: " << note << "\n";
   if (interrupted_nothing_written()) return kExitInterrupted;
+  progress.update("verifying the plan");
   finalize_plan(sc, plan);  // verifies
+  progress.finish();
   if (interrupted_nothing_written()) return kExitInterrupted;
   const int export_rc = write_outputs(a, sc, plan);
   if (export_rc != kExitOk) return export_rc;

@@ -4,9 +4,12 @@
 
 #include <CLI/CLI.hpp>
 #include <atomic>
+#include <condition_variable>
 #include <functional>
+#include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "uavplan/coordination/contract/plan.h"
@@ -86,16 +89,28 @@ StopCondition run_stop(const RunArgs& a);
 void install_terminal_filter();
 
 // Progress on stderr, only on a terminal and only once a run has taken over a second.
+// One line of progress on stderr when it is a terminal, shown once a run has taken a second.
+// Thread-safe; with the heartbeat on, the last line is shown again every half second with the
+// seconds elapsed, so that a long step that reports nothing itself still shows it is working.
 class Progress {
  public:
   Progress();
   ~Progress();
   void update(const std::string& line);
+  void start_heartbeat();
+  // Ends the line (and the heartbeat) before results are printed; later updates show nothing.
+  void finish();
 
  private:
+  void show(const std::string& line);
+
   double started_s_;
   bool tty_;
   bool shown_ = false;
+  std::mutex mutex_;
+  std::condition_variable_any beat_cv_;
+  std::string last_;
+  std::jthread beat_;
 };
 
 }  // namespace uavplan::cli

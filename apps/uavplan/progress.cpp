@@ -13,11 +13,40 @@ double now_s() { return std::chrono::duration<double>(std::chrono::steady_clock:
 
 Progress::Progress() : started_s_(now_s()), tty_(::isatty(STDERR_FILENO) == 1) {}
 
-Progress::~Progress() {
+Progress::~Progress() { finish(); }
+
+void Progress::finish() {
+  if (beat_.joinable()) {
+    beat_.request_stop();
+    beat_cv_.notify_all();
+    beat_.join();
+  }
+  const std::lock_guard<std::mutex> lock(mutex_);
   if (shown_) std::cerr << "\n";
+  shown_ = false;
+  tty_ = false;  // nothing more after the results
 }
 
 void Progress::update(const std::string& line) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  last_ = line;
+  show(line);
+}
+
+void Progress::start_heartbeat() {
+  if (!tty_) return;
+  beat_ = std::jthread([this](std::stop_token stop) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (!stop.stop_requested()) {
+      beat_cv_.wait_for(lock, stop, std::chrono::milliseconds(500), [] { return false; });
+      if (!stop.stop_requested() && !last_.empty())
+        show(last_ + " (" + std::to_string(static_cast<int>(now_s() - started_s_)) + " s)");
+    }
+  });
+}
+
+// With the mutex held.
+void Progress::show(const std::string& line) {
   if (!tty_ || now_s() - started_s_ < 1.0) return;
   // Straight to the terminal: the \r and clear-line are ours (the filter of terminal.cpp would
   // escape them); the line itself is escaped here.
