@@ -7,11 +7,13 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstddef>
 #include <future>
 #include <memory>
+#include <optional>
 
 #include "uavplan/coordination/mission_planner.h"
 #include "uavplan/evaluation/verifier.h"
@@ -125,9 +127,10 @@ py::dict violation_dict(const Violation& v) {
 }
 
 std::vector<std::string> export_plan(const Scenario& sc, const Plan& plan, const std::vector<std::string>& formats,
-                                     const std::string& dir, const std::string& firmware, const std::string& vehicle,
-                                     const std::string& end, const std::string& fence, bool force) {
-  const ExportOptions opt = export_options(firmware, vehicle, end, fence);
+                                     const std::string& dir, const std::string& firmware,
+                                     const std::optional<std::string>& vehicle, const std::string& end,
+                                     const std::string& fence, bool force) {
+  ExportOptions opt = export_options(firmware, vehicle ? std::string_view(*vehicle) : default_vehicle(sc), end, fence);
   check_output_dir(dir, "dir");
   if (formats.empty()) throw py::value_error("formats: name at least one of qgc, wpl, geojson, kml, csv");
   std::vector<ExportFormat> fs;
@@ -136,6 +139,7 @@ std::vector<std::string> export_plan(const Scenario& sc, const Plan& plan, const
     if (!ef) throw py::value_error("formats: unknown format '" + f + "' (qgc, wpl, geojson, kml, csv)");
     fs.push_back(*ef);
   }
+  opt.autopilot = std::any_of(fs.begin(), fs.end(), autopilot_format);
   const VerifiedExport flights = verified_export(sc, plan, opt);
   if (flights.uavs.empty() || (!flights.holds() && !force)) {
     std::string why = "export refused: the plan does not hold";
@@ -305,7 +309,7 @@ PYBIND11_MODULE(uavplan, m) {
       "verify", [](const Scenario& sc, const Plan& p) { return Verdict{verify_plan(sc, p)}; }, py::arg("scenario"),
       py::arg("plan"), "Every violation of the plan against the scenario");
   m.def("export", &export_plan, py::arg("scenario"), py::arg("plan"), py::arg("formats"), py::arg("dir"),
-        py::arg("firmware") = "px4", py::arg("vehicle") = "multirotor", py::arg("end") = "land",
+        py::arg("firmware") = "px4", py::arg("vehicle") = py::none(), py::arg("end") = "land",
         py::arg("fence") = "bounds", py::arg("force") = false,
         "Write mission files (qgc, wpl, geojson, kml, csv) of a verified plan; returns the paths");
   m.def(

@@ -63,11 +63,11 @@ void add_export_options(CLI::App& cmd, ExportArgs& a, bool formats_required) {
 
 int prepare_exports(const std::string& scenario_path, const Scenario& sc, const Plan& plan, const ExportArgs& a,
                     PreparedExport& out) {
-  const std::string vehicle = !a.vehicle.empty() ? a.vehicle : sc.mission.airfield ? "fixedwing" : "multirotor";
+  const std::string_view vehicle = !a.vehicle.empty() ? std::string_view(a.vehicle) : default_vehicle(sc);
   ExportOptions opt = export_options(a.firmware, vehicle, a.end, a.fence);  // CLI11 checked the spellings
   opt.flat_altitude_m = a.flat_altitude_m;
-  opt.autopilot =
-      std::any_of(a.formats.begin(), a.formats.end(), [](const std::string& f) { return f == "qgc" || f == "wpl"; });
+  opt.autopilot = std::any_of(a.formats.begin(), a.formats.end(),
+                              [](const std::string& f) { return autopilot_format(*export_format_from_string(f)); });
   try {
     const VerifiedExport flights = verified_export(sc, plan, opt);
     out.left_out = flights.left_out;

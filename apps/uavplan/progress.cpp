@@ -35,7 +35,7 @@ void Progress::update(const std::string& line) {
 
 void Progress::start_heartbeat() {
   if (!tty_) return;
-  beat_ = std::jthread([this](std::stop_token stop) {
+  beat_ = std::jthread([this](const std::stop_token& stop) {
     std::unique_lock<std::mutex> lock(mutex_);
     while (!stop.stop_requested()) {
       beat_cv_.wait_for(lock, stop, std::chrono::milliseconds(500), [] { return false; });

@@ -127,6 +127,20 @@ def test_export_writes_the_clis_files(root, exe, tmp_path, demo, demo_plan):
         uavplan.export(demo, demo_plan, ["shapefile"], str(tmp_path / "x"))
 
 
+def test_a_formation_mission_exports_as_the_cli_does(root, exe, tmp_path):
+    # Fixed wing by default (it flies from a runway), the same bytes as the command line.
+    sc = uavplan.Scenario.load(str(root / "scenarios/p5_mission.yaml"))
+    plan = uavplan.plan(sc)
+    written = uavplan.export(sc, plan, ["qgc"], str(tmp_path / "py"))
+    assert len(written) == 4
+    subprocess.run([exe, "plan", str(root / "scenarios/p5_mission.yaml"), "-o", str(tmp_path / "cli"), "--export", "qgc"],
+                   check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    for path in written:
+        name = path.rsplit("/", 1)[1]
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+    assert json.loads((tmp_path / "py" / "u1.plan").read_text())["mission"]["vehicleType"] == 1
+
+
 def test_planners_lists_names_and_parameters(root, exe):
     names = [p["name"] for p in uavplan.planners()]
     info = subprocess.run([exe, "info", str(root / "scenarios/demo.yaml")], capture_output=True, text=True).stdout

@@ -99,6 +99,8 @@ std::string_view to_string(ExportFormat f) {
 }
 
 bool needs_origin(ExportFormat f) { return f != ExportFormat::csv; }
+bool autopilot_format(ExportFormat f) { return f == ExportFormat::qgc || f == ExportFormat::wpl; }
+std::string_view default_vehicle(const Scenario& sc) { return sc.mission.airfield ? "fixedwing" : "multirotor"; }
 
 ExportOptions export_options(std::string_view firmware, std::string_view vehicle, std::string_view end,
                              std::string_view fence) {

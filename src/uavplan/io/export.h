@@ -25,6 +25,11 @@ ExportOptions export_options(std::string_view firmware, std::string_view vehicle
 
 // Whether the format is in WGS84 (needs the scenario's origin); CSV is local without one.
 bool needs_origin(ExportFormat f);
+// An autopilot's mission file (qgc, wpl): ExportOptions::autopilot.
+bool autopilot_format(ExportFormat f);
+// The vehicle exported when none is named: "fixedwing" for a formation_mission (it flies from a
+// runway), else "multirotor".
+std::string_view default_vehicle(const Scenario& scenario);
 
 struct ExportFile {
   std::string name;  // file name inside the output directory
