@@ -208,6 +208,7 @@ done
 node -e 'const t=require(process.argv[1]).uavs[0].trajectory, a=t[0], b=t[t.length-1];
   process.exit(a[1]===10 && a[2]===10 && a[3]===0 && b[1]===10 && b[2]===10 && b[3]===0 ? 0 : 1)' "$TMP/home/plan.json"
 check home.trajectory 0 $?
+"$BIN" info "$TMP/home.yaml" | grep -q "home (10, 10, 0)" || { echo "FAIL home.info"; fails=$((fails + 1)); }
 node "$SRC/tests/qgc_plan_check.mjs" "$TMP/home" u1 u2 u3 >/dev/null; check home.export.check 0 $?
 
 # Not even CSV used to be written when an autopilot could not fly the added legs: without qgc or

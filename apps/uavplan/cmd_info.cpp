@@ -60,6 +60,7 @@ void print_mission(const MissionSpec& m) {
 void print_uav(const UavSpec& u) {
   std::printf("  %-10s start (%g, %g, %g)", u.id.c_str(), u.start.x(), u.start.y(), u.start.z());
   if (u.goal) std::printf(" goal (%g, %g, %g)", u.goal->x(), u.goal->y(), u.goal->z());
+  if (u.home) std::printf(" home (%g, %g, %g)", u.home->x(), u.home->y(), u.home->z());
   std::printf("\n             r %g m, speed %g..%g..%g m/s, turn %g deg, climb %g deg", u.radius_m, u.speed.min_mps,
               u.speed.cruise_mps, u.speed.max_mps, rad_to_deg(u.max_turn_rad), rad_to_deg(u.max_climb_rad));
   if (u.ceiling_m) std::printf(", ceiling %g m", *u.ceiling_m);
