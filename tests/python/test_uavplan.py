@@ -113,14 +113,19 @@ def test_errors_carry_the_clis_one_line_message(root, exe, tmp_path):
         uavplan.plan(uavplan.Scenario.load(str(root / "scenarios/demo.yaml")), algorithm="nosuch")
 
 
-def test_export_writes_the_clis_files(root, exe, tmp_path, demo, demo_plan):
-    written = uavplan.export(demo, demo_plan, ["qgc", "csv"], str(tmp_path / "py"))
-    assert len(written) == 6
-    subprocess.run([exe, "plan", str(root / "scenarios/demo.yaml"), "-o", str(tmp_path / "cli"), "--export", "qgc,csv"],
+def expect_the_clis_files(exe, scenario, formats, written, tmp_path):
+    """The files Python wrote under tmp_path/py are byte for byte those of `plan --export`."""
+    subprocess.run([exe, "plan", str(scenario), "-o", str(tmp_path / "cli"), "--export", formats],
                    check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     for path in written:
         name = path.rsplit("/", 1)[1]
         assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+
+
+def test_export_writes_the_clis_files(root, exe, tmp_path, demo, demo_plan):
+    written = uavplan.export(demo, demo_plan, ["qgc", "csv"], str(tmp_path / "py"))
+    assert len(written) == 6
+    expect_the_clis_files(exe, root / "scenarios/demo.yaml", "qgc,csv", written, tmp_path)
     qgc = json.loads((tmp_path / "py" / "u1.plan").read_text())
     assert qgc["fileType"] == "Plan" and len(qgc["mission"]["items"]) > 2
     with pytest.raises(ValueError):
@@ -133,11 +138,7 @@ def test_a_formation_mission_exports_as_the_cli_does(root, exe, tmp_path):
     plan = uavplan.plan(sc)
     written = uavplan.export(sc, plan, ["qgc"], str(tmp_path / "py"))
     assert len(written) == 4
-    subprocess.run([exe, "plan", str(root / "scenarios/p5_mission.yaml"), "-o", str(tmp_path / "cli"), "--export", "qgc"],
-                   check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    for path in written:
-        name = path.rsplit("/", 1)[1]
-        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+    expect_the_clis_files(exe, root / "scenarios/p5_mission.yaml", "qgc", written, tmp_path)
     assert json.loads((tmp_path / "py" / "u1.plan").read_text())["mission"]["vehicleType"] == 1
 
 

@@ -11,15 +11,20 @@
 namespace uavplan {
 namespace {
 
-// UAVs standing on the ground (terrain and floor) lift off and land vertically, keep min_agl in
-// between, and two sent to one landing spot touch down apart.
-TEST(GroundOps, GroundStartsAndGoalsTakeOffAndLandApart) {
+// 200 x 200 x 60 m over sloped terrain, a 35 m block across the middle.
+World hills_world() {
   WorldSpec ws;
   ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(200, 200, 60)};
   ws.terrain = TerrainGrid(Vec2(0, 0), 50.0, 4, 4, {0, 2, 4, 6, 0, 3, 6, 9, 1, 4, 8, 12, 0, 2, 4, 6});
   ws.obstacles.push_back(Box{Vec3(90, 60, 0), Vec3(110, 140, 35)});
+  return World(std::move(ws));
+}
+
+// UAVs standing on the ground (terrain and floor) lift off and land vertically, keep min_agl in
+// between, and two sent to one landing spot touch down apart.
+TEST(GroundOps, GroundStartsAndGoalsTakeOffAndLandApart) {
   Scenario sc;
-  sc.world = World(std::move(ws));
+  sc.world = hills_world();
   for (int i = 0; i < 2; ++i) {
     UavSpec u;
     u.id = "u" + std::to_string(i + 1);
@@ -56,12 +61,8 @@ TEST(GroundOps, GroundStartsAndGoalsTakeOffAndLandApart) {
 // at home: planned, verified and measured (its arrival the first time at its goal); the verifier
 // fails a flight that skips its home or its start.
 TEST(GroundOps, AHomeIsWhereTheFlightBeginsAndEnds) {
-  WorldSpec ws;
-  ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(200, 200, 60)};
-  ws.terrain = TerrainGrid(Vec2(0, 0), 50.0, 4, 4, {0, 2, 4, 6, 0, 3, 6, 9, 1, 4, 8, 12, 0, 2, 4, 6});
-  ws.obstacles.push_back(Box{Vec3(90, 60, 0), Vec3(110, 140, 35)});
   Scenario sc;
-  sc.world = World(std::move(ws));
+  sc.world = hills_world();
   UavSpec u;
   u.id = "u1";
   u.home = Vec3(20, 20, sc.world.ground_z(20, 20));

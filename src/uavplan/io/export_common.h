@@ -18,6 +18,10 @@ LatLonAlt rounded(LatLonAlt g);
 // The shortest text that reads back as v ("0" for -0).
 std::string short_num(double v);
 
+// Rows closer than this are one position (a hold); legs this parallel are one straight leg.
+inline constexpr double kHoldMove_m = 1e-6;
+inline constexpr double kCollinearCos = 1.0 - 1e-9;
+
 // Horizontal footprint of an obstacle, counter-clockwise, not closed (circles as 64-gons).
 std::vector<Vec2> footprint(const Obstacle& o);
 // The scenario's id of obstacle k, else "obstacle K"; the same for radars.

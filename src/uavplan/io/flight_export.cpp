@@ -9,6 +9,7 @@
 #include "uavplan/core/text.h"
 #include "uavplan/core/units.h"
 #include "uavplan/evaluation/ground_legs.h"
+#include "uavplan/io/export_common.h"
 
 namespace uavplan {
 namespace {
@@ -18,7 +19,6 @@ constexpr double kTurnStep_s = 2.0;  // a turn back flies legs this long (at cru
 constexpr double kClearTolerance_m = 1e-6;
 // A blocked vertical take-off is tried from rings around the start (Builder::beside).
 constexpr int kBesideSteps = 10, kBesideDirections = 16;
-constexpr double kCollinearCos = 1.0 - 1e-9;  // legs this parallel are one straight leg
 
 // `pts` flown at v_mps from the last row; only rows after it, so that time strictly increases
 // (interpolators need it): time_route also writes the hold up to the departure, and a point

@@ -12,8 +12,6 @@ namespace {
 
 using ojson = nlohmann::ordered_json;
 
-constexpr double kHoldMove_m = 1e-6;  // rows closer than this are one position
-
 // True when b lies on the straight way from a on to c (within 1 mm).
 bool on_the_way(const Vec3& a, const Vec3& b, const Vec3& c) {
   const Vec3 ab = b - a, bc = c - b;

@@ -12,9 +12,6 @@
 namespace uavplan {
 namespace {
 
-constexpr double kHoldMove_m = 1e-6;          // a leg shorter than this is the UAV holding still
-constexpr double kCollinearCos = 1.0 - 1e-9;  // legs this parallel are one straight leg
-
 // Compass yaw (0 = north, clockwise) of a horizontal direction, degrees in [0, 360).
 double compass_yaw_deg(const Vec3& d) {
   if (std::hypot(d.x(), d.y()) < 1e-12) return 0.0;

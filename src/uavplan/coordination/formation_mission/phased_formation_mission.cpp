@@ -390,12 +390,13 @@ bool PhasedFlight::land() {
     return (group_.state(a).position - centre).head<2>().norm() < (group_.state(b).position - centre).head<2>().norm();
   });
   std::vector<std::size_t> landed;
+  std::vector<std::vector<TimeSpan>> on_runway(n_);  // of those landed, once each
   for (const std::size_t i : land) {
     const auto conflicts = [&](const Trajectory& f) {
       const std::vector<TimeSpan> runway = runway_occupancy(af_, f);
       for (const std::size_t j : landed)
         if (airfield_encounter(sc_, sc_.uavs[i], f, sc_.uavs[j], landings_[j], t_d).conflict ||
-            runway_overlap(runway, runway_occupancy(af_, landings_[j])))
+            runway_overlap(runway, on_runway[j]))
           return true;
       return false;
     };
@@ -405,6 +406,7 @@ bool PhasedFlight::land() {
       return false;
     }
     landings_[i] = std::move(r.flight);
+    on_runway[i] = runway_occupancy(af_, landings_[i]);
     landed.push_back(i);
   }
   double end = t_d;

@@ -134,10 +134,16 @@ TEST(CellPlanners, AltitudeWeightChoosesAroundOrOver) {
   }
 }
 
-TEST(CellularAco, NearTheOptimumAndIndependentOfThreads) {
-  const World w = block_world();
+// The same, through a via point on the block's north side.
+Problem block_problem_via() {
   Problem p = block_problem();
   p.via = {Vec3(100, 90, 10)};
+  return p;
+}
+
+TEST(CellularAco, NearTheOptimumAndIndependentOfThreads) {
+  const World w = block_world();
+  const Problem p = block_problem_via();
   CellularAcoOptions one;
   one.cells.cell_m = 5;
   one.threads = 1;
@@ -166,8 +172,7 @@ TEST(CellularAco, NearTheOptimumAndIndependentOfThreads) {
 // not spend the whole limit).
 TEST(CellularAco, AStoppedColonyKeepsItsBestOnEveryLeg) {
   const World w = block_world();
-  Problem p = block_problem();
-  p.via = {Vec3(100, 90, 10)};
+  const Problem p = block_problem_via();
   CellularAcoOptions o;
   o.cells.cell_m = 5;
   o.iterations = 1000000;
