@@ -99,7 +99,7 @@ try {
     return {
       cells, legend, uavs: d.uavs.map((u) => [u.id, u.colour]), radars: d.threats.length, moving: d.moving.length,
       profiled: d.uavs.filter((u) => u.profile).length, shells: r.radarShells, tracks: r.movingTracks, axisLabels: r.axisLabels,
-      drawn: r.drawn, zLabelGap: r.zLabelGap(), goals: d.uavs.filter((u) => u.goal).length,
+      drawn: r.drawn, zLabelGap: r.zLabelGap(), underOverlays: r.labelsUnderOverlays(), goals: d.uavs.filter((u) => u.goal).length,
       viaPoints: (d.via_points || []).length, taskPoints: (d.task_points || []).length, airfield: !!d.airfield,
       north: !!document.querySelector('#north svg'), scale: document.querySelector('#scalebar span').textContent,
       scaleWidth: document.querySelector('#scalebar .bar').getBoundingClientRect().width,
@@ -134,6 +134,7 @@ try {
   if (dr.viaPoints !== info.viaPoints) fail(`${info.viaPoints} via points but ${dr.viaPoints} drawn`);
   if (dr.taskPoints !== info.taskPoints) fail(`${info.taskPoints} task points but ${dr.taskPoints} drawn`);
   if (dr.runway !== info.airfield) fail(`airfield ${info.airfield} but runway drawn ${dr.runway}`);
+  if (info.underOverlays.length) fail(`axis labels under the north arrow or scale bar: ${info.underOverlays.join(', ')}`);
   if (!(info.zLabelGap >= 1)) fail(`z-axis labels overlap (gap ${info.zLabelGap} label heights)`);
   // A phased mission: bands on every time chart, and the phase named beside the time slider.
   const phases = await page.evaluate(() => JSON.parse(document.getElementById('uavplan-data').textContent).phases || []);

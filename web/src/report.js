@@ -131,6 +131,7 @@ function label(text, position, scale) {
   sprite.scale.set(scale * 4, scale, 1);
   sprite.position.copy(position);
   sprite.renderOrder = 2;
+  sprite.userData.text = text;
   scene.add(sprite);
   return sprite;
 }
@@ -526,7 +527,7 @@ if (profiled.length) {
     for (const c of profileCharts.splice(0)) c.destroy();
     profileCharts.push(new uPlot({
       title: `${u.id}: altitude and ground (m) over distance flown (m)`, width: chartWidth(), height: 190, series: sers,
-      scales: { x: { time: false } }, axes: [{ label: 'distance flown (m)' }, {}],
+      scales: { x: { time: false } }, axes: [{ label: 'distance flown (m)', space: 90 }, {}],  // room for 1,750,000
     }, cols, host));
   };
   pick.addEventListener('change', draw);
@@ -611,6 +612,22 @@ window.uavplanReport = {
     let gap = Infinity;
     for (let i = 1; i < zs.length; i++) gap = Math.min(gap, (zs[i] - zs[i - 1]) / zLabelHeight);
     return gap;
+  },
+  // Axis labels drawn under the north arrow or the scale bar (their screen boxes overlap).
+  labelsUnderOverlays: () => {
+    const boxes = [north, scaleBar].map((o) => o.getBoundingClientRect());
+    const origin = view.getBoundingClientRect();
+    const right = new THREE.Vector3().setFromMatrixColumn(camera.matrixWorld, 0).normalize();
+    const up = new THREE.Vector3().setFromMatrixColumn(camera.matrixWorld, 1).normalize();
+    const under = [];
+    for (const s of axisLabels) {
+      const corners = [[-1, -1], [1, 1]].map(([a, b]) => toScreen(s.position.clone()
+        .addScaledVector(right, (a * s.scale.x) / 2).addScaledVector(up, (b * s.scale.y) / 2)));
+      const [x0, x1] = [corners[0][0], corners[1][0]].sort((a, b) => a - b).map((v) => v + origin.left);
+      const [y0, y1] = [corners[0][1], corners[1][1]].sort((a, b) => a - b).map((v) => v + origin.top);
+      if (boxes.some((r) => x0 < r.right && x1 > r.left && y0 < r.bottom && y1 > r.top)) under.push(s.userData.text);
+    }
+    return under;
   },
   setTime,
   setRoutesVisible(v) { routesToggle.checked = v; routeGroup.visible = v; renderer.render(scene, camera); },
