@@ -61,7 +61,11 @@ diff -r "$T/j1/runs" "$T/j2/runs" >/dev/null || fail "plans differ between --job
 row=$(grep ',solved,1,' "$T/j1/results.csv" | head -1)
 sc=$(echo "$row" | cut -d, -f2); plan=$(echo "$row" | cut -d, -f15)
 "$UAVPLAN" verify "$sc" "$T/j1/$plan" >/dev/null || fail "a solved run's plan does not verify"
-grep -q "^astar  *demo.yaml  *3  *3  *3 " "$T/j1.out" || { cat "$T/j1.out"; fail "summary row for astar on demo"; }
+grep -q "^astar  *-  *demo.yaml  *3  *3  *3 " "$T/j1.out" || { cat "$T/j1.out"; fail "summary row for astar on demo"; }
+# One row per parameter setting (the two goal biases were one row, their runs merged).
+for b in 0.05 0.2; do
+  grep -q "^rrt  *goal_bias=$b  *demo.yaml  *3 " "$T/j1.out" || { cat "$T/j1.out"; fail "no summary row for rrt goal_bias=$b"; }
+done
 head -1 "$T/j1/timings.csv" | grep -q "^run,plan_ms,wall_ms$" || fail "timings.csv header"
 
 # --isolate: a run whose process dies (here: SIGKILL, which no sanitizer runtime intercepts) is a

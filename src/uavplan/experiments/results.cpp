@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <tuple>
 
 namespace uavplan {
 namespace {
@@ -161,9 +162,13 @@ std::string summary_table(const std::vector<RunRecord>& records) {
     double length_sum = 0.0;
     std::size_t lengths = 0;
   };
-  std::map<std::pair<std::string, std::string>, Group> groups;  // (planner, scenario)
+  // One row per planner, parameter setting and scenario: runs of different settings are
+  // different experiments (merged, a sweep over cell_m showed one mean of all of them).
+  using Key = std::tuple<std::string, std::string, std::string>;
+  std::map<Key, Group> groups;
   for (const RunRecord& r : records) {
-    Group& g = groups[{planner_name(r), std::filesystem::path(r.spec.scenario).filename().string()}];
+    const std::string params = r.spec.params.empty() ? "-" : params_text(r.spec.params);
+    Group& g = groups[{planner_name(r), params, std::filesystem::path(r.spec.scenario).filename().string()}];
     ++g.runs;
     g.solved += r.outcome.status == "solved";
     g.verified += r.outcome.status == "solved" && r.outcome.verified;
@@ -173,15 +178,19 @@ std::string summary_table(const std::vector<RunRecord>& records) {
       ++g.lengths;
     }
   }
+  std::size_t params_w = 6;
+  for (const auto& [key, g] : groups) params_w = std::max(params_w, std::get<1>(key).size());
   std::string out;
   char buf[512];
-  std::snprintf(buf, sizeof buf, "%-16s %-28s %6s %7s %8s %10s %10s %14s\n", "planner", "scenario", "runs", "solved",
-                "verified", "median_ms", "p95_ms", "mean_length_m");
+  const int pw = static_cast<int>(std::min<std::size_t>(params_w, 200));
+  std::snprintf(buf, sizeof buf, "%-16s %-*s %-28s %6s %7s %8s %10s %10s %14s\n", "planner", pw, "params", "scenario",
+                "runs", "solved", "verified", "median_ms", "p95_ms", "mean_length_m");
   out += buf;
   for (const auto& [key, g] : groups) {
-    std::snprintf(buf, sizeof buf, "%-16s %-28s %6zu %7zu %8zu %10.2f %10.2f %14s\n", key.first.c_str(),
-                  key.second.c_str(), g.runs, g.solved, g.verified, quantile(g.ms, 0.5), quantile(g.ms, 0.95),
-                  g.lengths ? number(g.length_sum / double(g.lengths), 1).c_str() : "-");
+    const auto& [planner, params, scenario] = key;
+    std::snprintf(buf, sizeof buf, "%-16s %-*s %-28s %6zu %7zu %8zu %10.2f %10.2f %14s\n", planner.c_str(), pw,
+                  params.c_str(), scenario.c_str(), g.runs, g.solved, g.verified, quantile(g.ms, 0.5),
+                  quantile(g.ms, 0.95), g.lengths ? number(g.length_sum / double(g.lengths), 1).c_str() : "-");
     out += buf;
   }
   return out;
