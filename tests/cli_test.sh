@@ -51,6 +51,20 @@ grep -q "from 0 to 1e9" "$TMP/stderr" || { echo "FAIL plan.negative_time message
 # --timing: per-UAV times only where a UAV was planned on its own (not 0.0 for each of a group).
 "$BIN" plan "$SRC/scenarios/p3_group9.yaml" -o "$TMP/timing" --timing >/dev/null 2>&1
 if grep -q '\.plan_ms": 0\.0' "$TMP/timing/plan.json"; then echo "FAIL timing: 0.0 per UAV of a group"; fails=$((fails + 1)); else pass=$((pass + 1)); fi
+# The table's gap_m is the body's least gap to an obstacle (the centre's distance less the radius,
+# as metrics.min_gap_m), not the centre's distance (clear_m was, unsaid).
+"$BIN" plan "$SRC/scenarios/demo.yaml" -o "$TMP/gap" >"$TMP/stdout" 2>/dev/null
+python3 - "$SRC/scenarios/demo.yaml" "$TMP/gap/plan.json" "$TMP/stdout" <<'PY' && pass=$((pass + 1)) || fails=$((fails + 1))
+import json, sys, yaml
+sc, plan, rows = yaml.safe_load(open(sys.argv[1])), json.load(open(sys.argv[2])), open(sys.argv[3]).read().split("\n")
+head = rows[0].split()
+for u in plan["uavs"]:
+    radius = next(x.get("radius", 0.5) for x in sc["uavs"] if x["id"] == u["id"])
+    row = next(r.split() for r in rows if r.split()[:1] == [u["id"]])
+    want = u["metrics"]["min_clearance_m"] - radius
+    if head[-1] != "gap_m" or abs(float(row[-1]) - want) > 1e-3 or abs(u["metrics"]["min_gap_m"] - want) > 1e-9:
+        sys.exit(f"FAIL table.gap: {u['id']}: {head[-1]} {row[-1]}, centre {u['metrics']['min_clearance_m']} less radius {radius}")
+PY
 # The bench tables find the bundled scenarios from any folder (beside the binary).
 # (exit 0 or 1: whether its timing targets are met depends on the machine; 2 is a missing file)
 (cd "$TMP" && "$BIN" bench p2 >"$TMP/stdout" 2>"$TMP/stderr"); rc=$?

@@ -537,7 +537,7 @@ if (profiled.length) {
 // ---- metrics and verification ----
 left.append(el('h2', {}, 'Metrics per UAV'));
 const cols = [['length_m', 'length (m)'], ['flight_time_s', 'flight time (s)'], ['arrival_s', 'arrival (s)'],
-  ['max_turn_deg', 'max turn (deg)'], ['max_climb_deg', 'max climb (deg)'], ['min_clearance_m', 'min clearance (m)'],
+  ['max_turn_deg', 'max turn (deg)'], ['max_climb_deg', 'max climb (deg)'], ['min_gap_m', 'min gap to obstacles (m)'],
   ['min_agl_m', 'min AGL (m)'], ['reversals', 'reversals']];
 if (data.uavs.some((u) => 'time_in_shape_s' in u.metrics)) cols.push(['time_in_shape_s', 'in shape (s)'], ['breaks', 'breaks'], ['backing_up_m', 'backing up (m)']);
 const table = el('table', { id: 'uav-metrics' },

@@ -188,7 +188,10 @@ void compute_metrics(const Scenario& sc, Plan& plan) {
                   {"p3_y2", m.p3.y2},
                   {"p3_y3", m.p3.y3},
                   {"reversals", m.reversals}};
-    if (std::isfinite(m.min_clearance_m)) up.metrics["min_clearance_m"] = m.min_clearance_m;
+    if (std::isfinite(m.min_clearance_m)) {
+      up.metrics["min_clearance_m"] = m.min_clearance_m;             // from the UAV's centre
+      up.metrics["min_gap_m"] = m.min_clearance_m - spec->radius_m;  // from its body
+    }
     if (std::isfinite(m.min_agl_m)) up.metrics["min_agl_m"] = m.min_agl_m;
     total += m.length_m;
     p3_total += m.p3.sc;

@@ -47,6 +47,8 @@ TEST(Report, MetricsAreThoseOfTheTrajectoriesShown) {
   EXPECT_DOUBLE_EQ(m["max_turn_deg"].get<double>(), 90.0);
   EXPECT_DOUBLE_EQ(m["min_agl_m"].get<double>(), 10.0);
   EXPECT_TRUE(m.contains("min_clearance_m"));
+  // The table's gap is the body's: the centre's distance less the radius.
+  EXPECT_DOUBLE_EQ(m["min_gap_m"].get<double>(), m["min_clearance_m"].get<double>() - sc.uavs[0].radius_m);
   EXPECT_TRUE(data["metrics"].contains("total_length_m"));
 }
 
