@@ -65,6 +65,21 @@ for u in plan["uavs"]:
     if head[-1] != "gap_m" or abs(float(row[-1]) - want) > 1e-3 or abs(u["metrics"]["min_gap_m"] - want) > 1e-9:
         sys.exit(f"FAIL table.gap: {u['id']}: {head[-1]} {row[-1]}, centre {u['metrics']['min_clearance_m']} less radius {radius}")
 PY
+# A wall across the whole world: astar proves the sides apart on its first grid and says so,
+# naming the wall (it used to halve its cells for seconds, then advise a smaller cell_m).
+cat >"$TMP/walled.yaml" <<'YAML'
+version: 1
+name: walled
+world:
+  bounds: {min: [0, 0, 0], max: [600, 600, 120]}
+  obstacles: [{type: box, id: wall, min: [300, 0, 0], max: [301, 600, 120]}]
+uavs: [{id: u1, start: [20, 20, 30], goal: [580, 580, 40], radius: 0.5, speed: 5}]
+mission: {type: independent}
+planner: {algorithm: astar}
+YAML
+"$BIN" plan "$TMP/walled.yaml" -o "$TMP/walled" >"$TMP/stdout" 2>&1; check walled_off.exit 1 $?
+grep -q "no way joins its ends at any cell size.*obstacle wall" "$TMP/stdout" && pass=$((pass + 1)) ||
+  { echo "FAIL walled_off.message: $(cat "$TMP/stdout")"; fails=$((fails + 1)); }
 # The bench tables find the bundled scenarios from any folder (beside the binary).
 # (exit 0 or 1: whether its timing targets are met depends on the machine; 2 is a missing file)
 (cd "$TMP" && "$BIN" bench p2 >"$TMP/stdout" 2>"$TMP/stderr"); rc=$?

@@ -27,16 +27,13 @@ std::string keep_off_text(const UavSpec& u) {
 // when it has none, or "the terrain".
 std::string nearest_thing(const World& w, const Vec3& p) {
   const auto& obstacles = w.obstacles();
-  const auto& ids = w.spec().obstacle_ids;
   double best = World::kInf;
   std::string what = "an obstacle";
   for (std::size_t k = 0; k < obstacles.size(); ++k) {
     const double d = point_distance(obstacles[k], p);
     if (d >= best) continue;
     best = d;
-    what = k < ids.size() && !ids[k].empty()
-               ? "obstacle " + ids[k]
-               : "obstacle " + std::to_string(k) + " (" + std::string(shape_name(obstacles[k])) + ")";
+    what = w.obstacle_label(k);
   }
   if (const TerrainGrid* t = w.terrain(); t && t->point_distance(p, best) < best) what = "the terrain";
   return what;

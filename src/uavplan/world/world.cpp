@@ -57,6 +57,12 @@ World::World(WorldSpec spec) : spec_(std::move(spec)) {
   bvh_ = Bvh(boxes);
 }
 
+std::string World::obstacle_label(std::size_t k) const {
+  const auto& ids = spec_.obstacle_ids;
+  if (k < ids.size() && !ids[k].empty()) return "obstacle " + ids[k];
+  return "obstacle " + std::to_string(k) + " (" + std::string(shape_name(spec_.obstacles.at(k))) + ")";
+}
+
 double World::clearance(const Vec3& p, double cap) const {
   double best = cap;
   if (spec_.terrain) best = spec_.terrain->point_distance(p, best);

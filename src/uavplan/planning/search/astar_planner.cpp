@@ -11,6 +11,7 @@
 #include "uavplan/planning/segment_rule.h"
 #include "uavplan/planning/smoothing/shortcut.h"
 #include "uavplan/planning/smoothing/turn_limits.h"
+#include "uavplan/planning/walled_off.h"
 
 namespace uavplan {
 
@@ -69,14 +70,41 @@ std::int64_t attach(const VoxelGrid& g, const Vec3& p, const SegmentRule& rule) 
 
 std::string fmt_m(double x) { return num_text(x) + " m"; }
 
-// How one attempt on a grid ended.
-enum class Attempt { found, no_route, stopped };
+// How one attempt on a grid ended (walled_off: no finer grid can find a route either).
+enum class Attempt { found, no_route, walled_off, stopped };
+
+// The proof that a leg's ends are walled apart: on a grid of up to this many cells (two bits
+// each, and a 4-byte queue entry per cell reached).
+constexpr std::int64_t kWallProofCells = 8'000'000;
+constexpr double kWallProofBytesPerCell = 4.25;
+
+// "the obstacles around its start's region: wall, tower (and 3 more)".
+std::string walls_text(const WalledOff& w) {
+  constexpr std::size_t kNamed = 3;
+  std::string out =
+      "no way joins its ends at any cell size: the obstacles, inflated by the UAV's radius and clearance, "
+      "enclose its start's region";
+  for (std::size_t i = 0; i < w.walls.size() && i < kNamed; ++i) out += (i ? ", " : " (") + w.walls[i];
+  if (w.walls.size() > kNamed) out += " and " + std::to_string(w.walls.size() - kNamed) + " more";
+  if (!w.walls.empty()) out += ")";
+  return out;
+}
+
+// Whether the leg from a to b is walled off, where a grid that small fits.
+bool prove_walled_off(const World& world, const SegmentRule& rule, const Vec3& a, const Vec3& b,
+                      const StopCondition& stop, std::string& why) {
+  if (!grid_fits(static_cast<double>(kWallProofCells), kWallProofBytesPerCell, stop)) return false;
+  const WalledOff w = walled_off(world, rule.inflation_m(), rule.ceiling_m(), a, b, kWallProofCells, stop);
+  if (w.apart) why = walls_text(w);
+  return w.apart;
+}
 
 // The route through every stop on one grid, each leg straight where it is clear, else grid A*
 // between the free cells reached straight from its ends; `pinned` marks the stops.
-Attempt route_on_grid(const VoxelGrid& grid, const UavSpec& uav, const SegmentRule& rule,
-                      const std::vector<Vec3>& stops, bool derived, const StopCondition& stop, PlanResult& res,
-                      std::vector<Vec3>& path, std::vector<char>& pinned) {
+// On the first grid, a leg without a route is checked for walls before finer grids are tried.
+Attempt route_on_grid(const World& world, const VoxelGrid& grid, const UavSpec& uav, const SegmentRule& rule,
+                      const std::vector<Vec3>& stops, bool derived, bool first, const StopCondition& stop,
+                      PlanResult& res, std::vector<Vec3>& path, std::vector<char>& pinned) {
   const Vec3 cs = grid.cell();
   GridAStar search(grid.cells(), bounding_box_moves(grid.cells(), cs.x(), cs.y(), cs.z(), uav.max_climb_rad),
                    GridHeuristic::euclidean, cs.x(), cs.y(), cs.z());
@@ -107,6 +135,11 @@ Attempt route_on_grid(const VoxelGrid& grid, const UavSpec& uav, const SegmentRu
     }
     if (!vp.found) {
       res.reason = Reason::no_route;
+      std::string walls;
+      if (first && prove_walled_off(world, rule, a, b, stop, walls)) {
+        res.message = leg_name(s, stops.size()) + ": " + walls;
+        return Attempt::walled_off;
+      }
       res.message = leg_name(s, stops.size()) + ": no route on a " + std::to_string(grid.nx()) + "x" +
                     std::to_string(grid.ny()) + "x" + std::to_string(grid.nz()) + " grid of " + fmt_m(cs.x()) +
                     " cells; a smaller planner.params.cell_m finds narrower gaps" +
@@ -169,7 +202,7 @@ PlanResult AStarPlanner::do_plan(const Problem& pb, const World& world, const St
     const VoxelGrid grid = voxelize(world, cell3, rule.inflation_m(), rule.ceiling_m(), stop);
     res.stats.grid_cells = static_cast<std::uint64_t>(grid.size());
     res.stats.cell_m = grid.cell().x();
-    attempt = route_on_grid(grid, uav, rule, stops, derived, stop, res, path, pinned);
+    attempt = route_on_grid(world, grid, uav, rule, stops, derived, k == 0, stop, res, path, pinned);
   }
   if (attempt != Attempt::found) return res;
   if (options_.shortcut) {
