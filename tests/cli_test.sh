@@ -80,6 +80,28 @@ YAML
 "$BIN" plan "$TMP/walled.yaml" -o "$TMP/walled" >"$TMP/stdout" 2>&1; check walled_off.exit 1 $?
 grep -q "no way joins its ends at any cell size.*obstacle wall" "$TMP/stdout" && pass=$((pass + 1)) ||
   { echo "FAIL walled_off.message: $(cat "$TMP/stdout")"; fails=$((fails + 1)); }
+# From the ground without min_agl: the flight keeps PX4's take-off height, 2.5 m, above the ground
+# (it cruised with its body 5 cm over it), and info says so; min_agl: 0 written flies lower.
+cat >"$TMP/delivery.yaml" <<'YAML'
+version: 1
+name: delivery
+world:
+  bounds: {min: [0, 0, 0], max: [400, 300, 60]}
+  obstacles: [{type: box, id: shed, min: [150, 100, 0], max: [200, 160, 12]}]
+uavs:
+  - {id: d1, start: [20, 20, 0], goal: [380, 280, 0], radius: 0.5, speed: 6}
+  - {id: d2, start: [20, 280, 0], goal: [380, 20, 0], radius: 0.5, speed: 6}
+mission: {type: independent, separation: 3}
+planner: {algorithm: astar}
+YAML
+low_agl() { python3 -c 'import json, sys; print(min(u["metrics"]["min_agl_m"] for u in json.load(open(sys.argv[1]))["uavs"]))' "$1"; }
+"$BIN" plan "$TMP/delivery.yaml" -o "$TMP/delivery" >/dev/null 2>&1; check default_agl.plan 0 $?
+"$BIN" plan "$TMP/delivery.yaml" -o "$TMP/delivery0" --set 'uavs[0].min_agl=0' --set 'uavs[1].min_agl=0' >/dev/null 2>&1
+python3 -c 'import sys; sys.exit(not (float(sys.argv[1]) >= 3.0 - 1e-9 and float(sys.argv[2]) < 1.0))' \
+  "$(low_agl "$TMP/delivery/plan.json")" "$(low_agl "$TMP/delivery0/plan.json")" && pass=$((pass + 1)) ||
+  { echo "FAIL default_agl.height: $(low_agl "$TMP/delivery/plan.json") m, $(low_agl "$TMP/delivery0/plan.json") m with min_agl 0"; fails=$((fails + 1)); }
+"$BIN" info "$TMP/delivery.yaml" | grep -q "^min_agl   2.5 m above the ground" && pass=$((pass + 1)) ||
+  { echo "FAIL default_agl.info"; fails=$((fails + 1)); }
 # The bench tables find the bundled scenarios from any folder (beside the binary).
 # (exit 0 or 1: whether its timing targets are met depends on the machine; 2 is a missing file)
 (cd "$TMP" && "$BIN" bench p2 >"$TMP/stdout" 2>"$TMP/stderr"); rc=$?

@@ -6,6 +6,7 @@
 
 #include "commands.h"
 #include "uavplan/coordination/mission.h"
+#include "uavplan/coordination/planning_view.h"
 #include "uavplan/core/units.h"
 #include "uavplan/io/input_error.h"
 #include "uavplan/io/scenario_io.h"
@@ -100,6 +101,10 @@ int run_info(const std::string& path) {
   print_mission(sc.mission);
   std::printf("uavs      %zu\n", sc.uavs.size());
   for (const auto& u : sc.uavs) print_uav(u);
+  if (sc.default_min_agl_m > 0.0 && planning_min_agl_m(sc) == sc.default_min_agl_m)
+    std::printf("min_agl   %g m above the ground for every UAV while planning (the default where a UAV takes off or "
+                "lands and none sets min_agl; min_agl: 0 flies lower)\n",
+                sc.default_min_agl_m);
   print_planners(sc);
   return kExitOk;
 }

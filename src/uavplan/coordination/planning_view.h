@@ -40,8 +40,19 @@ struct PlanningView {
 enum class GroundLegTiming { shifted, by_mission };
 PlanningView planning_view(const Scenario& scenario, GroundLegTiming timing = GroundLegTiming::shifted);
 
-// The largest min_agl of the scenario's UAVs: the ground the planners keep clear for all of them.
+// The largest min_agl of the scenario's UAVs, or its default_min_agl_m where larger: the ground
+// the planners keep clear for all of them.
 double planning_min_agl_m(const Scenario& scenario);
+
+// What a UAV that takes off or lands flies above the ground when its scenario sets no min_agl:
+// PX4's default take-off height (MIS_TAKEOFF_ALT, 2.5 m), so that a flight from the ground does
+// not cruise a hand's breadth above it. Less where the scenario has less room: every start, goal
+// and via point in the air stays above it (with its body), every lift-off fits under the top of
+// the world and the UAV's ceiling with its column clear; 0 in a flat world, for a
+// formation_mission (its UAVs fly from a runway by P5's phases) and where no UAV without
+// min_agl touches the ground.
+inline constexpr double kDefaultMinAgl_m = 2.5;
+double default_min_agl_m(const Scenario& scenario);
 // How high above the ground a UAV standing on it lifts off vertically before it is planned: its
 // body, its clearance and the planning min_agl clear of the ground, with a 5 cm margin.
 double lift_height_m(const Scenario& scenario, const UavSpec& uav);

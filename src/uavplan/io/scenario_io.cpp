@@ -331,7 +331,10 @@ UavSpec read_uav(const At& u) {
   if (u.has("heading_deg")) s.heading_rad = deg_to_rad(u["heading_deg"].number());
   if (u.has("radius")) s.radius_m = u["radius"].non_negative();
   if (u.has("clearance")) s.clearance_m = u["clearance"].non_negative();
-  if (u.has("min_agl")) s.min_agl_m = u["min_agl"].non_negative();
+  if (u.has("min_agl")) {
+    s.min_agl_m = u["min_agl"].non_negative();
+    s.min_agl_given = true;
+  }
   if (u.has("speed")) {
     const At sp = u["speed"];
     if (sp.node.IsMap()) {
@@ -702,6 +705,7 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
   read_uavs(uavs, sc);
   if (top.has("mission")) read_mission(top["mission"], uavs, sc);
   check_flight_lengths(uavs, sc);
+  sc.default_min_agl_m = default_min_agl_m(sc);
   check_uavs_fit(uavs, sc);
   if (top.has("planner")) read_planner(top["planner"], sc);
   return sc;

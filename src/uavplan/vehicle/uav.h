@@ -29,6 +29,7 @@ struct UavSpec {
   double radius_m = 0.5;              // obstacles are inflated by it
   double clearance_m = 0.0;           // extra distance kept from obstacles and terrain
   double min_agl_m = 0.0;             // least height above the ground (but taking off and landing)
+  bool min_agl_given = false;         // the scenario sets min_agl (else planners may keep a default)
   SpeedLimits speed;
   double max_turn_rad = kPi;        // heading change between consecutive segments
   double max_climb_rad = kPi / 2;   // |pitch| of any segment

@@ -78,6 +78,10 @@ struct Scenario {
   std::vector<UavSpec> uavs;
   MissionSpec mission;
   PlannerSpec planner;
+  // The height above the ground planners keep where the scenario sets no min_agl and a UAV takes
+  // off or lands (planning_view.h: default_min_agl_m; set by the scenario reader). Planning only:
+  // the verifier checks the min_agl a scenario sets.
+  double default_min_agl_m = 0.0;
 
   const UavSpec* find_uav(std::string_view id) const {
     for (const auto& u : uavs)

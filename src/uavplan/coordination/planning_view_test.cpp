@@ -1,0 +1,67 @@
+#include "uavplan/coordination/planning_view.h"
+
+#include <gtest/gtest.h>
+
+namespace uavplan {
+namespace {
+
+// One UAV from the ground at (10, 10) to (190, 190) at `goal_z` (0: on the ground).
+Scenario from_the_ground(double top_z, double goal_z) {
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(200, 200, top_z)};
+  Scenario sc;
+  sc.world = World(std::move(ws));
+  UavSpec u;
+  u.id = "u1";
+  u.start = Vec3(10, 10, 0);
+  u.goal = Vec3(190, 190, goal_z);
+  sc.uavs.push_back(u);
+  return sc;
+}
+
+TEST(DefaultMinAgl, AFlightFromTheGroundKeepsPx4sTakeOffHeight) {
+  const Scenario sc = from_the_ground(50, 0);
+  EXPECT_DOUBLE_EQ(default_min_agl_m(sc), kDefaultMinAgl_m);
+}
+
+TEST(DefaultMinAgl, LessWhereTheScenarioHasLessRoom) {
+  // A goal in the air 2 m up: the default stays under it with the body (2 - 0.5 - 0.05).
+  EXPECT_NEAR(default_min_agl_m(from_the_ground(50, 2)), 1.45, 1e-12);
+  // A world 3 m high: the lift-off (default + body + margins) fits under its top.
+  EXPECT_NEAR(default_min_agl_m(from_the_ground(3, 0)), 3 - 0.5 - 0.1, 1e-12);
+  // A goal in the air lower than the body: no default at all.
+  EXPECT_EQ(default_min_agl_m(from_the_ground(50, 0.4)), 0.0);
+}
+
+TEST(DefaultMinAgl, NoneWhereTheScenarioSaysOrNoOneTouchesTheGround) {
+  Scenario given = from_the_ground(50, 0);
+  given.uavs[0].min_agl_given = true;  // min_agl: 0 written: flown as written
+  EXPECT_EQ(default_min_agl_m(given), 0.0);
+  Scenario airborne = from_the_ground(50, 30);
+  airborne.uavs[0].start.z() = 30;
+  EXPECT_EQ(default_min_agl_m(airborne), 0.0);
+  Scenario p5 = from_the_ground(50, 0);
+  p5.mission.type = MissionType::formation_mission;  // a runway's take-offs, by P5's phases
+  EXPECT_EQ(default_min_agl_m(p5), 0.0);
+}
+
+TEST(DefaultMinAgl, NoneWhereItWouldCloseATakeOffColumn) {
+  // A balcony 2 m over the start: the take-off to 0.55 m clears it, one to 3.05 m does not.
+  Scenario sc = from_the_ground(50, 0);
+  WorldSpec ws = sc.world.spec();
+  ws.obstacles.push_back(Box{Vec3(5, 5, 2), Vec3(15, 15, 2.5)});
+  sc.world = World(std::move(ws));
+  EXPECT_EQ(default_min_agl_m(sc), 0.0);
+}
+
+TEST(DefaultMinAgl, PlannersKeepIt) {
+  Scenario sc = from_the_ground(50, 0);
+  sc.default_min_agl_m = default_min_agl_m(sc);
+  EXPECT_DOUBLE_EQ(planning_min_agl_m(sc), kDefaultMinAgl_m);
+  EXPECT_DOUBLE_EQ(lift_height_m(sc, sc.uavs[0]), kDefaultMinAgl_m + 0.5 + 0.05);
+  sc.uavs[0].min_agl_m = 10;  // a larger one set wins
+  EXPECT_DOUBLE_EQ(planning_min_agl_m(sc), 10.0);
+}
+
+}  // namespace
+}  // namespace uavplan
