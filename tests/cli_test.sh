@@ -102,6 +102,10 @@ python3 -c 'import sys; sys.exit(not (float(sys.argv[1]) >= 3.0 - 1e-9 and float
   { echo "FAIL default_agl.height: $(low_agl "$TMP/delivery/plan.json") m, $(low_agl "$TMP/delivery0/plan.json") m with min_agl 0"; fails=$((fails + 1)); }
 "$BIN" info "$TMP/delivery.yaml" | grep -q "^min_agl   2.5 m above the ground" && pass=$((pass + 1)) ||
   { echo "FAIL default_agl.info"; fails=$((fails + 1)); }
+# One UAV is "1 UAV" (the report said "1 UAVs").
+"$BIN" plan "$SRC/scenarios/nyc_block.yaml" -o "$TMP/one" >/dev/null 2>&1
+"$BIN" report "$SRC/scenarios/nyc_block.yaml" "$TMP/one/plan.json" -o "$TMP/one/r.html" | grep -q "(1 UAV, plan holds)" &&
+  pass=$((pass + 1)) || { echo "FAIL report.one_uav"; fails=$((fails + 1)); }
 # The bench tables find the bundled scenarios from any folder (beside the binary).
 # (exit 0 or 1: whether its timing targets are met depends on the machine; 2 is a missing file)
 (cd "$TMP" && "$BIN" bench p2 >"$TMP/stdout" 2>"$TMP/stderr"); rc=$?
@@ -380,7 +384,7 @@ const fs = require("fs"); const p = JSON.parse(fs.readFileSync(process.argv[1]))
 p.uavs[1].trajectory[2] = [p.uavs[1].trajectory[2][0], 230, 230, 30];  // inside tower_a
 fs.writeFileSync(process.argv[2], JSON.stringify(p));' "$TMP/a/plan.json" "$TMP/tampered.json"
 "$BIN" export "$good" "$TMP/tampered.json" --format qgc -o "$TMP/tx" >/dev/null 2>"$TMP/stderr"; check export.tampered 1 $?
-grep -q "export refused: 1 of 3 UAVs do not hold; nothing written" "$TMP/stderr" && grep -q "u2: does not hold" "$TMP/stderr" ||
+grep -q "export refused: 1 of 3 UAVs does not hold; nothing written" "$TMP/stderr" && grep -q "u2: does not hold" "$TMP/stderr" ||
   { echo "FAIL export.tampered message: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
 [ -e "$TMP/tx" ] && { echo "FAIL export.tampered wrote files"; fails=$((fails + 1)); }
 "$BIN" export "$good" "$TMP/tampered.json" --format qgc --force -o "$TMP/tx" >/dev/null 2>"$TMP/stderr"; check export.force 0 $?

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "uavplan/core/text.h"
 #include "uavplan/io/export.h"
 #include "uavplan/io/files.h"
 
@@ -74,11 +75,14 @@ int prepare_exports(const std::string& scenario_path, const Scenario& sc, const 
     if (flights.uavs.empty() || (!flights.holds() && !a.force)) {
       const std::size_t bad = plan.uavs.size() - flights.uavs.size();
       std::cerr << scenario_path << ": export refused: "
-                << (bad ? std::to_string(bad) + " of " + std::to_string(plan.uavs.size()) + " UAVs do not hold"
+                << (bad ? std::to_string(bad) + " of " + count_text(plan.uavs.size(), "UAV") +
+                              (bad == 1 ? " does" : " do") + " not hold"
                         : "the plan does not hold")
                 << "; nothing written\n";
       for (const std::string& why : flights.left_out) std::cerr << "  " << why << "\n";
-      if (!flights.uavs.empty()) std::cerr << "  (--force writes the " << flights.uavs.size() << " UAVs that hold)\n";
+      if (!flights.uavs.empty())
+        std::cerr << "  (--force writes the " << count_text(flights.uavs.size(), "UAV") << " that hold"
+                  << (flights.uavs.size() == 1 ? "s" : "") << ")\n";
       return kExitNotSolved;
     }
     for (const std::string& name : a.formats) {

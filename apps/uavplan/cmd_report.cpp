@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "uavplan/core/text.h"
 #include "uavplan/evaluation/verifier.h"
 #include "uavplan/io/files.h"
 #include "uavplan/io/report.h"
@@ -20,9 +21,8 @@ int run_report(const Args& a) {
   if (!load_scenario_and_plan(a.scenario, a.plan, sc, plan)) return kExitBadInput;
   const auto violations = verify_plan(sc, plan);
   write_file_atomic(a.out, report_html(sc, plan, violations));
-  std::cout << "wrote " << a.out << " (" << plan.uavs.size() << " UAVs, "
-            << (violations.empty() ? std::string("plan holds") : std::to_string(violations.size()) + " violations")
-            << ")\n";
+  std::cout << "wrote " << a.out << " (" << count_text(plan.uavs.size(), "UAV") << ", "
+            << (violations.empty() ? std::string("plan holds") : count_text(violations.size(), "violation")) << ")\n";
   return kExitOk;
 }
 

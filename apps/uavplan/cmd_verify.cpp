@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "uavplan/core/text.h"
 #include "uavplan/evaluation/verifier.h"
 
 namespace uavplan::cli {
@@ -14,7 +15,7 @@ int run_verify(const std::string& scenario_path, const std::string& plan_path) {
   const auto violations = verify_plan(sc, plan);
   for (const auto& v : violations) std::cout << describe(v) << "\n";
   if (violations.empty()) {
-    std::cout << "plan holds: " << plan.uavs.size() << (plan.uavs.size() == 1 ? " UAV" : " UAVs") << ", no violation\n";
+    std::cout << "plan holds: " << count_text(plan.uavs.size(), "UAV") << ", no violation\n";
     return kExitOk;
   }
   std::cout << violations.size() << " violation" << (violations.size() == 1 ? "" : "s") << "\n";

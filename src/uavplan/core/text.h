@@ -20,4 +20,9 @@ inline std::string point_text(const Vec3& p) {
   return buf;
 }
 
+// "1 UAV", "3 UAVs": a count with its noun, plural but for one (the noun's plural adds "s").
+inline std::string count_text(std::size_t n, const std::string& noun) {
+  return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+}
+
 }  // namespace uavplan
