@@ -106,6 +106,38 @@ python3 -c 'import sys; sys.exit(not (float(sys.argv[1]) >= 3.0 - 1e-9 and float
 "$BIN" plan "$SRC/scenarios/nyc_block.yaml" -o "$TMP/one" >/dev/null 2>&1
 "$BIN" report "$SRC/scenarios/nyc_block.yaml" "$TMP/one/plan.json" -o "$TMP/one/r.html" | grep -q "(1 UAV, plan holds)" &&
   pass=$((pass + 1)) || { echo "FAIL report.one_uav"; fails=$((fails + 1)); }
+# max_agl (terrain following): a band 20-45 m over hills, planned and verified with astar; over
+# a flat floor, a ceiling; a band without room for the body, or a start above it, is bad input;
+# the cell planners, whose map holds columns, say that the band's top is what they cannot fly under.
+cat >"$TMP/band.yaml" <<'YAML'
+version: 1
+name: band
+world:
+  bounds: {min: [0, 0, 0], max: [600, 400, 150]}
+  obstacles: [{type: box, id: barn, min: [250, 150, 0], max: [320, 230, 40]}]
+  terrain: {type: grid, origin: [0, 0], cell: 100, heights: [[0, 5, 15, 25, 15, 5], [0, 10, 20, 30, 20, 10], [0, 10, 20, 30, 20, 10], [0, 5, 15, 25, 15, 5]]}
+uavs:
+  - {id: s1, start: [20, 50, 30], goal: [580, 350, 40], max_turn_deg: 60, max_climb_deg: 30, min_agl: 20, max_agl: 45}
+  - {id: s2, start: [20, 350, 30], goal: [580, 50, 40], max_turn_deg: 60, max_climb_deg: 30, min_agl: 20, max_agl: 45}
+mission: {type: independent, separation: 10}
+planner: {algorithm: astar}
+YAML
+"$BIN" plan "$TMP/band.yaml" -o "$TMP/band" >/dev/null 2>&1; check max_agl.plan 0 $?
+"$BIN" verify "$TMP/band.yaml" "$TMP/band/plan.json" >/dev/null 2>&1; check max_agl.verify 0 $?
+python3 - "$TMP/band/plan.json" <<'PY' && pass=$((pass + 1)) || fails=$((fails + 1))
+import json, sys
+p = json.load(open(sys.argv[1]))
+# the band follows the hill: over its crest (30 m) min_agl takes it above 45 m: some row higher than the floor's 45 m
+if not max(r[3] for u in p["uavs"] for r in u["trajectory"]) > 45:
+    sys.exit("FAIL max_agl.follows: the flight never rises over the hills")
+PY
+sed 's/max_agl: 45}/max_agl: 45}/; s/\[20, 50, 30\]/[20, 50, 50]/' "$TMP/band.yaml" >"$TMP/band_high.yaml"
+expect_bad max_agl.start_above "$TMP/band_high.yaml" "uavs[0].start"
+sed 's/min_agl: 20, max_agl: 45}/min_agl: 20, max_agl: 20.5}/' "$TMP/band.yaml" >"$TMP/band_thin.yaml"
+expect_bad max_agl.no_room "$TMP/band_thin.yaml" "uavs[0].max_agl"
+"$BIN" plan "$TMP/band.yaml" -o "$TMP/band_cells" --algorithm cell_astar >"$TMP/stdout" 2>&1
+grep -q "models columns, and obstacle above max_agl" "$TMP/stdout" && pass=$((pass + 1)) ||
+  { echo "FAIL max_agl.cell_map: $(grep '^s1:' "$TMP/stdout")"; fails=$((fails + 1)); }
 # The bench tables find the bundled scenarios from any folder (beside the binary).
 # (exit 0 or 1: whether its timing targets are met depends on the machine; 2 is a missing file)
 (cd "$TMP" && "$BIN" bench p2 >"$TMP/stdout" 2>"$TMP/stderr"); rc=$?

@@ -524,6 +524,7 @@ if (profiled.length) {
       { label: 'height above ground', stroke: u.colour, dash: [5, 4], width: 1 }];
     const cols = [p.s_m, p.ground_m, p.z_m, agl];
     if (u.min_agl > 0) { sers.push({ label: 'min_agl', stroke: '#8a1420', dash: [2, 3], width: 1 }); cols.push(p.s_m.map(() => u.min_agl)); }
+    if (u.max_agl != null) { sers.push({ label: 'max_agl', stroke: '#8a1420', dash: [6, 3], width: 1 }); cols.push(p.s_m.map(() => u.max_agl)); }
     for (const c of profileCharts.splice(0)) c.destroy();
     profileCharts.push(new uPlot({
       title: `${u.id}: altitude and ground (m) over distance flown (m)`, width: chartWidth(), height: 190, series: sers,

@@ -25,6 +25,30 @@ World raised(const World& w, double by_m) {
   return World(std::move(s));
 }
 
+// The sky more than `agl_m` above terrain `t` closed: a box over each of its cells and over the
+// floor beside the grid, from that height to above the bounds (without terrain: a ceiling).
+void close_sky(WorldSpec& s, const TerrainGrid& t, double agl_m) {
+  const Aabb& b = s.bounds;
+  const double top = b.max.z() + 1.0, floor = b.min.z() + agl_m;
+  const std::size_t first = s.obstacles.size();
+  const double c = t.cell_m(), x0 = t.origin().x(), y0 = t.origin().y();
+  const double x1 = x0 + t.nx() * c, y1 = y0 + t.ny() * c;
+  for (int j = 0; j < t.ny(); ++j)
+    for (int i = 0; i < t.nx(); ++i)
+      s.obstacles.push_back(Box{Vec3(x0 + i * c, y0 + j * c, std::max(t.height(i, j), b.min.z()) + agl_m),
+                                Vec3(x0 + (i + 1) * c, y0 + (j + 1) * c, top)});
+  // Beside the grid: four strips over the floor (empty ones left out).
+  const Vec3 lo(b.min.x() - 1, b.min.y() - 1, floor), hi(b.max.x() + 1, b.max.y() + 1, top);
+  const Box strips[] = {{lo, Vec3(x0, hi.y(), top)},
+                        {Vec3(x1, lo.y(), floor), hi},
+                        {Vec3(x0, lo.y(), floor), Vec3(x1, y0, top)},
+                        {Vec3(x0, y1, floor), Vec3(x1, hi.y(), top)}};
+  for (const Box& s_box : strips)
+    if (s_box.max.x() > s_box.min.x() && s_box.max.y() > s_box.min.y()) s.obstacles.push_back(s_box);
+  s.obstacle_ids.resize(first);  // named for the planners' messages
+  s.obstacle_ids.resize(s.obstacles.size(), "above max_agl");
+}
+
 // Moving obstacles as seen from a clock `shift_s` later.
 void shift_moving(WorldSpec& s, double shift_s) {
   for (MovingObstacle& m : s.moving) {
@@ -42,6 +66,13 @@ void shift_moving(WorldSpec& s, double shift_s) {
 double planning_min_agl_m(const Scenario& sc) {
   double agl = sc.default_min_agl_m;
   for (const UavSpec& u : sc.uavs) agl = std::max(agl, u.min_agl_m);
+  return agl;
+}
+
+std::optional<double> planning_max_agl_m(const Scenario& sc) {
+  std::optional<double> agl;
+  for (const UavSpec& u : sc.uavs)
+    if (u.max_agl_m) agl = std::min(agl.value_or(*u.max_agl_m), *u.max_agl_m);
   return agl;
 }
 
@@ -101,6 +132,8 @@ double default_min_agl_m(const Scenario& sc) {
     const double roof = std::min(w.bounds().max.z(), u->ceiling_m.value_or(w.bounds().max.z()));
     agl = std::min(agl, roof - w.ground_z(p.x(), p.y()) - keep_off_m(*u) - 2 * kLiftMargin_m);
   }
+  if (const auto top = planning_max_agl_m(sc))  // room for the body in the band
+    for (const UavSpec& u : sc.uavs) agl = std::min(agl, *top - 2 * keep_off_m(u) - 2 * kLiftMargin_m);
   if (agl <= 0.0) return 0.0;
   for (const auto& [u, p] : placed.ground)  // a column clear to the old height but not the new: none
     if (column_problem(sc, *u, p, agl + keep_off_m(*u) + kLiftMargin_m).empty() !=
@@ -122,10 +155,18 @@ std::vector<PlacementProblem> placement_problems(const Scenario& sc) {
   const PlanningView v = planning_view(sc);
   const Scenario& planned = v.identity ? sc : v.scenario;
   const double agl = planning_min_agl_m(sc);
+  const std::optional<double> top = planning_max_agl_m(sc);
   auto check = [&](const UavSpec& u, const UavSpec& pu, const Vec3& p, const Vec3& pp) -> std::string {
     if (sc.world.on_ground(p))
       return ground_column_problem(sc, u, Vec3(pp.x(), pp.y(), sc.world.ground_z(pp.x(), pp.y())));
     const double keep = keep_off_m(u);
+    // Over terrain the planners keep the body under the band's top, over a floor the centre.
+    if (const double high = sc.world.highest_height_above_ground(p, p),
+        limit = top ? *top - (sc.world.terrain() ? keep : 0.0) : 0.0;
+        top && high > limit)
+      return num_text(high) + " m above the ground, above " +
+             (sc.world.terrain() ? "max_agl less radius and clearance " : "max_agl ") + num_text(limit) +
+             " m (planners keep the smallest max_agl of the scenario, " + num_text(*top) + " m, for every UAV)";
     const double h = sc.world.lowest_height_above_ground(p, p);
     if (agl > 0.0 && h < agl + keep)
       return num_text(h) + " m above the ground, below min_agl plus radius and clearance " + num_text(agl + keep) +
@@ -153,6 +194,7 @@ PlanningView planning_view(const Scenario& sc, GroundLegTiming timing) {
   v.ground.goal.assign(n, std::nullopt);
   v.ground.home_visits.assign(n, std::nullopt);
   const double agl = planning_min_agl_m(sc);
+  const std::optional<double> top = planning_max_agl_m(sc);
   bool bodies = false;
   for (const UavSpec& u : sc.uavs) bodies = bodies || u.clearance_m > 0.0;
   const World& w = sc.world;
@@ -188,10 +230,11 @@ PlanningView planning_view(const Scenario& sc, GroundLegTiming timing) {
   const bool lifted =
       std::any_of(v.lift_off.begin(), v.lift_off.end(), [](const auto& p) { return p.has_value(); }) ||
       std::any_of(v.touch_down.begin(), v.touch_down.end(), [](const auto& p) { return p.has_value(); });
-  if (agl <= 0.0 && !bodies && !lifted && !moved) return v;
+  if (agl <= 0.0 && !top && !bodies && !lifted && !moved) return v;
   v.identity = false;
   v.scenario = sc;
   WorldSpec spec = (agl > 0.0 ? raised(w, agl) : w).spec();
+  if (top && w.terrain()) close_sky(spec, *w.terrain(), *top);  // over the terrain as it is, not raised
   shift_moving(spec, v.takeoff_s);
   v.scenario.world = World(std::move(spec));
   for (std::size_t i = 0; i < n; ++i) {
@@ -199,6 +242,9 @@ PlanningView planning_view(const Scenario& sc, GroundLegTiming timing) {
     u.radius_m = keep_off_m(u);
     u.clearance_m = 0.0;
     u.min_agl_m = 0.0;
+    if (top && !w.terrain())
+      u.ceiling_m = std::min(u.ceiling_m.value_or(w.bounds().max.z()), w.bounds().min.z() + *top);
+    u.max_agl_m.reset();
     if (v.lift_off[i]) {
       u.start = *v.lift_off[i];
       u.heading_rad.reset();  // a vertical take-off can leave in any direction

@@ -3,7 +3,7 @@
 //  - a UAV's body is its radius plus its clearance (obstacles, terrain and moving obstacles are
 //    kept that far; the separation between UAVs counts it too, which only adds margin);
 //  - the ground is raised by the largest min_agl of the scenario's UAVs (the terrain, and a
-//    floor over the bottom of the bounds);
+//    floor over the bottom of the bounds), and the sky above the smallest max_agl closed;
 //  - a UAV standing on the ground at its start is planned from its lift-off point straight above
 //    (its body and min_agl clear of the ground), one whose goal is on the ground to its
 //    touch-down point straight above;
@@ -52,6 +52,10 @@ double planning_min_agl_m(const Scenario& scenario);
 // formation_mission (its UAVs fly from a runway by P5's phases) and where no UAV without
 // min_agl touches the ground.
 inline constexpr double kDefaultMinAgl_m = 2.5;
+// The smallest max_agl of the scenario's UAVs (none: no UAV sets one): the band's top the
+// planners keep for all of them. Without terrain it is a ceiling over the floor; over terrain a
+// box above each cell, which planners keep their bodies below.
+std::optional<double> planning_max_agl_m(const Scenario& scenario);
 double default_min_agl_m(const Scenario& scenario);
 // How high above the ground a UAV standing on it lifts off vertically before it is planned: its
 // body, its clearance and the planning min_agl clear of the ground, with a 5 cm margin.

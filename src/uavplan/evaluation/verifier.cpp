@@ -140,6 +140,12 @@ void check_segments(const Scenario& sc, const UavSpec& u, const Trajectory& tr, 
         add_violation(out, ViolationKind::low_altitude, id, a.t_s, a.p,
                       "height " + num_text(h) + " m above the ground, below min_agl " + num_text(u.min_agl_m) + " m");
     }
+    if (u.max_agl_m && !on_leg) {
+      const double h = sc.world.highest_height_above_ground(a.p, b.p);
+      if (h > *u.max_agl_m + kDistanceTolerance_m)
+        add_violation(out, ViolationKind::high_altitude, id, a.t_s, a.p,
+                      "height " + num_text(h) + " m above the ground, above max_agl " + num_text(*u.max_agl_m) + " m");
+    }
   }
 }
 

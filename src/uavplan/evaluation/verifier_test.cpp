@@ -217,6 +217,36 @@ TEST(Verifier, TakeOffAndLandingLegs) {
   EXPECT_THAT(kinds(sc, p), ::testing::Contains(K::obstacle));
 }
 
+// max_agl: the height above the ground under the whole segment, exactly: a level flight at 20 m
+// holds 15 m over the 10 m plateau and breaks it over the floor beside it; take-off legs are
+// not in the band.
+TEST(Verifier, MaxAglOverTheGroundUnderTheSegment) {
+  Scenario sc = base_scenario();
+  sc.uavs.resize(1);
+  UavSpec& u = sc.uavs[0];
+  u.max_turn_rad = kPi;
+  u.start = Vec3(60, 10, 20);
+  u.goal = Vec3(95, 10, 20);
+  u.max_agl_m = 15;
+  Plan p = base_plan(sc);
+  fly(p, 0, {{60, 10, 20}, {95, 10, 20}});  // over the plateau: 10 m above it
+  EXPECT_TRUE(verify_plan(sc, p).empty()) << describe(verify_plan(sc, p).front());
+  u.start = Vec3(45.0, 10, 20);  // from beside the plateau, 20 m above the floor there
+  fly(p, 0, {{45.0, 10, 20}, {95, 10, 20}});
+  EXPECT_THAT(kinds(sc, p), ::testing::Contains(K::high_altitude));
+  // Both ends in the band (14 m over the plateau, 14 m over the floor), the middle not: where it
+  // leaves the plateau at x = 50 it is 19 m above the floor.
+  u.start = Vec3(60, 10, 24);
+  u.goal = Vec3(40, 10, 14);
+  fly(p, 0, {{60, 10, 24}, {40, 10, 14}});
+  EXPECT_THAT(kinds(sc, p), ::testing::Contains(K::high_altitude));
+  // Up from the ground to 30 m and along at 12 m above it: the take-off leg is not in the band.
+  u.start = Vec3(10, 10, 0);
+  u.goal = Vec3(30, 10, 12);
+  fly(p, 0, {{10, 10, 0}, {10, 10, 30}, {10, 10, 12}, {30, 10, 12}});
+  EXPECT_THAT(kinds(sc, p), ::testing::Not(::testing::Contains(K::high_altitude)));
+}
+
 TEST(Verifier, ClearanceAndMinAgl) {
   Scenario sc = base_scenario();
   sc.uavs.resize(1);

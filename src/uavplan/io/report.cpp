@@ -157,6 +157,7 @@ ojson uav_json(const Scenario& sc, const UavPlan& u, std::size_t k, const Report
           {"colour", uav_colour(k)},
           {"radius", spec ? spec->radius_m : 0.0},
           {"min_agl", spec ? spec->min_agl_m : 0.0},
+          {"max_agl", spec && spec->max_agl_m ? ojson(*spec->max_agl_m) : ojson(nullptr)},
           {"length_m", u.length_m},
           {"arrival_s", u.arrival_s},
           {"trajectory", std::move(traj)},

@@ -321,7 +321,7 @@ std::optional<AutopilotParams> read_model(const At& m) {
 
 UavSpec read_uav(const At& u) {
   u.keys({"id", "start", "heading_deg", "goal", "home", "radius", "speed", "max_turn_deg", "max_climb_deg", "ceiling",
-          "sensor_range", "clearance", "min_agl", "max_turn_rate_deg_s", "max_climb_rate", "model"});
+          "sensor_range", "clearance", "min_agl", "max_agl", "max_turn_rate_deg_s", "max_climb_rate", "model"});
   UavSpec s;
   s.id = u.req("id").text();
   if (s.id.empty()) u["id"].fail("must not be empty");
@@ -334,6 +334,14 @@ UavSpec read_uav(const At& u) {
   if (u.has("min_agl")) {
     s.min_agl_m = u["min_agl"].non_negative();
     s.min_agl_given = true;
+  }
+  if (u.has("max_agl")) {
+    s.max_agl_m = u["max_agl"].positive();
+    // Room for the body above min_agl and below max_agl, and to lift off into the band.
+    if (*s.max_agl_m < s.min_agl_m + 2 * keep_off_m(s) + 0.1)
+      u["max_agl"].fail("must exceed min_agl (" + num_text(s.min_agl_m) +
+                        " m) by twice the radius plus clearance and " + "0.1 m (" + num_text(2 * keep_off_m(s) + 0.1) +
+                        " m): the band has no room for the UAV");
   }
   if (u.has("speed")) {
     const At sp = u["speed"];
@@ -435,6 +443,8 @@ void check_uavs_fit(const At& uavs, const Scenario& sc) {
         ui["start"].fail("closer to " + sc.uavs[j].id + "'s start than their radii: two UAVs cannot start there");
     if (u.min_agl_m > 0.0 && w.bounds().extent().z() <= 0.0)
       ui["min_agl"].fail("a flat world (no height) has no room above its ground");
+    if (u.max_agl_m && w.bounds().extent().z() <= 0.0)
+      ui["max_agl"].fail("a flat world (no height) has no ground to follow");
     if (u.home) check_home(ui, sc, u);
   }
   const std::vector<PlacementProblem> placed = placement_problems(sc);

@@ -30,6 +30,7 @@ struct UavSpec {
   double clearance_m = 0.0;           // extra distance kept from obstacles and terrain
   double min_agl_m = 0.0;             // least height above the ground (but taking off and landing)
   bool min_agl_given = false;         // the scenario sets min_agl (else planners may keep a default)
+  std::optional<double> max_agl_m;    // most height above the ground (terrain following), as min_agl
   SpeedLimits speed;
   double max_turn_rad = kPi;        // heading change between consecutive segments
   double max_climb_rad = kPi / 2;   // |pitch| of any segment

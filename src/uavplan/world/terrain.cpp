@@ -87,22 +87,32 @@ double TerrainGrid::segment_distance(const Vec3& a, const Vec3& b, double cap) c
   return best;
 }
 
-double TerrainGrid::lowest_height_above(const Vec3& a, const Vec3& b) const {
-  // Walk the cells the horizontal projection crosses; in each, the lowest point of the segment
-  // is at one of the two ends of the piece inside it.
+namespace {
+
+// The parameters in (0, 1) where segment [a, b]'s horizontal projection crosses a cell edge of
+// the grid, with 0 and 1, sorted.
+std::vector<double> cell_cuts(const Vec3& a, const Vec3& b, const Vec2& origin, double cell_m) {
   const Vec2 d = b.head<2>() - a.head<2>();
   std::vector<double> cuts{0.0, 1.0};
   for (int axis = 0; axis < 2; ++axis) {
     if (std::abs(d[axis]) < 1e-300) continue;
-    const double o = origin_[axis];
+    const double o = origin[axis];
     const double lo = std::min(a[axis], b[axis]), hi = std::max(a[axis], b[axis]);
-    for (double k = std::ceil((lo - o) / cell_m_); o + k * cell_m_ < hi; ++k) {
-      const double t = (o + k * cell_m_ - a[axis]) / d[axis];
+    for (double k = std::ceil((lo - o) / cell_m); o + k * cell_m < hi; ++k) {
+      const double t = (o + k * cell_m - a[axis]) / d[axis];
       if (t > 0.0 && t < 1.0) cuts.push_back(t);
       if (cuts.size() > 1'000'000) break;  // a segment across a million cells: enough
     }
   }
   std::sort(cuts.begin(), cuts.end());
+  return cuts;
+}
+
+}  // namespace
+
+double TerrainGrid::lowest_height_above(const Vec3& a, const Vec3& b) const {
+  // In each cell the segment crosses, its lowest point is at one of the two ends of the piece.
+  const std::vector<double> cuts = cell_cuts(a, b, origin_, cell_m_);
   double best = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
     const double tm = 0.5 * (cuts[k] + cuts[k + 1]);
@@ -110,6 +120,20 @@ double TerrainGrid::lowest_height_above(const Vec3& a, const Vec3& b) const {
     const double h = height_at(m.x(), m.y());
     if (!std::isfinite(h)) continue;
     best = std::min({best, a.z() + cuts[k] * (b.z() - a.z()) - h, a.z() + cuts[k + 1] * (b.z() - a.z()) - h});
+  }
+  return best;
+}
+
+double TerrainGrid::highest_height_above(const Vec3& a, const Vec3& b, double floor_z) const {
+  // In each piece the highest point is at one of its ends; the ground there is the cell's
+  // height, or the floor beside the grid or above a lower cell.
+  const std::vector<double> cuts = cell_cuts(a, b, origin_, cell_m_);
+  double best = -std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+    const Vec3 m = a + 0.5 * (cuts[k] + cuts[k + 1]) * (b - a);
+    const double h = height_at(m.x(), m.y());
+    const double ground = std::isfinite(h) ? std::max(h, floor_z) : floor_z;
+    best = std::max({best, a.z() + cuts[k] * (b.z() - a.z()) - ground, a.z() + cuts[k + 1] * (b.z() - a.z()) - ground});
   }
   return best;
 }

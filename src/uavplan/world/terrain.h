@@ -31,6 +31,9 @@ class TerrainGrid {
   // Smallest height of segment [a, b] above the cells under it (exact: z is linear along the
   // segment and the cells are flat); +inf where the segment is outside the grid.
   double lowest_height_above(const Vec3& a, const Vec3& b) const;
+  // Largest height of segment [a, b] above the ground under it: the cells, `floor_z` beside the
+  // grid and where a cell is lower (exact, as lowest_height_above).
+  double highest_height_above(const Vec3& a, const Vec3& b, double floor_z) const;
 
  private:
   Vec2 origin_;

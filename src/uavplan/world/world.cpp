@@ -123,6 +123,12 @@ double World::lowest_height_above_ground(const Vec3& a, const Vec3& b) const {
   return std::min(floor, spec_.terrain->lowest_height_above(a, b));
 }
 
+double World::highest_height_above_ground(const Vec3& a, const Vec3& b) const {
+  const double floor = spec_.bounds.min.z();
+  if (!spec_.terrain) return std::max(a.z(), b.z()) - floor;
+  return spec_.terrain->highest_height_above(a, b, floor);
+}
+
 double World::moving_clearance(const Vec3& a, double t_a_s, const Vec3& b, double t_b_s, int* index_out) const {
   double best = kInf;
   const double span = t_b_s - t_a_s;

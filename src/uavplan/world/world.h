@@ -65,6 +65,8 @@ class World {
   double ground_leg_clearance(const Vec3& a, const Vec3& b, double keep_m, double ground_z) const;
   // Smallest height of segment [a, b] above the ground under it (exact).
   double lowest_height_above_ground(const Vec3& a, const Vec3& b) const;
+  // Largest height of segment [a, b] above the ground under it (terrain or floor), exact.
+  double highest_height_above_ground(const Vec3& a, const Vec3& b) const;
 
   // Collision after inflating every static obstacle by `inflation_m`.
   bool point_collides(const Vec3& p, double inflation_m) const { return clearance(p, inflation_m) < inflation_m; }

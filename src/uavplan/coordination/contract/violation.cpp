@@ -24,6 +24,8 @@ std::string_view to_string(ViolationKind k) {
       return "obstacle";
     case ViolationKind::low_altitude:
       return "low_altitude";
+    case ViolationKind::high_altitude:
+      return "high_altitude";
     case ViolationKind::moving_obstacle:
       return "moving_obstacle";
     case ViolationKind::separation:

@@ -24,8 +24,9 @@ enum class ViolationKind {
   goal,         // does not end at the UAV's goal
   bounds,
   ceiling,
-  obstacle,      // static obstacles and terrain, after inflation by the UAV radius and clearance
-  low_altitude,  // below the UAV's min_agl above the ground (but taking off and landing)
+  obstacle,       // static obstacles and terrain, after inflation by the UAV radius and clearance
+  low_altitude,   // below the UAV's min_agl above the ground (but taking off and landing)
+  high_altitude,  // above the UAV's max_agl above the ground (but taking off and landing)
   moving_obstacle,
   separation,  // two UAVs closer than the mission's separation (or their radii)
   turn,

@@ -1,4 +1,5 @@
 #include "uavplan/planning/cells/cell_route.h"
+#include "uavplan/core/text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -51,7 +52,32 @@ std::int64_t attach(const CellMap& map, const Vec3& p, const SegmentRule& rule) 
 
 // What to change when the cell map has no route. A move climbs at least one level over one
 // diagonal cell: a map whose least climb is steeper than the climb limit cannot change height.
-std::string cells_hint(const CellMap& map, double max_climb_rad) {
+// Obstacles with room for a body under them, the widest named: the cell map counts their columns
+// blocked down to the ground.
+std::string overhang_hint(const World& world, double inflation_m) {
+  std::size_t count = 0, widest = 0;
+  double widest_m2 = -1.0, widest_under_m = 0.0;
+  for (std::size_t k = 0; k < world.obstacles().size(); ++k) {
+    const Aabb box = bounding_box(world.obstacles()[k]);
+    const Vec3 c = box.center(), e = box.extent();
+    const double under = box.min.z() - world.ground_z(c.x(), c.y());
+    if (under <= 2 * inflation_m) continue;
+    ++count;
+    if (e.x() * e.y() > widest_m2) {
+      widest_m2 = e.x() * e.y();
+      widest = k;
+      widest_under_m = under;
+    }
+  }
+  if (count == 0) return {};
+  return "the cell map models columns, and " + world.obstacle_label(widest) +
+         (count > 1 ? " (and " + std::to_string(count - 1) + " more)" : std::string()) + " is " +
+         num_text(widest_under_m) +
+         " m above the ground: the space under it counts as blocked (astar, rrt and directional_astar plan under it)";
+}
+
+std::string cells_hint(const CellMap& map, double max_climb_rad, const World& world, double inflation_m) {
+  if (std::string overhang = overhang_hint(world, inflation_m); !overhang.empty()) return overhang;
   char buf[320];
   const double least_climb = std::atan2(map.level_m(), std::sqrt(2.0) * map.cell_m());
   if (map.levels() > 1 && least_climb > max_climb_rad + 1e-12) {
@@ -129,9 +155,10 @@ std::string exact_check(const std::vector<Vec3>& wp, const SegmentRule& rule) {
 // Each leg's cells between the stops' attach nodes: the route through their centres, the stops
 // pinned. False with res's message and reason where a leg has none (`finer_may_help` when finer
 // cells could find one) or the stop came first.
-bool route_legs(const CellWorld& cw, const std::vector<Vec3>& stops, const std::vector<std::int64_t>& nodes,
-                const Problem& problem, const StopCondition& stop, const CellLegSearch& search, PlanResult& res,
-                std::vector<Vec3>& route, std::vector<char>& pinned, bool& finer_may_help) {
+bool route_legs(const World& world, const CellWorld& cw, const std::vector<Vec3>& stops,
+                const std::vector<std::int64_t>& nodes, const Problem& problem, const StopCondition& stop,
+                const CellLegSearch& search, PlanResult& res, std::vector<Vec3>& route, std::vector<char>& pinned,
+                bool& finer_may_help) {
   route.assign(1, stops[0]);
   pinned.assign(1, 1);
   for (std::size_t leg = 0; leg + 1 < stops.size(); ++leg) {
@@ -151,8 +178,8 @@ bool route_legs(const CellWorld& cw, const std::vector<Vec3>& stops, const std::
     }
     if (!path) {
       res.reason = Reason::no_route;
-      res.message =
-          leg_name(leg, stops.size()) + ": no route on the cell map; " + cells_hint(cw.map, problem.uav.max_climb_rad);
+      res.message = leg_name(leg, stops.size()) + ": no route on the cell map; " +
+                    cells_hint(cw.map, problem.uav.max_climb_rad, world, problem.uav.radius_m);
       finer_may_help = true;
       return false;
     }
@@ -193,14 +220,14 @@ PlanResult plan_once(const Problem& problem, const World& world, const CellPlanO
     if (nodes.back() < 0) {
       res.message = stop_name(s, stops.size()) +
                     " cannot reach a free cell of the cell map straight within its limits; " +
-                    cells_hint(map, problem.uav.max_climb_rad);
+                    cells_hint(map, problem.uav.max_climb_rad, world, problem.uav.radius_m);
       finer_may_help = true;
       return res;
     }
   }
   std::vector<Vec3> route, wp;
   std::vector<char> pinned, pins;
-  if (!route_legs(cw, stops, nodes, problem, stop, search, res, route, pinned, finer_may_help)) return res;
+  if (!route_legs(world, cw, stops, nodes, problem, stop, search, res, route, pinned, finer_may_help)) return res;
   cut_spikes(route, pinned, rule);
   merge_collinear(route, pinned, wp, pins);
   res.message = exact_check(wp, rule);
