@@ -138,6 +138,41 @@ expect_bad max_agl.no_room "$TMP/band_thin.yaml" "uavs[0].max_agl"
 "$BIN" plan "$TMP/band.yaml" -o "$TMP/band_cells" --algorithm cell_astar >"$TMP/stdout" 2>&1
 grep -q "models columns, and obstacle above max_agl" "$TMP/stdout" && pass=$((pass + 1)) ||
   { echo "FAIL max_agl.cell_map: $(grep '^s1:' "$TMP/stdout")"; fails=$((fails + 1)); }
+# Airspace from files (world.airspace): a GeoJSON no-fly zone and a QGC fence planned round and
+# verified; a flight straight through the zone is a violation naming it; a fence that crosses
+# itself, a KML file and a scenario without origin are bad input.
+AIR="$SRC/tests/data/airspace"
+"$BIN" plan "$AIR/air.yaml" -o "$TMP/air" >/dev/null 2>&1; check airspace.plan 0 $?
+"$BIN" verify "$AIR/air.yaml" "$TMP/air/plan.json" >/dev/null 2>&1; check airspace.verify 0 $?
+"$BIN" info "$AIR/air.yaml" | grep -q "^obstacles 6  cylinder 1  prism 5" && pass=$((pass + 1)) ||
+  { echo "FAIL airspace.info: $("$BIN" info "$AIR/air.yaml" | grep obstacles)"; fails=$((fails + 1)); }
+python3 - "$TMP/air/plan.json" "$TMP/air/straight.json" <<'PY'
+import json, sys
+p = json.load(open(sys.argv[1]))
+p["uavs"][1]["trajectory"] = [[0, 300, 20, 40], [70, 300, 580, 60]]  # through the hospital zone
+json.dump(p, open(sys.argv[2], "w"))
+PY
+"$BIN" verify "$AIR/air.yaml" "$TMP/air/straight.json" >"$TMP/stdout" 2>&1; check airspace.violated 1 $?
+grep -q "obstacle zones.geojson zone 0" "$TMP/stdout" && pass=$((pass + 1)) ||
+  { echo "FAIL airspace.violation_names_zone: $(head -3 "$TMP/stdout")"; fails=$((fails + 1)); }
+mkdir -p "$TMP/airbad" && cp "$AIR"/* "$TMP/airbad/"
+python3 - "$TMP/airbad/fence.plan" <<'PY'
+import json, sys
+p = json.load(open(sys.argv[1]))
+ring = p["geoFence"]["polygons"][0]["polygon"]
+ring[1], ring[2] = ring[2], ring[1]  # a bow tie
+json.dump(p, open(sys.argv[1], "w"))
+PY
+bad_zone() {  # bad_zone NAME ZONE_FILE PART: exit 2, one line naming the zone file and PART
+  "$BIN" plan "$TMP/airbad/air.yaml" -o "$TMP/airbad/out" >/dev/null 2>"$TMP/stderr"; check "$1" 2 $?
+  [ "$(wc -l <"$TMP/stderr")" = 1 ] && grep -qF "$2" "$TMP/stderr" && grep -qF "$3" "$TMP/stderr" && pass=$((pass + 1)) ||
+    { echo "FAIL $1 message: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
+}
+bad_zone airspace.bow_tie "$TMP/airbad/fence.plan" "geoFence.polygons[0]: the zone's boundary crosses itself"
+sed -i 's/fence.plan}/zones.kml}/' "$TMP/airbad/air.yaml" && echo '<kml/>' >"$TMP/airbad/zones.kml"
+bad_zone airspace.kml "$TMP/airbad/zones.kml" "KML"
+grep -v '^origin' "$AIR/air.yaml" | sed 's|{file: |{file: '"$AIR"'/|' >"$TMP/air_no_origin.yaml"
+expect_bad airspace.no_origin "$TMP/air_no_origin.yaml" "origin"
 # The bench tables find the bundled scenarios from any folder (beside the binary).
 # (exit 0 or 1: whether its timing targets are met depends on the machine; 2 is a missing file)
 (cd "$TMP" && "$BIN" bench p2 >"$TMP/stdout" 2>"$TMP/stderr"); rc=$?

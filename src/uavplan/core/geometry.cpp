@@ -3,8 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include <boost/geometry/algorithms/correct.hpp>
+#include <boost/geometry/algorithms/difference.hpp>
 #include <boost/geometry/algorithms/intersects.hpp>
+#include <boost/geometry/geometries/multi_polygon.hpp>
 #include <boost/geometry/geometries/point_xy.hpp>
+#include <boost/geometry/geometries/polygon.hpp>
 #include <boost/geometry/geometries/ring.hpp>
 
 namespace uavplan {
@@ -130,6 +134,32 @@ double polygon_signed_area(std::span<const Vec2> poly) {
   const std::size_t n = poly.size();
   for (std::size_t i = 0, j = n - 1; i < n; j = i++) a += poly[j].x() * poly[i].y() - poly[i].x() * poly[j].y();
   return 0.5 * a;
+}
+
+std::vector<std::vector<Vec2>> rectangle_minus_polygon(const Vec2& lo, const Vec2& hi, std::span<const Vec2> polygon,
+                                                       bool* holes) {
+  namespace bg = boost::geometry;
+  using Point = bg::model::d2::point_xy<double>;
+  using Poly = bg::model::polygon<Point>;
+  Poly rect, cut;
+  for (const Vec2& v : {lo, Vec2(lo.x(), hi.y()), hi, Vec2(hi.x(), lo.y()), lo})
+    rect.outer().push_back(Point(v.x(), v.y()));
+  for (const Vec2& v : polygon) cut.outer().push_back(Point(v.x(), v.y()));
+  cut.outer().push_back(Point(polygon[0].x(), polygon[0].y()));
+  bg::correct(rect);
+  bg::correct(cut);
+  bg::model::multi_polygon<Poly> pieces;
+  bg::difference(rect, cut, pieces);
+  std::vector<std::vector<Vec2>> out;
+  if (holes) *holes = false;
+  for (const Poly& piece : pieces) {
+    if (holes && !piece.inners().empty()) *holes = true;
+    std::vector<Vec2> ring;
+    for (const Point& p : piece.outer()) ring.emplace_back(p.x(), p.y());
+    if (ring.size() > 1 && (ring.front() - ring.back()).norm() == 0.0) ring.pop_back();
+    if (ring.size() >= 3) out.push_back(std::move(ring));
+  }
+  return out;
 }
 
 }  // namespace uavplan

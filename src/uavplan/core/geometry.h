@@ -6,6 +6,7 @@
 #include <optional>
 #include <span>
 #include <utility>
+#include <vector>
 
 #include "uavplan/core/vec.h"
 
@@ -88,5 +89,11 @@ std::optional<std::pair<std::size_t, std::size_t>> polygon_self_intersection(std
 
 // Signed area (positive when counter-clockwise).
 double polygon_signed_area(std::span<const Vec2> polygon);
+
+// The rectangle [lo, hi] less a simple polygon (Boost.Geometry's difference), as the outer rings
+// of its pieces. A piece with a hole (a polygon that does not reach the rectangle's sides all
+// round) is returned whole with `holes` set; callers that cannot fill one refuse it.
+std::vector<std::vector<Vec2>> rectangle_minus_polygon(const Vec2& lo, const Vec2& hi, std::span<const Vec2> polygon,
+                                                       bool* holes = nullptr);
 
 }  // namespace uavplan

@@ -91,3 +91,26 @@ TEST(Geometry, PolygonSelfIntersection) {
 
 }  // namespace
 }  // namespace uavplan
+
+namespace uavplan {
+namespace {
+
+// The rectangle less a polygon that reaches its four sides: pieces whose areas add up to the
+// rectangle's less the polygon's, none with a hole.
+TEST(Geometry, RectangleMinusPolygonLeavesTheCorners) {
+  const std::vector<Vec2> diamond = {{5, 0}, {10, 5}, {5, 10}, {0, 5}};
+  bool holes = true;
+  const auto pieces = rectangle_minus_polygon(Vec2(0, 0), Vec2(10, 10), diamond, &holes);
+  EXPECT_FALSE(holes);
+  ASSERT_EQ(pieces.size(), 4u);
+  double area = 0.0;
+  for (const auto& p : pieces) area += std::abs(polygon_signed_area(p));
+  EXPECT_NEAR(area, 100.0 - 50.0, 1e-9);
+  // A polygon inside, touching no side: one piece with a hole, said so.
+  const std::vector<Vec2> inner = {{2, 2}, {8, 2}, {8, 8}, {2, 8}};
+  rectangle_minus_polygon(Vec2(0, 0), Vec2(10, 10), inner, &holes);
+  EXPECT_TRUE(holes);
+}
+
+}  // namespace
+}  // namespace uavplan

@@ -16,6 +16,7 @@
 #include "uavplan/core/geometry.h"
 #include "uavplan/core/text.h"
 #include "uavplan/core/units.h"
+#include "uavplan/io/airspace.h"
 #include "uavplan/io/files.h"
 #include "uavplan/io/geo.h"
 #include "uavplan/io/input_error.h"
@@ -275,6 +276,38 @@ void read_buildings(const At& b, const std::optional<GeoOrigin>& origin, const A
     for (std::size_t i = 0; i < b.size(); ++i) one(b.item(i));
   } else {
     one(b);
+  }
+}
+
+// world.airspace: a list of {file: path} (GeoJSON, a QGC .plan's geoFence), relative to the
+// scenario file: exclusion zones become obstacles named after their file; an inclusion fence
+// bounds the world in x, y and closes the rest of its box.
+void read_airspace_files(const At& a, const std::optional<GeoOrigin>& origin, WorldSpec& ws) {
+  a.expect_seq();
+  if (!origin) a.fail("placing lon/lat zones needs the scenario's 'origin'");
+  const GeoFrame frame(*origin);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const At e = a.item(i);
+    e.keys({"file"});
+    const std::filesystem::path path = std::filesystem::path(*e.file).parent_path() / e.req("file").text();
+    std::string text;
+    try {
+      text = read_text_file(path.string());
+    } catch (const InputError&) {
+      e["file"].fail("cannot read the airspace file '" + path.string() + "'");
+    }
+    Airspace zones = read_airspace(text, path.string(), frame, ws.bounds);
+    ws.obstacle_ids.resize(ws.obstacles.size());
+    for (std::size_t k = 0; k < zones.zones.size(); ++k) {
+      ws.obstacles.push_back(std::move(zones.zones[k]));
+      ws.obstacle_ids.push_back(zones.zone_ids[k]);
+    }
+    if (const auto& box = zones.inclusion_box) {
+      ws.bounds.min.head<2>() = ws.bounds.min.head<2>().cwiseMax(box->min.head<2>());
+      ws.bounds.max.head<2>() = ws.bounds.max.head<2>().cwiseMin(box->max.head<2>());
+      if ((ws.bounds.max.head<2>().array() <= ws.bounds.min.head<2>().array()).any())
+        e["file"].fail("the inclusion fence lies outside the world's bounds");
+    }
   }
 }
 
@@ -596,7 +629,7 @@ void read_moving(const At& list, WorldSpec& ws) {
 }
 
 World read_world(const At& w, const std::optional<GeoOrigin>& origin) {
-  w.keys({"bounds", "obstacles", "buildings", "threats", "terrain", "moving_obstacles"});
+  w.keys({"bounds", "obstacles", "buildings", "airspace", "threats", "terrain", "moving_obstacles"});
   WorldSpec ws;
   ws.bounds = read_bounds(w.req("bounds"));
   if (w.has("obstacles")) {
@@ -608,6 +641,7 @@ World read_world(const At& w, const std::optional<GeoOrigin>& origin) {
     }
   }
   if (w.has("buildings")) read_buildings(w["buildings"], origin, ws.bounds, ws.obstacles);
+  if (w.has("airspace")) read_airspace_files(w["airspace"], origin, ws);
   if (w.has("threats")) read_threats(w["threats"], ws);
   if (w.has("terrain")) ws.terrain = read_terrain(w["terrain"]);
   if (w.has("moving_obstacles")) read_moving(w["moving_obstacles"], ws);

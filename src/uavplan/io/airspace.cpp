@@ -1,0 +1,188 @@
+#include "uavplan/io/airspace.h"
+
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "uavplan/core/geometry.h"
+#include "uavplan/core/units.h"
+#include "uavplan/io/input_error.h"
+#include "uavplan/io/text_input.h"
+
+namespace uavplan {
+namespace {
+
+using nlohmann::json;
+
+// A circle inclusion fence as the polygon inscribed in it: the allowed area only shrinks.
+constexpr int kCircleSides = 64;
+
+struct ZoneReader {
+  const std::string& file;
+  const GeoFrame& frame;
+  const Aabb& bounds;
+  Airspace& out;
+  std::string name = std::filesystem::path(file).filename().string();
+
+  [[noreturn]] void fail(const std::string& place, const std::string& what) const {
+    throw InputError(file, 0, place, what);
+  }
+
+  Vec2 local(double lat, double lon, const std::string& place) const {
+    if (!(std::isfinite(lat) && std::isfinite(lon) && lon >= -180.0 && lon <= 180.0 && lat >= -90.0 && lat <= 90.0))
+      fail(place, "position is not WGS84 latitude, longitude in degrees");
+    const Vec3 p = frame.to_local(lat, lon, frame.origin().alt_m);
+    return {p.x(), p.y()};
+  }
+
+  // A ring of points, closing point dropped; refused when it crosses itself or has no area.
+  std::vector<Vec2> ring(std::vector<Vec2> pts, const std::string& place) const {
+    if (pts.size() >= 2 && (pts.front() - pts.back()).norm() <= 1e-6) pts.pop_back();
+    if (pts.size() < 3 || std::abs(polygon_signed_area(pts)) < 1e-9) fail(place, "a zone needs an area (3 corners)");
+    if (const auto x = polygon_self_intersection(pts))
+      fail(place, "the zone's boundary crosses itself (edges " + std::to_string(x->first) + " and " +
+                      std::to_string(x->second) + ")");
+    return pts;
+  }
+
+  void exclusion(Obstacle o) {
+    out.zones.push_back(std::move(o));
+    out.zone_ids.push_back(name + " zone " + std::to_string(out.zone_ids.size()));
+  }
+
+  // The inclusion zone: the bounds' box in x, y, and prisms over the rest of it.
+  void inclusion(const std::vector<Vec2>& poly, const std::string& place) {
+    if (out.inclusion_box) fail(place, "a second inclusion zone: one fence bounds the world (their union is not read)");
+    Vec2 lo = poly[0], hi = poly[0];
+    for (const Vec2& p : poly) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    out.inclusion_box = Aabb{Vec3(lo.x(), lo.y(), bounds.min.z()), Vec3(hi.x(), hi.y(), bounds.max.z())};
+    bool holes = false;
+    for (std::vector<Vec2>& piece : rectangle_minus_polygon(lo, hi, poly, &holes)) {
+      out.zones.push_back(Prism{std::move(piece), bounds.min.z() - 1.0, bounds.max.z() + 1.0});
+      out.zone_ids.push_back(name + " outside the fence");
+    }
+    if (holes) fail(place, "internal: the area outside the fence has a hole");
+  }
+
+  // GeoJSON: Polygons and MultiPolygons of features, floor_m / ceiling_m from properties.
+  void geojson(const json& doc) {
+    const auto features = [&]() -> std::vector<std::pair<json, std::string>> {
+      if (doc.value("type", "") == "FeatureCollection" && doc.contains("features") && doc["features"].is_array()) {
+        std::vector<std::pair<json, std::string>> fs;
+        for (std::size_t i = 0; i < doc["features"].size(); ++i)
+          fs.emplace_back(doc["features"][i], "features[" + std::to_string(i) + "]");
+        return fs;
+      }
+      if (doc.value("type", "") == "Feature") return {{doc, ""}};
+      fail("type", "expected a GeoJSON FeatureCollection or Feature");
+    }();
+    for (const auto& [f, place] : features) {
+      if (!f.is_object() || !f.contains("geometry") || !f["geometry"].is_object()) continue;
+      const json& g = f["geometry"];
+      const json props = f.contains("properties") && f["properties"].is_object() ? f["properties"] : json::object();
+      const auto height = [&](const char* key, double fallback) {
+        if (!props.contains(key)) return fallback;
+        if (!props[key].is_number()) fail(place + ".properties." + key, "expected metres above mean sea level");
+        return props[key].get<double>() - frame.origin().alt_m;
+      };
+      const double floor = height("floor_m", bounds.min.z() - 1.0), ceiling = height("ceiling_m", bounds.max.z() + 1.0);
+      if (!(ceiling > floor)) fail(place + ".properties", "ceiling_m must lie above floor_m");
+      const std::string type = g.value("type", "");
+      if (type != "Polygon" && type != "MultiPolygon") continue;  // points and lines close nothing
+      const json& c = g["coordinates"];
+      const auto polygon = [&](const json& rings, const std::string& at) {
+        if (!rings.is_array() || rings.empty() || !rings[0].is_array()) fail(at, "expected a list of linear rings");
+        std::vector<Vec2> pts;
+        for (std::size_t i = 0; i < rings[0].size(); ++i) {
+          const json& p = rings[0][i];
+          if (!p.is_array() || p.size() < 2 || !p[0].is_number() || !p[1].is_number())
+            fail(at, "expected [lon, lat] positions");
+          pts.push_back(local(p[1].get<double>(), p[0].get<double>(), at + "[0][" + std::to_string(i) + "]"));
+        }
+        exclusion(Prism{ring(std::move(pts), at), floor, ceiling});
+      };
+      const std::string at = place + ".geometry.coordinates";
+      if (type == "Polygon") {
+        polygon(c, at);
+      } else {
+        for (std::size_t i = 0; i < c.size(); ++i) polygon(c[i], at + "[" + std::to_string(i) + "]");
+      }
+    }
+  }
+
+  // A QGC plan's geoFence: polygons [[lat, lon], ...] and circles {center: [lat, lon], radius}.
+  void qgc_fence(const json& doc) {
+    if (!doc.contains("geoFence") || !doc["geoFence"].is_object()) fail("geoFence", "a .plan without a geoFence");
+    const json& fence = doc["geoFence"];
+    const json polygons = fence.value("polygons", json::array()), circles = fence.value("circles", json::array());
+    for (std::size_t k = 0; k < polygons.size(); ++k) {
+      const std::string at = "geoFence.polygons[" + std::to_string(k) + "]";
+      const json& z = polygons[k];
+      if (!z.is_object() || !z.contains("polygon") || !z["polygon"].is_array())
+        fail(at, "expected {polygon: [[lat, lon], ...]}");
+      std::vector<Vec2> pts;
+      for (std::size_t i = 0; i < z["polygon"].size(); ++i) {
+        const json& p = z["polygon"][i];
+        if (!p.is_array() || p.size() < 2 || !p[0].is_number() || !p[1].is_number())
+          fail(at, "expected [lat, lon] corners");
+        pts.push_back(local(p[0].get<double>(), p[1].get<double>(), at + ".polygon[" + std::to_string(i) + "]"));
+      }
+      std::vector<Vec2> r = ring(std::move(pts), at);
+      if (z.value("inclusion", true))
+        inclusion(r, at);
+      else
+        exclusion(Prism{std::move(r), bounds.min.z() - 1.0, bounds.max.z() + 1.0});
+    }
+    for (std::size_t k = 0; k < circles.size(); ++k) {
+      const std::string at = "geoFence.circles[" + std::to_string(k) + "]";
+      const json& z = circles[k];
+      const json c = z.is_object() ? z.value("circle", json()) : json();
+      if (!c.is_object() || !c.contains("center") || !c["center"].is_array() || c["center"].size() < 2 ||
+          !c["center"][0].is_number() || !c["center"][1].is_number() || !c.contains("radius") ||
+          !c["radius"].is_number())
+        fail(at, "expected {circle: {center: [lat, lon], radius: metres}}");
+      const double radius = c["radius"].get<double>();
+      if (!(radius > 0.0 && std::isfinite(radius))) fail(at + ".circle.radius", "must be a positive number of metres");
+      const Vec2 centre = local(c["center"][0].get<double>(), c["center"][1].get<double>(), at + ".circle.center");
+      if (!z.value("inclusion", true)) {
+        exclusion(Cylinder{centre, radius, bounds.min.z() - 1.0, bounds.max.z() + 1.0});
+        continue;
+      }
+      std::vector<Vec2> gon;
+      for (int i = 0; i < kCircleSides; ++i) {
+        const double a = 2.0 * kPi * i / kCircleSides;
+        gon.push_back(centre + radius * Vec2(std::cos(a), std::sin(a)));
+      }
+      inclusion(gon, at);
+    }
+  }
+};
+
+}  // namespace
+
+Airspace read_airspace(const std::string& text, const std::string& file, const GeoFrame& frame, const Aabb& bounds) {
+  const std::string ext = std::filesystem::path(file).extension().string();
+  if (ext == ".kml" || ext == ".kmz")
+    throw InputError(file, 0, "", "KML airspace is not read yet: give the zones as GeoJSON or a QGC .plan geoFence");
+  json doc;
+  try {
+    doc = json::parse(text);
+  } catch (const json::exception& e) {
+    int line = 0;
+    const std::string what = json_error_text(e, text, line);
+    throw InputError(file, line, "", "not valid JSON: " + what);
+  }
+  if (!doc.is_object()) throw InputError(file, 0, "", "expected a JSON object");
+  Airspace out;
+  ZoneReader r{file, frame, bounds, out};
+  if (ext == ".plan")
+    r.qgc_fence(doc);
+  else
+    r.geojson(doc);
+  return out;
+}
+
+}  // namespace uavplan

@@ -1,0 +1,70 @@
+#include "uavplan/io/airspace.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "uavplan/io/input_error.h"
+
+namespace uavplan {
+namespace {
+
+const Aabb kBounds{Vec3(-500, -500, 0), Vec3(500, 500, 200)};
+
+// A square of 2 * half_m metres about the origin, [lon, lat] corners.
+std::string square_lonlat(const GeoFrame& f, double half_m) {
+  std::string out = "[";
+  const double c[5][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}, {-1, -1}};
+  for (int i = 0; i < 5; ++i) {
+    const LatLonAlt p = f.to_wgs84(Vec3(c[i][0] * half_m, c[i][1] * half_m, 0));
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%s[%.10f, %.10f]", i ? ", " : "", p.lon_deg, p.lat_deg);
+    out += buf;
+  }
+  return out + "]";
+}
+
+TEST(Airspace, GeoJsonZoneWithFloorAndCeilingAboveSeaLevel) {
+  const GeoFrame f(GeoOrigin{47.3977, 8.5456, 488.0});
+  const std::string text = R"({"type": "FeatureCollection", "features": [{"type": "Feature",
+    "properties": {"floor_m": 538, "ceiling_m": 638}, "geometry": {"type": "Polygon", "coordinates": [)" +
+                           square_lonlat(f, 100) + "]}}]}";
+  const Airspace a = read_airspace(text, "zones.geojson", f, kBounds);
+  ASSERT_EQ(a.zones.size(), 1u);
+  const Prism& p = std::get<Prism>(a.zones[0]);
+  EXPECT_NEAR(p.z_min_m, 50.0, 1e-9);  // 538 m AMSL over an origin at 488 m
+  EXPECT_NEAR(p.z_max_m, 150.0, 1e-9);
+  EXPECT_NEAR(std::abs(polygon_signed_area(p.polygon)), 200.0 * 200.0, 1.0);
+  EXPECT_EQ(a.zone_ids[0], "zones.geojson zone 0");
+  EXPECT_FALSE(a.inclusion_box);
+}
+
+TEST(Airspace, QgcFenceInclusionBoundsAndClosesTheRestOfItsBox) {
+  const GeoFrame f(GeoOrigin{47.3977, 8.5456, 488.0});
+  // An inclusion circle of 300 m about the origin and an exclusion circle of 20 m.
+  const std::string text = R"({"geoFence": {"circles": [
+    {"inclusion": true, "circle": {"center": [47.3977, 8.5456], "radius": 300}},
+    {"inclusion": false, "circle": {"center": [47.3977, 8.5456], "radius": 20}}]}})";
+  const Airspace a = read_airspace(text, "fence.plan", f, kBounds);
+  ASSERT_TRUE(a.inclusion_box);
+  EXPECT_NEAR(a.inclusion_box->max.x(), 300.0, 1e-6);
+  EXPECT_NEAR(a.inclusion_box->min.y(), -300.0, 1.0);
+  // Outside the inscribed 64-gon in the box is closed, the corners and the rim between sides.
+  double closed = 0.0;
+  int cylinders = 0;
+  for (const Obstacle& o : a.zones) {
+    if (const Prism* p = std::get_if<Prism>(&o)) closed += std::abs(polygon_signed_area(p->polygon));
+    cylinders += std::holds_alternative<Cylinder>(o);
+  }
+  const double gon = 0.5 * 64 * 300.0 * 300.0 * std::sin(2 * kPi / 64);
+  EXPECT_NEAR(closed, 600.0 * 600.0 - gon, 1.0);
+  EXPECT_EQ(cylinders, 1);
+  EXPECT_THROW(read_airspace(R"({"geoFence": {"circles": [
+    {"inclusion": true, "circle": {"center": [47.3977, 8.5456], "radius": 300}},
+    {"inclusion": true, "circle": {"center": [47.3977, 8.5456], "radius": 200}}]}})",
+                             "fence.plan", f, kBounds),
+               InputError);
+}
+
+}  // namespace
+}  // namespace uavplan
