@@ -102,9 +102,10 @@ int run_info(const std::string& path) {
   std::printf("uavs      %zu\n", sc.uavs.size());
   for (const auto& u : sc.uavs) print_uav(u);
   if (sc.default_min_agl_m > 0.0 && planning_min_agl_m(sc) == sc.default_min_agl_m)
-    std::printf("min_agl   %g m above the ground for every UAV while planning (the default where a UAV takes off or "
-                "lands and none sets min_agl; min_agl: 0 flies lower)\n",
-                sc.default_min_agl_m);
+    std::printf(
+        "min_agl   %g m above the ground for every UAV while planning (the default where a UAV takes off or "
+        "lands and none sets min_agl; min_agl: 0 flies lower)\n",
+        sc.default_min_agl_m);
   print_planners(sc);
   return kExitOk;
 }

@@ -82,6 +82,7 @@ TEST(Geometry, PolygonSelfIntersection) {
   ASSERT_TRUE(spike);
   // A large simple polygon (a 20,000-gon) is accepted quickly; the same with two vertices swapped is not.
   std::vector<Vec2> round;
+  round.reserve(20000);
   for (int k = 0; k < 20000; ++k)
     round.emplace_back(100 * std::cos(2 * kPi * k / 20000), 100 * std::sin(2 * kPi * k / 20000));
   EXPECT_FALSE(polygon_self_intersection(round));

@@ -30,6 +30,7 @@ std::string number(double x, int decimals) {
 
 std::vector<const RunRecord*> by_run(const std::vector<RunRecord>& records) {
   std::vector<const RunRecord*> v;
+  v.reserve(records.size());
   for (const auto& r : records) v.push_back(&r);
   std::sort(v.begin(), v.end(), [](const RunRecord* a, const RunRecord* b) { return a->spec.index < b->spec.index; });
   return v;

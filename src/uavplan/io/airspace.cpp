@@ -79,7 +79,9 @@ struct ZoneReader {
       if (doc.value("type", "") == "Feature") return {{doc, ""}};
       fail("type", "expected a GeoJSON FeatureCollection or Feature");
     }();
-    for (const auto& [f, place] : features) {
+    for (const auto& feature : features) {
+      const json& f = feature.first;
+      const std::string& place = feature.second;  // named: clang 14 captures no structured binding
       if (!f.is_object() || !f.contains("geometry") || !f["geometry"].is_object()) continue;
       const json& g = f["geometry"];
       const json props = f.contains("properties") && f["properties"].is_object() ? f["properties"] : json::object();

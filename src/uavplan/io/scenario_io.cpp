@@ -73,9 +73,16 @@ struct At {
       const std::string k = kv.first.Scalar();
       if (std::none_of(allowed.begin(), allowed.end(), [&](const char* a) { return k == a; })) {
         std::string list;
-        for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-        At{kv.first, path.empty() ? k : path + "." + k, file, applied}.fail("unknown key '" + k +
-                                                                            "' (expected one of: " + list + ")");
+        for (const char* a : allowed) {
+          if (!list.empty()) list += ", ";
+          list += a;
+        }
+        std::string why = "unknown key '";
+        why += k;
+        why += "' (expected one of: ";
+        why += list;
+        why += ")";
+        At{kv.first, path.empty() ? k : path + "." + k, file, applied}.fail(why);
       }
     }
   }
@@ -587,7 +594,7 @@ void read_header(const At& top, Scenario& sc) {
 
 Aabb read_bounds(const At& b) {
   b.keys({"min", "max"});
-  const Aabb bounds{b.req("min").vec3(), b.req("max").vec3()};
+  Aabb bounds{b.req("min").vec3(), b.req("max").vec3()};
   if (!(bounds.min.x() < bounds.max.x()) || !(bounds.min.y() < bounds.max.y()) || !(bounds.min.z() <= bounds.max.z()))
     b["max"].fail("must be above min in x and y, and not below it in z");
   return bounds;

@@ -34,7 +34,7 @@ bool convex(const Obstacle& o) {
 
 // The face on the upper side of cell (i, j, k) across `axis`.
 Face face_of(const VoxelGrid& g, int i, int j, int k, int axis) {
-  const Vec3 c = g.cell();
+  const Vec3& c = g.cell();
   Vec3 base = g.origin() + Vec3(i * c.x(), j * c.y(), k * c.z());
   base[axis] += c[axis];
   Vec3 du = Vec3::Zero(), dv = Vec3::Zero();

@@ -52,6 +52,7 @@ TEST(WalledOff, NeverClosesAGapTheBodyFitsThrough) {
   for (int trial = 0; trial < 40; ++trial) {
     const double width = rng.uniform(2 * kRadius + 0.01, 4.0), y0 = rng.uniform(10, 580);
     std::vector<Obstacle> clutter;
+    clutter.reserve(6);
     for (int i = 0; i < 6; ++i)
       clutter.push_back(
           Sphere{Vec3(rng.uniform(250, 350), rng.uniform(0, 600), rng.uniform(0, 120)), rng.uniform(1, 3)});

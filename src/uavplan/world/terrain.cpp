@@ -15,7 +15,7 @@ int clamp_cell(double v, int n) { return static_cast<int>(std::clamp(std::floor(
 }  // namespace
 
 TerrainGrid::TerrainGrid(Vec2 origin, double cell_m, int nx, int ny, std::vector<double> heights)
-    : origin_(origin), cell_m_(cell_m), nx_(nx), ny_(ny), heights_(std::move(heights)) {
+    : origin_(std::move(origin)), cell_m_(cell_m), nx_(nx), ny_(ny), heights_(std::move(heights)) {
   if (!(cell_m_ > 0.0) || !std::isfinite(cell_m_)) throw std::invalid_argument("terrain cell size must be positive");
   if (nx_ <= 0 || ny_ <= 0) throw std::invalid_argument("terrain grid must have at least one cell");
   if (heights_.size() != static_cast<std::size_t>(nx_) * ny_)

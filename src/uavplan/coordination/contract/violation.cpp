@@ -66,7 +66,7 @@ std::string describe(const Violation& v) {
 
 void add_violation(Violations& out, ViolationKind kind, const std::string& uav, std::optional<double> t_s,
                    std::optional<Vec3> where, std::string message) {
-  out.push_back({kind, uav, t_s, where, std::move(message)});
+  out.push_back({kind, uav, t_s, std::move(where), std::move(message)});
 }
 
 }  // namespace uavplan

@@ -105,7 +105,7 @@ bool prove_walled_off(const World& world, const SegmentRule& rule, const Vec3& a
 Attempt route_on_grid(const World& world, const VoxelGrid& grid, const UavSpec& uav, const SegmentRule& rule,
                       const std::vector<Vec3>& stops, bool derived, bool first, const StopCondition& stop,
                       PlanResult& res, std::vector<Vec3>& path, std::vector<char>& pinned) {
-  const Vec3 cs = grid.cell();
+  const Vec3& cs = grid.cell();
   GridAStar search(grid.cells(), bounding_box_moves(grid.cells(), cs.x(), cs.y(), cs.z(), uav.max_climb_rad),
                    GridHeuristic::euclidean, cs.x(), cs.y(), cs.z());
   path.assign(1, stops[0]);
