@@ -124,6 +124,8 @@ planner: {algorithm: astar}
 YAML
 "$BIN" plan "$TMP/band.yaml" -o "$TMP/band" >/dev/null 2>&1; check max_agl.plan 0 $?
 "$BIN" verify "$TMP/band.yaml" "$TMP/band/plan.json" >/dev/null 2>&1; check max_agl.verify 0 $?
+"$BIN" info "$TMP/band.yaml" | grep -q "min_agl 20 m, max_agl 45 m" && pass=$((pass + 1)) ||
+  { echo "FAIL max_agl.info"; fails=$((fails + 1)); }
 python3 - "$TMP/band/plan.json" <<'PY' && pass=$((pass + 1)) || fails=$((fails + 1))
 import json, sys
 p = json.load(open(sys.argv[1]))

@@ -66,6 +66,7 @@ void print_uav(const UavSpec& u) {
               u.speed.cruise_mps, u.speed.max_mps, rad_to_deg(u.max_turn_rad), rad_to_deg(u.max_climb_rad));
   if (u.ceiling_m) std::printf(", ceiling %g m", *u.ceiling_m);
   if (u.min_agl_m > 0.0) std::printf(", min_agl %g m", u.min_agl_m);
+  if (u.max_agl_m) std::printf(", max_agl %g m", *u.max_agl_m);
   if (u.clearance_m > 0.0) std::printf(", clearance %g m", u.clearance_m);
   if (u.sensor_range_m) std::printf(", sensor %g m", *u.sensor_range_m);
   if (u.max_turn_rate_rad_s) std::printf(", turn rate %g deg/s", rad_to_deg(*u.max_turn_rate_rad_s));
