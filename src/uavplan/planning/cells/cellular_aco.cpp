@@ -31,6 +31,19 @@ CellularAcoOptions CellularAcoOptions::from_params(const Params& params) {
 
 namespace {
 
+// v = n copies of `value`, filled a chunk at a time under the stop: on a fine map each of the
+// colony's arrays is hundreds of megabytes, whose first touch alone took over a second.
+template <class T>
+void fill_under_stop(std::vector<T>& v, std::size_t n, T value, const StopCondition& stop) {
+  constexpr std::size_t kChunk = std::size_t{1} << 22;
+  v.clear();
+  v.reserve(n);
+  for (std::size_t done = 0; done < n; done += kChunk) {
+    stop.throw_if_stopped();
+    v.insert(v.end(), std::min(kChunk, n - done), value);
+  }
+}
+
 struct Walk {
   std::vector<std::int64_t> path;
   double cost = World::kInf;
@@ -40,7 +53,8 @@ class Colony {
  public:
   // Throws Stopped (core/stop.h) when the stop holds while the estimate to go is computed.
   Colony(const CellGraph& g, std::int64_t from, std::int64_t to, const CellularAcoOptions& o, const StopCondition& stop)
-      : g_(g), m_(g.map()), from_(from), to_(to), o_(o), stop_(stop), tau_(static_cast<std::size_t>(m_.nodes()), 1.0) {
+      : g_(g), m_(g.map()), from_(from), to_(to), o_(o), stop_(stop) {
+    fill_under_stop(tau_, static_cast<std::size_t>(m_.nodes()), 1.0, stop);
     goal_ = pos(to);
     // eta's scale: the cost of one horizontal cell at the lowest level.
     scale_ = std::max(1e-12, g.cost(m_.centre(0, 0, 0), m_.centre(0, 0, 0) + Vec3(m_.cell_m(), 0, 0)));
@@ -168,7 +182,7 @@ class Colony {
   // graph, by one backward Dijkstra per leg. It is a lower bound of J to go (consistent), and
   // unlike the straight line it leads around concave obstacles instead of into them.
   void distance_to_goal() {
-    to_go_.assign(tau_.size(), World::kInf);
+    fill_under_stop(to_go_, tau_.size(), World::kInf, stop_);
     using Item = std::pair<double, std::int64_t>;
     std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
     to_go_[static_cast<std::size_t>(to_)] = 0.0;
@@ -219,7 +233,13 @@ std::optional<std::vector<std::int64_t>> cellular_aco_search(const CellGraph& g,
   if (!colony.reachable() || stop.should_stop()) return std::nullopt;  // a fine map's arrays take a while to fill
   const std::size_t nodes = static_cast<std::size_t>(g.map().nodes());
   const int threads = o.threads > 0 ? std::min(o.ants, o.threads) : stop.threads(o.ants);
-  std::vector<std::vector<std::uint32_t>> seen(static_cast<std::size_t>(threads), std::vector<std::uint32_t>(nodes, 0));
+  // Per thread, the cells its ant has visited.
+  std::vector<std::vector<std::uint32_t>> seen(static_cast<std::size_t>(threads));
+  try {
+    for (auto& s : seen) fill_under_stop(s, nodes, std::uint32_t{0}, stop);
+  } catch (const Stopped&) {
+    return std::nullopt;
+  }
   std::vector<std::uint32_t> stamps(static_cast<std::size_t>(threads), 0);
   std::vector<std::uint64_t> steps(static_cast<std::size_t>(threads), 0);
   const Rng base(seed);
