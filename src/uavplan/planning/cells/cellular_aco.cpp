@@ -262,6 +262,7 @@ std::optional<std::vector<std::int64_t>> cellular_aco_search(const CellGraph& g,
       run(0);
     } else {
       std::vector<std::jthread> pool;
+      pool.reserve(static_cast<std::size_t>(threads));
       for (int t = 0; t < threads; ++t) pool.emplace_back(run, t);
     }
     // Best of the iteration (lowest cost, then lowest ant index), then the CA update on it.
