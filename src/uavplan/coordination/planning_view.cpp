@@ -161,12 +161,14 @@ std::vector<PlacementProblem> placement_problems(const Scenario& sc) {
       return ground_column_problem(sc, u, Vec3(pp.x(), pp.y(), sc.world.ground_z(pp.x(), pp.y())));
     const double keep = keep_off_m(u);
     // Over terrain the planners keep the body under the band's top, over a floor the centre.
-    if (const double high = sc.world.highest_height_above_ground(p, p),
-        limit = top ? *top - (sc.world.terrain() ? keep : 0.0) : 0.0;
-        top && high > limit)
-      return num_text(high) + " m above the ground, above " +
-             (sc.world.terrain() ? "max_agl less radius and clearance " : "max_agl ") + num_text(limit) +
-             " m (planners keep the smallest max_agl of the scenario, " + num_text(*top) + " m, for every UAV)";
+    if (top) {
+      const double high = sc.world.highest_height_above_ground(p, p);
+      const double limit = *top - (sc.world.terrain() ? keep : 0.0);
+      if (high > limit)
+        return num_text(high) + " m above the ground, above " +
+               (sc.world.terrain() ? "max_agl less radius and clearance " : "max_agl ") + num_text(limit) +
+               " m (planners keep the smallest max_agl of the scenario, " + num_text(*top) + " m, for every UAV)";
+    }
     const double h = sc.world.lowest_height_above_ground(p, p);
     if (agl > 0.0 && h < agl + keep)
       return num_text(h) + " m above the ground, below min_agl plus radius and clearance " + num_text(agl + keep) +

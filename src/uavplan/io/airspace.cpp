@@ -173,9 +173,7 @@ Airspace read_airspace(const std::string& text, const std::string& file, const G
   try {
     doc = json::parse(text);
   } catch (const json::exception& e) {
-    int line = 0;
-    const std::string what = json_error_text(e, text, line);
-    throw InputError(file, line, "", "not valid JSON: " + what);
+    throw_json_error(e, text, file);
   }
   if (!doc.is_object()) throw InputError(file, 0, "", "expected a JSON object");
   Airspace out;

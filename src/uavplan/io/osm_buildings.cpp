@@ -176,9 +176,7 @@ std::vector<Prism> buildings_from_geojson(const std::string& text, const std::st
   try {
     doc = json::parse(text);
   } catch (const json::exception& e) {
-    int line = 0;
-    const std::string what = json_error_text(e, text, line);
-    throw InputError(file, line, "", "not valid JSON: " + what);
+    throw_json_error(e, text, file);
   }
   BuildingCounts local_counts;
   std::vector<Prism> out;

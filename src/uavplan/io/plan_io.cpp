@@ -243,9 +243,7 @@ Json parse_plan_json(const std::string& text, const std::string& file) {
   try {
     j = Json::parse(text, cb);
   } catch (const Json::exception& e) {
-    int line = 0;
-    const std::string what = json_error_text(e, text, line);
-    throw InputError(file, line, "", "not valid JSON: " + what);
+    throw_json_error(e, text, file);
   }
   if (duplicate) {  // nlohmann kept the last of them: name it with its line
     try {

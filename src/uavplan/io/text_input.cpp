@@ -42,4 +42,10 @@ std::string checked_text(std::string text, const std::string& file) {
   return out;
 }
 
+void throw_json_error(const std::exception& e, std::string_view text, const std::string& file) {
+  int line = 0;
+  const std::string what = json_error_text(e, text, line);
+  throw InputError(file, line, "", "not valid JSON: " + what);
+}
+
 }  // namespace uavplan

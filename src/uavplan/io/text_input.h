@@ -16,5 +16,7 @@ int line_at(std::string_view text, std::size_t offset);
 // A nlohmann JSON error as a message without its "[json.exception...]" prefix, and its line:
 // parse errors carry a byte offset, others (a number too large) quote the text, found again.
 std::string json_error_text(const std::exception& e, std::string_view text, int& line);
+// Throws InputError "FILE:LINE: not valid JSON: ..." for a JSON parse error of `text`.
+[[noreturn]] void throw_json_error(const std::exception& e, std::string_view text, const std::string& file);
 
 }  // namespace uavplan
