@@ -19,6 +19,7 @@ PACKAGES=(
   libopenmpi-dev openmpi-bin  # uavplan batch --mpi: a batch across machines
   python3-dev pybind11-dev python3-pybind11  # the Python module
   python3-numpy python3-pytest python3-matplotlib  #   its arrays, its tests, its example's plot
+  libgdal-dev            # io: elevation models in any format and CRS (GDAL, PROJ), KML airspace
   gdal-bin               # tests: ogr2ogr reads the GeoJSON and KML exports back
   clang-14 libclang-rt-14-dev  # make asan, make fuzz: clang with AddressSanitizer, UBSan, libFuzzer
   clang-format clang-tidy      # scripts/lint.sh: the house style and static checks

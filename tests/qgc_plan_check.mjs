@@ -50,14 +50,23 @@ function checkPlan(file) {
     if (!NAV_WITH_POSITION.has(it.command)) { fail(file, `${at}: command ${it.command} is not one this tool writes`); return; }
     for (const key of ['AMSLAltAboveTerrain', 'Altitude', 'AltitudeMode'])
       if (!isNum(it[key])) fail(file, `${at}.${key} is not a number (QGroundControl rejects null)`);
-    if (it.frame !== 3) fail(file, `${at}.frame is ${it.frame}, expected 3 (relative to home)`);
+    // Altitude frames: 3 above home (QGC mode 1), 0 above sea level (2), 10 above the terrain (4).
+    const modes = {3: 1, 0: 2, 10: 4};
+    if (!(it.frame in modes)) fail(file, `${at}.frame is ${it.frame}, expected 3, 0 or 10`);
+    else if (it.AltitudeMode !== modes[it.frame]) fail(file, `${at}.AltitudeMode ${it.AltitudeMode} does not match frame ${it.frame}`);
+    if (it.frame !== m.items[0].frame) fail(file, `${at}.frame ${it.frame} differs from the first item's`);
+    const home = m.plannedHomePosition[2];
+    if (it.frame === 3 && Math.abs(it.AMSLAltAboveTerrain - (home + it.Altitude)) > 2e-4)
+      fail(file, `${at}.AMSLAltAboveTerrain is not home plus Altitude`);
+    if (it.frame === 0 && Math.abs(it.AMSLAltAboveTerrain - it.Altitude) > 2e-4)
+      fail(file, `${at}.AMSLAltAboveTerrain differs from its AMSL Altitude`);
     if (!latOk(it.params[4]) || !lonOk(it.params[5]))
       fail(file, `${at} has no valid latitude/longitude`);
     if (isNum(it.params[6]) && Math.abs(it.params[6] - it.Altitude) > 1e-6)
       fail(file, `${at}.Altitude differs from params[6]`);
   });
   if (m.items[0].command !== 22) fail(file, 'the first item is not a takeoff (22)');
-  else if (!(m.items[0].params[6] > 0))
+  else if (!(m.items[0].AMSLAltAboveTerrain > m.plannedHomePosition[2]))
     fail(file, `take-off to ${m.items[0].params[6]} m above home: PX4 refuses a take-off that is not above home`);
   checkFixedWingLanding(file, m);
   // Commanded timing (PX4 and ArduPilot fly their own default speed otherwise): a speed item
@@ -160,11 +169,10 @@ function checkAgainstCsv(file, plan, csvFile) {
   // Every waypoint on the trajectory in order, and the speed commanded for the leg into it the
   // leg's mean speed on the trajectory (within the 10 % of it a speed change is written for).
   // The first leg begins where the take-off ends (a runway take-off's taxi and roll come before).
-  const homeAlt = plan.mission.plannedHomePosition[2];
-  const at = (it, k0) => {  // the first row from k0 at the item's position (altitude relative to home)
+  const at = (it, k0) => {  // the first row from k0 at the item's position and altitude (AMSL)
     for (let k = k0; k < pts.length; k++)
       if (Math.abs(pts[k][4] - it.params[4]) < 1e-7 && Math.abs(pts[k][5] - it.params[5]) < 1e-7 &&
-          Math.abs(pts[k][6] - (homeAlt + it.params[6])) < 1e-3) return k;
+          Math.abs(pts[k][6] - it.AMSLAltAboveTerrain) < 1e-3) return k;
     return -1;
   };
   let from = Math.max(0, at(plan.mission.items[0], 0)), speed = 0;

@@ -14,7 +14,8 @@ std::optional<std::string> export_request_problem(const Scenario& sc, const Expo
   if (a.formats.empty()) {
     if (a.options_given)
       return std::string(
-          "--firmware, --vehicle, --end, --fence, --flat-altitude and --force apply to --export: give the formats too");
+          "--firmware, --vehicle, --end, --fence, --altitude, --flat-altitude and --force apply to --export: give the "
+          "formats too");
     return std::nullopt;
   }
   if (sc.mission.airfield && a.vehicle == "multirotor")
@@ -53,6 +54,12 @@ void add_export_options(CLI::App& cmd, ExportArgs& a, bool formats_required) {
          "Geofence of the .plan: none, bounds (the world's bounds and the 16 largest exclusions; default) or all")
       ->check(CLI::IsMember({"none", "bounds", "all"}))
       ->each(given);
+  cmd.add_option("--altitude", a.altitude,
+                 "Mission altitudes: home (above home, MAV_FRAME_GLOBAL_RELATIVE_ALT), amsl (above sea level, "
+                 "MAV_FRAME_GLOBAL; the default over an elevation model) or terrain (above the ground, "
+                 "MAV_FRAME_GLOBAL_TERRAIN_ALT; ArduPilot only)")
+      ->check(CLI::IsMember({"home", "amsl", "terrain"}))
+      ->each(given);
   cmd.add_option("--flat-altitude", a.flat_altitude_m,
                  "A flat (2-D) world's plan is flown this many metres above home (default 20): its obstacles are "
                  "columns at every height")
@@ -67,6 +74,9 @@ int prepare_exports(const std::string& scenario_path, const Scenario& sc, const 
   const std::string_view vehicle = !a.vehicle.empty() ? std::string_view(a.vehicle) : default_vehicle(sc);
   ExportOptions opt = export_options(a.firmware, vehicle, a.end, a.fence);  // CLI11 checked the spellings
   opt.flat_altitude_m = a.flat_altitude_m;
+  if (a.altitude == "home") opt.altitude = AltitudeFrame::home;
+  if (a.altitude == "amsl") opt.altitude = AltitudeFrame::amsl;
+  if (a.altitude == "terrain") opt.altitude = AltitudeFrame::terrain;
   opt.autopilot = std::any_of(a.formats.begin(), a.formats.end(),
                               [](const std::string& f) { return autopilot_format(*export_format_from_string(f)); });
   try {
@@ -90,6 +100,7 @@ int prepare_exports(const std::string& scenario_path, const Scenario& sc, const 
       out.files.insert(out.files.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
     }
     for (std::string& n : frame_notes(sc, flights)) out.notes.push_back(std::move(n));
+    if (const auto n = altitude_note(sc, opt); n && opt.autopilot) out.notes.push_back(*n);
     out.notes.insert(out.notes.end(), flights.notes.begin(), flights.notes.end());
   } catch (const ExportError& e) {
     std::cerr << scenario_path << ": export: " << e.what() << "\n";

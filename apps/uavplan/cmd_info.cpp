@@ -7,6 +7,7 @@
 #include "commands.h"
 #include "uavplan/coordination/mission.h"
 #include "uavplan/coordination/planning_view.h"
+#include "uavplan/core/text.h"
 #include "uavplan/core/units.h"
 #include "uavplan/io/input_error.h"
 #include "uavplan/io/scenario_io.h"
@@ -29,6 +30,23 @@ void print_world(const Scenario& sc) {
     std::printf("terrain   %d x %d cells of %g m, max height %g m\n", t->nx(), t->ny(), t->cell_m(), t->max_height());
   else
     std::printf("terrain   none\n");
+  if (const auto& e = sc.elevation) {
+    std::printf("  model   %s: %s raster, %d x %d pixels of %.3g m, %s\n", printable(e->file).c_str(),
+                printable(e->driver).c_str(), e->raster_nx, e->raster_ny, e->raster_cell_m, printable(e->crs).c_str());
+    std::printf(
+        "          covers x %.0f..%.0f, y %.0f..%.0f m here; heights %.1f..%.1f m AMSL over the bounds; each "
+        "cell the highest pixel it touches",
+        e->extent_min.x(), e->extent_max.x(), e->extent_min.y(), e->extent_max.y(), e->min_amsl_m, e->max_amsl_m);
+    if (e->nodata_filled > 0) std::printf("; %zu cells without data filled from their neighbours", e->nodata_filled);
+    std::printf("\n");
+  }
+  if (!sc.airspace.empty()) {
+    const auto inclusions =
+        std::count_if(sc.airspace.begin(), sc.airspace.end(), [](const FenceZone& z) { return z.inclusion; });
+    std::printf("airspace  %s from files (%td inclusion fence, %td no-fly)\n",
+                count_text(sc.airspace.size(), "zone").c_str(), inclusions,
+                static_cast<std::ptrdiff_t>(sc.airspace.size()) - inclusions);
+  }
   std::printf("moving    %zu\n", w.moving().size());
   if (sc.origin)
     std::printf("origin    lat %.7f lon %.7f alt %.2f m\n", sc.origin->lat_deg, sc.origin->lon_deg, sc.origin->alt_m);

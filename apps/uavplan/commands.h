@@ -44,6 +44,7 @@ struct ExportArgs {
   std::string vehicle;  // empty: fixedwing for a formation_mission (its runway), else multirotor
   std::string end = "land";
   std::string fence = "bounds";
+  std::string altitude;                                      // empty: amsl over an elevation model, else home
   double flat_altitude_m = ExportOptions{}.flat_altitude_m;  // a flat world's plan flies this high
   bool force = false;                                        // write the UAVs that hold when others do not
   bool options_given = false;  // --firmware, --vehicle, --end, --fence or --force on the command line

@@ -152,7 +152,7 @@ std::string ground_column_problem(const Scenario& sc, const UavSpec& u, const Ve
 
 std::vector<PlacementProblem> placement_problems(const Scenario& sc) {
   std::vector<PlacementProblem> out(sc.uavs.size());
-  const PlanningView v = planning_view(sc);
+  const PlanningView v = planning_view(sc, GroundLegTiming::shifted, BandTop::open);  // the band: below
   const Scenario& planned = v.identity ? sc : v.scenario;
   const double agl = planning_min_agl_m(sc);
   const std::optional<double> top = planning_max_agl_m(sc);
@@ -187,7 +187,7 @@ std::vector<PlacementProblem> placement_problems(const Scenario& sc) {
   return out;
 }
 
-PlanningView planning_view(const Scenario& sc, GroundLegTiming timing) {
+PlanningView planning_view(const Scenario& sc, GroundLegTiming timing, BandTop band_top) {
   PlanningView v;
   const std::size_t n = sc.uavs.size();
   v.lift_off.assign(n, std::nullopt);
@@ -236,7 +236,8 @@ PlanningView planning_view(const Scenario& sc, GroundLegTiming timing) {
   v.identity = false;
   v.scenario = sc;
   WorldSpec spec = (agl > 0.0 ? raised(w, agl) : w).spec();
-  if (top && w.terrain()) close_sky(spec, *w.terrain(), *top);  // over the terrain as it is, not raised
+  if (top && w.terrain() && band_top == BandTop::closed)
+    close_sky(spec, *w.terrain(), *top);  // over the terrain as it is, not raised
   shift_moving(spec, v.takeoff_s);
   v.scenario.world = World(std::move(spec));
   for (std::size_t i = 0; i < n; ++i) {

@@ -38,7 +38,11 @@ struct PlanningView {
 // Who times the take-off and landing legs: the plan shifted by the longest take-off (the legs
 // added around the mission's plan), or the mission itself (Mission::times_ground_legs).
 enum class GroundLegTiming { shifted, by_mission };
-PlanningView planning_view(const Scenario& scenario, GroundLegTiming timing = GroundLegTiming::shifted);
+// The sky above a max_agl band over terrain: closed by obstacles (what planners see), or left
+// open where only points are checked against the band directly (placement_problems).
+enum class BandTop { closed, open };
+PlanningView planning_view(const Scenario& scenario, GroundLegTiming timing = GroundLegTiming::shifted,
+                           BandTop band_top = BandTop::closed);
 
 // The largest min_agl of the scenario's UAVs, or its default_min_agl_m where larger: the ground
 // the planners keep clear for all of them.

@@ -12,6 +12,7 @@
 #include "uavplan/io/geo.h"
 #include "uavplan/io/gis_export.h"
 #include "uavplan/io/input_error.h"
+#include "uavplan/io/mission_items.h"
 #include "uavplan/io/qgc_export.h"
 
 namespace uavplan {
@@ -210,6 +211,23 @@ void clear_export(const std::string& dir) {
   remove_listed(dir, old, {});
   std::error_code ec;
   std::filesystem::remove(std::filesystem::path(dir) / kExportManifest, ec);
+}
+
+std::optional<std::string> altitude_note(const Scenario& sc, const ExportOptions& opt) {
+  const std::string model = sc.elevation ? "the elevation model " + printable(sc.elevation->file) : "the terrain";
+  switch (altitude_frame(sc, opt)) {
+    case AltitudeFrame::amsl:
+      return "mission altitudes are above mean sea level (MAV_FRAME_GLOBAL, QGC's AMSL mode): the verified heights "
+             "over " +
+             model + ", whatever terrain data the autopilot holds";
+    case AltitudeFrame::terrain:
+      return "mission altitudes are above the terrain of " + model +
+             " at each item (MAV_FRAME_GLOBAL_TERRAIN_ALT): ArduPilot follows its own terrain data between and at "
+             "items, so its heights differ from the verified ones where that data differs; --altitude amsl flies "
+             "the verified heights";
+    default:
+      return std::nullopt;
+  }
 }
 
 }  // namespace uavplan

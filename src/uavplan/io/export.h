@@ -47,6 +47,9 @@ std::vector<ExportFile> export_files(const Scenario& scenario, const VerifiedExp
 // What the WGS84 frame does to the verified distances where the flights reach far from the
 // origin (geo.h): a line when ground distances across the bearing shrink by 0.1 % or more.
 std::vector<std::string> frame_notes(const Scenario& scenario, const VerifiedExport& flights);
+// What the mission files' altitudes are measured from, where not home (the firmware's frame and
+// what the autopilot follows between items).
+std::optional<std::string> altitude_note(const Scenario& scenario, const ExportOptions& options);
 
 // A UAV id made safe as a file name ([A-Za-z0-9_.-], others become '_'; at most 100 characters).
 std::string file_stem(std::string_view id);

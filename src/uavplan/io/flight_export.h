@@ -35,6 +35,10 @@ enum class Firmware { px4, ardupilot };             // QGC firmwareType 12 / 3
 enum class VehicleKind { multirotor, fixed_wing };  // MAV_TYPE 2 / 1
 enum class MissionEnd { land, rtl, loiter, none };
 enum class FenceMode { none, bounds, all };  // bounds: plus the largest exclusions
+// Mission altitudes: above home (MAV_FRAME_GLOBAL_RELATIVE_ALT), above mean sea level
+// (MAV_FRAME_GLOBAL) or above the terrain (MAV_FRAME_GLOBAL_TERRAIN_ALT, ArduPilot only); `standard`:
+// above sea level where the scenario's terrain is an elevation model, else above home.
+enum class AltitudeFrame { standard, home, amsl, terrain };
 std::string_view to_string(MissionEnd e);
 
 // Thrown when a plan cannot be exported (no origin, a plan UAV unknown to the scenario).
@@ -51,6 +55,7 @@ struct ExportOptions {
   // (no DO_CHANGE_SPEED item): a group plan's speeds wobble by a few percent leg to leg.
   double speed_change_fraction = 0.10;
   FenceMode fence = FenceMode::bounds;
+  AltitudeFrame altitude = AltitudeFrame::standard;
   int max_fence_exclusions = 16;  // FenceMode::bounds: autopilots store few fence points
   // A trajectory flown through a vehicle model (a row every fraction of a second along its
   // arcs) is flown as a subset of its rows: each left-out row within this distance of where the

@@ -22,20 +22,20 @@ double compass_yaw_deg(const Vec3& d) {
 
 class Items {
  public:
-  Items(const GeoFrame& frame, double home_amsl_m, const ExportOptions& opt)
-      : frame_(frame), home_amsl_m_(home_amsl_m), opt_(opt) {}
+  Items(const GeoFrame& frame, double home_amsl_m, const ExportOptions& opt, AltitudeFrame altitude, const World& world)
+      : frame_(frame), home_amsl_m_(home_amsl_m), opt_(opt), altitude_(altitude), world_(world) {}
 
   void at(int command, const Vec3& p, std::array<double, 4> head) {
     const LatLonAlt g = frame_.to_wgs84(p);
     MissionItem it;
     it.command = command;
-    it.params = {round_m(head[0]),
-                 round_m(head[1]),
-                 round_m(head[2]),
-                 round_m(head[3]),
-                 round_deg(g.lat_deg),
-                 round_deg(g.lon_deg),
-                 round_m(g.alt_m - home_amsl_m_)};
+    it.frame = mav_frame(altitude_);
+    it.amsl_m = round_m(g.alt_m);
+    const double alt = altitude_ == AltitudeFrame::amsl      ? g.alt_m
+                       : altitude_ == AltitudeFrame::terrain ? p.z() - world_.ground_z(p.x(), p.y())
+                                                             : g.alt_m - home_amsl_m_;
+    it.params = {round_m(head[0]),     round_m(head[1]),     round_m(head[2]), round_m(head[3]),
+                 round_deg(g.lat_deg), round_deg(g.lon_deg), round_m(alt)};
     items_.push_back(it);
   }
   void command(int command, std::array<double, 4> head = {}) {
@@ -96,10 +96,32 @@ class Items {
   double home_amsl_m_;
   double speed_mps_ = 0.0;  // commanded so far (0: none yet)
   const ExportOptions& opt_;
+  AltitudeFrame altitude_;
+  const World& world_;
   std::vector<MissionItem> items_;
 };
 
 }  // namespace
+
+AltitudeFrame altitude_frame(const Scenario& sc, const ExportOptions& opt) {
+  if (opt.altitude == AltitudeFrame::terrain && opt.firmware == Firmware::px4)
+    throw ExportError(
+        "--altitude terrain: PX4 takes no mission item above the terrain (MAV_FRAME_GLOBAL_TERRAIN_ALT is "
+        "ArduPilot's); --altitude amsl flies the same verified heights above sea level");
+  if (opt.altitude != AltitudeFrame::standard) return opt.altitude;
+  return sc.elevation ? AltitudeFrame::amsl : AltitudeFrame::home;
+}
+
+int mav_frame(AltitudeFrame frame) {
+  switch (frame) {
+    case AltitudeFrame::amsl:
+      return kFrameGlobal;
+    case AltitudeFrame::terrain:
+      return kFrameGlobalTerrainAlt;
+    default:
+      return kFrameGlobalRelativeAlt;
+  }
+}
 
 std::vector<MissionItem> mission_items(const Scenario& sc, const ExportedUav& e, const ExportOptions& opt) {
   if (!sc.origin)
@@ -115,7 +137,7 @@ std::vector<MissionItem> mission_items(const Scenario& sc, const ExportedUav& e,
   const GeoFrame frame(*sc.origin);
   const Trajectory& tr = e.plan.trajectory;
   const double cruise = e.spec->speed.cruise_mps;
-  Items m(frame, frame.to_wgs84(e.home).alt_m, opt);
+  Items m(frame, frame.to_wgs84(e.home).alt_m, opt, altitude_frame(sc, opt), sc.world);
   const Vec3 first = tr[std::min(e.body_begin + 1, tr.size() - 1)].p - tr[e.body_begin].p;
   // Fixed wing: param1 is the minimum pitch of the climb-out (ArduPlane climbs at it, else at a
   // few degrees; PX4 takes it as the minimum pitch too): the climb that was verified.

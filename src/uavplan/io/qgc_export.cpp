@@ -16,15 +16,18 @@ namespace {
 
 using ojson = nlohmann::ordered_json;
 
-ojson mission_json(const std::vector<MissionItem>& items, double home_amsl_m) {
+// QGroundControl's altitude modes: 1 relative to home, 2 above sea level, 4 the terrain frame.
+int qgc_altitude_mode(int frame) { return frame == kFrameGlobal ? 2 : frame == kFrameGlobalTerrainAlt ? 4 : 1; }
+
+ojson mission_json(const std::vector<MissionItem>& items) {
   ojson out = ojson::array();
   int jump_id = 1;
   for (const MissionItem& it : items) {
     ojson j;
     if (it.positioned()) {
-      j["AMSLAltAboveTerrain"] = round_m(home_amsl_m + it.params[6]);  // a number: QGC's loader rejects null here
+      j["AMSLAltAboveTerrain"] = it.amsl_m;  // a number: QGC's loader rejects null here
       j["Altitude"] = it.params[6];
-      j["AltitudeMode"] = 1;  // relative to home
+      j["AltitudeMode"] = qgc_altitude_mode(it.frame);
     }
     j["autoContinue"] = true;
     j["command"] = it.command;
@@ -36,6 +39,20 @@ ojson mission_json(const std::vector<MissionItem>& items, double home_amsl_m) {
     out.push_back(std::move(j));
   }
   return out;
+}
+
+// A zone of the scenario's airspace files, in QGC's fence form, with the corners it was read with.
+void append_zone(const FenceZone& z, ojson& polygons, ojson& circles) {
+  if (z.polygon_latlon.empty()) {
+    circles.push_back(ojson{
+        {"circle", {{"center", ojson::array({z.center_latlon.x(), z.center_latlon.y()})}, {"radius", z.radius_m}}},
+        {"inclusion", z.inclusion},
+        {"version", 1}});
+    return;
+  }
+  ojson poly = ojson::array();
+  for (const Vec2& c : z.polygon_latlon) poly.push_back(ojson::array({c.x(), c.y()}));
+  polygons.push_back(ojson{{"inclusion", z.inclusion}, {"polygon", std::move(poly)}, {"version", 1}});
 }
 
 // Exclusions: the obstacles this UAV can neither over- nor under-fly at the heights its route
@@ -56,15 +73,28 @@ ojson fence_json(const Scenario& sc, const ExportedUav& e, const GeoFrame& frame
     const LatLonAlt g = rounded(frame.to_wgs84(Vec3(x, y, 0.0)));
     return ojson::array({g.lat_deg, g.lon_deg});
   };
+  // The scenario's airspace zones as their files gave them (a fence read is the fence written);
+  // the world's bounds as the inclusion where no file gave one.
+  std::vector<char> from_airspace(sc.world.obstacles().size(), 0);
+  bool fenced = false;
+  for (const FenceZone& z : sc.airspace) {
+    for (const std::size_t k : z.obstacles) from_airspace[k] = 1;
+    fenced = fenced || z.inclusion;
+    const double floor = z.floor_amsl_m ? *z.floor_amsl_m - frame.origin().alt_m : -World::kInf;
+    const double ceiling = z.ceiling_amsl_m ? *z.ceiling_amsl_m - frame.origin().alt_m : World::kInf;
+    if (!z.inclusion && (floor > z_lo || ceiling < z_hi)) continue;  // flown over or under
+    append_zone(z, polygons, circles);
+  }
   const Aabb& b = sc.world.bounds();
-  polygons.push_back(ojson{{"inclusion", true},
-                           {"polygon", ojson::array({latlon(b.min.x(), b.min.y()), latlon(b.max.x(), b.min.y()),
-                                                     latlon(b.max.x(), b.max.y()), latlon(b.min.x(), b.max.y())})},
-                           {"version", 1}});
+  if (!fenced)
+    polygons.push_back(ojson{{"inclusion", true},
+                             {"polygon", ojson::array({latlon(b.min.x(), b.min.y()), latlon(b.max.x(), b.min.y()),
+                                                       latlon(b.max.x(), b.max.y()), latlon(b.min.x(), b.max.y())})},
+                             {"version", 1}});
   std::vector<std::pair<double, std::size_t>> walls;  // (footprint area, obstacle)
   const auto& obstacles = sc.world.obstacles();
   for (std::size_t k = 0; k < obstacles.size(); ++k) {
-    if (std::holds_alternative<Sphere>(obstacles[k])) continue;
+    if (std::holds_alternative<Sphere>(obstacles[k]) || from_airspace[k]) continue;
     const Aabb ob = bounding_box(obstacles[k]);
     if (ob.min.z() > z_lo || ob.max.z() < z_hi) continue;
     walls.emplace_back(std::abs(polygon_signed_area(footprint(obstacles[k]))), k);
@@ -136,7 +166,7 @@ std::string qgc_plan_json(const Scenario& sc, const ExportedUav& e, const Export
                   {"firmwareType", opt.firmware == Firmware::px4 ? 12 : 3},
                   {"globalPlanAltitudeMode", 1},
                   {"hoverSpeed", e.spec->speed.cruise_mps},
-                  {"items", mission_json(items, home.alt_m)},
+                  {"items", mission_json(items)},
                   {"plannedHomePosition", ojson::array({home.lat_deg, home.lon_deg, home.alt_m})},
                   {"vehicleType", opt.vehicle == VehicleKind::multirotor ? 2 : 1},
                   {"version", 2}};

@@ -17,6 +17,7 @@
 #include "uavplan/core/text.h"
 #include "uavplan/core/units.h"
 #include "uavplan/io/airspace.h"
+#include "uavplan/io/elevation_model.h"
 #include "uavplan/io/files.h"
 #include "uavplan/io/geo.h"
 #include "uavplan/io/input_error.h"
@@ -289,7 +290,8 @@ void read_buildings(const At& b, const std::optional<GeoOrigin>& origin, const A
 // world.airspace: a list of {file: path} (GeoJSON, a QGC .plan's geoFence), relative to the
 // scenario file: exclusion zones become obstacles named after their file; an inclusion fence
 // bounds the world in x, y and closes the rest of its box.
-void read_airspace_files(const At& a, const std::optional<GeoOrigin>& origin, WorldSpec& ws) {
+void read_airspace_files(const At& a, const std::optional<GeoOrigin>& origin, WorldSpec& ws,
+                         std::vector<FenceZone>& fence) {
   a.expect_seq();
   if (!origin) a.fail("placing lon/lat zones needs the scenario's 'origin'");
   const GeoFrame frame(*origin);
@@ -305,6 +307,10 @@ void read_airspace_files(const At& a, const std::optional<GeoOrigin>& origin, Wo
     }
     Airspace zones = read_airspace(text, path.string(), frame, ws.bounds);
     ws.obstacle_ids.resize(ws.obstacles.size());
+    for (FenceZone& z : zones.fence) {
+      for (std::size_t& k : z.obstacles) k += ws.obstacles.size();
+      fence.push_back(std::move(z));
+    }
     for (std::size_t k = 0; k < zones.zones.size(); ++k) {
       ws.obstacles.push_back(std::move(zones.zones[k]));
       ws.obstacle_ids.push_back(zones.zone_ids[k]);
@@ -635,7 +641,26 @@ void read_moving(const At& list, WorldSpec& ws) {
   }
 }
 
-World read_world(const At& w, const std::optional<GeoOrigin>& origin) {
+// world.terrain {file, cell}: an elevation model placed through the origin (io/elevation_model.h).
+TerrainGrid read_terrain_file(const At& t, const std::optional<GeoOrigin>& origin, const Aabb& bounds,
+                              std::optional<ElevationSource>& source) {
+  t.keys({"file", "cell"});
+  if (!origin) t.fail("placing an elevation model needs the scenario's 'origin' (lat, lon, alt)");
+  const std::string name = t.req("file").text();
+  const std::filesystem::path path = std::filesystem::path(*t.file).parent_path() / name;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    t["file"].fail("cannot read the elevation model '" + path.string() + "'");
+  const std::optional<double> cell = t.has("cell") ? std::optional<double>(t["cell"].positive()) : std::nullopt;
+  ElevationModel m =
+      read_elevation_model(path.string(), path.string(), GeoFrame(*origin), bounds, cell, kMaxTerrainCells);
+  source = std::move(m.source);
+  source->file = name;
+  return std::move(m.grid);
+}
+
+World read_world(const At& w, Scenario& sc) {
+  const std::optional<GeoOrigin>& origin = sc.origin;
   w.keys({"bounds", "obstacles", "buildings", "airspace", "threats", "terrain", "moving_obstacles"});
   WorldSpec ws;
   ws.bounds = read_bounds(w.req("bounds"));
@@ -648,9 +673,11 @@ World read_world(const At& w, const std::optional<GeoOrigin>& origin) {
     }
   }
   if (w.has("buildings")) read_buildings(w["buildings"], origin, ws.bounds, ws.obstacles);
-  if (w.has("airspace")) read_airspace_files(w["airspace"], origin, ws);
+  if (w.has("airspace")) read_airspace_files(w["airspace"], origin, ws, sc.airspace);
   if (w.has("threats")) read_threats(w["threats"], ws);
-  if (w.has("terrain")) ws.terrain = read_terrain(w["terrain"]);
+  if (w.has("terrain"))
+    ws.terrain = w["terrain"].has("file") ? read_terrain_file(w["terrain"], origin, ws.bounds, sc.elevation)
+                                          : read_terrain(w["terrain"]);
   if (w.has("moving_obstacles")) read_moving(w["moving_obstacles"], ws);
   try {
     World world(std::move(ws));
@@ -751,7 +778,7 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
   Scenario sc;
   read_header(top, sc);
   const At w = top.req("world");
-  sc.world = read_world(w, sc.origin);
+  sc.world = read_world(w, sc);
   const At uavs = top.req("uavs");
   read_uavs(uavs, sc);
   if (top.has("mission")) read_mission(top["mission"], uavs, sc);

@@ -309,7 +309,8 @@ TEST(ScenarioIo, ClearanceMinAglGroundStartsAndGoalSpacing) {
   // On the terrain of another cell (3 m there) too; under it is still an error.
   EXPECT_NO_THROW(parse_scenario(replace(kGood, "start: [5, 5, 10]", "start: [60, 60, 3]"), "s.yaml"));
   expect_error(replace(kGood, "start: [5, 5, 10]", "start: [60, 60, 2]"), {"uavs[0].start", "below the terrain"});
-  expect_error(replace(kGood, "start: [5, 5, 10]", "start: [20, 70, 0]"), {"uavs[0].start", "inside an obstacle"});
+  expect_error(replace(kGood, "start: [5, 5, 10]", "start: [20, 70, 0]"),
+               {"uavs[0].start", "below the terrain", "the ground is at z = 2 m here"});
   expect_error(replace(kGood, "start: [5, 5, 10]", "start: [69.8, 15, 1]"),
                {"uavs[0].start", "vertical column", "0.5 m"});
   expect_error(replace(kGood, climb, climb + "    min_agl: 12\n"),

@@ -35,6 +35,47 @@ void VoxelGrid::cell_of(const Vec3& p, int& i, int& j, int& k) const {
   }
 }
 
+namespace {
+
+// Boxes that reach above every voxel centre (the closed sky over a max_agl band: a box per
+// terrain cell; tall buildings): below such a box a centre at horizontal distance d < reach is
+// blocked exactly when it lies above the box's bottom less sqrt(reach^2 - d^2), so each voxel
+// column is blocked from one height up, found in O(1) per box and column instead of a distance
+// per voxel. Returns which obstacles were handled so.
+std::vector<char> block_under_tall_boxes(const World& world, VoxelGrid& g, double reach) {
+  const auto& obstacles = world.obstacles();
+  std::vector<char> done(obstacles.size(), 0);
+  const double top_centre = g.center(0, 0, g.nz() - 1).z();
+  std::vector<double> from_z;  // per column: the lowest blocked height
+  for (std::size_t n = 0; n < obstacles.size(); ++n) {
+    const Box* b = std::get_if<Box>(&obstacles[n]);
+    if (!b || !(b->max.z() > top_centre)) continue;
+    if (from_z.empty()) from_z.assign(static_cast<std::size_t>(g.nx()) * g.ny(), World::kInf);
+    done[n] = 1;
+    int i0, j0, k0, i1, j1, k1;
+    g.cell_of(b->min - Vec3::Constant(reach), i0, j0, k0);
+    g.cell_of(b->max + Vec3::Constant(reach), i1, j1, k1);
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        const Vec2 c = g.center(i, j, 0).head<2>();
+        const Vec2 off = (b->min.head<2>() - c).cwiseMax(c - b->max.head<2>()).cwiseMax(0.0);
+        const double d2 = off.squaredNorm();
+        if (d2 >= reach * reach) continue;
+        double& z = from_z[static_cast<std::size_t>(j) * g.nx() + i];
+        z = std::min(z, b->min.z() - std::sqrt(reach * reach - d2));
+      }
+  }
+  if (from_z.empty()) return done;
+  for (int j = 0; j < g.ny(); ++j)
+    for (int i = 0; i < g.nx(); ++i) {
+      const double z = from_z[static_cast<std::size_t>(j) * g.nx() + i];
+      for (int k = g.nz() - 1; k >= 0 && g.center(i, j, k).z() > z; --k) g.set_blocked(g.index(i, j, k));
+    }
+  return done;
+}
+
+}  // namespace
+
 VoxelGrid voxelize(const World& world, const Vec3& cell, double inflation_m, double ceiling_m,
                    const StopCondition& stop) {
   VoxelGrid g(world.bounds(), cell);
@@ -49,7 +90,10 @@ VoxelGrid voxelize(const World& world, const Vec3& cell, double inflation_m, dou
       for (int i = 0; i < g.nx(); ++i) g.set_blocked(g.index(i, j, k));
   }
 
-  for (const Obstacle& o : world.obstacles()) {
+  const std::vector<char> roofed = block_under_tall_boxes(world, g, reach);
+  for (std::size_t n = 0; n < world.obstacles().size(); ++n) {
+    if (roofed[n]) continue;
+    const Obstacle& o = world.obstacles()[n];
     const Aabb box = bounding_box(o).inflated(reach);
     int i0, j0, k0, i1, j1, k1;
     g.cell_of(box.min, i0, j0, k0);
@@ -68,14 +112,20 @@ VoxelGrid voxelize(const World& world, const Vec3& cell, double inflation_m, dou
 
   if (const TerrainGrid* t = world.terrain()) {
     // Distance to the terrain never decreases with height, so each column is blocked from the
-    // bottom up to its first safe cell.
+    // bottom up to its first safe cell. Centres in the terrain under them are at distance 0 and
+    // those `reach` above the highest cell near them are safe: the exact distance is asked only
+    // between.
     for (int j = 0; j < g.ny(); ++j) {
       stop.throw_if_stopped();
-      for (int i = 0; i < g.nx(); ++i)
+      for (int i = 0; i < g.nx(); ++i) {
+        const Vec2 c = g.center(i, j, 0).head<2>();
+        const double under = t->height_at(c.x(), c.y()), near_top = t->highest_near(c, reach);
         for (int k = 0; k < g.nz(); ++k) {
-          if (t->point_distance(g.center(i, j, k), reach) >= reach) break;
+          const Vec3 p = g.center(i, j, k);
+          if (p.z() > under && (p.z() - near_top >= reach || t->point_distance(p, reach) >= reach)) break;
           g.set_blocked(g.index(i, j, k));
         }
+      }
     }
   }
   return g;

@@ -34,6 +34,17 @@ Aabb TerrainGrid::column(int i, int j) const {
   return {Vec3(x0, y0, kFarBelow_m), Vec3(x0 + cell_m_, y0 + cell_m_, height(i, j))};
 }
 
+double TerrainGrid::highest_near(const Vec2& p, double reach) const {
+  const int i0 = clamp_cell((p.x() - reach - origin_.x()) / cell_m_, nx_);
+  const int i1 = clamp_cell((p.x() + reach - origin_.x()) / cell_m_, nx_);
+  const int j0 = clamp_cell((p.y() - reach - origin_.y()) / cell_m_, ny_);
+  const int j1 = clamp_cell((p.y() + reach - origin_.y()) / cell_m_, ny_);
+  double top = -std::numeric_limits<double>::infinity();
+  for (int j = j0; j <= j1; ++j)
+    for (int i = i0; i <= i1; ++i) top = std::max(top, height(i, j));
+  return top;
+}
+
 double TerrainGrid::point_distance(const Vec3& p, double cap) const {
   if (p.z() - max_height_ >= cap) return cap;
   const int i0 = clamp_cell((p.x() - cap - origin_.x()) / cell_m_, nx_);

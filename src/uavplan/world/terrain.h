@@ -24,6 +24,9 @@ class TerrainGrid {
   // The column of cell (i, j) as a box from far below up to its height.
   Aabb column(int i, int j) const;
 
+  // The highest of the cells point_distance(p, reach) looks at: a point more than `reach` above
+  // it is farther than reach from every column.
+  double highest_near(const Vec2& p, double reach) const;
   // Distance from p to the nearest column, or `cap` when none is closer than cap.
   double point_distance(const Vec3& p, double cap) const;
   // Exact distance from segment [a, b] to the nearest column, or `cap` when none is closer.

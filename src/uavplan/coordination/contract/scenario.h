@@ -69,6 +69,30 @@ struct GeoOrigin {
   double lat_deg = 0.0, lon_deg = 0.0, alt_m = 0.0;  // WGS84, metres above mean sea level
 };
 
+// world.terrain {file}: where the elevation model came from and how it was placed (uavplan info).
+struct ElevationSource {
+  std::string file;    // as the scenario names it
+  std::string crs;     // the raster's coordinate system, e.g. "CH1903 / LV03 (EPSG:21781)"
+  std::string driver;  // GDAL's format name, e.g. "GTiff"
+  int raster_nx = 0, raster_ny = 0;
+  double raster_cell_m = 0.0;                                 // the raster's pixel on the ground (smaller side)
+  double min_amsl_m = 0.0, max_amsl_m = 0.0;                  // heights of the world's cells
+  Vec2 extent_min = Vec2::Zero(), extent_max = Vec2::Zero();  // the raster's footprint's box, local frame
+  double cell_m = 0.0;                                        // the world's terrain cells
+  std::size_t nodata_filled = 0;                              // cells without a height, filled from their neighbours
+};
+
+// A zone of world.airspace as its file gave it, in WGS84, kept so that an export writes the fence
+// back as it was read: a polygon (corners lat, lon) or a circle.
+struct FenceZone {
+  bool inclusion = false;
+  std::vector<Vec2> polygon_latlon;  // [lat, lon] corners, no closing corner; empty for a circle
+  Vec2 center_latlon = Vec2::Zero();
+  double radius_m = 0.0;
+  std::optional<double> floor_amsl_m, ceiling_amsl_m;  // GeoJSON/KML height limits, else all heights
+  std::vector<std::size_t> obstacles;                  // the world's obstacles it became
+};
+
 struct Scenario {
   int version = 1;
   std::string name;
@@ -78,6 +102,8 @@ struct Scenario {
   std::vector<UavSpec> uavs;
   MissionSpec mission;
   PlannerSpec planner;
+  std::optional<ElevationSource> elevation;  // world.terrain from a file
+  std::vector<FenceZone> airspace;           // world.airspace's zones in file order
   // The height above the ground planners keep where the scenario sets no min_agl and a UAV takes
   // off or lands (planning_view.h: default_min_agl_m; set by the scenario reader). Planning only:
   // the verifier checks the min_agl a scenario sets.

@@ -1,5 +1,9 @@
 #include "uavplan/coordination/routes/routes_mission.h"
 
+#include <atomic>
+#include <exception>
+#include <thread>
+
 #include <Eigen/Geometry>
 #include <cstdio>
 
@@ -14,14 +18,77 @@ namespace {
 
 bool senses(const UavSpec& u) { return u.sensor_range_m.has_value(); }
 
-// Each UAV in the scenario's order: its route by the planner, then its departure: the earliest
-// that keeps the separation from those timed before it (searched up to a minute plus twice the
-// flights so far). UAVs without sensors also keep clear of the moving obstacles (known in advance
-// to them); UAVs with sensors only plan to (they meet the moving obstacles in the loop). Planning
-// and timing go UAV by UAV, so a stop leaves the UAVs done so far complete.
+// The planner's problem for UAV i: its start and goal, a route mission's via points, home.
+Problem uav_problem(const Scenario& sc, const MissionOptions& opt, const GroundPoints& ground, std::size_t i) {
+  const UavSpec& u = sc.uavs[i];
+  Problem pb{u, *u.goal, {}};
+  if (sc.mission.type == MissionType::route) {
+    pb.via = sc.mission.waypoints;
+    pb.via_entry_heading_rad = sc.mission.waypoint_entry_heading_rad;
+  }
+  if (i < ground.home_visits.size() && ground.home_visits[i]) {  // home, its start, ..., its goal, home
+    pb.via.insert(pb.via.begin(), ground.home_visits[i]->first);
+    pb.via.push_back(ground.home_visits[i]->second);
+    pb.via_entry_heading_rad.resize(pb.via.size() - 2);
+    pb.via_entry_heading_rad.insert(pb.via_entry_heading_rad.begin(), std::nullopt);
+    pb.via_entry_heading_rad.push_back(std::nullopt);
+  }
+  pb.seed = opt.seed + i;  // one stream per UAV
+  return pb;
+}
+
+// Every UAV's route, on the run's threads at once (each route is its own problem with its own
+// seed, so the routes are those planned one by one). A worker has its share of the threads and
+// of the memory cap; a route that is not solved within that share is planned again alone with
+// the whole, so a grid that fits the run only alone still gets its chance.
+std::vector<std::optional<PlanResult>> plan_routes(const Scenario& sc, const Planner& planner,
+                                                   const MissionOptions& opt, const GroundPoints& ground) {
+  const std::size_t n = sc.uavs.size();
+  std::vector<std::optional<PlanResult>> routes(n);
+  std::vector<std::exception_ptr> errors(n);
+  const int workers = std::max(1, std::min(opt.stop.threads(), static_cast<int>(n)));
+  const StopCondition share =
+      workers == 1 ? opt.stop
+                   : opt.stop.with_threads(std::max(1, opt.stop.threads() / workers))
+                         .with_memory_cap(opt.stop.memory_cap_bytes() / static_cast<std::uint64_t>(workers));
+  std::atomic<std::size_t> next{0};
+  const auto work = [&] {
+    for (std::size_t i; (i = next++) < n;) {
+      if (!sc.uavs[i].goal || opt.stop.should_stop()) continue;
+      try {
+        routes[i] = planner.plan(uav_problem(sc, opt, ground, i), sc.world, share);
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int w = 1; w < workers; ++w) pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool) t.join();
+  for (std::size_t i = 0; i < n && workers > 1; ++i) {
+    const bool unsolved =
+        errors[i] || (routes[i] && routes[i]->status != Status::solved && routes[i]->reason != Reason::stopped);
+    if (unsolved && !opt.stop.should_stop()) {
+      errors[i] = nullptr;
+      routes[i] = planner.plan(uav_problem(sc, opt, ground, i), sc.world, opt.stop);
+    }
+  }
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
+  return routes;
+}
+
+// Each UAV in the scenario's order: its route by the planner (plan_routes), then its departure:
+// the earliest that keeps the separation from those timed before it (searched up to a minute
+// plus twice the flights so far). UAVs without sensors also keep clear of the moving obstacles
+// (known in advance to them); UAVs with sensors only plan to (they meet the moving obstacles in
+// the loop). A stop leaves the UAVs done so far complete.
 Committed plan_and_time(const Scenario& sc, const Planner& planner, const MissionOptions& opt,
                         const GroundPoints& ground, Plan& plan) {
   plan.uavs.reserve(sc.uavs.size());  // `committed` points into it
+  if (opt.progress) opt.progress(0, sc.uavs.size());
+  const std::vector<std::optional<PlanResult>> routes = plan_routes(sc, planner, opt, ground);
   Committed committed;
   double horizon_s = 60.0;
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
@@ -34,25 +101,12 @@ Committed plan_and_time(const Scenario& sc, const Planner& planner, const Missio
       up.reason = Reason::invalid;
       continue;
     }
-    if (opt.stop.should_stop()) {
+    if (!routes[i]) {
       up.message = kStoppedMessage;
       up.reason = Reason::stopped;
       continue;
     }
-    Problem pb{u, *u.goal, {}};
-    if (sc.mission.type == MissionType::route) {
-      pb.via = sc.mission.waypoints;
-      pb.via_entry_heading_rad = sc.mission.waypoint_entry_heading_rad;
-    }
-    if (i < ground.home_visits.size() && ground.home_visits[i]) {  // home, its start, ..., its goal, home
-      pb.via.insert(pb.via.begin(), ground.home_visits[i]->first);
-      pb.via.push_back(ground.home_visits[i]->second);
-      pb.via_entry_heading_rad.resize(pb.via.size() - 2);
-      pb.via_entry_heading_rad.insert(pb.via_entry_heading_rad.begin(), std::nullopt);
-      pb.via_entry_heading_rad.push_back(std::nullopt);
-    }
-    pb.seed = opt.seed + i;  // one stream per UAV
-    const PlanResult r = planner.plan(pb, sc.world, opt.stop);
+    const PlanResult& r = *routes[i];
     up.status = r.status;
     up.reason = r.reason;
     up.message = r.message;

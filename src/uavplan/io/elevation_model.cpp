@@ -1,0 +1,342 @@
+#include "uavplan/io/elevation_model.h"
+
+#include <gdal_priv.h>
+#include <ogr_spatialref.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <memory>
+#include <mutex>
+
+#include "uavplan/core/text.h"
+#include "uavplan/io/input_error.h"
+
+namespace uavplan {
+namespace {
+
+// GDAL reports through a handler that prints by default: the library never prints, so its
+// messages are kept for ours while a model is read.
+struct QuietGdal {
+  QuietGdal() {
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    CPLErrorReset();
+  }
+  ~QuietGdal() { CPLPopErrorHandler(); }
+  QuietGdal(const QuietGdal&) = delete;
+  QuietGdal& operator=(const QuietGdal&) = delete;
+};
+
+std::string gdal_said() {
+  const std::string m = CPLGetLastErrorMsg();
+  return m.empty() ? std::string() : " (GDAL: " + m + ")";
+}
+
+// Metres per unit of the band's values; nullopt for a unit that is not a length.
+std::optional<double> metres_per_unit(std::string unit) {
+  std::transform(unit.begin(), unit.end(), unit.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (unit.empty() || unit == "m" || unit == "metre" || unit == "meter" || unit == "metres" || unit == "meters")
+    return 1.0;
+  if (unit == "ft" || unit == "foot" || unit == "feet" || unit == "international foot") return 0.3048;
+  if (unit == "us survey foot" || unit == "ftus" || unit == "us-ft") return 1200.0 / 3937.0;
+  return std::nullopt;
+}
+
+using Transform = std::unique_ptr<OGRCoordinateTransformation, decltype(&OCTDestroyCoordinateTransformation)>;
+
+struct Raster {
+  const std::string& file;
+  GDALDatasetUniquePtr ds;
+  GDALRasterBand* band = nullptr;
+  OGRSpatialReference srs, wgs84;
+  std::array<double, 6> to_crs{}, to_pixel{};  // geotransforms pixel -> CRS and back
+  Transform from_wgs84{nullptr, OCTDestroyCoordinateTransformation},
+      to_wgs84{nullptr, OCTDestroyCoordinateTransformation};
+
+  [[noreturn]] void fail(const std::string& what) const { throw InputError(file, 0, "terrain", what); }
+
+  Raster(const std::string& path, const std::string& f) : file(f) {
+    static std::once_flag registered;
+    std::call_once(registered, [] { GDALAllRegister(); });
+    ds.reset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY | GDAL_OF_VERBOSE_ERROR));
+    if (!ds) fail("GDAL cannot read it as a raster" + gdal_said());
+    if (ds->GetRasterCount() < 1) fail("the file has no raster band");
+    band = ds->GetRasterBand(1);
+    const OGRSpatialReference* s = ds->GetSpatialRef();
+    if (!s || s->IsEmpty())
+      fail("the raster has no coordinate system (give it one, e.g. gdal_edit.py -a_srs EPSG:... or a .prj file)");
+    srs = *s;
+    if (ds->GetGeoTransform(to_crs.data()) != CE_None) fail("the raster has no georeferencing (geotransform)");
+    if (!GDALInvGeoTransform(to_crs.data(), to_pixel.data())) fail("the raster's geotransform cannot be inverted");
+    wgs84.SetWellKnownGeogCS("WGS84");
+    for (OGRSpatialReference* r : {&srs, &wgs84}) r->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    from_wgs84.reset(OGRCreateCoordinateTransformation(&wgs84, &srs));
+    to_wgs84.reset(OGRCreateCoordinateTransformation(&srs, &wgs84));
+    if (!from_wgs84 || !to_wgs84)
+      fail("no transformation between WGS84 and the raster's coordinate system" + gdal_said());
+  }
+
+  int nx() const { return ds->GetRasterXSize(); }
+  int ny() const { return ds->GetRasterYSize(); }
+
+  std::string crs_name() const {
+    std::string name = srs.GetName() ? srs.GetName() : "unnamed";
+    const char* auth = srs.GetAuthorityName(nullptr);
+    const char* code = srs.GetAuthorityCode(nullptr);
+    if (auth && code) name += std::string(" (") + auth + ":" + code + ")";
+    return name;
+  }
+
+  // Local points (x, y) to pixel coordinates (column, row) in place.
+  void local_to_pixel(const GeoFrame& frame, std::vector<double>& x, std::vector<double>& y) const {
+    for (std::size_t k = 0; k < x.size(); ++k) {
+      const LatLonAlt g = frame.to_wgs84(Vec3(x[k], y[k], 0.0));
+      x[k] = g.lon_deg;
+      y[k] = g.lat_deg;
+    }
+    std::vector<int> ok(x.size(), 0);
+    if (!from_wgs84->Transform(x.size(), x.data(), y.data(), nullptr, ok.data()) ||
+        std::find(ok.begin(), ok.end(), 0) != ok.end())
+      fail("the world's bounds do not map into the raster's coordinate system" + gdal_said());
+    for (std::size_t k = 0; k < x.size(); ++k) {
+      double px = 0, py = 0;
+      GDALApplyGeoTransform(const_cast<double*>(to_pixel.data()), x[k], y[k], &px, &py);
+      x[k] = px;
+      y[k] = py;
+    }
+  }
+
+  // Pixel coordinates to local points, in place.
+  void pixel_to_local(const GeoFrame& frame, std::vector<double>& x, std::vector<double>& y) const {
+    for (std::size_t k = 0; k < x.size(); ++k)
+      GDALApplyGeoTransform(const_cast<double*>(to_crs.data()), x[k], y[k], &x[k], &y[k]);
+    std::vector<int> ok(x.size(), 0);
+    if (!to_wgs84->Transform(x.size(), x.data(), y.data(), nullptr, ok.data()) ||
+        std::find(ok.begin(), ok.end(), 0) != ok.end())
+      fail("the raster's corners do not map to WGS84" + gdal_said());
+    for (std::size_t k = 0; k < x.size(); ++k) {
+      const Vec3 p = frame.to_local(y[k], x[k], frame.origin().alt_m);
+      x[k] = p.x();
+      y[k] = p.y();
+    }
+  }
+};
+
+// The raster's footprint in the local frame: its box, and its pixel's ground size (smaller side).
+void place_footprint(const Raster& r, const GeoFrame& frame, ElevationSource& src) {
+  constexpr int kPerSide = 64;
+  std::vector<double> x, y;
+  for (int k = 0; k <= kPerSide; ++k) {
+    const double u = static_cast<double>(k) / kPerSide;
+    for (const auto& [px, py] : std::array<std::pair<double, double>, 4>{
+             {{u * r.nx(), 0.0}, {u * r.nx(), r.ny()}, {0.0, u * r.ny()}, {r.nx(), u * r.ny()}}}) {
+      x.push_back(px);
+      y.push_back(py);
+    }
+  }
+  const double cx = 0.5 * r.nx(), cy = 0.5 * r.ny();  // one pixel at the middle, for its size
+  for (const auto& [px, py] : std::array<std::pair<double, double>, 3>{{{cx, cy}, {cx + 1, cy}, {cx, cy + 1}}}) {
+    x.push_back(px);
+    y.push_back(py);
+  }
+  r.pixel_to_local(frame, x, y);
+  const std::size_t n = x.size() - 3;
+  src.extent_min = Vec2(*std::min_element(x.begin(), x.begin() + n), *std::min_element(y.begin(), y.begin() + n));
+  src.extent_max = Vec2(*std::max_element(x.begin(), x.begin() + n), *std::max_element(y.begin(), y.begin() + n));
+  const Vec2 c(x[n], y[n]);
+  src.raster_cell_m = std::min((Vec2(x[n + 1], y[n + 1]) - c).norm(), (Vec2(x[n + 2], y[n + 2]) - c).norm());
+}
+
+// Fills cells without a height (NaN) from their neighbours' highest, one ring at a time.
+std::size_t fill_gaps(std::vector<double>& h, int nx, int ny) {
+  const auto at = [nx](int i, int j) { return static_cast<std::size_t>(j) * nx + i; };
+  std::vector<std::pair<int, int>> ring;
+  const auto has_height_beside = [&](int i, int j) {
+    for (int dj = -1; dj <= 1; ++dj)
+      for (int di = -1; di <= 1; ++di) {
+        const int a = i + di, b = j + dj;
+        if (a >= 0 && b >= 0 && a < nx && b < ny && !std::isnan(h[at(a, b)])) return true;
+      }
+    return false;
+  };
+  std::size_t filled = 0;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i)
+      if (std::isnan(h[at(i, j)]) && has_height_beside(i, j)) ring.emplace_back(i, j);
+  std::vector<char> queued(h.size(), 0);
+  for (const auto& [i, j] : ring) queued[at(i, j)] = 1;
+  while (!ring.empty()) {
+    std::vector<double> value(ring.size(), -World::kInf);
+    for (std::size_t k = 0; k < ring.size(); ++k)
+      for (int dj = -1; dj <= 1; ++dj)
+        for (int di = -1; di <= 1; ++di) {
+          const int a = ring[k].first + di, b = ring[k].second + dj;
+          if (a >= 0 && b >= 0 && a < nx && b < ny && !std::isnan(h[at(a, b)]))
+            value[k] = std::max(value[k], h[at(a, b)]);
+        }
+    std::vector<std::pair<int, int>> next;
+    for (std::size_t k = 0; k < ring.size(); ++k) h[at(ring[k].first, ring[k].second)] = value[k];
+    for (const auto& [i, j] : ring)
+      for (int dj = -1; dj <= 1; ++dj)
+        for (int di = -1; di <= 1; ++di) {
+          const int a = i + di, b = j + dj;
+          if (a >= 0 && b >= 0 && a < nx && b < ny && std::isnan(h[at(a, b)]) && !queued[at(a, b)]) {
+            queued[at(a, b)] = 1;
+            next.emplace_back(a, b);
+          }
+        }
+    filled += ring.size();
+    ring = std::move(next);
+  }
+  return filled;
+}
+
+// The raster's heights (metres) over the pixel window [x0, x0 + w) x [y0, y0 + h); NaN without data.
+std::vector<double> read_window(const Raster& r, int x0, int y0, int w, int h) {
+  std::vector<double> v(static_cast<std::size_t>(w) * h);
+  if (r.band->RasterIO(GF_Read, x0, y0, w, h, v.data(), w, h, GDT_Float64, 0, 0) != CE_None)
+    r.fail("GDAL cannot read the raster's heights" + gdal_said());
+  int has_nodata = 0, has_scale = 0, has_offset = 0;
+  const double nodata = r.band->GetNoDataValue(&has_nodata);
+  const double scale = r.band->GetScale(&has_scale), offset = r.band->GetOffset(&has_offset);
+  const auto unit = metres_per_unit(r.band->GetUnitType());
+  if (!unit) r.fail("the heights' unit '" + printable(r.band->GetUnitType()) + "' is not metres or feet");
+  const float nodata_f = static_cast<float>(nodata);  // Float32 rasters keep it as a float
+  for (double& z : v) {
+    if (has_nodata && (z == nodata || static_cast<float>(z) == nodata_f)) z = std::nan("");
+    if (!std::isfinite(z)) {
+      z = std::nan("");
+      continue;
+    }
+    z = (z * (has_scale ? scale : 1.0) + (has_offset ? offset : 0.0)) * *unit;
+  }
+  return v;
+}
+
+// The corners of an nx x ny grid of cells `c` from `lo` (clipped to `hi`) in the raster's pixels:
+// every kStride-th corner transformed exactly, those between interpolated bilinearly (the
+// mapping is smooth: over kStride cells of a few metres its second-order term is micrometres,
+// where each transformed point costs a projection and a datum shift).
+void corners_to_pixels(const Raster& r, const GeoFrame& frame, const Vec2& lo, const Vec2& hi, double c, int nx, int ny,
+                       std::vector<double>& px, std::vector<double>& py) {
+  constexpr int kStride = 8;
+  const auto knots = [](int n) {
+    std::vector<int> k;
+    for (int i = 0; i < n; i += kStride) k.push_back(i);
+    k.push_back(n);
+    return k;
+  };
+  const std::vector<int> ki = knots(nx), kj = knots(ny);
+  const auto at = [&](int i, int j) {
+    return Vec2(std::min(lo.x() + i * c, hi.x()), std::min(lo.y() + j * c, hi.y()));
+  };
+  std::vector<double> kx, ky;
+  for (const int j : kj)
+    for (const int i : ki) {
+      kx.push_back(at(i, j).x());
+      ky.push_back(at(i, j).y());
+    }
+  r.local_to_pixel(frame, kx, ky);
+  px.assign(static_cast<std::size_t>(nx + 1) * (ny + 1), 0.0);
+  py.assign(px.size(), 0.0);
+  for (std::size_t b = 0; b + 1 < kj.size(); ++b)
+    for (std::size_t a = 0; a + 1 < ki.size(); ++a) {
+      const std::size_t k00 = b * ki.size() + a, k10 = k00 + 1, k01 = k00 + ki.size(), k11 = k01 + 1;
+      const Vec2 p00 = at(ki[a], kj[b]), p11 = at(ki[a + 1], kj[b + 1]);
+      for (int j = kj[b]; j <= kj[b + 1]; ++j)
+        for (int i = ki[a]; i <= ki[a + 1]; ++i) {
+          const Vec2 q = at(i, j);
+          const double u = p11.x() > p00.x() ? (q.x() - p00.x()) / (p11.x() - p00.x()) : 0.0;
+          const double v = p11.y() > p00.y() ? (q.y() - p00.y()) / (p11.y() - p00.y()) : 0.0;
+          const auto mix = [&](const std::vector<double>& f) {
+            return (1 - u) * (1 - v) * f[k00] + u * (1 - v) * f[k10] + (1 - u) * v * f[k01] + u * v * f[k11];
+          };
+          const std::size_t k = static_cast<std::size_t>(j) * (nx + 1) + i;
+          px[k] = mix(kx);
+          py[k] = mix(ky);
+        }
+    }
+}
+
+}  // namespace
+
+ElevationModel read_elevation_model(const std::string& path, const std::string& file, const GeoFrame& frame,
+                                    const Aabb& bounds, std::optional<double> cell_m, std::size_t max_cells) {
+  const QuietGdal quiet;
+  const Raster r(path, file);
+  ElevationSource src;
+  src.file = file;
+  src.crs = r.crs_name();
+  src.driver = r.ds->GetDriver() ? r.ds->GetDriver()->GetDescription() : "";
+  src.raster_nx = r.nx();
+  src.raster_ny = r.ny();
+  place_footprint(r, frame, src);
+
+  // The world's cells over the bounds.
+  const Vec2 lo = bounds.min.head<2>(), hi = bounds.max.head<2>();
+  double c = cell_m.value_or(std::max(0.01, std::round(src.raster_cell_m * 100.0) / 100.0));
+  const auto count = [&](double size, double cell) {
+    return std::max(1, static_cast<int>(std::ceil(size / cell - 1e-9)));
+  };
+  int nx = count(hi.x() - lo.x(), c), ny = count(hi.y() - lo.y(), c);
+  if (static_cast<double>(nx) * ny > static_cast<double>(max_cells)) {
+    c *= std::sqrt(static_cast<double>(nx) * ny / static_cast<double>(max_cells)) * 1.001;
+    nx = count(hi.x() - lo.x(), c);
+    ny = count(hi.y() - lo.y(), c);
+  }
+  src.cell_m = c;
+
+  // Their corners in pixels (clipped to the bounds: the last cell may reach past them).
+  std::vector<double> px, py;
+  corners_to_pixels(r, frame, lo, hi, c, nx, ny, px, py);
+  constexpr double kEdge = 1e-6;  // pixels: a corner on a pixel edge touches only one side
+  const auto [px_lo, px_hi] = std::minmax_element(px.begin(), px.end());
+  const auto [py_lo, py_hi] = std::minmax_element(py.begin(), py.end());
+  if (*px_lo < -kEdge || *py_lo < -kEdge || *px_hi > r.nx() + kEdge || *py_hi > r.ny() + kEdge)
+    r.fail("the world's bounds (x " + num_text(lo.x()) + ".." + num_text(hi.x()) + ", y " + num_text(lo.y()) + ".." +
+           num_text(hi.y()) + ") reach beyond the elevation model, which covers x " +
+           num_text(std::round(src.extent_min.x())) + ".." + num_text(std::round(src.extent_max.x())) + ", y " +
+           num_text(std::round(src.extent_min.y())) + ".." + num_text(std::round(src.extent_max.y())) +
+           " m in the scenario's frame (its footprint's box)");
+  const int wx0 = std::max(0, static_cast<int>(std::floor(*px_lo + kEdge)));
+  const int wy0 = std::max(0, static_cast<int>(std::floor(*py_lo + kEdge)));
+  const int wx1 = std::min(r.nx(), static_cast<int>(std::ceil(*px_hi - kEdge)));
+  const int wy1 = std::min(r.ny(), static_cast<int>(std::ceil(*py_hi - kEdge)));
+  const int ww = std::max(1, wx1 - wx0), wh = std::max(1, wy1 - wy0);
+  const std::vector<double> pixels = read_window(r, wx0, wy0, ww, wh);
+
+  // Each cell: the highest pixel its corners' pixel box touches.
+  std::vector<double> h(static_cast<std::size_t>(nx) * ny, std::nan(""));
+  const auto corner = [&](int i, int j) { return static_cast<std::size_t>(j) * (nx + 1) + i; };
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      double x_lo = World::kInf, x_hi = -World::kInf, y_lo = World::kInf, y_hi = -World::kInf;
+      for (const std::size_t k : {corner(i, j), corner(i + 1, j), corner(i, j + 1), corner(i + 1, j + 1)}) {
+        x_lo = std::min(x_lo, px[k]);
+        x_hi = std::max(x_hi, px[k]);
+        y_lo = std::min(y_lo, py[k]);
+        y_hi = std::max(y_hi, py[k]);
+      }
+      const int a0 = std::clamp(static_cast<int>(std::floor(x_lo + kEdge)) - wx0, 0, ww - 1);
+      const int a1 = std::clamp(static_cast<int>(std::ceil(x_hi - kEdge)) - wx0, a0 + 1, ww);
+      const int b0 = std::clamp(static_cast<int>(std::floor(y_lo + kEdge)) - wy0, 0, wh - 1);
+      const int b1 = std::clamp(static_cast<int>(std::ceil(y_hi - kEdge)) - wy0, b0 + 1, wh);
+      double top = std::nan("");
+      for (int b = b0; b < b1; ++b)
+        for (int a = a0; a < a1; ++a) {
+          const double z = pixels[static_cast<std::size_t>(b) * ww + a];
+          if (!std::isnan(z) && !(z <= top)) top = z;
+        }
+      h[static_cast<std::size_t>(j) * nx + i] = top;
+    }
+  if (std::all_of(h.begin(), h.end(), [](double z) { return std::isnan(z); }))
+    r.fail("the elevation model has no height within the world's bounds (every pixel there is NoData)");
+  src.nodata_filled = fill_gaps(h, nx, ny);
+  const auto [h_lo, h_hi] = std::minmax_element(h.begin(), h.end());
+  src.min_amsl_m = *h_lo;
+  src.max_amsl_m = *h_hi;
+  for (double& z : h) z -= frame.origin().alt_m;
+  return {TerrainGrid(lo, c, nx, ny, std::move(h)), std::move(src)};
+}
+
+}  // namespace uavplan
