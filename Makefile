@@ -52,7 +52,7 @@ asan: asan-build
 # cellular colony), under ThreadSanitizer (CI runs it). Not `batch`: Debian's oneTBB is not
 # instrumented, so TSan cannot see the synchronisation of its task handoffs and would report
 # every run's data.
-TSAN_TESTS ?= Rendezvous|DirectionalAStar|Cellular|Cells
+TSAN_TESTS ?= Rendezvous|DirectionalAStar|Cellular|Cells|RoutesOnManyThreads
 # Only the executables those tests are in.
 TSAN_TARGETS ?= uavplan_coordination_test uavplan_evaluation_test uavplan_planning_test
 tsan: deps

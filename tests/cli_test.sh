@@ -171,10 +171,57 @@ bad_zone() {  # bad_zone NAME ZONE_FILE PART: exit 2, one line naming the zone f
     { echo "FAIL $1 message: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
 }
 bad_zone airspace.bow_tie "$TMP/airbad/fence.plan" "geoFence.polygons[0]: the zone's boundary crosses itself"
-sed -i 's/fence.plan}/zones.kml}/' "$TMP/airbad/air.yaml" && echo '<kml/>' >"$TMP/airbad/zones.kml"
-bad_zone airspace.kml "$TMP/airbad/zones.kml" "KML"
+sed -i 's/fence.plan}/zones.kml}/' "$TMP/airbad/air.yaml" && echo '<kml><Document><Placemark>' >"$TMP/airbad/zones.kml"
+bad_zone airspace.kml "$TMP/airbad/zones.kml" "GDAL cannot read it as KML"
 grep -v '^origin' "$AIR/air.yaml" | sed 's|{file: |{file: '"$AIR"'/|' >"$TMP/air_no_origin.yaml"
 expect_bad airspace.no_origin "$TMP/air_no_origin.yaml" "origin"
+# A fence read is the fence written: the .plan export's geoFence holds fence.plan's inclusion
+# polygon and exclusion circle corner for corner (and the GeoJSON zone the routes cannot pass over).
+"$BIN" export "$AIR/air.yaml" "$TMP/air/plan.json" -o "$TMP/air/exp" --format qgc >/dev/null 2>&1
+python3 - "$AIR/fence.plan" "$TMP/air/exp/a1.plan" <<'PY' && pass=$((pass + 1)) || { echo "FAIL airspace.fence_round_trip"; fails=$((fails + 1)); }
+import json, sys
+read = json.load(open(sys.argv[1]))["geoFence"]
+written = json.load(open(sys.argv[2]))["geoFence"]
+for kind in ("polygons", "circles"):
+    for z in read[kind]:
+        assert z in written[kind], (kind, z)  # equal values, corner for corner
+assert sum(z["inclusion"] for z in written["polygons"]) == 1, "one inclusion: the fence's, not the bounds"
+PY
+# Real terrain (world.terrain {file}): the alpine survey over swisstopo's Davos model in CH1903 /
+# LV03 is planned, holds its 50-120 m band and the GeoJSON zone, exports above sea level; a
+# waypoint pushed above the band or under it is a violation; bad rasters are one-line errors.
+ALP="$SRC/scenarios/alpine_survey.yaml"
+"$BIN" info "$ALP" | grep -q "CH1903 / LV03 (EPSG:21781)" && pass=$((pass + 1)) ||
+  { echo "FAIL dem.info: $("$BIN" info "$ALP" | grep model)"; fails=$((fails + 1)); }
+"$BIN" plan "$ALP" -o "$TMP/alp" --format qgc --format wpl --format csv --end loiter >/dev/null 2>"$TMP/stderr"
+check dem.plan 0 $?
+grep -q "above mean sea level (MAV_FRAME_GLOBAL" "$TMP/stderr" && pass=$((pass + 1)) ||
+  { echo "FAIL dem.amsl_note: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
+node "$SRC/tests/qgc_plan_check.mjs" "$TMP/alp" s1 s2 s3 s4 >/dev/null 2>&1; check dem.qgc_files 0 $?
+"$BIN" verify "$ALP" "$TMP/alp/plan.json" >/dev/null 2>&1; check dem.verify 0 $?
+for dz in 200 -90; do
+  python3 - "$TMP/alp/plan.json" "$TMP/alp/moved.json" "$dz" <<'PY'
+import json, sys
+p = json.load(open(sys.argv[1]))
+tr = p["uavs"][2]["trajectory"]
+tr[len(tr) // 2][3] += float(sys.argv[3])  # one row out of the band
+json.dump(p, open(sys.argv[2], "w"))
+PY
+  "$BIN" verify "$ALP" "$TMP/alp/moved.json" >"$TMP/stdout" 2>&1; check "dem.band_$dz" 1 $?
+  grep -q "s3 .*\(max_agl\|min_agl\|terrain\)" "$TMP/stdout" && pass=$((pass + 1)) ||
+    { echo "FAIL dem.band_${dz}_named: $(head -3 "$TMP/stdout")"; fails=$((fails + 1)); }
+done
+mkdir -p "$TMP/dem" && printf 'ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 500\n1 2\n3 4\n' >"$TMP/dem/flat.asc"
+sed -e 's|file: data/davosdorf.tif|file: flat.asc|' -e '/airspace:/d' -e '/alpine_zones/d' "$ALP" >"$TMP/dem/s.yaml"
+dem_bad() {  # dem_bad NAME PART: exit 2, one line naming the raster and PART, nothing written
+  rm -rf "$TMP/dem/out"
+  "$BIN" plan "$TMP/dem/s.yaml" -o "$TMP/dem/out" >/dev/null 2>"$TMP/stderr"; check "$1" 2 $?
+  [ "$(wc -l <"$TMP/stderr")" = 1 ] && grep -qF "$TMP/dem/flat.asc: terrain: $2" "$TMP/stderr" && [ ! -e "$TMP/dem/out" ] &&
+    pass=$((pass + 1)) || { echo "FAIL $1 message: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
+}
+dem_bad dem.no_crs "the raster has no coordinate system"
+echo "junk" >"$TMP/dem/flat.asc"
+dem_bad dem.unreadable "GDAL cannot read it as a raster"
 # The bench tables find the bundled scenarios from any folder (beside the binary).
 # (exit 0 or 1: whether its timing targets are met depends on the machine; 2 is a missing file)
 (cd "$TMP" && "$BIN" bench p2 >"$TMP/stdout" 2>"$TMP/stderr"); rc=$?

@@ -37,6 +37,39 @@ TEST(MissionPlanner, CrossingUavsKeepTheirSeparationByDepartureDelay) {
   EXPECT_NEAR(p.uavs[0].length_m, p.uavs[0].route_length_m, 1e-9);
 }
 
+// Routes are planned on the run's threads at once; each has its own seed, so the plan is the
+// one planned one by one, whatever the thread count (rrt: a seeded, sampling planner); a memory
+// cap shared among the workers does not change what fits (a route that fails within its share
+// is planned again with the whole cap).
+TEST(MissionPlanner, RoutesOnManyThreadsAreTheRoutesPlannedOneByOne) {
+  Scenario sc = crossing(10.0);
+  for (int i = 2; i < 6; ++i) {
+    UavSpec u = sc.uavs[i % 2];
+    u.id = "u" + std::to_string(i + 1);
+    u.start.y() += 5.0 * i;
+    u.goal->x() -= 5.0 * i;
+    sc.uavs.push_back(u);
+  }
+  for (const char* algorithm : {"rrt", "astar", "apf"})
+    for (int threads : {2, 4}) {
+      sc.planner.algorithm = algorithm;
+      MissionOptions one;
+      one.stop = one.stop.with_threads(1);
+      const Plan a = plan_mission(sc, one);
+      MissionOptions many;
+      many.stop = many.stop.with_threads(threads).with_memory_cap(std::uint64_t{1} << 34);
+      const Plan b = plan_mission(sc, many);
+      ASSERT_EQ(a.uavs.size(), b.uavs.size());
+      for (std::size_t i = 0; i < a.uavs.size(); ++i) {
+        EXPECT_EQ(a.uavs[i].status, b.uavs[i].status);
+        EXPECT_EQ(a.uavs[i].waypoints, b.uavs[i].waypoints) << i;
+        ASSERT_EQ(a.uavs[i].trajectory.size(), b.uavs[i].trajectory.size());
+        for (std::size_t k = 0; k < a.uavs[i].trajectory.size(); ++k)
+          EXPECT_EQ(a.uavs[i].trajectory[k].t_s, b.uavs[i].trajectory[k].t_s);
+      }
+    }
+}
+
 TEST(MissionPlanner, MissingGoalFailsThatUavOnly) {
   Scenario sc = crossing(1.0);
   sc.uavs[1].goal.reset();

@@ -217,7 +217,11 @@ struct ZoneReader {
     CPLPushErrorHandler(CPLQuietErrorHandler);
     GDALDatasetUniquePtr ds(GDALDataset::Open(mem.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
     CPLPopErrorHandler();
-    if (!ds) fail("", std::string("GDAL cannot read it as KML (") + CPLGetLastErrorMsg() + ")");
+    if (!ds) {
+      std::string said = CPLGetLastErrorMsg();
+      for (std::size_t at; (at = said.find(mem)) != std::string::npos;) said.replace(at, mem.size(), name);
+      fail("", "GDAL cannot read it as KML (" + said + ")");
+    }
     for (int l = 0; l < ds->GetLayerCount(); ++l) {
       OGRLayer* layer = ds->GetLayer(l);
       int n = 0;

@@ -66,5 +66,46 @@ TEST(Airspace, QgcFenceInclusionBoundsAndClosesTheRestOfItsBox) {
                InputError);
 }
 
+// KML through GDAL (issue: real airspace, item 3): a Placemark's polygon with its heights in
+// ExtendedData, kept corner for corner for the export's fence.
+TEST(Airspace, KmlPolygonsWithFloorAndCeiling) {
+  const GeoFrame f(GeoOrigin{47.3977, 8.5456, 488.0});
+  std::string coords;
+  std::vector<Vec2> latlon;
+  const double c[5][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}, {-1, -1}};
+  for (const auto& k : c) {
+    const LatLonAlt p = f.to_wgs84(Vec3(k[0] * 50, k[1] * 80, 0));
+    char buf[80];
+    std::snprintf(buf, sizeof buf, "%.10f,%.10f,0 ", p.lon_deg, p.lat_deg);
+    coords += buf;
+    latlon.emplace_back(p.lat_deg, p.lon_deg);
+  }
+  const std::string kml = R"(<?xml version="1.0" encoding="UTF-8"?>
+<kml xmlns="http://www.opengis.net/kml/2.2"><Document><Placemark><name>helipad</name>
+<ExtendedData><Data name="floor_m"><value>500</value></Data><Data name="ceiling_m"><value>600</value></Data></ExtendedData>
+<Polygon><outerBoundaryIs><LinearRing><coordinates>)" +
+                          coords + R"(</coordinates></LinearRing></outerBoundaryIs></Polygon></Placemark>
+<Placemark><name>pin</name><Point><coordinates>8.5456,47.3977,0</coordinates></Point></Placemark>
+</Document></kml>)";
+  const Airspace a = read_airspace(kml, "zones.kml", f, kBounds);
+  ASSERT_EQ(a.zones.size(), 1u);  // the point closes nothing
+  const Prism& p = std::get<Prism>(a.zones[0]);
+  EXPECT_NEAR(p.z_min_m, 12.0, 1e-6);  // 500 m AMSL over 488 m
+  EXPECT_NEAR(p.z_max_m, 112.0, 1e-6);
+  EXPECT_NEAR(std::abs(polygon_signed_area(p.polygon)), 100.0 * 160.0, 1.0);
+  ASSERT_EQ(a.fence.size(), 1u);
+  ASSERT_EQ(a.fence[0].polygon_latlon.size(), 4u);  // the closing corner dropped
+  for (std::size_t k = 0; k < 4; ++k) EXPECT_NEAR((a.fence[0].polygon_latlon[k] - latlon[k]).norm(), 0.0, 1e-9);
+  EXPECT_EQ(a.fence[0].obstacles, std::vector<std::size_t>{0});
+  EXPECT_DOUBLE_EQ(*a.fence[0].floor_amsl_m, 500.0);
+
+  try {
+    read_airspace("<kml><Document><Placemark>", "broken.kml", f, kBounds);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("broken.kml"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace uavplan

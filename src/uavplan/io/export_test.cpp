@@ -342,6 +342,76 @@ TEST(Export, FenceKeepsTheLargestExclusionsAndSaysWhatItDropped) {
   EXPECT_TRUE(j["geoFence"]["polygons"].empty());
 }
 
+// Altitudes above sea level or the terrain (issue: real terrain, item 2): the same verified
+// heights in each frame, terrain only for ArduPilot.
+TEST(Export, AltitudeFramesCarryTheVerifiedHeights) {
+  Scenario sc = scenario_with();
+  WorldSpec w = sc.world.spec();
+  w.terrain = TerrainGrid(Vec2(0, 0), 50.0, 20, 20, std::vector<double>(400, 0.0));
+  sc.world = World(std::move(w));
+  const GeoFrame f(*sc.origin);
+  ExportOptions opt;
+  const auto standard = mission_items(sc, exported(sc, opt), opt);
+  EXPECT_EQ(standard[3].frame, kFrameGlobalRelativeAlt);  // no elevation model: above home
+  sc.elevation = ElevationSource{};                        // an elevation model: above sea level
+  const auto amsl = mission_items(sc, exported(sc, opt), opt);
+  ASSERT_EQ(amsl.size(), standard.size());
+  for (std::size_t k = 0; k < amsl.size(); ++k) {
+    if (!amsl[k].positioned()) continue;
+    EXPECT_EQ(amsl[k].frame, kFrameGlobal);
+    EXPECT_NEAR(amsl[k].params[6], 488.0 + standard[k].params[6], 1e-3);  // home on the ground at z = 0
+    EXPECT_DOUBLE_EQ(amsl[k].amsl_m, amsl[k].params[6]);
+  }
+  auto j = nlohmann::json::parse(qgc_plan_json(sc, exported(sc, opt), opt));
+  EXPECT_EQ(j["mission"]["items"][3]["AltitudeMode"], 2);
+  EXPECT_EQ(j["mission"]["items"][3]["Altitude"], j["mission"]["items"][3]["AMSLAltAboveTerrain"]);
+
+  opt.altitude = AltitudeFrame::terrain;
+  EXPECT_THROW(mission_items(sc, exported(sc, opt), opt), ExportError);  // PX4 takes no frame 10
+  opt.firmware = Firmware::ardupilot;
+  WorldSpec hill = sc.world.spec();
+  std::vector<double> h(400, 0.0);
+  h[0 * 20 + 2] = 4.0;  // the cell under (100..150, 0..50): the first waypoint's ground is 4 m up
+  hill.terrain = TerrainGrid(Vec2(0, 0), 50.0, 20, 20, h);
+  sc.world = World(std::move(hill));
+  const auto terrain = mission_items(sc, exported(sc, opt), opt);
+  ASSERT_EQ(terrain[3].command, kCmdWaypoint);
+  EXPECT_EQ(terrain[3].frame, kFrameGlobalTerrainAlt);
+  EXPECT_NEAR(terrain[3].params[6], 10.0 - 4.0, 1e-9);  // z 10 over ground 4
+  EXPECT_NEAR(terrain[3].amsl_m, 498.0, 1e-9);
+  j = nlohmann::json::parse(qgc_plan_json(sc, exported(sc, opt), opt));
+  EXPECT_EQ(j["mission"]["items"][3]["AltitudeMode"], 4);
+  EXPECT_NE(altitude_note(sc, opt)->find("ArduPilot follows its own terrain data"), std::string::npos);
+}
+
+// A fence read from a file is written back as it was read, corner for corner (issue: real
+// airspace, item 3); the obstacles it became are not written again as exclusions.
+TEST(Export, AFenceReadIsTheFenceWritten) {
+  Scenario sc = scenario_with({Box{Vec3(400, 400, 0), Vec3(450, 450, 100)}});
+  FenceZone inclusion;
+  inclusion.inclusion = true;
+  inclusion.polygon_latlon = {{47.39, 8.54}, {47.39, 8.56}, {47.41, 8.56}, {47.41, 8.54}};
+  FenceZone circle;
+  circle.center_latlon = {47.40012345678901, 8.55012345678901};
+  circle.radius_m = 33.3;
+  circle.obstacles = {0};  // the box stands for it here
+  sc.airspace = {inclusion, circle};
+  ExportOptions opt;
+  const auto j = nlohmann::json::parse(qgc_plan_json(sc, exported(sc, opt), opt));
+  const auto& fence = j["geoFence"];
+  ASSERT_EQ(fence["polygons"].size(), 1u);  // the file's inclusion, not the bounds; the box not again
+  EXPECT_TRUE(fence["polygons"][0]["inclusion"].get<bool>());
+  for (std::size_t k = 0; k < 4; ++k) {
+    EXPECT_EQ(fence["polygons"][0]["polygon"][k][0].get<double>(), inclusion.polygon_latlon[k].x());
+    EXPECT_EQ(fence["polygons"][0]["polygon"][k][1].get<double>(), inclusion.polygon_latlon[k].y());
+  }
+  ASSERT_EQ(fence["circles"].size(), 1u);
+  EXPECT_FALSE(fence["circles"][0]["inclusion"].get<bool>());
+  EXPECT_EQ(fence["circles"][0]["circle"]["center"][0].get<double>(), 47.40012345678901);
+  EXPECT_EQ(fence["circles"][0]["circle"]["center"][1].get<double>(), 8.55012345678901);
+  EXPECT_EQ(fence["circles"][0]["circle"]["radius"].get<double>(), 33.3);
+}
+
 TEST(Export, WplRowsMatchTheMission) {
   const Scenario sc = scenario_with();
   const ExportedUav e = exported(sc);

@@ -54,5 +54,32 @@ TEST(VoxelGrid, FreeCellsAreSafeEverywhere) {
   EXPECT_GT(free_cells, g.size() / 3);
 }
 
+// The shortcuts (columns under boxes that reach above the grid, terrain columns asked only
+// between their floor and reach above their neighbours) block exactly the cells the definition
+// does: a centre closer than inflation + half-diagonal to an obstacle or the terrain.
+TEST(VoxelGrid, ShortcutsBlockExactlyWhatTheDefinitionBlocks) {
+  Rng r(9);
+  WorldSpec ws = test_world(r).spec();
+  for (int i = 0; i < 30; ++i) {  // a closed sky over a band, as planning_view makes it
+    const Vec3 lo(r.uniform(0, 95), r.uniform(0, 75), r.uniform(8, 28));
+    ws.obstacles.push_back(Box{lo, Vec3(lo.x() + r.uniform(1, 12), lo.y() + r.uniform(1, 12), 31)});
+  }
+  const World w(std::move(ws));
+  const Vec3 cell(2.5, 2.0, 1.5);
+  const double inflation = 0.7, reach = inflation + 0.5 * cell.norm();
+  const VoxelGrid g = voxelize(w, cell, inflation, 1e9);
+  int blocked = 0;
+  for (int k = 0; k < g.nz(); ++k)
+    for (int j = 0; j < g.ny(); ++j)
+      for (int i = 0; i < g.nx(); ++i) {
+        const Vec3 c = g.center(i, j, k);
+        bool near = w.terrain()->point_distance(c, reach) < reach;
+        for (const Obstacle& o : w.obstacles()) near = near || point_distance(o, c) < reach;
+        ASSERT_EQ(g.blocked(i, j, k), near) << "cell " << i << "," << j << "," << k;
+        blocked += near;
+      }
+  EXPECT_GT(blocked, g.size() / 4);
+}
+
 }  // namespace
 }  // namespace uavplan

@@ -66,7 +66,7 @@ std::vector<std::optional<PlanResult>> plan_routes(const Scenario& sc, const Pla
   for (int w = 1; w < workers; ++w) pool.emplace_back(work);
   work();
   for (std::thread& t : pool) t.join();
-  for (std::size_t i = 0; i < n && workers > 1; ++i) {
+  for (std::size_t i = 0; i < n && workers > 1 && opt.stop.memory_cap_bytes() > 0; ++i) {
     const bool unsolved =
         errors[i] || (routes[i] && routes[i]->status != Status::solved && routes[i]->reason != Reason::stopped);
     if (unsolved && !opt.stop.should_stop()) {
