@@ -179,7 +179,7 @@ if (data.terrain) {
   const t = data.terrain;
   const positions = [];
   const colours = [];
-  const hmax = Math.max(1e-9, ...t.heights);
+  const hmax = t.heights.reduce((m, h) => Math.max(m, h - bmin.z), 1e-9);  // no spread: 250 k cells overflow the stack
   const lo = new THREE.Color(0xc9bfa6);
   const hi = new THREE.Color(terrainBrown);
   const wall = new THREE.Color(0x9c8b6c);

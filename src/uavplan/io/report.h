@@ -17,7 +17,7 @@ namespace uavplan {
 struct ReportOptions {
   int series_samples = 600;         // time samples of the charts
   int profile_samples = 400;        // distance samples of each UAV's height profile
-  int max_terrain_cells = 250'000;  // larger terrains are shown block-wise (each block's highest cell)
+  int max_terrain_cells = 65'536;  // larger terrains are shown block-wise (each block's highest cell)
 };
 
 // The data the page draws, as JSON: world, trajectories, time series, height profiles, metrics
