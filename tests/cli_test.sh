@@ -193,7 +193,7 @@ PY
 ALP="$SRC/scenarios/alpine_survey.yaml"
 "$BIN" info "$ALP" | grep -q "CH1903 / LV03 (EPSG:21781)" && pass=$((pass + 1)) ||
   { echo "FAIL dem.info: $("$BIN" info "$ALP" | grep model)"; fails=$((fails + 1)); }
-"$BIN" plan "$ALP" -o "$TMP/alp" --format qgc --format wpl --format csv --end loiter >/dev/null 2>"$TMP/stderr"
+"$BIN" plan "$ALP" -o "$TMP/alp" --format qgc --format wpl --format csv >/dev/null 2>"$TMP/stderr"
 check dem.plan 0 $?
 grep -q "above mean sea level (MAV_FRAME_GLOBAL" "$TMP/stderr" && pass=$((pass + 1)) ||
   { echo "FAIL dem.amsl_note: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }

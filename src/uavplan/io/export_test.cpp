@@ -266,6 +266,29 @@ TEST(Export, ABlockedTakeOffGoesUpBesideTheStart) {
   EXPECT_DOUBLE_EQ(rows[2].t_s, 0.0);
 }
 
+// A goal beside a terrain step (an elevation model's cells are steps): the landing straight
+// down would scrape the higher cell; it flies level to the nearest clear column and lands there,
+// which NAV_LAND at that position flies (issue: real terrain).
+TEST(Export, ABlockedLandingComesDownBesideTheGoal) {
+  Scenario sc = scenario_with();
+  WorldSpec w = sc.world.spec();
+  std::vector<double> h(400, 0.0);
+  h[1 * 20 + 1] = 9.0;  // x, y in [50, 100): its corner is under the goal (100, 100, 10)
+  w.terrain = TerrainGrid(Vec2(0, 0), 50.0, 20, 20, h);
+  sc.world = World(std::move(w));
+  const ExportedUav e = exported(sc);
+  ASSERT_TRUE(e.touchdown);
+  EXPECT_NEAR(e.touchdown->z(), 0.0, 1e-9);
+  EXPECT_GT((e.touchdown->head<2>() - Vec2(100, 100)).norm(), 0.4);  // beside, not under the goal
+  const Trajectory& tr = e.plan.trajectory;
+  EXPECT_EQ(tr.back().p, *e.touchdown);
+  const std::vector<MissionItem> items = mission_items(sc, e, {});
+  ASSERT_EQ(items.back().command, kCmdLand);
+  const LatLonAlt td = GeoFrame(*sc.origin).to_wgs84(*e.touchdown);
+  EXPECT_NEAR(items.back().params[4], td.lat_deg, 1e-8);
+  EXPECT_NEAR(items.back().params[5], td.lon_deg, 1e-8);
+}
+
 TEST(Export, OnlyWhatHoldsLeavesTheTool) {
   const Scenario sc = scenario_with({Box{Vec3(40, -20, 0), Vec3(60, 20, 50)}});  // across the east leg
   VerifiedExport v = verified_export(sc, plan_of({sample_uav()}), {});
@@ -353,7 +376,7 @@ TEST(Export, AltitudeFramesCarryTheVerifiedHeights) {
   ExportOptions opt;
   const auto standard = mission_items(sc, exported(sc, opt), opt);
   EXPECT_EQ(standard[3].frame, kFrameGlobalRelativeAlt);  // no elevation model: above home
-  sc.elevation = ElevationSource{};                        // an elevation model: above sea level
+  sc.elevation = ElevationSource{};                       // an elevation model: above sea level
   const auto amsl = mission_items(sc, exported(sc, opt), opt);
   ASSERT_EQ(amsl.size(), standard.size());
   for (std::size_t k = 0; k < amsl.size(); ++k) {

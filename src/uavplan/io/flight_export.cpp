@@ -174,8 +174,34 @@ class Builder {
     const double keep = keep_off_m(u);
     e.home = Vec3(s.x(), s.y(), w_.ground_z(s.x(), s.y()));
     const std::string why = leg_problem(w_, e.home, s, keep, e.home.z(), "its take-off straight up to its start");
-    if (why.empty() || beside(s, keep, e)) return {};
-    return why + ", and so does one from any spot within " + num_text(kBesideSteps * beside_step_m(keep)) + " m";
+    if (why.empty()) return {};
+    const auto spot = clear_column_beside(s, keep);
+    if (!spot)
+      return why + ", and so does one from any spot within " + num_text(kBesideSteps * beside_step_m(keep)) + " m";
+    e.takeoff_to = spot->first;
+    e.home = spot->second;
+    return {};
+  }
+
+  // A multirotor's landing straight down from its goal, else level to the nearest clear spot on
+  // rings around it and down there (NAV_LAND flies to its position at the height it has, then
+  // descends: sloped ground, a terrain step beside the goal).
+  std::string vertical_landing(const UavSpec& u, ExportedUav& e) const {
+    Trajectory& tr = e.plan.trajectory;
+    const Vec3 f = tr.back().p;
+    const double keep = keep_off_m(u);
+    Vec3 top = f, down(f.x(), f.y(), w_.ground_z(f.x(), f.y()));
+    const std::string why = leg_problem(w_, f, down, keep, down.z(), "its landing straight down from its goal");
+    if (!why.empty()) {
+      const auto spot = clear_column_beside(f, keep);
+      if (!spot)
+        return why + ", and so does one at any spot within " + num_text(kBesideSteps * beside_step_m(keep)) + " m";
+      top = spot->first;
+      down = spot->second;
+    }
+    e.touchdown = down;
+    append_flight(tr, {top, down}, u.speed.cruise_mps);
+    return {};
   }
 
   // A fixed wing's climb-out into its airborne start's heading, else turned by up to what the turn
@@ -201,24 +227,22 @@ class Builder {
     return first + ", and so does one turned by up to its turn limit";
   }
 
-  // A multirotor whose column below its start is blocked (sloped ground, an overhang, an obstacle
-  // beside it): straight up from the nearest clear spot on rings around the start, then level
-  // to it. Sets home and takeoff_to; false when none is clear.
-  bool beside(const Vec3& s, double keep, ExportedUav& e) const {
+  // Where a multirotor whose column under `s` is blocked (sloped ground, an overhang, an obstacle
+  // beside it) goes up or down instead: the nearest clear column on rings around s, with a clear
+  // level leg between its top (at s's height) and s. Returns (top, ground); none when none is clear.
+  std::optional<std::pair<Vec3, Vec3>> clear_column_beside(const Vec3& s, double keep) const {
     const double below = w_.bounds().min.z() - 1.0;  // the level leg keeps off the ground too
     for (int ring = 1; ring <= kBesideSteps; ++ring)
       for (int k = 0; k < kBesideDirections; ++k) {
         const double r = ring * beside_step_m(keep), a = 2.0 * kPi * k / kBesideDirections;
         const double x = s.x() + r * std::cos(a), y = s.y() + r * std::sin(a);
-        const Vec3 home(x, y, w_.ground_z(x, y)), top(x, y, s.z());
-        if (top.z() < home.z() + keep || !leg_problem(w_, home, top, keep, home.z(), "").empty() ||
+        const Vec3 ground(x, y, w_.ground_z(x, y)), top(x, y, s.z());
+        if (top.z() < ground.z() + keep || !leg_problem(w_, ground, top, keep, ground.z(), "").empty() ||
             !leg_problem(w_, top, s, keep, below, "").empty())
           continue;
-        e.home = home;
-        e.takeoff_to = top;
-        return true;
+        return std::pair{top, ground};
       }
-    return false;
+    return std::nullopt;
   }
   static double beside_step_m(double keep) { return std::max(2.0 * keep, 1.0); }
 
@@ -236,20 +260,15 @@ class Builder {
       return {};
     }
     e.end = opt_.end;
-    const Vec3 f = tr.back().p;
-    const double v = u.speed.cruise_mps;
     switch (opt_.end) {
       case MissionEnd::none:
         return {};
       case MissionEnd::land:
-        if (fixed_wing()) return glide(u, e);
-        e.touchdown = Vec3(f.x(), f.y(), w_.ground_z(f.x(), f.y()));
-        append_flight(tr, {*e.touchdown}, v);
-        return {};
+        return fixed_wing() ? glide(u, e) : vertical_landing(u, e);
       case MissionEnd::loiter:
         if (!fixed_wing()) return {};
         e.loiter_radius_m = fixed_wing_loiter_radius_m(opt_.firmware);
-        return circle_problem(u, f, e.loiter_radius_m, "its loiter circle");
+        return circle_problem(u, tr.back().p, e.loiter_radius_m, "its loiter circle");
       case MissionEnd::rtl:
         return return_home(u, e);
     }
@@ -453,8 +472,10 @@ void lift_flat(ExportedUav& e, const ExportOptions& opt) {
   for (TrajectorySample& row : e.plan.trajectory) row.p.z() += lift;
   e.takeoff_to.z() += lift;
   for (Vec3& p : e.return_points) p.z() += lift;
-  if (e.end == MissionEnd::land && e.touchdown)
-    append_flight(e.plan.trajectory, {*e.touchdown}, e.spec->speed.cruise_mps);
+  if (e.end == MissionEnd::land && e.touchdown)  // level to above the touch-down (none: straight down), down
+    append_flight(e.plan.trajectory,
+                  {Vec3(e.touchdown->x(), e.touchdown->y(), e.plan.trajectory.back().p.z()), *e.touchdown},
+                  e.spec->speed.cruise_mps);
   if (e.end == MissionEnd::rtl) append_flight(e.plan.trajectory, {e.home}, e.spec->speed.cruise_mps);
 }
 
