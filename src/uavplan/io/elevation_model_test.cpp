@@ -1,13 +1,13 @@
 #include "uavplan/io/elevation_model.h"
 
-#include <GeographicLib/UTMUPS.hpp>
 #include <gtest/gtest.h>
 #include <unistd.h>
+#include <GeographicLib/UTMUPS.hpp>
 
 #include <cmath>
-#include <functional>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 #include "uavplan/io/input_error.h"
@@ -51,7 +51,8 @@ std::string write_grid(const fs::path& dir, const std::string& prj) {
   const double x0 = std::floor(o.x()) - 500, y0 = std::floor(o.y()) - 500;
   std::ostringstream s;
   s << "ncols 200\nnrows 200\nxllcorner " << x0 << "\nyllcorner " << y0 << "\ncellsize 5\nNODATA_value -9999\n";
-  const int mast_col = static_cast<int>((o.x() + 123 - x0) / 5), mast_row = 199 - static_cast<int>((o.y() - 77 - y0) / 5);
+  const int mast_col = static_cast<int>((o.x() + 123 - x0) / 5),
+            mast_row = 199 - static_cast<int>((o.y() - 77 - y0) / 5);
   const int hole_col = static_cast<int>((o.x() - x0) / 5), hole_row = 199 - static_cast<int>((o.y() + 150 - y0) / 5);
   for (int r = 0; r < 200; ++r) {
     for (int c = 0; c < 200; ++c) {
@@ -135,18 +136,21 @@ TEST(ElevationModel, BadFilesAreClearErrors) {
   const GeoFrame frame(kOrigin);
   const Aabb bounds{Vec3(-400, -400, 0), Vec3(400, 400, 500)};
   const std::string asc = write_grid(d.path, "");
-  EXPECT_NE(error_of([&] { read_elevation_model(asc, "dem.asc", frame, bounds, std::nullopt, 1u << 24); })
-                .find("dem.asc: terrain: the raster has no coordinate system"),
+  EXPECT_NE(error_of([&] {
+              read_elevation_model(asc, "dem.asc", frame, bounds, std::nullopt, 1u << 24);
+            }).find("dem.asc: terrain: the raster has no coordinate system"),
             std::string::npos);
   write_grid(d.path, kUtm32nPrj);
   const Aabb wide{Vec3(-600, -400, 0), Vec3(400, 400, 500)};
-  EXPECT_NE(error_of([&] { read_elevation_model(asc, "dem.asc", frame, wide, std::nullopt, 1u << 24); })
-                .find("reach beyond the elevation model"),
+  EXPECT_NE(error_of([&] {
+              read_elevation_model(asc, "dem.asc", frame, wide, std::nullopt, 1u << 24);
+            }).find("reach beyond the elevation model"),
             std::string::npos);
   const fs::path junk = d.path / "junk.tif";
   std::ofstream(junk) << "not a raster\n";
-  EXPECT_NE(error_of([&] { read_elevation_model(junk.string(), "junk.tif", frame, bounds, std::nullopt, 1u << 24); })
-                .find("junk.tif: terrain: GDAL cannot read it as a raster"),
+  EXPECT_NE(error_of([&] {
+              read_elevation_model(junk.string(), "junk.tif", frame, bounds, std::nullopt, 1u << 24);
+            }).find("junk.tif: terrain: GDAL cannot read it as a raster"),
             std::string::npos);
 }
 

@@ -15,8 +15,8 @@
 namespace uavplan {
 
 struct ReportOptions {
-  int series_samples = 600;         // time samples of the charts
-  int profile_samples = 400;        // distance samples of each UAV's height profile
+  int series_samples = 600;        // time samples of the charts
+  int profile_samples = 400;       // distance samples of each UAV's height profile
   int max_terrain_cells = 65'536;  // larger terrains are shown block-wise (each block's highest cell)
 };
 
