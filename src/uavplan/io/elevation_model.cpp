@@ -213,6 +213,85 @@ std::vector<double> read_window(const Raster& r, int x0, int y0, int w, int h) {
   return v;
 }
 
+// The world's terrain cells: `c` metres over the bounds' x, y, larger where more than max_cells.
+struct Cells {
+  Vec2 lo, hi;
+  double c = 0.0;
+  int nx = 0, ny = 0;
+};
+
+Cells world_cells(const Aabb& bounds, double c, std::size_t max_cells) {
+  Cells w{bounds.min.head<2>(), bounds.max.head<2>(), c, 0, 0};
+  const auto count = [](double size, double cell) {
+    return std::max(1, static_cast<int>(std::ceil(size / cell - 1e-9)));
+  };
+  w.nx = count(w.hi.x() - w.lo.x(), c);
+  w.ny = count(w.hi.y() - w.lo.y(), c);
+  if (static_cast<double>(w.nx) * w.ny > static_cast<double>(max_cells)) {
+    w.c *= std::sqrt(static_cast<double>(w.nx) * w.ny / static_cast<double>(max_cells)) * 1.001;
+    w.nx = count(w.hi.x() - w.lo.x(), w.c);
+    w.ny = count(w.hi.y() - w.lo.y(), w.c);
+  }
+  return w;
+}
+
+constexpr double kEdge_px = 1e-6;  // a corner on a pixel edge touches only one side
+
+// The raster's pixels under the cells' corners (px, py), read at once; bounds that reach beyond
+// the raster are an error giving its extent here.
+struct Window {
+  int x0 = 0, y0 = 0, w = 1, h = 1;
+  std::vector<double> pixels;  // metres, NaN without data
+};
+
+Window window_under(const Raster& r, const std::vector<double>& px, const std::vector<double>& py, const Cells& cells,
+                    const ElevationSource& src) {
+  const auto [px_lo, px_hi] = std::minmax_element(px.begin(), px.end());
+  const auto [py_lo, py_hi] = std::minmax_element(py.begin(), py.end());
+  if (*px_lo < -kEdge_px || *py_lo < -kEdge_px || *px_hi > r.nx() + kEdge_px || *py_hi > r.ny() + kEdge_px)
+    r.fail("the world's bounds (x " + num_text(cells.lo.x()) + ".." + num_text(cells.hi.x()) + ", y " +
+           num_text(cells.lo.y()) + ".." + num_text(cells.hi.y()) +
+           ") reach beyond the elevation model, which covers x " + num_text(std::round(src.extent_min.x())) + ".." +
+           num_text(std::round(src.extent_max.x())) + ", y " + num_text(std::round(src.extent_min.y())) + ".." +
+           num_text(std::round(src.extent_max.y())) + " m in the scenario's frame (its footprint's box)");
+  Window w;
+  w.x0 = std::max(0, static_cast<int>(std::floor(*px_lo + kEdge_px)));
+  w.y0 = std::max(0, static_cast<int>(std::floor(*py_lo + kEdge_px)));
+  w.w = std::max(1, std::min(r.nx(), static_cast<int>(std::ceil(*px_hi - kEdge_px))) - w.x0);
+  w.h = std::max(1, std::min(r.ny(), static_cast<int>(std::ceil(*py_hi - kEdge_px))) - w.y0);
+  w.pixels = read_window(r, w.x0, w.y0, w.w, w.h);
+  return w;
+}
+
+// Each cell's height: the highest pixel its corners' pixel box touches (NaN where all are NoData).
+std::vector<double> highest_pixels(const Cells& cells, const std::vector<double>& px, const std::vector<double>& py,
+                                   const Window& win) {
+  std::vector<double> h(static_cast<std::size_t>(cells.nx) * cells.ny, std::nan(""));
+  const auto corner = [&](int i, int j) { return static_cast<std::size_t>(j) * (cells.nx + 1) + i; };
+  for (int j = 0; j < cells.ny; ++j)
+    for (int i = 0; i < cells.nx; ++i) {
+      double x_lo = World::kInf, x_hi = -World::kInf, y_lo = World::kInf, y_hi = -World::kInf;
+      for (const std::size_t k : {corner(i, j), corner(i + 1, j), corner(i, j + 1), corner(i + 1, j + 1)}) {
+        x_lo = std::min(x_lo, px[k]);
+        x_hi = std::max(x_hi, px[k]);
+        y_lo = std::min(y_lo, py[k]);
+        y_hi = std::max(y_hi, py[k]);
+      }
+      const int a0 = std::clamp(static_cast<int>(std::floor(x_lo + kEdge_px)) - win.x0, 0, win.w - 1);
+      const int a1 = std::clamp(static_cast<int>(std::ceil(x_hi - kEdge_px)) - win.x0, a0 + 1, win.w);
+      const int b0 = std::clamp(static_cast<int>(std::floor(y_lo + kEdge_px)) - win.y0, 0, win.h - 1);
+      const int b1 = std::clamp(static_cast<int>(std::ceil(y_hi - kEdge_px)) - win.y0, b0 + 1, win.h);
+      double top = std::nan("");
+      for (int b = b0; b < b1; ++b)
+        for (int a = a0; a < a1; ++a) {
+          const double z = win.pixels[static_cast<std::size_t>(b) * win.w + a];
+          if (!std::isnan(z) && !(z <= top)) top = z;
+        }
+      h[static_cast<std::size_t>(j) * cells.nx + i] = top;
+    }
+  return h;
+}
+
 // The corners of an nx x ny grid of cells `c` from `lo` (clipped to `hi`) in the raster's pixels:
 // every kStride-th corner transformed exactly, those between interpolated bilinearly (the
 // mapping is smooth: over kStride cells of a few metres its second-order term is micrometres,
@@ -271,72 +350,21 @@ ElevationModel read_elevation_model(const std::string& path, const std::string& 
   src.raster_nx = r.nx();
   src.raster_ny = r.ny();
   place_footprint(r, frame, src);
-
-  // The world's cells over the bounds.
-  const Vec2 lo = bounds.min.head<2>(), hi = bounds.max.head<2>();
-  double c = cell_m.value_or(std::max(0.01, std::round(src.raster_cell_m * 100.0) / 100.0));
-  const auto count = [&](double size, double cell) {
-    return std::max(1, static_cast<int>(std::ceil(size / cell - 1e-9)));
-  };
-  int nx = count(hi.x() - lo.x(), c), ny = count(hi.y() - lo.y(), c);
-  if (static_cast<double>(nx) * ny > static_cast<double>(max_cells)) {
-    c *= std::sqrt(static_cast<double>(nx) * ny / static_cast<double>(max_cells)) * 1.001;
-    nx = count(hi.x() - lo.x(), c);
-    ny = count(hi.y() - lo.y(), c);
-  }
-  src.cell_m = c;
-
-  // Their corners in pixels (clipped to the bounds: the last cell may reach past them).
-  std::vector<double> px, py;
-  corners_to_pixels(r, frame, lo, hi, c, nx, ny, px, py);
-  constexpr double kEdge = 1e-6;  // pixels: a corner on a pixel edge touches only one side
-  const auto [px_lo, px_hi] = std::minmax_element(px.begin(), px.end());
-  const auto [py_lo, py_hi] = std::minmax_element(py.begin(), py.end());
-  if (*px_lo < -kEdge || *py_lo < -kEdge || *px_hi > r.nx() + kEdge || *py_hi > r.ny() + kEdge)
-    r.fail("the world's bounds (x " + num_text(lo.x()) + ".." + num_text(hi.x()) + ", y " + num_text(lo.y()) + ".." +
-           num_text(hi.y()) + ") reach beyond the elevation model, which covers x " +
-           num_text(std::round(src.extent_min.x())) + ".." + num_text(std::round(src.extent_max.x())) + ", y " +
-           num_text(std::round(src.extent_min.y())) + ".." + num_text(std::round(src.extent_max.y())) +
-           " m in the scenario's frame (its footprint's box)");
-  const int wx0 = std::max(0, static_cast<int>(std::floor(*px_lo + kEdge)));
-  const int wy0 = std::max(0, static_cast<int>(std::floor(*py_lo + kEdge)));
-  const int wx1 = std::min(r.nx(), static_cast<int>(std::ceil(*px_hi - kEdge)));
-  const int wy1 = std::min(r.ny(), static_cast<int>(std::ceil(*py_hi - kEdge)));
-  const int ww = std::max(1, wx1 - wx0), wh = std::max(1, wy1 - wy0);
-  const std::vector<double> pixels = read_window(r, wx0, wy0, ww, wh);
-
-  // Each cell: the highest pixel its corners' pixel box touches.
-  std::vector<double> h(static_cast<std::size_t>(nx) * ny, std::nan(""));
-  const auto corner = [&](int i, int j) { return static_cast<std::size_t>(j) * (nx + 1) + i; };
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      double x_lo = World::kInf, x_hi = -World::kInf, y_lo = World::kInf, y_hi = -World::kInf;
-      for (const std::size_t k : {corner(i, j), corner(i + 1, j), corner(i, j + 1), corner(i + 1, j + 1)}) {
-        x_lo = std::min(x_lo, px[k]);
-        x_hi = std::max(x_hi, px[k]);
-        y_lo = std::min(y_lo, py[k]);
-        y_hi = std::max(y_hi, py[k]);
-      }
-      const int a0 = std::clamp(static_cast<int>(std::floor(x_lo + kEdge)) - wx0, 0, ww - 1);
-      const int a1 = std::clamp(static_cast<int>(std::ceil(x_hi - kEdge)) - wx0, a0 + 1, ww);
-      const int b0 = std::clamp(static_cast<int>(std::floor(y_lo + kEdge)) - wy0, 0, wh - 1);
-      const int b1 = std::clamp(static_cast<int>(std::ceil(y_hi - kEdge)) - wy0, b0 + 1, wh);
-      double top = std::nan("");
-      for (int b = b0; b < b1; ++b)
-        for (int a = a0; a < a1; ++a) {
-          const double z = pixels[static_cast<std::size_t>(b) * ww + a];
-          if (!std::isnan(z) && !(z <= top)) top = z;
-        }
-      h[static_cast<std::size_t>(j) * nx + i] = top;
-    }
+  const Cells cells =
+      world_cells(bounds, cell_m.value_or(std::max(0.01, std::round(src.raster_cell_m * 100.0) / 100.0)), max_cells);
+  src.cell_m = cells.c;
+  std::vector<double> px, py;  // the cells' corners in pixels
+  corners_to_pixels(r, frame, cells.lo, cells.hi, cells.c, cells.nx, cells.ny, px, py);
+  const Window win = window_under(r, px, py, cells, src);
+  std::vector<double> h = highest_pixels(cells, px, py, win);
   if (std::all_of(h.begin(), h.end(), [](double z) { return std::isnan(z); }))
     r.fail("the elevation model has no height within the world's bounds (every pixel there is NoData)");
-  src.nodata_filled = fill_gaps(h, nx, ny);
+  src.nodata_filled = fill_gaps(h, cells.nx, cells.ny);
   const auto [h_lo, h_hi] = std::minmax_element(h.begin(), h.end());
   src.min_amsl_m = *h_lo;
   src.max_amsl_m = *h_hi;
   for (double& z : h) z -= frame.origin().alt_m;
-  return {TerrainGrid(lo, c, nx, ny, std::move(h)), std::move(src)};
+  return {TerrainGrid(cells.lo, cells.c, cells.nx, cells.ny, std::move(h)), std::move(src)};
 }
 
 }  // namespace uavplan
