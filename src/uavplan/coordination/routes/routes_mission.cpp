@@ -1,11 +1,10 @@
 #include "uavplan/coordination/routes/routes_mission.h"
 
+#include <Eigen/Geometry>
 #include <atomic>
+#include <cstdio>
 #include <exception>
 #include <thread>
-
-#include <Eigen/Geometry>
-#include <cstdio>
 
 #include "uavplan/coordination/routes/local_layer.h"
 #include "uavplan/coordination/routes/rolling_window.h"
