@@ -1,9 +1,10 @@
 #include "uavplan/coordination/routes/routes_mission.h"
 
 #include <Eigen/Geometry>
-#include <atomic>
+#include <condition_variable>
 #include <cstdio>
 #include <exception>
+#include <mutex>
 #include <thread>
 
 #include "uavplan/coordination/routes/local_layer.h"
@@ -36,49 +37,109 @@ Problem uav_problem(const Scenario& sc, const MissionOptions& opt, const GroundP
   return pb;
 }
 
-// Every UAV's route, on the run's threads at once (each route is its own problem with its own
-// seed, so the routes are those planned one by one). A worker has its share of the threads and
-// of the memory cap; a route that is not solved within that share is planned again alone with
-// the whole, so a grid that fits the run only alone still gets its chance.
-std::vector<std::optional<PlanResult>> plan_routes(const Scenario& sc, const Planner& planner,
-                                                   const MissionOptions& opt, const GroundPoints& ground) {
-  const std::size_t n = sc.uavs.size();
-  std::vector<std::optional<PlanResult>> routes(n);
-  std::vector<std::exception_ptr> errors(n);
-  const int workers = std::max(1, std::min(opt.stop.threads(), static_cast<int>(n)));
-  const StopCondition share =
-      workers == 1 ? opt.stop
-                   : opt.stop.with_threads(std::max(1, opt.stop.threads() / workers))
-                         .with_memory_cap(opt.stop.memory_cap_bytes() / static_cast<std::uint64_t>(workers));
-  std::atomic<std::size_t> next{0};
-  const auto work = [&] {
-    for (std::size_t i; (i = next++) < n;) {
-      if (!sc.uavs[i].goal || opt.stop.should_stop()) continue;
-      try {
-        routes[i] = planner.plan(uav_problem(sc, opt, ground, i), sc.world, share);
-      } catch (...) {
-        errors[i] = std::current_exception();
-      }
+// The UAVs' routes, planned ahead of their timing on the run's threads (each route is its own
+// problem with its own seed, so the routes are those planned one by one) and taken in order: a
+// stop leaves the UAVs timed so far complete, as one by one. A worker has its share of the
+// threads and of the memory cap; a route that fails within its share is planned again with the
+// whole cap while the workers wait, so a grid that fits the run only alone still gets its chance
+// and the cap holds. One thread: each route is planned when it is taken.
+class RoutesAhead {
+ public:
+  RoutesAhead(const Scenario& sc, const Planner& planner, const MissionOptions& opt, const GroundPoints& ground)
+      : sc_(sc),
+        planner_(planner),
+        opt_(opt),
+        ground_(ground),
+        n_(sc.uavs.size()),
+        routes_(n_),
+        errors_(n_),
+        done_(n_, 0) {
+    const int workers = std::max(1, std::min(opt.stop.threads(), static_cast<int>(n_)));
+    if (workers == 1) return;
+    share_ = opt.stop.with_threads(std::max(1, opt.stop.threads() / workers))
+                 .with_memory_cap(opt.stop.memory_cap_bytes() / static_cast<std::uint64_t>(workers));
+    for (int w = 0; w < workers; ++w) pool_.emplace_back([this] { work(); });
+  }
+  ~RoutesAhead() {
+    {
+      const std::lock_guard<std::mutex> lock(m_);
+      quit_ = true;
+      held_ = false;
     }
-  };
-  std::vector<std::thread> pool;
-  for (int w = 1; w < workers; ++w) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
-  for (std::size_t i = 0; i < n && workers > 1 && opt.stop.memory_cap_bytes() > 0; ++i) {
-    const bool unsolved =
-        errors[i] || (routes[i] && routes[i]->status != Status::solved && routes[i]->reason != Reason::stopped);
-    if (unsolved && !opt.stop.should_stop()) {
-      errors[i] = nullptr;
-      routes[i] = planner.plan(uav_problem(sc, opt, ground, i), sc.world, opt.stop);
+    cv_.notify_all();
+    for (std::thread& t : pool_) t.join();
+  }
+  RoutesAhead(const RoutesAhead&) = delete;
+  RoutesAhead& operator=(const RoutesAhead&) = delete;
+
+  // UAV i's route; none where the stop came before it was planned.
+  std::optional<PlanResult> take(std::size_t i) {
+    if (pool_.empty()) return opt_.stop.should_stop() ? std::nullopt : std::optional(plan(i, opt_.stop));
+    std::unique_lock<std::mutex> lock(m_);
+    cv_.wait(lock, [&] { return done_[i] != 0; });
+    if (errors_[i]) std::rethrow_exception(errors_[i]);
+    std::optional<PlanResult> r = std::move(routes_[i]);
+    const bool retry = r && r->status != Status::solved && r->reason != Reason::stopped &&
+                       opt_.stop.memory_cap_bytes() > 0 && !opt_.stop.should_stop();
+    if (!retry) return r;
+    held_ = true;  // the workers finish what they plan and wait
+    cv_.wait(lock, [&] { return busy_ == 0; });
+    lock.unlock();
+    r = plan(i, opt_.stop);
+    lock.lock();
+    held_ = false;
+    cv_.notify_all();
+    return r;
+  }
+
+ private:
+  PlanResult plan(std::size_t i, const StopCondition& stop) const {
+    return planner_.plan(uav_problem(sc_, opt_, ground_, i), sc_.world, stop);
+  }
+  void work() {
+    std::unique_lock<std::mutex> lock(m_);
+    for (;;) {
+      cv_.wait(lock, [&] { return quit_ || !held_; });
+      if (quit_ || next_ >= n_) return;
+      const std::size_t i = next_++;
+      ++busy_;
+      lock.unlock();
+      std::optional<PlanResult> r;
+      std::exception_ptr error;
+      if (sc_.uavs[i].goal && !opt_.stop.should_stop()) {
+        try {
+          r = plan(i, share_);
+        } catch (...) {
+          error = std::current_exception();
+        }
+      }
+      lock.lock();
+      routes_[i] = std::move(r);
+      errors_[i] = error;
+      done_[i] = 1;
+      --busy_;
+      cv_.notify_all();
     }
   }
-  for (const std::exception_ptr& e : errors)
-    if (e) std::rethrow_exception(e);
-  return routes;
-}
 
-// Each UAV in the scenario's order: its route by the planner (plan_routes), then its departure:
+  const Scenario& sc_;
+  const Planner& planner_;
+  const MissionOptions& opt_;
+  const GroundPoints& ground_;
+  std::size_t n_;
+  StopCondition share_;
+  std::vector<std::optional<PlanResult>> routes_;
+  std::vector<std::exception_ptr> errors_;
+  std::vector<char> done_;
+  std::mutex m_;
+  std::condition_variable cv_;
+  std::size_t next_ = 0;
+  int busy_ = 0;
+  bool held_ = false, quit_ = false;
+  std::vector<std::thread> pool_;  // last: started after everything it uses
+};
+
+// Each UAV in the scenario's order: its route by the planner (RoutesAhead), then its departure:
 // the earliest that keeps the separation from those timed before it (searched up to a minute
 // plus twice the flights so far). UAVs without sensors also keep clear of the moving obstacles
 // (known in advance to them); UAVs with sensors only plan to (they meet the moving obstacles in
@@ -86,8 +147,7 @@ std::vector<std::optional<PlanResult>> plan_routes(const Scenario& sc, const Pla
 Committed plan_and_time(const Scenario& sc, const Planner& planner, const MissionOptions& opt,
                         const GroundPoints& ground, Plan& plan) {
   plan.uavs.reserve(sc.uavs.size());  // `committed` points into it
-  if (opt.progress) opt.progress(0, sc.uavs.size());
-  const std::vector<std::optional<PlanResult>> routes = plan_routes(sc, planner, opt, ground);
+  RoutesAhead routes(sc, planner, opt, ground);
   Committed committed;
   double horizon_s = 60.0;
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
@@ -100,12 +160,13 @@ Committed plan_and_time(const Scenario& sc, const Planner& planner, const Missio
       up.reason = Reason::invalid;
       continue;
     }
-    if (!routes[i]) {
+    const std::optional<PlanResult> route = routes.take(i);
+    if (!route) {
       up.message = kStoppedMessage;
       up.reason = Reason::stopped;
       continue;
     }
-    const PlanResult& r = *routes[i];
+    const PlanResult& r = *route;
     up.status = r.status;
     up.reason = r.reason;
     up.message = r.message;
