@@ -8,11 +8,11 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <mutex>
 #include <nlohmann/json.hpp>
 
 #include "uavplan/core/geometry.h"
 #include "uavplan/core/units.h"
+#include "uavplan/io/gdal_session.h"
 #include "uavplan/io/input_error.h"
 #include "uavplan/io/text_input.h"
 
@@ -202,8 +202,7 @@ struct ZoneReader {
 
   // KML through GDAL's vector drivers: the polygons of every Placemark, in layer and file order.
   void kml(const std::string& text) {
-    static std::once_flag registered;
-    std::call_once(registered, [] { GDALAllRegister(); });
+    register_gdal_drivers();
     static std::atomic<unsigned> serial{0};
     const std::string mem = "/vsimem/uavplan_airspace_" + std::to_string(serial++) + ".kml";
     VSILFILE* f =
@@ -214,13 +213,12 @@ struct ZoneReader {
       const std::string& p;
       ~Unlink() { VSIUnlink(p.c_str()); }
     } unlink{mem};
-    CPLPushErrorHandler(CPLQuietErrorHandler);
+    const QuietGdal quiet;
     GDALDatasetUniquePtr ds(GDALDataset::Open(mem.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
-    CPLPopErrorHandler();
     if (!ds) {
-      std::string said = CPLGetLastErrorMsg();
+      std::string said = gdal_said();
       for (std::size_t at; (at = said.find(mem)) != std::string::npos;) said.replace(at, mem.size(), name);
-      fail("", "GDAL cannot read it as KML (" + said + ")");
+      fail("", "GDAL cannot read it as KML" + said);
     }
     for (int l = 0; l < ds->GetLayerCount(); ++l) {
       OGRLayer* layer = ds->GetLayer(l);

@@ -7,30 +7,13 @@
 #include <array>
 #include <cmath>
 #include <memory>
-#include <mutex>
 
 #include "uavplan/core/text.h"
+#include "uavplan/io/gdal_session.h"
 #include "uavplan/io/input_error.h"
 
 namespace uavplan {
 namespace {
-
-// GDAL reports through a handler that prints by default: the library never prints, so its
-// messages are kept for ours while a model is read.
-struct QuietGdal {
-  QuietGdal() {
-    CPLPushErrorHandler(CPLQuietErrorHandler);
-    CPLErrorReset();
-  }
-  ~QuietGdal() { CPLPopErrorHandler(); }
-  QuietGdal(const QuietGdal&) = delete;
-  QuietGdal& operator=(const QuietGdal&) = delete;
-};
-
-std::string gdal_said() {
-  const std::string m = CPLGetLastErrorMsg();
-  return m.empty() ? std::string() : " (GDAL: " + m + ")";
-}
 
 // Metres per unit of the band's values; nullopt for a unit that is not a length.
 std::optional<double> metres_per_unit(std::string unit) {
@@ -56,8 +39,7 @@ struct Raster {
   [[noreturn]] void fail(const std::string& what) const { throw InputError(file, 0, "terrain", what); }
 
   Raster(const std::string& path, const std::string& f) : file(f) {
-    static std::once_flag registered;
-    std::call_once(registered, [] { GDALAllRegister(); });
+    register_gdal_drivers();
     ds.reset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY | GDAL_OF_VERBOSE_ERROR));
     if (!ds) fail("GDAL cannot read it as a raster" + gdal_said());
     if (ds->GetRasterCount() < 1) fail("the file has no raster band");
