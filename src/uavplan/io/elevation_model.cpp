@@ -131,42 +131,40 @@ void place_footprint(const Raster& r, const GeoFrame& frame, ElevationSource& sr
 
 // Fills cells without a height (NaN) from their neighbours' highest, one ring at a time.
 std::size_t fill_gaps(std::vector<double>& h, int nx, int ny) {
-  const auto at = [nx](int i, int j) { return static_cast<std::size_t>(j) * nx + i; };
-  std::vector<std::pair<int, int>> ring;
-  const auto has_height_beside = [&](int i, int j) {
-    for (int dj = -1; dj <= 1; ++dj)
-      for (int di = -1; di <= 1; ++di) {
-        const int a = i + di, b = j + dj;
-        if (a >= 0 && b >= 0 && a < nx && b < ny && !std::isnan(h[at(a, b)])) return true;
-      }
-    return false;
+  const auto neighbours = [nx, ny](std::size_t k, const auto& f) {  // 8-connected, inside the grid
+    const int i = static_cast<int>(k % nx), j = static_cast<int>(k / nx);
+    for (int b = std::max(0, j - 1); b <= std::min(ny - 1, j + 1); ++b)
+      for (int a = std::max(0, i - 1); a <= std::min(nx - 1, i + 1); ++a)
+        if (a != i || b != j) f(static_cast<std::size_t>(b) * nx + a);
   };
-  std::size_t filled = 0;
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i)
-      if (std::isnan(h[at(i, j)]) && has_height_beside(i, j)) ring.emplace_back(i, j);
+  const auto highest_beside = [&](std::size_t k) {
+    double top = -World::kInf;
+    neighbours(k, [&](std::size_t n) {
+      if (!std::isnan(h[n])) top = std::max(top, h[n]);
+    });
+    return top;
+  };
+  std::vector<std::size_t> ring;
   std::vector<char> queued(h.size(), 0);
-  for (const auto& [i, j] : ring) queued[at(i, j)] = 1;
+  for (std::size_t k = 0; k < h.size(); ++k)
+    if (std::isnan(h[k]) && highest_beside(k) > -World::kInf) {
+      ring.push_back(k);
+      queued[k] = 1;
+    }
+  std::size_t filled = 0;
   while (!ring.empty()) {
-    std::vector<double> value(ring.size(), -World::kInf);
-    for (std::size_t k = 0; k < ring.size(); ++k)
-      for (int dj = -1; dj <= 1; ++dj)
-        for (int di = -1; di <= 1; ++di) {
-          const int a = ring[k].first + di, b = ring[k].second + dj;
-          if (a >= 0 && b >= 0 && a < nx && b < ny && !std::isnan(h[at(a, b)]))
-            value[k] = std::max(value[k], h[at(a, b)]);
+    std::vector<double> value(ring.size());  // from the heights before this ring
+    for (std::size_t r = 0; r < ring.size(); ++r) value[r] = highest_beside(ring[r]);
+    std::vector<std::size_t> next;
+    for (std::size_t r = 0; r < ring.size(); ++r) {
+      h[ring[r]] = value[r];
+      neighbours(ring[r], [&](std::size_t n) {
+        if (std::isnan(h[n]) && !queued[n]) {
+          queued[n] = 1;
+          next.push_back(n);
         }
-    std::vector<std::pair<int, int>> next;
-    for (std::size_t k = 0; k < ring.size(); ++k) h[at(ring[k].first, ring[k].second)] = value[k];
-    for (const auto& [i, j] : ring)
-      for (int dj = -1; dj <= 1; ++dj)
-        for (int di = -1; di <= 1; ++di) {
-          const int a = i + di, b = j + dj;
-          if (a >= 0 && b >= 0 && a < nx && b < ny && std::isnan(h[at(a, b)]) && !queued[at(a, b)]) {
-            queued[at(a, b)] = 1;
-            next.emplace_back(a, b);
-          }
-        }
+      });
+    }
     filled += ring.size();
     ring = std::move(next);
   }

@@ -73,6 +73,7 @@ ojson fence_json(const Scenario& sc, const ExportedUav& e, const GeoFrame& frame
     const LatLonAlt g = rounded(frame.to_wgs84(Vec3(x, y, 0.0)));
     return ojson::array({g.lat_deg, g.lon_deg});
   };
+  const auto passable = [&](double lo, double hi) { return lo > z_lo || hi < z_hi; };  // flown over or under
   // The scenario's airspace zones as their files gave them (a fence read is the fence written);
   // the world's bounds as the inclusion where no file gave one.
   std::vector<char> from_airspace(sc.world.obstacles().size(), 0);
@@ -82,7 +83,7 @@ ojson fence_json(const Scenario& sc, const ExportedUav& e, const GeoFrame& frame
     fenced = fenced || z.inclusion;
     const double floor = z.floor_amsl_m ? *z.floor_amsl_m - frame.origin().alt_m : -World::kInf;
     const double ceiling = z.ceiling_amsl_m ? *z.ceiling_amsl_m - frame.origin().alt_m : World::kInf;
-    if (!z.inclusion && (floor > z_lo || ceiling < z_hi)) continue;  // flown over or under
+    if (!z.inclusion && passable(floor, ceiling)) continue;
     append_zone(z, polygons, circles);
   }
   const Aabb& b = sc.world.bounds();
@@ -96,7 +97,7 @@ ojson fence_json(const Scenario& sc, const ExportedUav& e, const GeoFrame& frame
   for (std::size_t k = 0; k < obstacles.size(); ++k) {
     if (std::holds_alternative<Sphere>(obstacles[k]) || from_airspace[k]) continue;
     const Aabb ob = bounding_box(obstacles[k]);
-    if (ob.min.z() > z_lo || ob.max.z() < z_hi) continue;
+    if (passable(ob.min.z(), ob.max.z())) continue;
     walls.emplace_back(std::abs(polygon_signed_area(footprint(obstacles[k]))), k);
   }
   std::stable_sort(walls.begin(), walls.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
