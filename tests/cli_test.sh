@@ -324,7 +324,14 @@ awk -v a="$t0" -v b="$t1" 'BEGIN { exit !(b - a < 1.6) }' || { echo "FAIL time_l
 grep -q "stopped (time limit" "$TMP/fifty/plan.json" || { echo "FAIL time_limit: no UAV says it was stopped"; fails=$((fails + 1)); }
 "$BIN" plan "$fifty" -o "$TMP/interrupted" >/dev/null 2>"$TMP/stderr" &
 pid=$!
-sleep 0.5
+# Started in the background, the command ignores SIGINT until it installs its handler (bash's
+# rule for background jobs): the signal is sent once the handler is there, then planning is under way.
+for _ in $(seq 1 300); do
+  caught=$(awk '/^SigCgt:/ { print $2 }' "/proc/$pid/status" 2>/dev/null)
+  [ -n "$caught" ] && [ $((16#$caught & 2)) -ne 0 ] && break
+  sleep 0.02
+done
+sleep 0.3
 kill -INT $pid
 wait $pid; check interrupt.exit 130 $?
 grep -q "interrupted" "$TMP/stderr" && [ ! -e "$TMP/interrupted/plan.json" ] || { echo "FAIL interrupt: message or output"; fails=$((fails + 1)); }

@@ -105,7 +105,7 @@ int write_outputs(const PlanArgs& a, const Scenario& sc, const Plan& plan) {
 
 int run_plan(const PlanArgs& a) {
   check_output_dir(a.out_dir);
-  // The clock starts now: loading counts against --time-limit too.
+  // --time-limit counts from the process's start: loading the program and the scenario count too.
   const StopCondition stop = run_stop(a.run);
   auto overrides = parse_sets(a.sets);
   if (!overrides) return kExitBadInput;

@@ -7,6 +7,10 @@
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
+#include <ctime>
+#include <fstream>
+#include <iterator>
+#include <sstream>
 #include <string>
 
 #include "commands.h"
@@ -24,6 +28,31 @@ extern "C" void on_interrupt(int sig) {
     std::signal(sig, SIG_DFL);
     std::raise(sig);
   }
+}
+
+// When this process started, on the planners' clock: the kernel's start time of the process
+// (/proc/self/stat, field 22, clock ticks after boot) against CLOCK_BOOTTIME. Loading the
+// program's shared libraries comes before main and takes a noticeable part of a short limit on a
+// busy machine; where the start cannot be read, now.
+StopCondition::Clock::time_point process_start() {
+  const auto now = StopCondition::Clock::now();
+  std::ifstream file("/proc/self/stat");
+  const std::string stat((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  // Field 2, the command's name, is in parentheses and may hold spaces: count from its ')'.
+  const std::size_t close = stat.rfind(')');
+  if (close == std::string::npos) return now;
+  std::istringstream fields(stat.substr(close + 1));
+  std::string skipped;
+  for (int field = 3; field < 22; ++field) fields >> skipped;
+  unsigned long long start_ticks = 0;
+  timespec boot{};
+  const long ticks_per_s = ::sysconf(_SC_CLK_TCK);
+  if (!(fields >> start_ticks) || ticks_per_s <= 0 || ::clock_gettime(CLOCK_BOOTTIME, &boot) != 0) return now;
+  const double age_s = static_cast<double>(boot.tv_sec) + 1e-9 * static_cast<double>(boot.tv_nsec) -
+                       static_cast<double>(start_ticks) / static_cast<double>(ticks_per_s);
+  constexpr double kOldest_s = 60.0;  // a start older than that is a clock we misread
+  if (!(age_s > 0.0 && age_s < kOldest_s)) return now;
+  return now - std::chrono::duration_cast<StopCondition::Clock::duration>(std::chrono::duration<double>(age_s));
 }
 
 }  // namespace
@@ -73,7 +102,7 @@ const std::atomic<bool>* interrupt_flag() { return &g_interrupted; }
 
 StopCondition run_stop(const RunArgs& a) {
   StopCondition stop = StopCondition::cancel_flag(&g_interrupted);
-  if (a.time_limit_s > 0.0) stop = stop | StopCondition::time_limit(a.time_limit_s);
+  if (a.time_limit_s > 0.0) stop = stop | StopCondition::time_limit(a.time_limit_s, process_start());
   return stop.with_threads(a.threads).with_memory_cap(a.max_memory_bytes);
 }
 

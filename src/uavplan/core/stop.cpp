@@ -9,13 +9,13 @@
 
 namespace uavplan {
 
-StopCondition StopCondition::time_limit(double seconds) {
+StopCondition StopCondition::time_limit(double seconds, Clock::time_point since) {
   // A limit past 1e9 s (31 years) is no limit in practice, and beyond about 9.2e9 s the clock's
   // nanoseconds would overflow into the past: such limits are held at 1e9 s.
   constexpr double kLongest_s = 1e9;
   StopCondition c;
   const double s = std::isnan(seconds) ? 0.0 : std::clamp(seconds, 0.0, kLongest_s);
-  c.deadline_ = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
+  c.deadline_ = since + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
   return c;
 }
 

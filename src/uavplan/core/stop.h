@@ -23,7 +23,8 @@ class StopCondition {
   using Clock = std::chrono::steady_clock;
 
   StopCondition() = default;  // never stops
-  static StopCondition time_limit(double seconds);
+  // `seconds` after `since` (a command's limit counts from its process's start).
+  static StopCondition time_limit(double seconds, Clock::time_point since = Clock::now());
   static StopCondition iterations(std::uint64_t max_iterations);
   // The flag must outlive every copy of the condition.
   static StopCondition cancel_flag(const std::atomic<bool>* flag);
