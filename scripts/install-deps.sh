@@ -21,6 +21,7 @@ PACKAGES=(
   python3-numpy python3-pytest python3-matplotlib  #   its arrays, its tests, its example's plot
   libgdal-dev            # io: elevation models in any format and CRS (GDAL, PROJ), KML airspace
   gdal-bin               # tests: ogr2ogr reads the GeoJSON and KML exports back
+  python3-yaml           # tests: an independent check of the MAPF solution files
   clang-14 libclang-rt-14-dev  # make asan, make fuzz: clang with AddressSanitizer, UBSan, libFuzzer
   clang-format clang-tidy      # scripts/lint.sh: the house style and static checks
   chromium               # tests: the HTML report in a headless browser

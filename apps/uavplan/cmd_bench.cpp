@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "mapf_runner.h"
 #include "movingai_runner.h"
 #include "p1_local_runner.h"
 #include "p1_runner.h"
@@ -13,6 +14,7 @@
 #include "p5_runner.h"
 #include "soak_runner.h"
 #include "uavplan/evaluation/world_bench.h"
+#include "uavplan/io/files.h"
 #include "uavplan/io/input_error.h"
 
 namespace uavplan::cli {
@@ -172,6 +174,56 @@ void add_p1_local(CLI::App* cmd, std::function<int()>& run) {
   });
 }
 
+void add_mapf(CLI::App* cmd, std::function<int()>& run) {
+  auto opt = std::make_shared<bench::MapfBenchOptions>();
+  auto dir = std::make_shared<std::string>();
+  auto method = std::make_shared<std::string>("auto");
+  CLI::App* m = cmd->add_subcommand(
+      "mapf", "Grid MAPF on libMultiRobotPlanning's instance files: solved, times, sum of costs beside its ECBS");
+  m->add_option("dir", *dir, "Folder of instance files (map: {dimensions, obstacles}, agents: [{name, start, goal}])")
+      ->required();
+  m->add_option("--method", *method,
+                "auto (ECBS with 3/4 of the time limit, then prioritized; default), prioritized, ecbs or cbs")
+      ->check(CLI::IsMember({"auto", "prioritized", "ecbs", "cbs"}));
+  m->add_option("--w", opt->solver.w, "ECBS's suboptimality bound (default 1.3)")->check(CLI::Range(1.0, 100.0));
+  m->add_option("--orders", opt->solver.orders, "Agent orders prioritized planning tries (default 8)")
+      ->check(CLI::Range(1, 1000000));
+  m->add_option("--time-limit", opt->time_limit_s, "Seconds per instance (default 30)")->check(positive_number());
+  m->add_option("--optimal-limit", opt->optimal_limit_s,
+                "Also run CBS per instance for this many seconds: its optimum is the yardstick where it finishes")
+      ->check(positive_number());
+  m->add_option("--limit", opt->limit, "This many instances per agent count, spread evenly (default all)")
+      ->check(CLI::PositiveNumber);
+  m->add_option("--out", opt->out_dir, "Write each solution here in libMultiRobotPlanning's output format");
+  m->footer("Example: uavplan bench mapf ../shared/data/mapf/32x32_obst204 --limit 10 --out /tmp/mapf-solutions");
+  m->callback([opt, dir, method, &run] {
+    run = [opt, dir, method] {
+      parse_mapf_method(*method, opt->solver.method);
+      opt->solver.stop = StopCondition::cancel_flag(interrupt_flag());
+      install_interrupt_handlers();
+      Progress progress;
+      try {
+        const auto rep = bench::run_mapf_bench(*dir, *opt, [&](std::size_t done, std::size_t total) {
+          progress.update("mapf: " + std::to_string(done) + "/" + std::to_string(total) + " instances");
+        });
+        progress.finish();
+        if (interrupted()) {
+          std::cerr << "uavplan: interrupted; nothing written\n";
+          return kExitInterrupted;
+        }
+        std::cout << bench::format_mapf_bench(rep);
+        return rep.passed() ? kExitOk : kExitNotSolved;
+      } catch (const InputError& e) {
+        std::cerr << e.what() << "\n";
+        return kExitBadInput;
+      } catch (const OutputError& e) {
+        std::cerr << e.what() << "\n";
+        return kExitOutputError;
+      }
+    };
+  });
+}
+
 void add_soak(CLI::App* cmd, std::function<int()>& run) {
   auto opt = std::make_shared<bench::SoakOptions>();
   CLI::App* s =
@@ -197,6 +249,7 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
   add_papers(cmd, run);
   add_p1_local(cmd, run);
   add_soak(cmd, run);
+  add_mapf(cmd, run);
 }
 
 }  // namespace uavplan::cli

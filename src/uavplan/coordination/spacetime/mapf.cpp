@@ -1,0 +1,112 @@
+#include "uavplan/coordination/spacetime/mapf.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <unordered_set>
+
+#include "uavplan/coordination/spacetime/cbs.h"
+#include "uavplan/coordination/spacetime/mapf_conflicts.h"
+#include "uavplan/coordination/spacetime/prioritized.h"
+
+namespace uavplan {
+
+std::string mapf_problem_mistake(const MapfProblem& p) {
+  if (p.starts.size() != p.goals.size()) return "as many goals as starts expected";
+  const auto off = [&](int v) { return v < 0 || v >= p.graph.vertex_count; };
+  std::unordered_set<int> starts, goals;
+  for (std::size_t i = 0; i < p.starts.size(); ++i) {
+    const std::string who = "agent " + std::to_string(i);
+    if (off(p.starts[i]) || off(p.goals[i])) return who + ": start or goal off the graph";
+    if (!starts.insert(p.starts[i]).second) return who + ": its start is another agent's start";
+    if (!goals.insert(p.goals[i]).second) return who + ": its goal is another agent's goal";
+  }
+  return "";
+}
+
+namespace {
+
+void finish(MapfResult& r) {
+  if (!r.solved) return;
+  r.sum_of_costs = sum_of_costs(r.paths);
+  r.makespan = makespan(r.paths);
+}
+
+// ECBS first, which proves its bound, with three quarters of the time left (all of it without a
+// time limit); where it finds nothing in that, prioritised planning with the rest: a solution
+// without a proven bound, said so in its method.
+MapfResult solve_automatic(const MapfProblem& problem, const std::vector<std::vector<int>>& h, const MapfOptions& o) {
+  constexpr double kBoundedShare = 0.75;
+  const StopCondition first =
+      o.stop.has_time_limit() ? o.stop | StopCondition::time_limit(kBoundedShare * o.stop.seconds_left()) : o.stop;
+  MapfResult bounded = solve_cbs(problem, h, o.w, first);
+  if (bounded.solved || o.stop.should_stop()) return bounded;
+  MapfResult quick = solve_prioritized(problem, h, o.orders, o.stop);
+  quick.low_level_expansions += bounded.low_level_expansions;
+  quick.high_level_nodes = bounded.high_level_nodes;
+  quick.lower_bound = bounded.lower_bound;
+  if (quick.solved) quick.method += " after ECBS " + bounded.why + " (no bound proven)";
+  return quick;
+}
+
+}  // namespace
+
+MapfResult solve_mapf(const MapfProblem& problem, const MapfOptions& o) {
+  if (const std::string m = mapf_problem_mistake(problem); !m.empty()) throw std::invalid_argument(m);
+  if (!(o.w >= 1.0) || !std::isfinite(o.w)) throw std::invalid_argument("w must be 1 or more");
+  if (o.orders < 1) throw std::invalid_argument("orders must be 1 or more");
+  std::vector<std::vector<int>> h;
+  int lone_sum = 0;
+  for (std::size_t i = 0; i < problem.starts.size(); ++i) {
+    h.push_back(distances_to(problem.graph, problem.goals[i]));
+    const int d = h.back()[problem.starts[i]];
+    if (d < 0) {
+      MapfResult r;
+      r.why = "agent " + std::to_string(i) + " cannot reach its goal";
+      return r;
+    }
+    lone_sum += d;
+  }
+  MapfResult r;
+  switch (o.method) {
+    case MapfMethod::prioritized:
+      r = solve_prioritized(problem, h, o.orders, o.stop);
+      break;
+    case MapfMethod::cbs:
+      r = solve_cbs(problem, h, 1.0, o.stop);
+      break;
+    case MapfMethod::ecbs:
+      r = solve_cbs(problem, h, o.w, o.stop);
+      break;
+    case MapfMethod::automatic:
+      r = solve_automatic(problem, h, o);
+      break;
+  }
+  r.lower_bound = std::max(r.lower_bound, lone_sum);
+  finish(r);
+  return r;
+}
+
+const char* to_string(MapfMethod m) {
+  switch (m) {
+    case MapfMethod::automatic:
+      return "auto";
+    case MapfMethod::prioritized:
+      return "prioritized";
+    case MapfMethod::ecbs:
+      return "ecbs";
+    case MapfMethod::cbs:
+      return "cbs";
+  }
+  return "?";
+}
+
+bool parse_mapf_method(const std::string& word, MapfMethod& out) {
+  for (const MapfMethod m : {MapfMethod::automatic, MapfMethod::prioritized, MapfMethod::ecbs, MapfMethod::cbs})
+    if (word == to_string(m)) {
+      out = m;
+      return true;
+    }
+  return false;
+}
+
+}  // namespace uavplan

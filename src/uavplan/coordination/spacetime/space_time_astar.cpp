@@ -1,0 +1,131 @@
+#include "uavplan/coordination/spacetime/space_time_astar.h"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+
+namespace uavplan {
+namespace {
+
+std::uint64_t state_key(int v, int t) {
+  return static_cast<std::uint64_t>(static_cast<std::uint32_t>(t)) << 32 | static_cast<std::uint32_t>(v);
+}
+
+}  // namespace
+
+SpaceTimeAnswer SpaceTimeSearch::find(const SpaceTimeGraph& g, const SpaceTimeQuery& q, const StopCondition& stop) {
+  SpaceTimeAnswer a;
+  const std::vector<int>& h = *q.h;
+  h_ = q.h;
+  const SpaceTimeTable& forbidden = *q.forbidden;
+  const int goal_after = forbidden.last_time_at(q.goal);
+  if (h[q.start] < 0 || goal_after == INT_MAX || forbidden.at(q.start, 0) > 0) return a;
+  // After the last forbidden time the table no longer changes (stays only): reaching a vertex
+  // later is never better than reaching it then, so states past it are told apart by vertex
+  // alone. The state space is finite and a walled-in goal is known in one sweep of the graph.
+  const int still = std::min(std::max(forbidden.last_time(), 0) + 1, SpaceTimeTable::kLastTime);
+  const std::size_t f_slots = static_cast<std::size_t>(still) + 2 * static_cast<std::size_t>(g.vertex_count) + 2;
+  if (live_.size() < f_slots) {
+    live_.resize(f_slots, 0);
+    later_.resize(f_slots);
+  }
+  nodes_.clear();
+  focal_.clear();
+  generated_.clear(4096);
+  int f_min = h[q.start];
+  bound_ = static_cast<int>(std::floor(q.w * f_min + 1e-9));
+  int f_top = f_min;  // highest f pushed: the buckets to empty afterwards
+  generated_.insert(state_key(q.start, 0));
+  push(q.start, 0, -1, 0, f_min);
+  int found = -1;
+  while (!focal_.empty()) {
+    if ((a.expanded & 1023u) == 0 && stop.should_stop()) break;
+    const int n = pop_focal();
+    const Node cur = nodes_[n];
+    --live_[cur.t + h[cur.v]];
+    if (cur.v == q.goal && cur.t > goal_after) {
+      found = n;
+      break;
+    }
+    ++a.expanded;
+    if (cur.t < SpaceTimeTable::kLastTime) {
+      const int t1 = cur.t + 1;
+      const auto expand = [&](int v) {
+        if (h[v] < 0 || forbidden.at(v, t1) > 0 || (v != cur.v && forbidden.moves(cur.v, v, cur.t) > 0)) return;
+        if (!generated_.insert(state_key(v, std::min(t1, still)))) return;
+        int meetings = cur.meetings;
+        if (q.avoided) meetings += q.avoided->at(v, t1) + (v != cur.v ? q.avoided->moves(cur.v, v, cur.t) : 0);
+        const int f = t1 + h[v];
+        f_top = std::max(f_top, f);
+        push(v, t1, n, meetings, f);
+      };
+      expand(cur.v);  // wait
+      for (int k = g.first[cur.v]; k < g.first[cur.v + 1]; ++k) expand(g.next[k]);
+    }
+    while (f_min <= f_top && live_[f_min] == 0) ++f_min;
+    if (f_min <= f_top) raise_bound(static_cast<int>(std::floor(q.w * f_min + 1e-9)));
+  }
+  if (found >= 0) {
+    a.found = true;
+    a.path = path_to(found);
+    a.cost = static_cast<int>(a.path.size()) - 1;
+    a.lower_bound = std::min(f_min, a.cost);
+    a.meetings = nodes_[found].meetings;
+  }
+  for (int f = 0; f <= f_top && f < static_cast<int>(f_slots); ++f) {
+    live_[f] = 0;
+    later_[f].clear();
+  }
+  return a;
+}
+
+void SpaceTimeSearch::push(int v, int t, int parent, int meetings, int f) {
+  const int id = static_cast<int>(nodes_.size());
+  nodes_.push_back({v, t, parent, meetings});
+  ++live_[f];
+  if (f > bound_) {
+    later_[f].push_back(id);
+    return;
+  }
+  focal_.push_back(id);
+  std::push_heap(focal_.begin(), focal_.end(), [this](int a, int b) { return worse(a, b); });
+}
+
+int SpaceTimeSearch::pop_focal() {
+  std::pop_heap(focal_.begin(), focal_.end(), [this](int a, int b) { return worse(a, b); });
+  const int n = focal_.back();
+  focal_.pop_back();
+  return n;
+}
+
+// Nodes whose f the bound now covers join the focal heap.
+void SpaceTimeSearch::raise_bound(int bound) {
+  for (int f = bound_ + 1; f <= bound && f < static_cast<int>(later_.size()); ++f) {
+    for (const int id : later_[f]) {
+      focal_.push_back(id);
+      std::push_heap(focal_.begin(), focal_.end(), [this](int a, int b) { return worse(a, b); });
+    }
+    later_[f].clear();
+  }
+  bound_ = std::max(bound_, bound);
+}
+
+// Heap order: fewer meetings first, then smaller f, then deeper, then older.
+bool SpaceTimeSearch::worse(int a, int b) const {
+  const Node& x = nodes_[a];
+  const Node& y = nodes_[b];
+  if (x.meetings != y.meetings) return x.meetings > y.meetings;
+  const int fx = x.t + (*h_)[x.v], fy = y.t + (*h_)[y.v];
+  if (fx != fy) return fx > fy;
+  if (x.t != y.t) return x.t < y.t;
+  return a > b;
+}
+
+SpaceTimePath SpaceTimeSearch::path_to(int node) const {
+  SpaceTimePath p;
+  for (int n = node; n >= 0; n = nodes_[n].parent) p.push_back(nodes_[n].v);
+  std::reverse(p.begin(), p.end());
+  return p;
+}
+
+}  // namespace uavplan
