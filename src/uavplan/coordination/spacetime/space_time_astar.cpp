@@ -16,7 +16,6 @@ std::uint64_t state_key(int v, int t) {
 SpaceTimeAnswer SpaceTimeSearch::find(const SpaceTimeGraph& g, const SpaceTimeQuery& q, const StopCondition& stop) {
   SpaceTimeAnswer a;
   const std::vector<int>& h = *q.h;
-  h_ = q.h;
   const SpaceTimeTable& forbidden = *q.forbidden;
   const int goal_after = forbidden.last_time_at(q.goal);
   if (h[q.start] < 0 || goal_after == INT_MAX || forbidden.at(q.start, 0) > 0) return a;
@@ -32,7 +31,12 @@ SpaceTimeAnswer SpaceTimeSearch::find(const SpaceTimeGraph& g, const SpaceTimeQu
   nodes_.clear();
   focal_.clear();
   generated_.clear(4096);
-  int f_min = h[q.start];
+  // No path ends before the goal's last forbidden time has passed: f = max(t + h, that end), still
+  // admissible and consistent, and without it an agent that must wait for its goal would search
+  // every state that reaches the goal too early.
+  const int earliest_end = goal_after + 1;
+  const auto f_of = [&](int v, int t) { return std::max(t + h[v], earliest_end); };
+  int f_min = f_of(q.start, 0);
   bound_ = static_cast<int>(std::floor(q.w * f_min + 1e-9));
   int f_top = f_min;  // highest f pushed: the buckets to empty afterwards
   generated_.insert(state_key(q.start, 0));
@@ -42,7 +46,7 @@ SpaceTimeAnswer SpaceTimeSearch::find(const SpaceTimeGraph& g, const SpaceTimeQu
     if ((a.expanded & 1023u) == 0 && stop.should_stop()) break;
     const int n = pop_focal();
     const Node cur = nodes_[n];
-    --live_[cur.t + h[cur.v]];
+    --live_[cur.f];
     if (cur.v == q.goal && cur.t > goal_after) {
       found = n;
       break;
@@ -55,7 +59,7 @@ SpaceTimeAnswer SpaceTimeSearch::find(const SpaceTimeGraph& g, const SpaceTimeQu
         if (!generated_.insert(state_key(v, std::min(t1, still)))) return;
         int meetings = cur.meetings;
         if (q.avoided) meetings += q.avoided->at(v, t1) + (v != cur.v ? q.avoided->moves(cur.v, v, cur.t) : 0);
-        const int f = t1 + h[v];
+        const int f = f_of(v, t1);
         f_top = std::max(f_top, f);
         push(v, t1, n, meetings, f);
       };
@@ -81,7 +85,7 @@ SpaceTimeAnswer SpaceTimeSearch::find(const SpaceTimeGraph& g, const SpaceTimeQu
 
 void SpaceTimeSearch::push(int v, int t, int parent, int meetings, int f) {
   const int id = static_cast<int>(nodes_.size());
-  nodes_.push_back({v, t, parent, meetings});
+  nodes_.push_back({v, t, parent, meetings, f});
   ++live_[f];
   if (f > bound_) {
     later_[f].push_back(id);
@@ -115,8 +119,7 @@ bool SpaceTimeSearch::worse(int a, int b) const {
   const Node& x = nodes_[a];
   const Node& y = nodes_[b];
   if (x.meetings != y.meetings) return x.meetings > y.meetings;
-  const int fx = x.t + (*h_)[x.v], fy = y.t + (*h_)[y.v];
-  if (fx != fy) return fx > fy;
+  if (x.f != y.f) return x.f > y.f;
   if (x.t != y.t) return x.t < y.t;
   return a > b;
 }

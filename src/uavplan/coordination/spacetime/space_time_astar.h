@@ -44,7 +44,7 @@ class SpaceTimeSearch {
 
  private:
   struct Node {
-    int v, t, parent, meetings;
+    int v, t, parent, meetings, f;
   };
   void push(int v, int t, int parent, int meetings, int f);
   int pop_focal();
@@ -58,7 +58,6 @@ class SpaceTimeSearch {
   std::vector<std::vector<int>> later_;  // open nodes per f above the focal bound
   std::vector<int> focal_;               // heap of node indices
   int bound_ = 0;
-  const std::vector<int>* h_ = nullptr;
 };
 
 }  // namespace uavplan
