@@ -166,8 +166,8 @@ std::string format_mapf_bench(const MapfBenchReport& rep) {
              ? "SOC/best: over CBS's optimum where it finished within " + cell_ms(rep.options.optimal_limit_s * 1e3) +
                    " ms, else over the best lower bound known\n"
              : "SOC/best: over the best lower bound known (lone shortest paths; --optimal-limit adds CBS's optimum)\n";
-  std::snprintf(line, sizeof line, "%6s %5s | %7s %9s %9s %9s %8s %13s %6s %6s | %23s %6s\n", "agents", "inst",
-                "solved", "median ms", "p95 ms", "worst ms", "SOC mean", "SOC/best mean", "max", "by PP",
+  std::snprintf(line, sizeof line, "%6s %5s | %7s %9s %9s %9s %8s %13s %6s %6s %7s | %23s %6s\n", "agents", "inst",
+                "solved", "median ms", "p95 ms", "worst ms", "SOC mean", "SOC/best mean", "max", "by PP", "our CBS",
                 "ECBS-1.3 solved/med/max", "CBS");
   out += line;
   for (std::size_t first = 0; first < rep.runs.size();) {
@@ -175,7 +175,7 @@ std::string format_mapf_bench(const MapfBenchReport& rep) {
     while (end < rep.runs.size() && rep.runs[end].agents == rep.runs[first].agents) ++end;
     std::vector<double> ms;
     double soc = 0.0, worst_ratio = 0.0, ratio_sum = 0.0;
-    int solved = 0, prioritized = 0;
+    int solved = 0, prioritized = 0, optima = 0;
     for (std::size_t k = first; k < end; ++k) {
       const MapfRun& r = rep.runs[k];
       ms.push_back(r.ms);  // an unsolved instance counts at its time (the limit)
@@ -185,6 +185,7 @@ std::string format_mapf_bench(const MapfBenchReport& rep) {
       worst_ratio = std::max(worst_ratio, r.ratio());
       ratio_sum += r.ratio();
       prioritized += r.method.rfind("prioritized", 0) == 0 ? 1 : 0;
+      optima += r.optimum >= 0 ? 1 : 0;
     }
     const int agents = rep.runs[first].agents;
     const auto anchor = anchors().find(agents);
@@ -194,11 +195,13 @@ std::string format_mapf_bench(const MapfBenchReport& rep) {
       ref = (a.ecbs_solved >= 1.0 ? "100%" : "") + std::string(" / ") + cell_ms(a.ecbs_median_ms) + " / " +
             cell_ms(a.ecbs_worst_ms);
     }
-    std::snprintf(line, sizeof line, "%6d %5zu | %6.0f%% %9s %9s %9s %8.1f %13.3f %6.3f %6d | %23s %6s\n", agents,
+    const std::string ours =
+        rep.options.optimal_limit_s > 0.0 ? std::to_string(optima) + "/" + std::to_string(end - first) : "";
+    std::snprintf(line, sizeof line, "%6d %5zu | %6.0f%% %9s %9s %9s %8.1f %13.3f %6.3f %6d %7s | %23s %6s\n", agents,
                   end - first, 100.0 * solved / static_cast<double>(end - first), cell_ms(median(ms)).c_str(),
                   cell_ms(percentile(ms, 95)).c_str(), cell_ms(*std::max_element(ms.begin(), ms.end())).c_str(),
-                  solved ? soc / solved : 0.0, solved ? ratio_sum / solved : 0.0, worst_ratio, prioritized, ref.c_str(),
-                  anchor != anchors().end() ? anchor->second.cbs : "");
+                  solved ? soc / solved : 0.0, solved ? ratio_sum / solved : 0.0, worst_ratio, prioritized,
+                  ours.c_str(), ref.c_str(), anchor != anchors().end() ? anchor->second.cbs : "");
     out += line;
     first = end;
   }
