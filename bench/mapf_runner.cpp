@@ -23,8 +23,30 @@ struct Loaded {
   MapfInstance instance;
 };
 
-// Instance files sorted by agent count, then by name with numbers compared as numbers (ex2
-// before ex10), each count thinned to `limit` spread evenly.
+// Names with their numbers compared as numbers: ex2 before ex10.
+bool natural_less(const std::string& a, const std::string& b) {
+  std::size_t i = 0, j = 0;
+  while (i < a.size() && j < b.size()) {
+    if (std::isdigit(static_cast<unsigned char>(a[i])) && std::isdigit(static_cast<unsigned char>(b[j]))) {
+      std::size_t ie = i, je = j;
+      while (ie < a.size() && std::isdigit(static_cast<unsigned char>(a[ie]))) ++ie;
+      while (je < b.size() && std::isdigit(static_cast<unsigned char>(b[je]))) ++je;
+      const std::string x = a.substr(i, ie - i), y = b.substr(j, je - j);
+      if (x.size() != y.size()) return x.size() < y.size();
+      if (x != y) return x < y;
+      i = ie;
+      j = je;
+    } else {
+      if (a[i] != b[j]) return a[i] < b[j];
+      ++i;
+      ++j;
+    }
+  }
+  return a.size() - i < b.size() - j;
+}
+
+// Instance files sorted by agent count, then by name (natural_less), each count thinned to
+// `limit` spread evenly.
 std::vector<Loaded> load_instances(const std::string& dir, int limit) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw InputError(dir, 0, "", "not a folder of instance files");
@@ -34,29 +56,9 @@ std::vector<Loaded> load_instances(const std::string& dir, int limit) {
   if (files.empty()) throw InputError(dir, 0, "", "no .yaml instance files");
   std::vector<Loaded> all;
   for (const std::string& f : files) all.push_back({f, read_mapf_instance((fs::path(dir) / f).string())});
-  const auto natural = [](const std::string& a, const std::string& b) {
-    std::size_t i = 0, j = 0;
-    while (i < a.size() && j < b.size()) {
-      if (std::isdigit(static_cast<unsigned char>(a[i])) && std::isdigit(static_cast<unsigned char>(b[j]))) {
-        std::size_t ie = i, je = j;
-        while (ie < a.size() && std::isdigit(static_cast<unsigned char>(a[ie]))) ++ie;
-        while (je < b.size() && std::isdigit(static_cast<unsigned char>(b[je]))) ++je;
-        const std::string x = a.substr(i, ie - i), y = b.substr(j, je - j);
-        if (x.size() != y.size()) return x.size() < y.size();
-        if (x != y) return x < y;
-        i = ie;
-        j = je;
-      } else {
-        if (a[i] != b[j]) return a[i] < b[j];
-        ++i;
-        ++j;
-      }
-    }
-    return a.size() - i < b.size() - j;
-  };
   std::sort(all.begin(), all.end(), [&](const Loaded& a, const Loaded& b) {
     return a.instance.names.size() != b.instance.names.size() ? a.instance.names.size() < b.instance.names.size()
-                                                              : natural(a.file, b.file);
+                                                              : natural_less(a.file, b.file);
   });
   if (limit <= 0) return all;
   std::vector<Loaded> kept;
