@@ -1,10 +1,11 @@
-// The MovingAI readers (2-D and 3-D maps and scenarios): they read files, so the input goes to
-// one; its first byte chooses the reader.
+// The grid benchmarks' readers (MovingAI's 2-D and 3-D maps and scenarios, libMultiRobotPlanning's
+// MAPF instances): they read files, so the input goes to one; its first byte chooses the reader.
 #include <unistd.h>
 
 #include <fstream>
 
 #include "fuzz_target.h"
+#include "uavplan/io/mapf_file.h"
 #include "uavplan/io/movingai.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -15,7 +16,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     out.write(reinterpret_cast<const char*>(data + 1), static_cast<std::streamsize>(size - 1));
   }
   return uavplan::fuzz::run_reader([&] {
-    switch (data[0] % 4) {
+    switch (data[0] % 5) {
       case 0:
         uavplan::read_movingai_map(path);
         break;
@@ -25,8 +26,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       case 2:
         uavplan::read_movingai_3dmap(path);
         break;
-      default:
+      case 3:
         uavplan::read_movingai_3dscen(path);
+        break;
+      default:
+        (void)uavplan::mapf_problem_mistake(uavplan::read_mapf_instance(path).problem());
     }
   });
 }

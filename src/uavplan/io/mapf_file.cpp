@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <limits>
+#include <map>
 
 #include "uavplan/io/files.h"
 #include "uavplan/io/input_error.h"
@@ -77,16 +78,21 @@ void read_agents(const std::string& file, const YAML::Node& agents, MapfInstance
       (key[0] == 's' ? in.starts : in.goals).push_back(c);
     }
   }
-  for (std::size_t k = 0; k < in.names.size(); ++k)
-    for (std::size_t j = 0; j < k; ++j) {
-      const std::string place = "agents[" + std::to_string(k) + "]";
-      if (in.names[j] == in.names[k])
-        bad(file, agents[k], place + ".name", "the name of agents[" + std::to_string(j) + "] too");
-      if (in.starts[j] == in.starts[k])
-        bad(file, agents[k], place + ".start", "the start of agents[" + std::to_string(j) + "] too");
-      if (in.goals[j] == in.goals[k])
-        bad(file, agents[k], place + ".goal", "the goal of agents[" + std::to_string(j) + "] too");
-    }
+  // Each name, start and goal once (the first agent that has it, for the message).
+  std::map<std::string, std::size_t> names;
+  std::map<std::array<int, 2>, std::size_t> starts, goals;
+  for (std::size_t k = 0; k < in.names.size(); ++k) {
+    const std::string place = "agents[" + std::to_string(k) + "]";
+    const auto once = [&](auto& seen, const auto& value, const char* key) {
+      const auto [it, fresh] = seen.emplace(value, k);
+      if (!fresh)
+        bad(file, agents[k], place + "." + key,
+            std::string("the ") + key + " of agents[" + std::to_string(it->second) + "] too");
+    };
+    once(names, in.names[k], "name");
+    once(starts, in.starts[k], "start");
+    once(goals, in.goals[k], "goal");
+  }
 }
 
 // A YAML double-quoted string: whatever the name holds stays data.

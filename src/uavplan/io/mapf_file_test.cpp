@@ -76,6 +76,10 @@ TEST(MapfFile, BadInstancesNameTheFileThePlaceAndTheFault) {
             "inst.yaml:10: agents[0].start: [7, 0] is outside the map (5 x 2)");
   EXPECT_EQ(error_of(with("goal: [4, 0]", "goal: [4, 1]")), "inst.yaml:11: agents[0].goal: on an obstacle");
   EXPECT_EQ(error_of(with("goal: [0, 0]", "goal: [4, 0]")), "inst.yaml:12: agents[1].goal: the goal of agents[0] too");
+  EXPECT_EQ(error_of(with("name: \"right\"", "name: \"left\"")),
+            "inst.yaml:12: agents[1].name: the name of agents[0] too");
+  EXPECT_EQ(error_of(with("start: [4, 0]", "start: [0, 0]")),
+            "inst.yaml:12: agents[1].start: the start of agents[0] too");
   EXPECT_EQ(error_of(with("dimensions: [5, 2]", "dimensions: [5]")), "inst.yaml:2: map.dimensions: [W, H] expected");
   EXPECT_EQ(error_of(with("[3, 1]", "[3, x]")), "inst.yaml:6: map.obstacles[2][1]: a whole number expected");
   EXPECT_EQ(error_of(with("agents:", "agnets:")), "inst.yaml:8: agnets: unknown key (map and agents expected)");
