@@ -116,7 +116,12 @@ bool MapfBenchReport::passed() const {
 
 MapfBenchReport run_mapf_bench(const std::string& dir, const MapfBenchOptions& o,
                                const std::function<void(std::size_t, std::size_t)>& progress) {
-  if (!o.out_dir.empty()) check_output_dir(o.out_dir, "--out");
+  if (!o.out_dir.empty()) {
+    check_output_dir(o.out_dir, "--out");
+    std::error_code ec;
+    if (fs::equivalent(o.out_dir, dir, ec))  // a solution is named after its instance
+      throw InputError(o.out_dir, 0, "--out", "the instance folder itself: the solutions would replace the instances");
+  }
   const std::vector<Loaded> instances = load_instances(dir, o.limit);
   MapfBenchReport report;
   report.options = o;

@@ -59,6 +59,10 @@ expect_bad() {  # expect_bad NAME SED_EXPRESSION PART
 expect_bad outside 's/start: \[4, 21\]/start: [4, 40]/' "agents[0].start: [4, 40] is outside the map (32 x 32)"
 expect_bad obstacle 's/start: \[4, 21\]/start: [30, 3]/' "agents[0].start: on an obstacle"
 expect_bad syntax 's/^agents:/agents: [/' "YAML syntax error"
+cp -r "$TMP/ten" "$TMP/ten_copy"
+"$BIN" bench mapf "$TMP/ten_copy" --out "$TMP/ten_copy/." >/dev/null 2>"$TMP/stderr"; rc=$?
+[ $rc = 2 ] && grep -q "instance folder itself" "$TMP/stderr" && cmp -s "$TMP/ten/"*.yaml "$TMP/ten_copy/"*.yaml ||
+  fail "--out the instance folder: exit $rc, or an instance was replaced"
 "$BIN" bench mapf "$TMP/ten" --method astar >/dev/null 2>&1; rc=$?
 [ $rc = 2 ] || fail "unknown method: exit $rc, expected 2"
 "$BIN" bench mapf "$TMP/nowhere" >/dev/null 2>"$TMP/stderr"; rc=$?
