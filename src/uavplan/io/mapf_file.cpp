@@ -17,6 +17,8 @@ namespace {
 constexpr int kMostSide = 1 << 10;  // 1024 x 1024 cells: the space-time table's 2^20 vertices
 constexpr std::size_t kMostValues = 4'000'000;
 
+// A key a const node lacks reads as a node that throws on every question but IsDefined: every
+// check asks that first.
 int line_of(const YAML::Node& n) { return n.IsDefined() && n.Mark().line >= 0 ? n.Mark().line + 1 : 0; }
 
 [[noreturn]] void bad(const std::string& file, const YAML::Node& n, const std::string& place, const std::string& what) {
@@ -25,15 +27,15 @@ int line_of(const YAML::Node& n) { return n.IsDefined() && n.Mark().line >= 0 ? 
 
 int whole_number(const std::string& file, const YAML::Node& n, const std::string& place) {
   long long v = 0;
-  if (!n.IsScalar() || !YAML::convert<long long>::decode(n, v) || v < std::numeric_limits<int>::min() ||
-      v > std::numeric_limits<int>::max())
+  if (!n.IsDefined() || !n.IsScalar() || !YAML::convert<long long>::decode(n, v) ||
+      v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max())
     bad(file, n, place, "a whole number expected");
   return static_cast<int>(v);
 }
 
 // A cell [x, y] inside the map.
 std::array<int, 2> cell(const std::string& file, const YAML::Node& n, const std::string& place, int w, int h) {
-  if (!n.IsSequence() || n.size() != 2) bad(file, n, place, "a cell [x, y] expected");
+  if (!n.IsDefined() || !n.IsSequence() || n.size() != 2) bad(file, n, place, "a cell [x, y] expected");
   const std::array<int, 2> c{whole_number(file, n[0], place + "[0]"), whole_number(file, n[1], place + "[1]")};
   if (c[0] < 0 || c[1] < 0 || c[0] >= w || c[1] >= h)
     bad(file, n, place,
@@ -43,9 +45,9 @@ std::array<int, 2> cell(const std::string& file, const YAML::Node& n, const std:
 }
 
 void read_map(const std::string& file, const YAML::Node& map, MapfInstance& in) {
-  if (!map.IsMap()) bad(file, map, "map", "a map {dimensions, obstacles} expected");
+  if (!map.IsDefined() || !map.IsMap()) bad(file, map, "map", "a map {dimensions, obstacles} expected");
   const YAML::Node dims = map["dimensions"];
-  if (!dims.IsSequence() || dims.size() != 2)
+  if (!dims.IsDefined() || !dims.IsSequence() || dims.size() != 2)
     bad(file, dims.IsDefined() ? dims : map, "map.dimensions", "[W, H] expected");
   in.width = whole_number(file, dims[0], "map.dimensions[0]");
   in.height = whole_number(file, dims[1], "map.dimensions[1]");
@@ -62,13 +64,14 @@ void read_map(const std::string& file, const YAML::Node& map, MapfInstance& in) 
 }
 
 void read_agents(const std::string& file, const YAML::Node& agents, MapfInstance& in) {
-  if (!agents.IsSequence() || agents.size() == 0) bad(file, agents, "agents", "a list of agents expected");
+  if (!agents.IsDefined() || !agents.IsSequence() || agents.size() == 0)
+    bad(file, agents, "agents", "a list of agents expected");
   for (std::size_t k = 0; k < agents.size(); ++k) {
     const YAML::Node a = agents[k];
     const std::string place = "agents[" + std::to_string(k) + "]";
     if (!a.IsMap()) bad(file, a, place, "an agent {name, start, goal} expected");
     const YAML::Node name = a["name"];
-    if (!name.IsScalar() || name.Scalar().empty())
+    if (!name.IsDefined() || !name.IsScalar() || name.Scalar().empty())
       bad(file, name.IsDefined() ? name : a, place + ".name", "a name expected");
     in.names.push_back(name.Scalar());
     for (const char* key : {"start", "goal"}) {

@@ -83,6 +83,12 @@ TEST(MapfFile, BadInstancesNameTheFileThePlaceAndTheFault) {
   EXPECT_EQ(error_of(with("dimensions: [5, 2]", "dimensions: [5]")), "inst.yaml:2: map.dimensions: [W, H] expected");
   EXPECT_EQ(error_of(with("[3, 1]", "[3, x]")), "inst.yaml:6: map.obstacles[2][1]: a whole number expected");
   EXPECT_EQ(error_of(with("agents:", "agnets:")), "inst.yaml:8: agnets: unknown key (map and agents expected)");
+  // Keys missing (a const node's missing key throws on any question but IsDefined).
+  EXPECT_EQ(error_of(with("  dimensions: [5, 2]\n", "")), "inst.yaml:2: map.dimensions: [W, H] expected");
+  EXPECT_EQ(error_of("map: {dimensions: [2, 2]}\n"), "inst.yaml: agents: a list of agents expected");
+  EXPECT_EQ(error_of("agents: []\n"), "inst.yaml: map: a map {dimensions, obstacles} expected");
+  EXPECT_EQ(error_of(with("name: left", "nome: left")), "inst.yaml:9: agents[0].name: a name expected");
+  EXPECT_EQ(error_of(with("  start: [0, 0]\n", "")), "inst.yaml:9: agents[0].start: a cell [x, y] expected");
   EXPECT_NE(error_of("map: [").find("inst.yaml:1: YAML syntax error"), std::string::npos);
 }
 
