@@ -55,7 +55,12 @@ std::vector<Loaded> load_instances(const std::string& dir, int limit) {
     if (e.path().extension() == ".yaml" && e.is_regular_file(ec)) files.push_back(e.path().filename().string());
   if (files.empty()) throw InputError(dir, 0, "", "no .yaml instance files");
   std::vector<Loaded> all;
-  for (const std::string& f : files) all.push_back({f, read_mapf_instance((fs::path(dir) / f).string())});
+  for (const std::string& f : files) {
+    const std::string path = (fs::path(dir) / f).string();
+    all.push_back({f, read_mapf_instance(path)});
+    if (const std::string m = mapf_problem_mistake(all.back().instance.problem()); !m.empty())
+      throw InputError(path, 0, "", m);
+  }
   std::sort(all.begin(), all.end(), [&](const Loaded& a, const Loaded& b) {
     return a.instance.names.size() != b.instance.names.size() ? a.instance.names.size() < b.instance.names.size()
                                                               : natural_less(a.file, b.file);

@@ -1,5 +1,6 @@
 #include "uavplan/coordination/spacetime/mapf.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <unordered_set>
@@ -12,6 +13,13 @@ namespace uavplan {
 
 std::string mapf_problem_mistake(const MapfProblem& p) {
   if (p.starts.size() != p.goals.size()) return "as many goals as starts expected";
+  // Each agent's distances to its goal: one int per vertex per agent.
+  const std::uint64_t table_bytes = sizeof(int) * static_cast<std::uint64_t>(p.starts.size()) *
+                                    static_cast<std::uint64_t>(std::max(p.graph.vertex_count, 0));
+  if (table_bytes > kMostDistanceTableBytes)
+    return std::to_string(p.starts.size()) + " agents on " + std::to_string(p.graph.vertex_count) + " cells need " +
+           std::to_string(table_bytes >> 20) + " MiB of distance tables, more than " +
+           std::to_string(kMostDistanceTableBytes >> 20) + " MiB";
   const auto off = [&](int v) { return v < 0 || v >= p.graph.vertex_count; };
   std::unordered_set<int> starts, goals;
   for (std::size_t i = 0; i < p.starts.size(); ++i) {

@@ -44,8 +44,11 @@ struct MapfResult {
   std::uint64_t high_level_nodes = 0, low_level_expansions = 0;
 };
 
-// The problem's mistakes (a start or goal off the graph, two agents sharing one, a goal its start
-// cannot reach); empty when it can be searched.
+// Every agent's distances to its goal are kept (the searches' heuristic): at most this much.
+inline constexpr std::uint64_t kMostDistanceTableBytes = std::uint64_t{1} << 30;
+
+// The problem's mistakes (a start or goal off the graph, two agents sharing one, distance tables
+// beyond kMostDistanceTableBytes); empty when it can be searched.
 std::string mapf_problem_mistake(const MapfProblem& problem);
 
 // Solves `problem`; std::invalid_argument for a mistaken problem or option.

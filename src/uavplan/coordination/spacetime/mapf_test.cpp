@@ -246,6 +246,16 @@ TEST(Mapf, MistakenProblemsAreRefused) {
   MapfProblem off = swap;
   off.starts[0] = 99;
   EXPECT_THROW(solve_mapf(off, {}), std::invalid_argument);
+  MapfProblem huge;  // 300 agents on 2^20 cells: 1.2 GB of distance tables
+  huge.graph.vertex_count = 1 << 20;
+  for (int i = 0; i < 300; ++i) {
+    huge.starts.push_back(i);
+    huge.goals.push_back(1000 + i);
+  }
+  EXPECT_NE(mapf_problem_mistake(huge).find("MiB of distance tables"), std::string::npos);
+  huge.starts.resize(200);
+  huge.goals.resize(200);
+  EXPECT_EQ(mapf_problem_mistake(huge), "");
   MapfOptions bad_w;
   bad_w.w = 0.5;
   EXPECT_THROW(solve_mapf(swap, bad_w), std::invalid_argument);
