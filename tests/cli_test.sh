@@ -199,6 +199,10 @@ grep -q "above mean sea level (MAV_FRAME_GLOBAL" "$TMP/stderr" && pass=$((pass +
   { echo "FAIL dem.amsl_note: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
 node "$SRC/tests/qgc_plan_check.mjs" "$TMP/alp" s1 s2 s3 s4 >/dev/null 2>&1; check dem.qgc_files 0 $?
 "$BIN" verify "$ALP" "$TMP/alp/plan.json" >/dev/null 2>&1; check dem.verify 0 $?
+# Above the terrain is ArduPilot's frame: for PX4 (the default) refused before planning, nothing written.
+"$BIN" plan "$ALP" -o "$TMP/alp_px4" --format qgc --altitude terrain >/dev/null 2>"$TMP/stderr"; check dem.terrain_px4 2 $?
+[ "$(wc -l <"$TMP/stderr")" = 1 ] && grep -q "PX4 takes no mission item above the terrain" "$TMP/stderr" &&
+  [ ! -e "$TMP/alp_px4" ] && pass=$((pass + 1)) || { echo "FAIL dem.terrain_px4 message or output: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
 for dz in 200 -90; do
   python3 - "$TMP/alp/plan.json" "$TMP/alp/moved.json" "$dz" <<'PY'
 import json, sys

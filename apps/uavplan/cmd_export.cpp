@@ -7,8 +7,24 @@
 #include "uavplan/core/text.h"
 #include "uavplan/io/export.h"
 #include "uavplan/io/files.h"
+#include "uavplan/io/mission_items.h"
 
 namespace uavplan::cli {
+namespace {
+
+ExportOptions options_of(const Scenario& sc, const ExportArgs& a) {
+  const std::string_view vehicle = !a.vehicle.empty() ? std::string_view(a.vehicle) : default_vehicle(sc);
+  ExportOptions opt = export_options(a.firmware, vehicle, a.end, a.fence);  // CLI11 checked the spellings
+  opt.flat_altitude_m = a.flat_altitude_m;
+  if (a.altitude == "home") opt.altitude = AltitudeFrame::home;
+  if (a.altitude == "amsl") opt.altitude = AltitudeFrame::amsl;
+  if (a.altitude == "terrain") opt.altitude = AltitudeFrame::terrain;
+  opt.autopilot = std::any_of(a.formats.begin(), a.formats.end(),
+                              [](const std::string& f) { return autopilot_format(*export_format_from_string(f)); });
+  return opt;
+}
+
+}  // namespace
 
 std::optional<std::string> export_request_problem(const Scenario& sc, const ExportArgs& a) {
   if (a.formats.empty()) {
@@ -25,6 +41,13 @@ std::optional<std::string> export_request_problem(const Scenario& sc, const Expo
     if (needs_origin(*export_format_from_string(f)) && !sc.origin)
       return "scenario '" + sc.name + "' has no origin: add origin: {lat, lon, alt} to export " + f +
              " (WGS84); csv exports local coordinates without one";
+  const ExportOptions opt = options_of(sc, a);
+  if (!opt.autopilot) return std::nullopt;
+  try {  // an altitude frame the firmware does not take
+    (void)altitude_frame(sc, opt);
+  } catch (const ExportError& e) {
+    return std::string(e.what());
+  }
   return std::nullopt;
 }
 
@@ -71,14 +94,7 @@ void add_export_options(CLI::App& cmd, ExportArgs& a, bool formats_required) {
 
 int prepare_exports(const std::string& scenario_path, const Scenario& sc, const Plan& plan, const ExportArgs& a,
                     PreparedExport& out) {
-  const std::string_view vehicle = !a.vehicle.empty() ? std::string_view(a.vehicle) : default_vehicle(sc);
-  ExportOptions opt = export_options(a.firmware, vehicle, a.end, a.fence);  // CLI11 checked the spellings
-  opt.flat_altitude_m = a.flat_altitude_m;
-  if (a.altitude == "home") opt.altitude = AltitudeFrame::home;
-  if (a.altitude == "amsl") opt.altitude = AltitudeFrame::amsl;
-  if (a.altitude == "terrain") opt.altitude = AltitudeFrame::terrain;
-  opt.autopilot = std::any_of(a.formats.begin(), a.formats.end(),
-                              [](const std::string& f) { return autopilot_format(*export_format_from_string(f)); });
+  const ExportOptions opt = options_of(sc, a);
   try {
     const VerifiedExport flights = verified_export(sc, plan, opt);
     out.left_out = flights.left_out;
