@@ -21,6 +21,7 @@ namespace fs = std::filesystem;
 struct Loaded {
   std::string file;
   MapfInstance instance;
+  MapfProblem problem;  // instance.problem(), checked when loaded
 };
 
 // Names with their numbers compared as numbers: ex2 before ex10.
@@ -57,9 +58,10 @@ std::vector<Loaded> load_instances(const std::string& dir, int limit) {
   std::vector<Loaded> all;
   for (const std::string& f : files) {
     const std::string path = (fs::path(dir) / f).string();
-    all.push_back({f, read_mapf_instance(path)});
-    if (const std::string m = mapf_problem_mistake(all.back().instance.problem()); !m.empty())
-      throw InputError(path, 0, "", m);
+    MapfInstance instance = read_mapf_instance(path);
+    MapfProblem problem = instance.problem();
+    if (const std::string m = mapf_problem_mistake(problem); !m.empty()) throw InputError(path, 0, "", m);
+    all.push_back({f, std::move(instance), std::move(problem)});
   }
   std::sort(all.begin(), all.end(), [&](const Loaded& a, const Loaded& b) {
     return a.instance.names.size() != b.instance.names.size() ? a.instance.names.size() < b.instance.names.size()
@@ -133,7 +135,7 @@ MapfBenchReport run_mapf_bench(const std::string& dir, const MapfBenchOptions& o
   std::vector<std::pair<std::string, std::string>> files;
   for (std::size_t k = 0; k < instances.size(); ++k) {
     const MapfInstance& in = instances[k].instance;
-    const MapfProblem problem = in.problem();
+    const MapfProblem& problem = instances[k].problem;
     MapfOptions solver = o.solver;
     solver.stop = solver.stop | StopCondition::time_limit(o.time_limit_s);
     const auto t0 = std::chrono::steady_clock::now();

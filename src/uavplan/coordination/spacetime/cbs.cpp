@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <set>
 #include <tuple>
+#include <utility>
 
 #include "uavplan/coordination/spacetime/mapf_conflicts.h"
 #include "uavplan/coordination/spacetime/space_time_astar.h"
@@ -33,8 +34,8 @@ class ConflictSearch {
  private:
   bool plan_root();
   void paths_of(int node, std::vector<SpaceTimePath>& paths, std::vector<int>& bounds) const;
-  void add_child(int parent, const std::vector<SpaceTimePath>& paths, const std::vector<int>& bounds, int agent, int v,
-                 int u, int t);
+  void add_child(int parent, std::vector<SpaceTimePath>& paths, const std::vector<int>& bounds, int agent, int v, int u,
+                 int t);
   void open(int node);
   int take();
 
@@ -91,8 +92,8 @@ void ConflictSearch::paths_of(int node, std::vector<SpaceTimePath>& paths, std::
 }
 
 // The parent's node with `agent` planned again under its constraints and the new one.
-void ConflictSearch::add_child(int parent, const std::vector<SpaceTimePath>& paths, const std::vector<int>& bounds,
-                               int agent, int v, int u, int t) {
+void ConflictSearch::add_child(int parent, std::vector<SpaceTimePath>& paths, const std::vector<int>& bounds, int agent,
+                               int v, int u, int t) {
   forbidden_.clear(p_.graph.vertex_count);
   const auto forbid = [&](int cv, int cu, int ct) {
     if (cu < 0)
@@ -119,9 +120,9 @@ void ConflictSearch::add_child(int parent, const std::vector<SpaceTimePath>& pat
   c.agent_bound = std::max(bounds[agent], a.lower_bound);
   c.cost = nodes_[parent].cost - (static_cast<int>(paths[agent].size()) - 1) + a.cost;
   c.bound = nodes_[parent].bound - bounds[agent] + c.agent_bound;
-  std::vector<SpaceTimePath> child_paths = paths;
-  child_paths[agent] = a.path;
-  c.conflicts = count_conflicts(child_paths, p_.graph.vertex_count);
+  std::swap(paths[agent], a.path);  // the child's paths, counted in place of a copy of them all
+  c.conflicts = count_conflicts(paths, p_.graph.vertex_count);
+  std::swap(paths[agent], a.path);
   c.path = std::move(a.path);
   nodes_.push_back(std::move(c));
   open(static_cast<int>(nodes_.size()) - 1);
