@@ -13,7 +13,10 @@ struct LocalLayer {
   double window_m = 0.0;  // 0: each UAV's sensor range
 };
 
-// Reads `local` and `window_m` from the mission's parameters; throws std::invalid_argument.
+// Reads `local` and `window_m` from the mission's parameters; throws std::invalid_argument, also
+// for a parameter of the mission's that no one reads.
 LocalLayer local_layer(const MissionContext& ctx);
+// Reads them through `r`, leaving the mission's other parameters to the caller.
+LocalLayer local_layer(const MissionContext& ctx, ParamReader& r);
 
 }  // namespace uavplan

@@ -9,6 +9,8 @@
 
 #include "uavplan/coordination/routes/local_layer.h"
 #include "uavplan/coordination/routes/rolling_window.h"
+#include "uavplan/coordination/routes/route_problem.h"
+#include "uavplan/coordination/routes/space_time_routes.h"
 #include "uavplan/coordination/timing.h"
 #include "uavplan/planning/registry.h"
 #include "uavplan/simulation/vehicle_flight.h"
@@ -18,23 +20,47 @@ namespace {
 
 bool senses(const UavSpec& u) { return u.sensor_range_m.has_value(); }
 
-// The planner's problem for UAV i: its start and goal, a route mission's via points, home.
-Problem uav_problem(const Scenario& sc, const MissionOptions& opt, const GroundPoints& ground, std::size_t i) {
-  const UavSpec& u = sc.uavs[i];
-  Problem pb{u, *u.goal, {}};
-  if (sc.mission.type == MissionType::route) {
-    pb.via = sc.mission.waypoints;
-    pb.via_entry_heading_rad = sc.mission.waypoint_entry_heading_rad;
-  }
-  if (i < ground.home_visits.size() && ground.home_visits[i]) {  // home, its start, ..., its goal, home
-    pb.via.insert(pb.via.begin(), ground.home_visits[i]->first);
-    pb.via.push_back(ground.home_visits[i]->second);
-    pb.via_entry_heading_rad.resize(pb.via.size() - 2);
-    pb.via_entry_heading_rad.insert(pb.via_entry_heading_rad.begin(), std::nullopt);
-    pb.via_entry_heading_rad.push_back(std::nullopt);
-  }
-  pb.seed = opt.seed + i;  // one stream per UAV
-  return pb;
+// How the UAVs without sensors are kept apart: departure delays, space and time together, or
+// (auto) delays and, where they leave a UAV in conflict, space and time when that solves more.
+enum class Deconfliction { automatic, delays, space_time };
+
+struct RoutesOptions {
+  LocalLayer local;
+  Deconfliction deconfliction = Deconfliction::automatic;
+  SpaceTimeRoutesOptions space_time;
+};
+
+RoutesOptions routes_options(const MissionContext& ctx) {
+  ParamReader r(ctx.mission_params, ctx.algorithm);
+  RoutesOptions o;
+  o.local = local_layer(ctx, r);
+  const std::string d = r.text("deconfliction", "auto");
+  if (d == "delays")
+    o.deconfliction = Deconfliction::delays;
+  else if (d == "space_time")
+    o.deconfliction = Deconfliction::space_time;
+  else if (d != "auto")
+    throw std::invalid_argument("planner.params.deconfliction: expected auto, delays or space_time, got '" + d + "'");
+  const std::string m = r.text("space_time_method", "auto");
+  if (!parse_mapf_method(m, o.space_time.method))
+    throw std::invalid_argument("planner.params.space_time_method: expected auto, prioritized, ecbs or cbs, got '" + m +
+                                "'");
+  o.space_time.cell_m = r.number("space_time_cell_m", 0.0, 0.0, 1e6);
+  r.finish();
+  return o;
+}
+
+// The UAVs timed before the sensing ones fly: those without sensors that have a goal.
+std::vector<std::size_t> timed_uavs(const Scenario& sc) {
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < sc.uavs.size(); ++i)
+    if (!senses(sc.uavs[i]) && sc.uavs[i].goal) out.push_back(i);
+  return out;
+}
+
+std::size_t solved_among(const Plan& plan, const std::vector<std::size_t>& which) {
+  return static_cast<std::size_t>(
+      std::count_if(which.begin(), which.end(), [&](std::size_t i) { return plan.uavs[i].status == Status::solved; }));
 }
 
 // The UAVs' routes, planned ahead of their timing on the run's threads (each route is its own
@@ -143,9 +169,12 @@ class RoutesAhead {
 // the earliest that keeps the separation from those timed before it (searched up to a minute
 // plus twice the flights so far). UAVs without sensors also keep clear of the moving obstacles
 // (known in advance to them); UAVs with sensors only plan to (they meet the moving obstacles in
-// the loop). A stop leaves the UAVs done so far complete.
-Committed plan_and_time(const Scenario& sc, const Planner& planner, const MissionOptions& opt,
-                        const GroundPoints& ground, Plan& plan) {
+// the loop). A stop leaves the UAVs done so far complete. With `give_up`, the first UAV that no
+// delay places ends the timing: the UAVs after it keep their routes untimed, failed in conflict
+// (the caller turns to space and time); returns whether it gave up.
+bool plan_and_time(const Scenario& sc, const Planner& planner, const MissionOptions& opt, const GroundPoints& ground,
+                   Plan& plan, bool give_up = false) {
+  bool gave_up = false;
   plan.uavs.reserve(sc.uavs.size());  // `committed` points into it
   RoutesAhead routes(sc, planner, opt, ground);
   Committed committed;
@@ -185,6 +214,12 @@ Committed plan_and_time(const Scenario& sc, const Planner& planner, const Missio
       continue;
     }
     horizon_s += 2.0 * up.route_length_m / u.speed.cruise_mps;
+    if (gave_up && !senses(u)) {
+      up.status = Status::failed;
+      up.reason = Reason::conflict;
+      up.message = "not timed: an earlier UAV found no departure delay";
+      continue;
+    }
     Departure d = earliest_departure(sc, u, up.waypoints, horizon_s, committed, opt.delay_step_s, opt.max_sample_dt_s,
                                      opt.stop, senses(u) ? MovingObstacles::sensed : MovingObstacles::avoided);
     if (d.stopped) {
@@ -202,6 +237,7 @@ Committed plan_and_time(const Scenario& sc, const Planner& planner, const Missio
       up.reason = Reason::conflict;
       up.message = "conflicts with " + d.first.what + " for every departure delay up to " +
                    std::to_string(static_cast<int>(horizon_s)) + " s";
+      gave_up = give_up;
       continue;
     }
     up.trajectory = std::move(d.trajectory);
@@ -209,7 +245,7 @@ Committed plan_and_time(const Scenario& sc, const Planner& planner, const Missio
     committed.emplace_back(&u, &up);
   }
   if (opt.progress) opt.progress(sc.uavs.size(), sc.uavs.size());
-  return committed;
+  return gave_up;
 }
 
 // When a timed UAV departs: the end of its wait at the start.
@@ -293,9 +329,9 @@ void check_flown(const Scenario& sc, const Committed& committed, const SensingUa
 }
 
 // The UAVs with sensors fly their routes in the loop, with the timed ones as objects to sense.
-void fly_sensing(const Scenario& sc, const MissionContext& ctx, const Committed& committed, Plan& plan) {
+void fly_sensing(const Scenario& sc, const MissionContext& ctx, const LocalLayer& layer, const Committed& committed,
+                 Plan& plan) {
   const MissionOptions& opt = ctx.options;
-  const LocalLayer layer = local_layer(ctx);
   const SensingUavs s = sensing_uavs(sc, ctx, plan, layer.window_m);
   if (s.loop.empty()) return;
   RollingWindowOptions rw;
@@ -321,12 +357,65 @@ void fly_sensing(const Scenario& sc, const MissionContext& ctx, const Committed&
   check_flown(sc, committed, s, controller, plan);
 }
 
+// Space and time for the timed UAVs: alone when asked for and no UAV senses (no route of the
+// planner is needed), else over the delays' plan: replacing it when asked for, or in auto where
+// delays left a UAV in conflict and space and time solve more of them.
+void deconflict(const Scenario& sc, const MissionContext& ctx, const RoutesOptions& o, const Planner& planner,
+                Plan& plan) {
+  const std::vector<std::size_t> timed = timed_uavs(sc);
+  const bool sensing = std::any_of(sc.uavs.begin(), sc.uavs.end(), [](const UavSpec& u) { return senses(u); });
+  if (o.deconfliction == Deconfliction::space_time && !sensing) {
+    for (const UavSpec& u : sc.uavs) {
+      UavPlan& up = plan.uavs.emplace_back();
+      up.id = u.id;
+      up.reason = Reason::invalid;
+      up.message = "no goal given";
+    }
+    plan_space_time(sc, ctx, timed, o.space_time, plan);
+    return;
+  }
+  const bool automatic = o.deconfliction == Deconfliction::automatic;
+  if (plan_and_time(sc, planner, ctx.options, ctx.ground, plan, automatic)) {
+    // Delays gave up at the first UAV they could not place: space and time, unless they solve
+    // fewer than delays to the end.
+    Plan together = plan;
+    plan_space_time(sc, ctx, timed, o.space_time, together);
+    if (solved_among(together, timed) == timed.size()) {
+      plan = std::move(together);
+      return;
+    }
+    plan.uavs.clear();
+    plan_and_time(sc, planner, ctx.options, ctx.ground, plan);
+    if (solved_among(together, timed) > solved_among(plan, timed)) {
+      plan = std::move(together);
+      return;
+    }
+    for (const std::size_t i : timed)
+      if (plan.uavs[i].reason == Reason::conflict)
+        plan.uavs[i].message += " (space and time together: " + together.uavs[i].message + ")";
+    return;
+  }
+  const auto in_conflict = [&](std::size_t i) { return plan.uavs[i].reason == Reason::conflict; };
+  if (o.deconfliction == Deconfliction::space_time) {
+    plan_space_time(sc, ctx, timed, o.space_time, plan);
+    return;
+  }
+  for (const std::size_t i : timed)  // delays, asked for
+    if (in_conflict(i))
+      plan.uavs[i].message += "; --set deconfliction=space_time plans the UAVs together in space and time";
+}
+
 }  // namespace
 
 void RoutesMission::plan(const Scenario& sc, const MissionContext& ctx, Plan& plan) const {
+  const RoutesOptions o = routes_options(ctx);
   const auto planner = make_planner(ctx.algorithm, ctx.params);
-  const Committed committed = plan_and_time(sc, *planner, ctx.options, ctx.ground, plan);
-  fly_sensing(sc, ctx, committed, plan);
+  deconflict(sc, ctx, o, *planner, plan);
+  Committed committed;
+  for (std::size_t i = 0; i < sc.uavs.size(); ++i)
+    if (!senses(sc.uavs[i]) && plan.uavs[i].status == Status::solved)
+      committed.emplace_back(&sc.uavs[i], &plan.uavs[i]);
+  fly_sensing(sc, ctx, o.local, committed, plan);
 }
 
 }  // namespace uavplan

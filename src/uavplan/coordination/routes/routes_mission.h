@@ -6,7 +6,9 @@
 // closed loop with P1's rolling-window replanning (rolling_window.h), after the UAVs without
 // sensors are timed (those fly as planned, and the sensing ones see them as moving objects).
 // Mission parameters: `local` (improved_rrt, default, or rrt: the local replanner) and
-// `window_m` (route ahead checked; default the sensor range). Take-off and landing legs are part
+// `window_m` (route ahead checked; default the sensor range); `deconfliction` (auto, default:
+// delays, and space and time where delays leave a conflict and that solves more; delays;
+// space_time, space_time_routes.h) with its `space_time_method` and `space_time_cell_m`. Take-off and landing legs are part
 // of the timed routes; a sensing UAV departs into the loop from its lift-off point once it has
 // climbed there.
 #pragma once
@@ -21,7 +23,9 @@ class RoutesMission final : public Mission {
   explicit RoutesMission(MissionType type) : type_(type) {}
   std::vector<const char*> section_keys() const override;
   void read_section(const Section& mission, const Section& uavs, Scenario& scenario) const override;
-  std::vector<std::string> parameters() const override { return {"local", "window_m"}; }
+  std::vector<std::string> parameters() const override {
+    return {"local", "window_m", "deconfliction", "space_time_method", "space_time_cell_m"};
+  }
   bool times_ground_legs() const override { return true; }
   void plan(const Scenario& scenario, const MissionContext& context, Plan& plan) const override;
   void check_uav(const Scenario& scenario, const UavSpec& uav, const Trajectory& trajectory,

@@ -7,11 +7,13 @@
 #include <tuple>
 #include <utility>
 
-#include "uavplan/coordination/spacetime/mapf_conflicts.h"
 #include "uavplan/coordination/spacetime/space_time_astar.h"
 
 namespace uavplan {
 namespace {
+
+// A path's cost: the time it reaches its goal.
+int path_cost(const SpaceTimePath& p) { return static_cast<int>(p.size()) - 1; }
 
 // A high-level node: its parent, the agent it planned again under one more constraint (the
 // root: every agent), that agent's new path and bound; the rest is the parent's.
@@ -26,23 +28,22 @@ struct HighNode {
 
 class ConflictSearch {
  public:
-  ConflictSearch(const MapfProblem& p, const std::vector<std::vector<int>>& h, double w, const StopCondition& stop)
-      : p_(p), h_(h), w_(w), stop_(stop), n_(static_cast<int>(p.starts.size())) {}
+  ConflictSearch(const SpaceTimeModel& m, double w, const StopCondition& stop, std::uint64_t most_nodes)
+      : m_(m), w_(w), stop_(stop), most_nodes_(most_nodes), n_(m.agent_count()) {}
 
   MapfResult run();
 
  private:
   bool plan_root();
   void paths_of(int node, std::vector<SpaceTimePath>& paths, std::vector<int>& bounds) const;
-  void add_child(int parent, std::vector<SpaceTimePath>& paths, const std::vector<int>& bounds, int agent, int v, int u,
-                 int t);
+  void add_child(int parent, std::vector<SpaceTimePath>& paths, const std::vector<int>& bounds, const AgentStep& step);
   void open(int node);
   int take();
 
-  const MapfProblem& p_;
-  const std::vector<std::vector<int>>& h_;
+  const SpaceTimeModel& m_;
   double w_;
   const StopCondition& stop_;
+  std::uint64_t most_nodes_;
   int n_;
   std::vector<HighNode> nodes_;
   std::vector<SpaceTimePath> root_paths_;
@@ -58,20 +59,19 @@ class ConflictSearch {
 // Each agent alone under no constraint, avoiding the paths of those planned before it.
 bool ConflictSearch::plan_root() {
   HighNode root;
-  avoided_.clear(p_.graph.vertex_count, static_cast<std::size_t>(n_) * 64);
-  forbidden_.clear(p_.graph.vertex_count);
+  avoided_.clear(m_.vertex_count(), static_cast<std::size_t>(n_) * 64);
+  forbidden_.clear(m_.vertex_count());
   for (int i = 0; i < n_; ++i) {
-    const SpaceTimeQuery q{p_.starts[i], p_.goals[i], &h_[i], &forbidden_, &avoided_, w_};
-    SpaceTimeAnswer a = search_.find(p_.graph, q, stop_);
+    SpaceTimeAnswer a = m_.plan(i, forbidden_, &avoided_, w_, search_, stop_);
     expanded_ += a.expanded;
     if (!a.found) return false;
-    avoided_.add_path(a.path);
+    m_.add_path(i, a.path, avoided_);
     root.cost += a.cost;
     root.bound += a.lower_bound;
     root_bounds_.push_back(a.lower_bound);
     root_paths_.push_back(std::move(a.path));
   }
-  root.conflicts = count_conflicts(root_paths_, p_.graph.vertex_count);
+  root.conflicts = m_.count_conflicts(root_paths_);
   nodes_.push_back(std::move(root));
   open(0);
   return true;
@@ -92,36 +92,36 @@ void ConflictSearch::paths_of(int node, std::vector<SpaceTimePath>& paths, std::
 }
 
 // The parent's node with `agent` planned again under its constraints and the new one.
-void ConflictSearch::add_child(int parent, std::vector<SpaceTimePath>& paths, const std::vector<int>& bounds, int agent,
-                               int v, int u, int t) {
-  forbidden_.clear(p_.graph.vertex_count);
+void ConflictSearch::add_child(int parent, std::vector<SpaceTimePath>& paths, const std::vector<int>& bounds,
+                               const AgentStep& step) {
+  const int agent = step.agent;
+  forbidden_.clear(m_.vertex_count());
   const auto forbid = [&](int cv, int cu, int ct) {
     if (cu < 0)
       forbidden_.add_vertex(cv, ct);
     else
       forbidden_.add_move(cv, cu, ct);
   };
-  forbid(v, u, t);
+  forbid(step.v, step.u, step.t);
   for (int k = parent; k > 0; k = nodes_[k].parent)
     if (nodes_[k].agent == agent) forbid(nodes_[k].v, nodes_[k].u, nodes_[k].t);
-  avoided_.clear(p_.graph.vertex_count, static_cast<std::size_t>(n_) * 64);
+  avoided_.clear(m_.vertex_count(), static_cast<std::size_t>(n_) * 64);
   for (int i = 0; i < n_; ++i)
-    if (i != agent) avoided_.add_path(paths[i]);
-  const SpaceTimeQuery q{p_.starts[agent], p_.goals[agent], &h_[agent], &forbidden_, &avoided_, w_};
-  SpaceTimeAnswer a = search_.find(p_.graph, q, stop_);
+    if (i != agent) m_.add_path(i, paths[i], avoided_);
+  SpaceTimeAnswer a = m_.plan(agent, forbidden_, &avoided_, w_, search_, stop_);
   expanded_ += a.expanded;
   if (!a.found) return;  // this branch has no solution (or the stop came)
   HighNode c;
   c.parent = parent;
   c.agent = agent;
-  c.v = v;
-  c.u = u;
-  c.t = t;
+  c.v = step.v;
+  c.u = step.u;
+  c.t = step.t;
   c.agent_bound = std::max(bounds[agent], a.lower_bound);
-  c.cost = nodes_[parent].cost - (static_cast<int>(paths[agent].size()) - 1) + a.cost;
+  c.cost = nodes_[parent].cost - path_cost(paths[agent]) + a.cost;
   c.bound = nodes_[parent].bound - bounds[agent] + c.agent_bound;
   std::swap(paths[agent], a.path);  // the child's paths, counted in place of a copy of them all
-  c.conflicts = count_conflicts(paths, p_.graph.vertex_count);
+  c.conflicts = m_.count_conflicts(paths);
   std::swap(paths[agent], a.path);
   c.path = std::move(a.path);
   nodes_.push_back(std::move(c));
@@ -155,38 +155,34 @@ MapfResult ConflictSearch::run() {
   const bool rooted = plan_root();
   std::vector<SpaceTimePath> paths;
   std::vector<int> bounds;
-  while (rooted && !by_bound_.empty() && !stop_.should_stop()) {
+  while (rooted && !by_bound_.empty() && !stop_.should_stop() &&
+         (most_nodes_ == 0 || r.high_level_nodes < most_nodes_)) {
     r.lower_bound = by_bound_.begin()->first;
     const int id = take();
     ++r.high_level_nodes;
     paths_of(id, paths, bounds);
-    const std::optional<MapfConflict> c = first_conflict(paths, p_.graph.vertex_count);
+    const std::optional<PathConflict> c = m_.first_conflict(paths);
     if (!c) {
       r.solved = true;
       r.paths = std::move(paths);
       break;
     }
-    if (c->swap()) {  // a moves v -> u, b moves u -> v in step t
-      add_child(id, paths, bounds, c->a, c->v, c->u, c->t);
-      add_child(id, paths, bounds, c->b, c->u, c->v, c->t);
-    } else {
-      add_child(id, paths, bounds, c->a, c->v, -1, c->t);
-      add_child(id, paths, bounds, c->b, c->v, -1, c->t);
-    }
+    add_child(id, paths, bounds, c->a);
+    add_child(id, paths, bounds, c->b);
   }
   r.low_level_expansions = expanded_;
   if (!r.solved)
     r.why = stop_.should_stop() ? "stopped"
-            : rooted            ? "no solution: every branch of constraints is closed"
-                                : "an agent cannot reach its goal";
+            : !rooted           ? "an agent cannot reach its goal"
+            : by_bound_.empty() ? "no solution: every branch of constraints is closed"
+                                : "no solution within " + std::to_string(most_nodes_) + " high-level nodes";
   return r;
 }
 
 }  // namespace
 
-MapfResult solve_cbs(const MapfProblem& problem, const std::vector<std::vector<int>>& lone_h, double w,
-                     const StopCondition& stop) {
-  ConflictSearch search(problem, lone_h, w, stop);
+MapfResult solve_cbs(const SpaceTimeModel& model, double w, const StopCondition& stop, std::uint64_t most_nodes) {
+  ConflictSearch search(model, w, stop, most_nodes);
   MapfResult r = search.run();
   char name[32];
   std::snprintf(name, sizeof name, "ecbs w=%g", w);

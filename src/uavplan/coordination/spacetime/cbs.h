@@ -8,10 +8,11 @@
 #pragma once
 
 #include "uavplan/coordination/spacetime/mapf.h"
+#include "uavplan/coordination/spacetime/space_time_model.h"
 
 namespace uavplan {
 
-MapfResult solve_cbs(const MapfProblem& problem, const std::vector<std::vector<int>>& lone_h, double w,
-                     const StopCondition& stop);
+// At most `most_nodes` high-level nodes (0: no limit) within `stop`.
+MapfResult solve_cbs(const SpaceTimeModel& model, double w, const StopCondition& stop, std::uint64_t most_nodes = 0);
 
 }  // namespace uavplan

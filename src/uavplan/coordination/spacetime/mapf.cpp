@@ -33,6 +33,36 @@ std::string mapf_problem_mistake(const MapfProblem& p) {
 
 namespace {
 
+// Grid MAPF as a space-time model: one search per agent to its goal, vertex and swap conflicts.
+class GridModel final : public SpaceTimeModel {
+ public:
+  GridModel(const MapfProblem& p, const std::vector<std::vector<int>>& h) : p_(p), h_(h) {}
+  int agent_count() const override { return static_cast<int>(p_.starts.size()); }
+  int vertex_count() const override { return p_.graph.vertex_count; }
+  SpaceTimeAnswer plan(int i, const SpaceTimeTable& forbidden, const SpaceTimeTable* avoided, double w,
+                       SpaceTimeSearch& search, const StopCondition& stop) const override {
+    const SpaceTimeQuery q{p_.starts[i], p_.goals[i], &h_[i], &forbidden, avoided, w};
+    return search.find(p_.graph, q, stop);
+  }
+  int lone_cost(int i) const override { return h_[i][p_.starts[i]]; }
+  void add_path(int /*agent*/, const SpaceTimePath& path, SpaceTimeTable& table) const override {
+    table.add_path(path);
+  }
+  std::optional<PathConflict> first_conflict(const std::vector<SpaceTimePath>& paths) const override {
+    const std::optional<MapfConflict> c = uavplan::first_conflict(paths, p_.graph.vertex_count);
+    if (!c) return std::nullopt;
+    if (c->swap()) return PathConflict{{c->a, c->v, c->u, c->t}, {c->b, c->u, c->v, c->t}};  // a: v -> u, b: u -> v
+    return PathConflict{{c->a, c->v, -1, c->t}, {c->b, c->v, -1, c->t}};
+  }
+  int count_conflicts(const std::vector<SpaceTimePath>& paths) const override {
+    return uavplan::count_conflicts(paths, p_.graph.vertex_count);
+  }
+
+ private:
+  const MapfProblem& p_;
+  const std::vector<std::vector<int>>& h_;
+};
+
 void finish(MapfResult& r) {
   if (!r.solved) return;
   r.sum_of_costs = sum_of_costs(r.paths);
@@ -42,13 +72,13 @@ void finish(MapfResult& r) {
 // ECBS first, which proves its bound, with three quarters of the time left (all of it without a
 // time limit); where it finds nothing in that, prioritised planning with the rest: a solution
 // without a proven bound, said so in its method.
-MapfResult solve_automatic(const MapfProblem& problem, const std::vector<std::vector<int>>& h, const MapfOptions& o) {
+MapfResult solve_automatic(const SpaceTimeModel& model, const MapfOptions& o) {
   constexpr double kBoundedShare = 0.75;
   const StopCondition first =
       o.stop.has_time_limit() ? o.stop | StopCondition::time_limit(kBoundedShare * o.stop.seconds_left()) : o.stop;
-  MapfResult bounded = solve_cbs(problem, h, o.w, first);
+  MapfResult bounded = solve_cbs(model, o.w, first);
   if (bounded.solved || o.stop.should_stop()) return bounded;
-  MapfResult quick = solve_prioritized(problem, h, o.orders, o.stop);
+  MapfResult quick = solve_prioritized(model, o.orders, o.stop);
   quick.low_level_expansions += bounded.low_level_expansions;
   quick.high_level_nodes = bounded.high_level_nodes;
   quick.lower_bound = bounded.lower_bound;
@@ -74,22 +104,27 @@ MapfResult solve_mapf(const MapfProblem& problem, const MapfOptions& o) {
     }
     lone_sum += d;
   }
+  MapfResult r = solve_space_time(GridModel(problem, h), o);
+  r.lower_bound = std::max(r.lower_bound, lone_sum);
+  return r;
+}
+
+MapfResult solve_space_time(const SpaceTimeModel& model, const MapfOptions& o) {
   MapfResult r;
   switch (o.method) {
     case MapfMethod::prioritized:
-      r = solve_prioritized(problem, h, o.orders, o.stop);
+      r = solve_prioritized(model, o.orders, o.stop);
       break;
     case MapfMethod::cbs:
-      r = solve_cbs(problem, h, 1.0, o.stop);
+      r = solve_cbs(model, 1.0, o.stop);
       break;
     case MapfMethod::ecbs:
-      r = solve_cbs(problem, h, o.w, o.stop);
+      r = solve_cbs(model, o.w, o.stop);
       break;
     case MapfMethod::automatic:
-      r = solve_automatic(problem, h, o);
+      r = solve_automatic(model, o);
       break;
   }
-  r.lower_bound = std::max(r.lower_bound, lone_sum);
   finish(r);
   return r;
 }

@@ -54,6 +54,10 @@ std::string mapf_problem_mistake(const MapfProblem& problem);
 // Solves `problem`; std::invalid_argument for a mistaken problem or option.
 MapfResult solve_mapf(const MapfProblem& problem, const MapfOptions& options);
 
+class SpaceTimeModel;
+// Solves a problem given as a space-time model (space_time_model.h) by options.method.
+MapfResult solve_space_time(const SpaceTimeModel& model, const MapfOptions& options);
+
 const char* to_string(MapfMethod m);
 // "auto", "prioritized", "ecbs", "cbs"; false for another word.
 bool parse_mapf_method(const std::string& word, MapfMethod& out);

@@ -7,30 +7,27 @@
 
 namespace uavplan {
 
-MapfResult solve_prioritized(const MapfProblem& problem, const std::vector<std::vector<int>>& lone_h, int orders,
-                             const StopCondition& stop) {
-  const int n = static_cast<int>(problem.starts.size());
+MapfResult solve_prioritized(const SpaceTimeModel& model, int orders, const StopCondition& stop) {
+  const int n = model.agent_count();
   MapfResult r;
   // First order: the longest lone route first (it has the fewest ways round the others).
   std::vector<int> order(static_cast<std::size_t>(n));
   std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(),
-                   [&](int a, int b) { return lone_h[a][problem.starts[a]] > lone_h[b][problem.starts[b]]; });
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return model.lone_cost(a) > model.lone_cost(b); });
   SpaceTimeSearch search;
   SpaceTimeTable taken;
   std::vector<SpaceTimePath> paths(static_cast<std::size_t>(n));
   for (int k = 0; k < orders && !stop.should_stop(); ++k) {
-    taken.clear(problem.graph.vertex_count, static_cast<std::size_t>(n) * 64);
+    taken.clear(model.vertex_count(), static_cast<std::size_t>(n) * 64);
     int failed = -1;
     for (const int i : order) {
-      const SpaceTimeQuery q{problem.starts[i], problem.goals[i], &lone_h[i], &taken, nullptr, 1.0};
-      SpaceTimeAnswer a = search.find(problem.graph, q, stop);
+      SpaceTimeAnswer a = model.plan(i, taken, nullptr, 1.0, search, stop);
       r.low_level_expansions += a.expanded;
       if (!a.found) {
         failed = i;
         break;
       }
-      taken.add_path(a.path);
+      model.add_path(i, a.path, taken);
       paths[i] = std::move(a.path);
     }
     if (failed < 0) {

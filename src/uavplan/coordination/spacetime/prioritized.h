@@ -5,11 +5,10 @@
 #pragma once
 
 #include "uavplan/coordination/spacetime/mapf.h"
+#include "uavplan/coordination/spacetime/space_time_model.h"
 
 namespace uavplan {
 
-// `lone_h[i]`: distances_to(graph, goals[i]).
-MapfResult solve_prioritized(const MapfProblem& problem, const std::vector<std::vector<int>>& lone_h, int orders,
-                             const StopCondition& stop);
+MapfResult solve_prioritized(const SpaceTimeModel& model, int orders, const StopCondition& stop);
 
 }  // namespace uavplan

@@ -4,6 +4,8 @@
 #include <climits>
 #include <cmath>
 
+#include "uavplan/vehicle/uav.h"
+
 namespace uavplan {
 namespace {
 
@@ -17,13 +19,14 @@ SpaceTimeAnswer SpaceTimeSearch::find(const SpaceTimeGraph& g, const SpaceTimeQu
   SpaceTimeAnswer a;
   const std::vector<int>& h = *q.h;
   const SpaceTimeTable& forbidden = *q.forbidden;
-  const int goal_after = forbidden.last_time_at(q.goal);
-  if (h[q.start] < 0 || goal_after == INT_MAX || forbidden.at(q.start, 0) > 0) return a;
+  const int goal_after = q.stays ? forbidden.last_time_at(q.goal) : -1;
+  if (h[q.start] < 0 || goal_after == INT_MAX || forbidden.at(q.start, q.start_t) > 0) return a;
   // After the last forbidden time the table no longer changes (stays only): reaching a vertex
   // later is never better than reaching it then, so states past it are told apart by vertex
   // alone. The state space is finite and a walled-in goal is known in one sweep of the graph.
   const int still = std::min(std::max(forbidden.last_time(), 0) + 1, SpaceTimeTable::kLastTime);
-  const std::size_t f_slots = static_cast<std::size_t>(still) + 2 * static_cast<std::size_t>(g.vertex_count) + 2;
+  const std::size_t f_slots =
+      static_cast<std::size_t>(std::max(still, q.start_t)) + 2 * static_cast<std::size_t>(g.vertex_count) + 2;
   if (live_.size() < f_slots) {
     live_.resize(f_slots, 0);
     later_.resize(f_slots);
@@ -36,11 +39,18 @@ SpaceTimeAnswer SpaceTimeSearch::find(const SpaceTimeGraph& g, const SpaceTimeQu
   // every state that reaches the goal too early.
   const int earliest_end = goal_after + 1;
   const auto f_of = [&](int v, int t) { return std::max(t + h[v], earliest_end); };
-  int f_min = f_of(q.start, 0);
+  int f_min = f_of(q.start, q.start_t);
   bound_ = static_cast<int>(std::floor(q.w * f_min + 1e-9));
   int f_top = f_min;  // highest f pushed: the buckets to empty afterwards
-  generated_.insert(state_key(q.start, 0));
-  push(q.start, 0, -1, 0, f_min);
+  generated_.insert(state_key(q.start, std::min(q.start_t, still)));
+  push({q.start, q.start_t, -1, 0, f_min, -1});
+  const bool turns = q.position != nullptr && q.max_turn_rad < kPi;
+  // Whether the move from node `cur` to v keeps the turn limit.
+  const auto turn_ok = [&](const Node& cur, int v) {
+    if (!turns || v == cur.v) return true;
+    const Vec3 in = cur.came_from >= 0 ? Vec3((*q.position)[cur.v] - (*q.position)[cur.came_from]) : q.heading;
+    return in.isZero() || turn_within(in, (*q.position)[v] - (*q.position)[cur.v], q.max_turn_rad);
+  };
   int found = -1;
   while (!focal_.empty()) {
     if ((a.expanded & 1023u) == 0 && stop.should_stop()) break;
@@ -55,13 +65,13 @@ SpaceTimeAnswer SpaceTimeSearch::find(const SpaceTimeGraph& g, const SpaceTimeQu
     if (cur.t < SpaceTimeTable::kLastTime) {
       const int t1 = cur.t + 1;
       const auto expand = [&](int v) {
-        if (h[v] < 0 || forbidden.at(v, t1) > 0 || (v != cur.v && forbidden.moves(cur.v, v, cur.t) > 0)) return;
+        if (h[v] < 0 || forbidden.at(v, t1) > 0 || forbidden.moves(cur.v, v, cur.t) > 0 || !turn_ok(cur, v)) return;
         if (!generated_.insert(state_key(v, std::min(t1, still)))) return;
         int meetings = cur.meetings;
-        if (q.avoided) meetings += q.avoided->at(v, t1) + (v != cur.v ? q.avoided->moves(cur.v, v, cur.t) : 0);
+        if (q.avoided) meetings += q.avoided->at(v, t1) + q.avoided->moves(cur.v, v, cur.t);
         const int f = f_of(v, t1);
         f_top = std::max(f_top, f);
-        push(v, t1, n, meetings, f);
+        push({v, t1, n, meetings, f, v == cur.v ? cur.came_from : cur.v});
       };
       expand(cur.v);  // wait
       for (int k = g.first[cur.v]; k < g.first[cur.v + 1]; ++k) expand(g.next[k]);
@@ -72,7 +82,7 @@ SpaceTimeAnswer SpaceTimeSearch::find(const SpaceTimeGraph& g, const SpaceTimeQu
   if (found >= 0) {
     a.found = true;
     a.path = path_to(found);
-    a.cost = static_cast<int>(a.path.size()) - 1;
+    a.cost = nodes_[found].t;
     a.lower_bound = std::min(f_min, a.cost);
     a.meetings = nodes_[found].meetings;
   }
@@ -83,9 +93,10 @@ SpaceTimeAnswer SpaceTimeSearch::find(const SpaceTimeGraph& g, const SpaceTimeQu
   return a;
 }
 
-void SpaceTimeSearch::push(int v, int t, int parent, int meetings, int f) {
+void SpaceTimeSearch::push(const Node& node) {
   const int id = static_cast<int>(nodes_.size());
-  nodes_.push_back({v, t, parent, meetings, f});
+  nodes_.push_back(node);
+  const int f = node.f;
   ++live_[f];
   if (f > bound_) {
     later_[f].push_back(id);

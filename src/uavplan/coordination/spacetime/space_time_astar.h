@@ -16,6 +16,8 @@
 #include "uavplan/coordination/spacetime/space_time_graph.h"
 #include "uavplan/coordination/spacetime/space_time_table.h"
 #include "uavplan/core/stop.h"
+#include "uavplan/core/units.h"
+#include "uavplan/core/vec.h"
 
 namespace uavplan {
 
@@ -25,11 +27,20 @@ struct SpaceTimeQuery {
   const SpaceTimeTable* forbidden = nullptr;  // never met
   const SpaceTimeTable* avoided = nullptr;    // met as seldom as the bound allows; may be null
   double w = 1.0;                             // the path is at most w times the shortest
+  int start_t = 0;                            // the time it is at `start`
+  bool stays = true;  // it stays at the goal for ever (else it only has to reach it: a via point)
+  // A turn limit between consecutive moves (waits between them do not count), with the vertices'
+  // positions and the direction it arrives at `start` with (zero: any). A state keeps the
+  // direction of the first path that reached it: every path found keeps the limit, but a path
+  // that needs another direction into a state already reached may be missed.
+  const std::vector<Vec3>* position = nullptr;
+  double max_turn_rad = kPi;
+  Vec3 heading = Vec3::Zero();
 };
 
 struct SpaceTimeAnswer {
   bool found = false;
-  SpaceTimePath path;   // ends where the agent reaches its goal to stay
+  SpaceTimePath path;   // from start_t, ends where the agent reaches its goal (to stay)
   int cost = 0;         // path.size() - 1
   int lower_bound = 0;  // no path that keeps off `forbidden` is shorter
   int meetings = 0;     // entries of `avoided` met
@@ -45,8 +56,9 @@ class SpaceTimeSearch {
  private:
   struct Node {
     int v, t, parent, meetings, f;
+    int came_from;  // the vertex its last move left (-1: none yet)
   };
-  void push(int v, int t, int parent, int meetings, int f);
+  void push(const Node& n);
   int pop_focal();
   void raise_bound(int bound);
   bool worse(int a, int b) const;

@@ -33,6 +33,8 @@ class SpaceTimeTable {
   void add_move(int u, int v, int t);
   // `v` from time t on, for ever.
   void add_stay(int v, int t);
+  // The move u -> v (u == v: a wait) in every step from t on.
+  void add_move_stay(int u, int v, int t);
   // A whole path, as what another agent must not meet: its vertices at their times, its moves
   // reversed (a swap), and its last vertex from its end on.
   void add_path(const SpaceTimePath& path);
@@ -40,9 +42,13 @@ class SpaceTimeTable {
   int at(int v, int t) const {
     return vertex_.get(vertex_key(v, t)) + (stays_from_.empty() || t < stays_from_[v] ? 0 : 1);
   }
-  int moves(int u, int v, int t) const { return moves_.get(move_key(u, v, t)); }
-  // The last time `v` is taken (INT_MAX when some agent stays there for ever; -1 when never):
-  // an agent may end at `v` only after it.
+  // Entries on the move u -> v in step t (u == v: waiting at u from t to t + 1).
+  int moves(int u, int v, int t) const {
+    const int stayed = move_stays_.size() == 0 ? 0 : move_stays_.get(move_key(u, v, 0));
+    return moves_.get(move_key(u, v, t)) + (stayed > 0 && t + 1 >= stayed ? 1 : 0);
+  }
+  // The last time `v` is taken or waiting there is forbidden (INT_MAX when for ever; -1 when
+  // never): an agent may end at `v` only after it.
   int last_time_at(int v) const;
   // The last time of any entry (stays count from their start): after it only stays remain.
   int last_time() const { return last_time_; }
@@ -57,12 +63,18 @@ class SpaceTimeTable {
            static_cast<std::uint64_t>(static_cast<std::uint32_t>(u)) << 20 | static_cast<std::uint32_t>(v);
   }
 
+  void note_taken(int v, int t);
+  void close_end(int v);
+
   int vertex_count_ = 0;
   FlatCounts vertex_, moves_;
+  FlatCounts move_stays_;        // move key at time 0 -> first time + 1
   std::vector<int> stays_from_;  // INT_MAX where none; sized on the first stay
   std::vector<int> stayed_;      // vertices with a stay, to reset
   std::vector<int> last_at_;     // last time each vertex is taken; sized lazily
   std::vector<int> touched_;
+  std::vector<char> ended_;       // waiting there is forbidden from some time on; sized lazily
+  std::vector<int> closed_ends_;  // vertices marked in ended_, to reset
   int last_time_ = -1;
 };
 

@@ -1,0 +1,391 @@
+#include "uavplan/coordination/spacetime/uav_lattice.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "uavplan/coordination/spacetime/mapf.h"
+#include "uavplan/core/geometry.h"
+
+namespace uavplan {
+namespace {
+
+constexpr int kWait = 13;  // direction index of (0, 0, 0)
+
+int direction_index(const Eigen::Vector3i& d) { return (d.z() + 1) * 9 + (d.y() + 1) * 3 + (d.x() + 1); }
+Eigen::Vector3i direction(int index) { return {index % 3 - 1, index / 3 % 3 - 1, index / 9 - 1}; }
+
+double pitch_of(const Eigen::Vector3i& d) {
+  return std::atan2(std::abs(static_cast<double>(d.z())), std::hypot(d.x(), d.y()));
+}
+
+struct Cells {
+  const UavLattice& l;
+  bool inside(const Eigen::Vector3i& c) const {
+    return c.x() >= 0 && c.y() >= 0 && c.z() >= 0 && c.x() < l.nx && c.y() < l.ny && c.z() < l.nz;
+  }
+  int vertex(const Eigen::Vector3i& c) const { return (c.z() * l.ny + c.y()) * l.nx + c.x(); }
+  Eigen::Vector3i cell(int v) const { return {v % l.nx, v / l.nx % l.ny, v / (l.nx * l.ny)}; }
+};
+
+// The cell at or below p on every axis.
+Eigen::Vector3i cell_below(const UavLattice& l, const Vec3& p) {
+  const Vec3 f = ((p - l.origin) / l.cell_m).array().floor().matrix();
+  return f.cast<int>();
+}
+
+// The lattice's cells with their positions, free where a body fits and below the ceiling.
+void place_cells(const World& world, const UavLatticeOptions& o, UavLattice& l, std::vector<double>& clear) {
+  const Aabb& b = world.bounds();
+  const Vec3 size = b.max - b.min;
+  const auto count = [&](double s) { return std::max(1, static_cast<int>(std::floor(s / l.cell_m)) + 1); };
+  l.nx = count(size.x());
+  l.ny = count(size.y());
+  l.nz = count(size.z());
+  const std::uint64_t cells = static_cast<std::uint64_t>(l.nx) * l.ny * l.nz;
+  if (cells > static_cast<std::uint64_t>(SpaceTimeTable::kMostVertices))
+    throw std::invalid_argument("a space-time lattice of " + std::to_string(l.nx) + " x " + std::to_string(l.ny) +
+                                " x " + std::to_string(l.nz) + " cells is more than " +
+                                std::to_string(SpaceTimeTable::kMostVertices) + "; set a larger space_time_cell_m");
+  // Centred in the bounds: the cells' span is (n - 1) cells.
+  l.origin = b.min + 0.5 * (size - l.cell_m * Vec3(l.nx - 1, l.ny - 1, l.nz - 1));
+  const double cap = o.body_m + std::sqrt(3.0) * l.cell_m;
+  l.position.resize(static_cast<std::size_t>(cells));
+  clear.assign(static_cast<std::size_t>(cells), -1.0);  // < 0: not a free cell
+  for (int k = 0; k < l.nz; ++k)
+    for (int j = 0; j < l.ny; ++j)
+      for (int i = 0; i < l.nx; ++i) {
+        const int v = (k * l.ny + j) * l.nx + i;
+        const Vec3 p = l.origin + l.cell_m * Vec3(i, j, k);
+        l.position[v] = p;
+        if (!world.in_bounds(p) || p.z() > o.ceiling_z) continue;
+        const double c = world.clearance(p, cap);
+        if (c >= o.body_m) clear[v] = c;
+      }
+}
+
+// Whether the segment a -> b keeps the body clear, from the clearance at a when that suffices.
+bool edge_clear(const World& world, const Vec3& a, double clear_a, const Vec3& b, double body_m) {
+  if (clear_a >= body_m + (b - a).norm()) return true;  // every point of it is within its length of a
+  return world.segment_valid(a, b, body_m);
+}
+
+}  // namespace
+
+// The direction of the path's last move (`start` when it has none).
+Vec3 LatticeAgents::arrival_direction(const SpaceTimePath& path, const Vec3& start) const {
+  for (std::size_t k = path.size(); k-- > 1;)
+    if (path[k] != path[k - 1]) return lattice_.position[path[k]] - lattice_.position[path[k - 1]];
+  return start;
+}
+
+double lattice_cell_m(const Aabb& bounds, double need_m) {
+  const Vec3 size = (bounds.max - bounds.min).cwiseMax(Vec3::Constant(1e-9));
+  const double coarse = std::cbrt(size.x() * size.y() * size.z() / kLatticeCells);
+  return std::max(1.05 * need_m, coarse);
+}
+
+UavLattice build_uav_lattice(const World& world, std::span<const Vec3> points, const UavLatticeOptions& o,
+                             const StopCondition& stop) {
+  UavLattice l;
+  l.cell_m = o.cell_m > 0.0 ? o.cell_m : lattice_cell_m(world.bounds(), o.need_m);
+  std::vector<double> clear;
+  place_cells(world, o, l, clear);
+  const int cells = l.cell_count();
+  if (static_cast<std::uint64_t>(cells) + points.size() > static_cast<std::uint64_t>(SpaceTimeTable::kMostVertices))
+    throw std::invalid_argument("too many vertices for a space-time lattice; set a larger space_time_cell_m");
+  const Cells at{l};
+  std::vector<int> dirs;  // the 26 directions a UAV may fly (its climb limit)
+  for (int d = 0; d < 27; ++d)
+    if (d != kWait && pitch_of(direction(d)) <= o.max_climb_rad + 1e-9) dirs.push_back(d);
+  // Neighbours of each vertex, built as lists, then packed into compressed rows.
+  std::vector<std::vector<int>> next(static_cast<std::size_t>(cells) + points.size());
+  for (int v = 0; v < cells; ++v) {
+    if ((v & 4095) == 0 && stop.should_stop()) throw std::runtime_error("stopped");
+    if (clear[v] < 0.0) continue;
+    const Eigen::Vector3i c = at.cell(v);
+    for (const int d : dirs) {
+      const Eigen::Vector3i n = c + direction(d);
+      if (!at.inside(n)) continue;
+      const int u = at.vertex(n);
+      if (clear[u] >= 0.0 && edge_clear(world, l.position[v], clear[v], l.position[u], o.body_m)) next[v].push_back(u);
+    }
+  }
+  const double reach = std::sqrt(3.0) * l.cell_m;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const int pv = cells + static_cast<int>(i);
+    const Vec3& p = points[i];
+    l.position.push_back(p);
+    const Eigen::Vector3i lo = cell_below(l, p) - Eigen::Vector3i::Ones();
+    for (int dz = 0; dz < 4; ++dz)
+      for (int dy = 0; dy < 4; ++dy)
+        for (int dx = 0; dx < 4; ++dx) {
+          const Eigen::Vector3i n = lo + Eigen::Vector3i(dx, dy, dz);
+          if (!at.inside(n)) continue;
+          const int u = at.vertex(n);
+          const Vec3 step = l.position[u] - p;
+          if (clear[u] < 0.0 || step.norm() > reach || step.norm() < 1e-9) continue;
+          if (std::atan2(std::abs(step.z()), step.head<2>().norm()) > o.max_climb_rad + 1e-9) continue;
+          if (!world.segment_valid(p, l.position[u], o.body_m)) continue;
+          next[pv].push_back(u);
+          next[u].push_back(pv);
+        }
+    for (std::size_t k = 0; k < i; ++k) {  // points near one another see each other directly
+      const Vec3 step = points[k] - p;
+      if (step.norm() > reach || step.norm() < 1e-9) continue;
+      if (std::atan2(std::abs(step.z()), step.head<2>().norm()) > o.max_climb_rad + 1e-9) continue;
+      if (!world.segment_valid(p, points[k], o.body_m)) continue;
+      next[pv].push_back(cells + static_cast<int>(k));
+      next[cells + static_cast<int>(k)].push_back(pv);
+    }
+  }
+  l.graph.vertex_count = static_cast<int>(next.size());
+  l.graph.first.assign(next.size() + 1, 0);
+  for (std::size_t v = 0; v < next.size(); ++v) {
+    std::sort(next[v].begin(), next[v].end());
+    l.graph.first[v + 1] = l.graph.first[v] + static_cast<int>(next[v].size());
+    for (const int u : next[v]) {
+      l.graph.next.push_back(u);
+      l.longest_edge_m = std::max(l.longest_edge_m, (l.position[u] - l.position[v]).norm());
+    }
+  }
+  return l;
+}
+
+LatticeAgents::LatticeAgents(const UavLattice& lattice, std::vector<LatticeAgent> agents, double need_m)
+    : lattice_(lattice), agents_(std::move(agents)), need_m_(need_m), patterns_(27) {
+  reach_m_ = need_m_ + std::max(lattice_.longest_edge_m, std::sqrt(3.0) * lattice_.cell_m);
+  for (const LatticeAgent& a : agents_)
+    for (const int t : a.targets) to_target_[t];
+  const std::size_t targets = to_target_.size();
+  const std::uint64_t bytes = sizeof(int) * static_cast<std::uint64_t>(targets) * lattice_.graph.vertex_count;
+  if (bytes > kMostDistanceTableBytes)
+    throw std::invalid_argument(
+        std::to_string(targets) + " distinct targets on a lattice of " + std::to_string(lattice_.graph.vertex_count) +
+        " vertices need " + std::to_string(bytes >> 20) + " MiB of distance tables; set a larger space_time_cell_m");
+  for (auto& [t, h] : to_target_) h = distances_to(lattice_.graph, t);
+  for (const LatticeAgent& a : agents_) {
+    int cost = 0, from = a.start;
+    for (const int t : a.targets) {
+      const int d = to_target_.at(t)[from];
+      if (d < 0) {
+        cost = -1;
+        break;
+      }
+      cost += d;
+      from = t;
+    }
+    lone_.push_back(cost);
+  }
+}
+
+// Leg after leg; each starts where and when the one before ended.
+SpaceTimeAnswer LatticeAgents::plan(int agent, const SpaceTimeTable& forbidden, const SpaceTimeTable* avoided, double w,
+                                    SpaceTimeSearch& search, const StopCondition& stop) const {
+  const LatticeAgent& a = agents_[agent];
+  SpaceTimeAnswer out;
+  out.path.push_back(a.start);
+  for (std::size_t k = 0; k < a.targets.size(); ++k) {
+    SpaceTimeQuery q{out.path.back(), a.targets[k], &to_target_.at(a.targets[k]), &forbidden, avoided, w};
+    q.start_t = static_cast<int>(out.path.size()) - 1;
+    q.stays = k + 1 == a.targets.size();
+    q.position = &lattice_.position;
+    q.max_turn_rad = a.max_turn_rad;
+    q.heading = arrival_direction(out.path, a.heading);
+    SpaceTimeAnswer leg = search.find(lattice_.graph, q, stop);
+    out.expanded += leg.expanded;
+    if (!leg.found) {
+      out.found = false;
+      out.path.clear();
+      return out;
+    }
+    out.path.insert(out.path.end(), leg.path.begin() + 1, leg.path.end());
+    out.meetings += leg.meetings;
+    out.lower_bound = leg.lower_bound;  // the last leg's, from where the legs before left it
+  }
+  out.found = true;
+  out.cost = static_cast<int>(out.path.size()) - 1;
+  out.lower_bound = std::min(out.lower_bound, out.cost);
+  return out;
+}
+
+bool LatticeAgents::moves_conflict(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1) const {
+  return point_segment_distance(Vec3::Zero(), a0 - b0, a1 - b1) < need_m_;
+}
+
+// A lattice direction's conflicts, as offsets from its start cell, measured once at the origin.
+void LatticeAgents::shift_pattern(int u, int v, Entries& out) const {
+  const Cells at{lattice_};
+  const Eigen::Vector3i cu = at.cell(u);
+  const Eigen::Vector3i step = at.cell(v) - cu;
+  Pattern& p = patterns_[direction_index(step)];
+  if (!p.made) {
+    const double c = lattice_.cell_m;
+    const Vec3 m = c * step.cast<double>();
+    const int r = static_cast<int>(std::ceil(reach_m_ / c)) + 1;
+    for (int z = -r; z <= r; ++z)
+      for (int y = -r; y <= r; ++y)
+        for (int x = -r; x <= r; ++x) {
+          const Eigen::Vector3i o(x, y, z);
+          const Vec3 b0 = c * o.cast<double>();
+          if (b0.norm() < need_m_) {
+            p.vertices.push_back(o);
+            continue;
+          }
+          for (int d = 0; d < 27; ++d) {
+            const Vec3 b1 = b0 + c * direction(d).cast<double>();
+            if ((b1 - m).norm() >= need_m_ && moves_conflict(Vec3::Zero(), m, b0, b1)) p.moves.emplace_back(o, d);
+          }
+        }
+    p.made = true;
+  }
+  for (const Eigen::Vector3i& o : p.vertices)
+    if (at.inside(cu + o)) out.vertices.push_back(at.vertex(cu + o));
+  for (const auto& [o, d] : p.moves) {
+    const Eigen::Vector3i x = cu + o, y = x + direction(d);
+    if (at.inside(x) && at.inside(y) && lattice_.graph.degree(at.vertex(x)) > 0)
+      out.moves.emplace_back(at.vertex(x), at.vertex(y));
+  }
+}
+
+// The conflicts of u -> v with moves from and to the UAVs' own points near it (and, when u or v
+// is one of them, with every lattice move near it).
+void LatticeAgents::add_near_points(int u, int v, Entries& out) const {
+  const Vec3& a0 = lattice_.position[u];
+  const Vec3& a1 = lattice_.position[v];
+  const auto consider = [&](int x) {
+    const Vec3& b0 = lattice_.position[x];
+    if ((b0 - a0).norm() < need_m_) {
+      out.vertices.push_back(x);
+      return;
+    }
+    const auto move = [&](int y) {
+      const Vec3& b1 = lattice_.position[y];
+      if ((b1 - a1).norm() >= need_m_ && moves_conflict(a0, a1, b0, b1)) out.moves.emplace_back(x, y);
+    };
+    move(x);
+    const SpaceTimeGraph& g = lattice_.graph;
+    for (int k = g.first[x]; k < g.first[x + 1]; ++k) move(g.next[k]);
+  };
+  const bool lattice_move = lattice_.is_cell(u) && lattice_.is_cell(v);
+  Aabb box = Aabb::of(a0, a1);
+  box.min -= Vec3::Constant(reach_m_);
+  box.max += Vec3::Constant(reach_m_);
+  for (int x = lattice_.cell_count(); x < lattice_.graph.vertex_count; ++x)
+    if (box.contains(lattice_.position[x])) consider(x);
+  // Lattice moves into a point start at a lattice vertex: found from that vertex's side below
+  // for a measured move; for a lattice move, its pattern lists only lattice moves, so moves
+  // from lattice vertices into points near it are added here.
+  const SpaceTimeGraph& g = lattice_.graph;
+  const Cells at{lattice_};
+  if (lattice_move) {
+    for (int p = lattice_.cell_count(); p < g.vertex_count; ++p) {
+      if (!box.contains(lattice_.position[p])) continue;
+      for (int k = g.first[p]; k < g.first[p + 1]; ++k) {
+        const int x = g.next[k];
+        if (!lattice_.is_cell(x)) continue;
+        const Vec3& b0 = lattice_.position[x];
+        if ((b0 - a0).norm() >= need_m_ && (lattice_.position[p] - a1).norm() >= need_m_ &&
+            moves_conflict(a0, a1, b0, lattice_.position[p]))
+          out.moves.emplace_back(x, p);
+      }
+    }
+    return;
+  }
+  // A move from or to a point: every lattice vertex near it, measured.
+  const Eigen::Vector3i lo = cell_below(lattice_, box.min);
+  const Eigen::Vector3i hi = cell_below(lattice_, box.max) + Eigen::Vector3i::Ones();
+  for (int z = std::max(lo.z(), 0); z <= std::min(hi.z(), lattice_.nz - 1); ++z)
+    for (int y = std::max(lo.y(), 0); y <= std::min(hi.y(), lattice_.ny - 1); ++y)
+      for (int x = std::max(lo.x(), 0); x <= std::min(hi.x(), lattice_.nx - 1); ++x) {
+        const int c = at.vertex({x, y, z});
+        if (g.degree(c) > 0) consider(c);
+      }
+}
+
+void LatticeAgents::measure(int u, int v, Entries& out) const {
+  if (lattice_.is_cell(u) && lattice_.is_cell(v)) shift_pattern(u, v, out);
+  add_near_points(u, v, out);
+}
+
+const LatticeAgents::Entries& LatticeAgents::entries_of(int u, int v) const {
+  const std::uint64_t key =
+      static_cast<std::uint64_t>(static_cast<std::uint32_t>(u)) << 32 | static_cast<std::uint32_t>(v);
+  auto it = entries_.find(key);
+  if (it != entries_.end()) return it->second;
+  Entries e;
+  measure(u, v, e);
+  return entries_.emplace(key, std::move(e)).first->second;
+}
+
+void LatticeAgents::add_path(int /*agent*/, const SpaceTimePath& path, SpaceTimeTable& table) const {
+  const int end = static_cast<int>(path.size()) - 1;
+  for (int t = 0; t < end; ++t) {
+    const Entries& e = entries_of(path[t], path[t + 1]);
+    for (const int x : e.vertices) table.add_vertex(x, t);
+    for (const auto& [x, y] : e.moves) table.add_move(x, y, t);
+  }
+  const Entries& stay = entries_of(path[end], path[end]);  // it waits at its goal for ever
+  for (const int x : stay.vertices) table.add_stay(x, end);
+  for (const auto& [x, y] : stay.moves) table.add_move_stay(x, y, end);
+}
+
+int LatticeAgents::scan(const std::vector<SpaceTimePath>& paths, bool first, PathConflict* out) const {
+  const int n = static_cast<int>(paths.size());
+  int horizon = 0;
+  for (const SpaceTimePath& p : paths) horizon = std::max(horizon, static_cast<int>(p.size()) - 1);
+  const double window = need_m_ + 2.0 * lattice_.longest_edge_m;  // farther apart at a step's start: clear in it
+  std::vector<int> order(static_cast<std::size_t>(n));
+  int count = 0;
+  for (int t = 0; t <= horizon; ++t) {
+    const auto at = [&](int i, int time) { return lattice_.position[vertex_at(paths[i], time)]; };
+    for (int i = 0; i < n; ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+      const double xa = at(a, t).x(), xb = at(b, t).x();
+      return xa != xb ? xa < xb : a < b;
+    });
+    std::optional<PathConflict> best;
+    const auto better = [&](const PathConflict& c) {
+      return !best || std::make_pair(c.a.agent, c.b.agent) < std::make_pair(best->a.agent, best->b.agent);
+    };
+    for (int s = 0; s < n; ++s) {
+      const int i = order[s];
+      const Vec3 a0 = at(i, t), a1 = at(i, t + 1);
+      for (int r = s + 1; r < n && at(order[r], t).x() - a0.x() < window; ++r) {
+        const int j = order[r];
+        const Vec3 b0 = at(j, t), b1 = at(j, t + 1);
+        if ((a0 - b0).norm() >= window) continue;
+        PathConflict c;
+        const int lo = std::min(i, j), hi = std::max(i, j);
+        if ((a0 - b0).norm() < need_m_) {
+          c = {{lo, vertex_at(paths[lo], t), -1, t}, {hi, vertex_at(paths[hi], t), -1, t}};
+        } else if (t < horizon && (a1 - b1).norm() >= need_m_ && moves_conflict(a0, a1, b0, b1)) {
+          c = {{lo, vertex_at(paths[lo], t), vertex_at(paths[lo], t + 1), t},
+               {hi, vertex_at(paths[hi], t), vertex_at(paths[hi], t + 1), t}};
+        } else {
+          continue;
+        }
+        ++count;
+        if (better(c)) best = c;
+      }
+    }
+    if (first && best) {
+      *out = *best;
+      return count;
+    }
+  }
+  return count;
+}
+
+std::optional<PathConflict> LatticeAgents::first_conflict(const std::vector<SpaceTimePath>& paths) const {
+  PathConflict c;
+  if (scan(paths, true, &c) == 0) return std::nullopt;
+  return c;
+}
+
+int LatticeAgents::count_conflicts(const std::vector<SpaceTimePath>& paths) const {
+  return scan(paths, false, nullptr);
+}
+
+}  // namespace uavplan
