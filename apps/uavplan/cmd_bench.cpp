@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "deconfliction_runner.h"
 #include "mapf_runner.h"
 #include "movingai_runner.h"
 #include "p1_local_runner.h"
@@ -224,6 +225,29 @@ void add_mapf(CLI::App* cmd, std::function<int()>& run) {
   });
 }
 
+void add_deconfliction(CLI::App* cmd, std::function<int()>& run) {
+  auto opt = std::make_shared<bench::DeconflictionOptions>();
+  CLI::App* d = cmd->add_subcommand("deconfliction",
+                                    "Many UAVs crossing in random 1 km cities, planned in space and time and verified");
+  d->add_option("--sizes", opt->sizes, "UAV counts (default 10 50 100 200)")->check(CLI::Range(1, 1000));
+  d->add_option("--cities", opt->cities, "Random cities per size and layout (default 3)")->check(CLI::PositiveNumber);
+  d->add_option("--seed", opt->seed, "Seed of the cities (default 1)");
+  d->add_option("--method", opt->method, "auto (prioritized, then ECBS; default), prioritized, ecbs or cbs")
+      ->check(CLI::IsMember({"auto", "prioritized", "ecbs", "cbs"}));
+  d->add_option("--time-limit", opt->time_limit_s, "Seconds per city (default 60)")->check(positive_number());
+  d->footer("Example: uavplan bench deconfliction --sizes 50 200 --cities 5");
+  d->callback([opt, &run] {
+    run = [opt] {
+      Progress progress;
+      progress.update("deconfliction: planning");
+      const auto runs = bench::run_deconfliction(*opt);
+      progress.finish();
+      std::cout << bench::format_deconfliction(runs, *opt);
+      return bench::deconfliction_passed(runs) ? kExitOk : kExitNotSolved;
+    };
+  });
+}
+
 void add_soak(CLI::App* cmd, std::function<int()>& run) {
   auto opt = std::make_shared<bench::SoakOptions>();
   CLI::App* s =
@@ -250,6 +274,7 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
   add_p1_local(cmd, run);
   add_soak(cmd, run);
   add_mapf(cmd, run);
+  add_deconfliction(cmd, run);
 }
 
 }  // namespace uavplan::cli

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 
@@ -177,82 +178,117 @@ void check_flights(const Scenario& sc, const std::vector<std::size_t>& which, co
   }
 }
 
+// The lattice over the view's world and the UAVs `which` on it, with the clock of their flights;
+// or why there is none (`problem`, with its reason).
+struct Layer {
+  Fleet fleet;
+  std::unique_ptr<UavLattice> lattice;
+  std::unique_ptr<LatticeAgents> agents;  // points into *lattice
+  Clock clock;
+  Reason why = Reason::none;
+  std::string problem;
+};
+
+Layer make_layer(const Scenario& sc, const MissionContext& ctx, const std::vector<std::size_t>& which,
+                 const SpaceTimeRoutesOptions& o) {
+  Layer layer;
+  layer.fleet = fleet_of(sc, which);
+  const Flights flights = flights_of(sc, ctx, which);
+  UavLatticeOptions lo;
+  lo.cell_m = o.cell_m;
+  lo.body_m = layer.fleet.body_m;
+  lo.need_m = layer.fleet.need_m;
+  lo.max_climb_rad = layer.fleet.climb_rad;
+  lo.ceiling_z = layer.fleet.ceiling_z;
+  const StopCondition& stop = ctx.options.stop;
+  try {
+    layer.lattice = std::make_unique<UavLattice>(build_uav_lattice(sc.world, flights.points.at, lo, stop));
+    std::vector<LatticeAgent> list;
+    for (std::size_t k = 0; k < which.size(); ++k) {
+      const UavSpec& u = sc.uavs[which[k]];
+      LatticeAgent a{layer.lattice->point_vertex(flights.start[k]),
+                     {},
+                     u.max_turn_rad,
+                     u.heading_rad ? heading_vector(*u.heading_rad) : Vec3::Zero()};
+      for (const int t : flights.targets[k]) a.targets.push_back(layer.lattice->point_vertex(t));
+      list.push_back(std::move(a));
+    }
+    layer.agents = std::make_unique<LatticeAgents>(*layer.lattice, std::move(list), layer.fleet.need_m, stop.threads());
+  } catch (const std::exception& e) {
+    layer.why = stop.should_stop() ? Reason::stopped : Reason::invalid;
+    layer.problem = stop.should_stop() ? kStoppedMessage : std::string("space-time deconfliction: ") + e.what();
+    return layer;
+  }
+  char cell[64];
+  std::snprintf(cell, sizeof cell, "%.3g m", layer.lattice->cell_m);
+  for (std::size_t k = 0; k < which.size() && layer.problem.empty(); ++k)
+    if (!layer.agents->reachable(static_cast<int>(k))) {
+      layer.why = Reason::no_route;
+      layer.problem = "space-time deconfliction: UAV '" + sc.uavs[which[k]].id +
+                      "' has no route on the lattice (cells of " + cell +
+                      "); a smaller space_time_cell_m may find a way";
+    }
+  layer.clock.tick_s = layer.lattice->longest_edge_m / layer.fleet.speed_mps;
+  layer.clock.max_dt_s = ctx.options.max_sample_dt_s;
+  for (const std::size_t i : which)
+    if (i < ctx.ground.start.size() && ctx.ground.start[i])
+      layer.clock.t0_s =
+          std::max(layer.clock.t0_s, (sc.uavs[i].start - *ctx.ground.start[i]).norm() / sc.uavs[i].speed.cruise_mps);
+  return layer;
+}
+
 }  // namespace
 
 void plan_space_time(const Scenario& sc, const MissionContext& ctx, const std::vector<std::size_t>& which,
                      const SpaceTimeRoutesOptions& o, Plan& plan) {
   if (which.empty()) return;
-  const Fleet fleet = fleet_of(sc, which);
-  const Flights flights = flights_of(sc, ctx, which);
-  UavLatticeOptions lo;
-  lo.cell_m = o.cell_m;
-  lo.body_m = fleet.body_m;
-  lo.need_m = fleet.need_m;
-  lo.max_climb_rad = fleet.climb_rad;
-  lo.ceiling_z = fleet.ceiling_z;
-  const StopCondition& stop = ctx.options.stop;
   const auto fail_all = [&](Reason why, const std::string& message) {
     for (const std::size_t i : which) fail(plan.uavs[i], why, message);
   };
-  std::optional<UavLattice> lattice;
-  try {
-    lattice = build_uav_lattice(sc.world, flights.points.at, lo, stop);
-  } catch (const std::exception& e) {
-    if (stop.should_stop()) return fail_all(Reason::stopped, kStoppedMessage);
-    return fail_all(Reason::invalid, std::string("space-time deconfliction: ") + e.what());
-  }
-  std::vector<LatticeAgent> list;
-  for (std::size_t k = 0; k < which.size(); ++k) {
-    const UavSpec& u = sc.uavs[which[k]];
-    LatticeAgent a{lattice->point_vertex(flights.start[k]),
-                   {},
-                   u.max_turn_rad,
-                   u.heading_rad ? heading_vector(*u.heading_rad) : Vec3::Zero()};
-    for (const int t : flights.targets[k]) a.targets.push_back(lattice->point_vertex(t));
-    list.push_back(std::move(a));
-  }
-  std::optional<LatticeAgents> agents;
-  try {
-    agents.emplace(*lattice, std::move(list), fleet.need_m);
-  } catch (const std::invalid_argument& e) {
-    return fail_all(Reason::invalid, std::string("space-time deconfliction: ") + e.what());
-  }
-  char cell[64];
-  std::snprintf(cell, sizeof cell, "%.3g m", lattice->cell_m);
-  for (std::size_t k = 0; k < which.size(); ++k)
-    if (!agents->reachable(static_cast<int>(k)))
-      return fail_all(Reason::no_route, "space-time deconfliction: UAV '" + sc.uavs[which[k]].id +
-                                            "' has no route on the lattice (cells of " + cell +
-                                            "); a smaller space_time_cell_m may find a way");
-  const MapfResult r = solve(*agents, o.method, stop);
+  const Layer layer = make_layer(sc, ctx, which, o);
+  if (!layer.problem.empty()) return fail_all(layer.why, layer.problem);
+  const StopCondition& stop = ctx.options.stop;
+  const MapfResult r = solve(*layer.agents, o.method, stop);
   if (!r.solved) {
     if (stop.should_stop()) return fail_all(Reason::stopped, kStoppedMessage);
     return fail_all(Reason::conflict, "space-time deconfliction found no conflict-free plan (" + r.why +
                                           "); try --set space_time_method=cbs or another space_time_cell_m");
   }
-  Clock clock;
-  clock.tick_s = lattice->longest_edge_m / fleet.speed_mps;
-  clock.max_dt_s = ctx.options.max_sample_dt_s;
-  for (const std::size_t i : which)
-    if (i < ctx.ground.start.size() && ctx.ground.start[i])
-      clock.t0_s = std::max(clock.t0_s, (sc.uavs[i].start - *ctx.ground.start[i]).norm() / sc.uavs[i].speed.cruise_mps);
   char how[160];
-  std::snprintf(how, sizeof how, "space-time deconfliction: %s; lattice %s, tick %.3g s", r.method.c_str(), cell,
-                clock.tick_s);
+  std::snprintf(how, sizeof how, "space-time deconfliction: %s; lattice %.3g m, tick %.3g s", r.method.c_str(),
+                layer.lattice->cell_m, layer.clock.tick_s);
   for (std::size_t k = 0; k < which.size(); ++k) {
     UavPlan& up = plan.uavs[which[k]];
     up.status = Status::solved;
     up.reason = Reason::none;
     up.message = how;
-    up.trajectory = flight_of(sc, ctx, which[k], *lattice, r.paths[k], clock);
+    up.trajectory = flight_of(sc, ctx, which[k], *layer.lattice, r.paths[k], layer.clock);
     up.waypoints = trajectory_corners(up.trajectory);
     up.route_length_m = Route{up.waypoints}.length_m();
     up.arrival_s = up.trajectory.back().t_s;
     up.stats.nodes_expanded = r.low_level_expansions;
-    up.stats.grid_cells = static_cast<std::uint64_t>(lattice->cell_count());
-    up.stats.cell_m = lattice->cell_m;
+    up.stats.grid_cells = static_cast<std::uint64_t>(layer.lattice->cell_count());
+    up.stats.cell_m = layer.lattice->cell_m;
   }
-  check_flights(sc, which, *lattice, r.paths, plan);
+  check_flights(sc, which, *layer.lattice, r.paths, plan);
+}
+
+std::vector<LoneFlight> lone_space_time_flights(const Scenario& sc, const MissionContext& ctx,
+                                                const std::vector<std::size_t>& which,
+                                                const SpaceTimeRoutesOptions& o) {
+  std::vector<LoneFlight> out(which.size());
+  const Layer layer = make_layer(sc, ctx, which, o);
+  if (!layer.agents) return out;
+  SpaceTimeSearch search;
+  SpaceTimeTable none;
+  none.clear(layer.lattice->graph.vertex_count);
+  for (std::size_t k = 0; k < which.size(); ++k) {
+    const SpaceTimeAnswer a = layer.agents->plan(static_cast<int>(k), none, nullptr, 1.0, search, ctx.options.stop);
+    if (!a.found) continue;
+    const Trajectory tr = flight_of(sc, ctx, which[k], *layer.lattice, a.path, layer.clock);
+    out[k] = {true, tr.back().t_s, flown_length_m(tr)};
+  }
+  return out;
 }
 
 }  // namespace uavplan

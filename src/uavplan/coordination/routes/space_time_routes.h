@@ -29,4 +29,13 @@ struct SpaceTimeRoutesOptions {
 void plan_space_time(const Scenario& sc, const MissionContext& ctx, const std::vector<std::size_t>& which,
                      const SpaceTimeRoutesOptions& o, Plan& plan);
 
+// Each UAV of `which` alone on the lattice plan_space_time builds for them (the others away): the
+// yardstick of what deconfliction costs. `found` false where it has no route or no lattice.
+struct LoneFlight {
+  bool found = false;
+  double arrival_s = 0.0, length_m = 0.0;
+};
+std::vector<LoneFlight> lone_space_time_flights(const Scenario& sc, const MissionContext& ctx,
+                                                const std::vector<std::size_t>& which, const SpaceTimeRoutesOptions& o);
+
 }  // namespace uavplan

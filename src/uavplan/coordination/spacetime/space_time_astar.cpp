@@ -42,7 +42,7 @@ SpaceTimeAnswer SpaceTimeSearch::find(const SpaceTimeGraph& g, const SpaceTimeQu
   int f_min = f_of(q.start, q.start_t);
   bound_ = static_cast<int>(std::floor(q.w * f_min + 1e-9));
   int f_top = f_min;  // highest f pushed: the buckets to empty afterwards
-  generated_.insert(state_key(q.start, std::min(q.start_t, still)));
+  first_visit(q.start, q.start_t, still);
   push({q.start, q.start_t, -1, 0, f_min, -1});
   const bool turns = q.position != nullptr && q.max_turn_rad < kPi;
   // Whether the move from node `cur` to v keeps the turn limit.
@@ -57,6 +57,7 @@ SpaceTimeAnswer SpaceTimeSearch::find(const SpaceTimeGraph& g, const SpaceTimeQu
     const int n = pop_focal();
     const Node cur = nodes_[n];
     --live_[cur.f];
+    if (cur.t >= still && generated_.get(state_key(cur.v, still)) < cur.t + 1) continue;  // reached earlier since
     if (cur.v == q.goal && cur.t > goal_after) {
       found = n;
       break;
@@ -65,8 +66,9 @@ SpaceTimeAnswer SpaceTimeSearch::find(const SpaceTimeGraph& g, const SpaceTimeQu
     if (cur.t < SpaceTimeTable::kLastTime) {
       const int t1 = cur.t + 1;
       const auto expand = [&](int v) {
-        if (h[v] < 0 || forbidden.at(v, t1) > 0 || forbidden.moves(cur.v, v, cur.t) > 0 || !turn_ok(cur, v)) return;
-        if (!generated_.insert(state_key(v, std::min(t1, still)))) return;
+        if (h[v] < 0 || (v != q.goal && v != cur.v && q.terminals_from >= 0 && v >= q.terminals_from)) return;
+        if (forbidden.at(v, t1) > 0 || forbidden.moves(cur.v, v, cur.t) > 0 || !turn_ok(cur, v)) return;
+        if (!first_visit(v, t1, still)) return;
         int meetings = cur.meetings;
         if (q.avoided) meetings += q.avoided->at(v, t1) + q.avoided->moves(cur.v, v, cur.t);
         const int f = f_of(v, t1);
@@ -91,6 +93,18 @@ SpaceTimeAnswer SpaceTimeSearch::find(const SpaceTimeGraph& g, const SpaceTimeQu
     later_[f].clear();
   }
   return a;
+}
+
+// Whether (v, t) is reached for the first time. Past `still` a state is its vertex alone and an
+// earlier time beats a later one (A* may reach a vertex late before it reaches it early): the
+// table keeps the earliest time + 1.
+bool SpaceTimeSearch::first_visit(int v, int t, int still) {
+  if (t < still) return generated_.insert(state_key(v, t));
+  const std::uint64_t key = state_key(v, still);
+  const int seen = generated_.get(key);
+  if (seen != 0 && seen <= t + 1) return false;
+  generated_.add(key, t + 1 - seen);
+  return true;
 }
 
 void SpaceTimeSearch::push(const Node& node) {

@@ -29,6 +29,8 @@ struct SpaceTimeQuery {
   double w = 1.0;                             // the path is at most w times the shortest
   int start_t = 0;                            // the time it is at `start`
   bool stays = true;  // it stays at the goal for ever (else it only has to reach it: a via point)
+  // Vertices from this one on are entered only as the goal (other agents' own points); -1: all.
+  int terminals_from = -1;
   // A turn limit between consecutive moves (waits between them do not count), with the vertices'
   // positions and the direction it arrives at `start` with (zero: any). A state keeps the
   // direction of the first path that reached it: every path found keeps the limit, but a path
@@ -59,6 +61,7 @@ class SpaceTimeSearch {
     int came_from;  // the vertex its last move left (-1: none yet)
   };
   void push(const Node& n);
+  bool first_visit(int v, int t, int still);
   int pop_focal();
   void raise_bound(int bound);
   bool worse(int a, int b) const;

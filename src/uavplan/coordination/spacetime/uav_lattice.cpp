@@ -1,9 +1,11 @@
 #include "uavplan/coordination/spacetime/uav_lattice.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include "uavplan/coordination/spacetime/mapf.h"
 #include "uavplan/core/geometry.h"
@@ -69,6 +71,72 @@ void place_cells(const World& world, const UavLatticeOptions& o, UavLattice& l, 
 bool edge_clear(const World& world, const Vec3& a, double clear_a, const Vec3& b, double body_m) {
   if (clear_a >= body_m + (b - a).norm()) return true;  // every point of it is within its length of a
   return world.segment_valid(a, b, body_m);
+}
+
+// Moves from each vertex to `goal` through the lattice (the UAVs' points are ends, never passed
+// through); -1 where it cannot be reached.
+std::vector<int> lattice_distances(const UavLattice& l, int goal) {
+  const SpaceTimeGraph& g = l.graph;
+  std::vector<int> d(static_cast<std::size_t>(g.vertex_count), -1);
+  std::vector<int> queue{goal};
+  d[goal] = 0;
+  for (std::size_t head = 0; head < queue.size(); ++head) {
+    const int u = queue[head];
+    if (u != goal && !l.is_cell(u)) continue;  // a point: reached, not passed through
+    for (int k = g.first[u]; k < g.first[u + 1]; ++k)
+      if (d[g.next[k]] < 0) {
+        d[g.next[k]] = d[u] + 1;
+        queue.push_back(g.next[k]);
+      }
+  }
+  return d;
+}
+
+// Each vertex's connected component (the graph is undirected).
+std::vector<int> components(const SpaceTimeGraph& g) {
+  std::vector<int> c(static_cast<std::size_t>(g.vertex_count), -1);
+  std::vector<int> queue;
+  for (int s = 0; s < g.vertex_count; ++s) {
+    if (c[s] >= 0) continue;
+    c[s] = s;
+    queue.assign(1, s);
+    for (std::size_t head = 0; head < queue.size(); ++head)
+      for (int k = g.first[queue[head]]; k < g.first[queue[head] + 1]; ++k)
+        if (c[g.next[k]] < 0) {
+          c[g.next[k]] = s;
+          queue.push_back(g.next[k]);
+        }
+  }
+  return c;
+}
+
+// A lower bound on the moves from each vertex to `goal` through the lattice, exact in open space:
+// a lattice vertex needs its Chebyshev distance (in cells) to the nearest of the goal's lattice
+// neighbours, and one move more; a UAV's point one move more than its best neighbour. -1 off the
+// goal's component.
+std::vector<int> tick_bounds(const UavLattice& l, const std::vector<int>& component, int goal) {
+  const SpaceTimeGraph& g = l.graph;
+  std::vector<Eigen::Vector3i> ends;  // the goal's lattice neighbours, in cells
+  for (int k = g.first[goal]; k < g.first[goal + 1]; ++k)
+    if (l.is_cell(g.next[k])) ends.push_back(Cells{l}.cell(g.next[k]));
+  std::vector<int> h(l.position.size(), -1);
+  const int cells = l.cell_count();
+  for (int v = 0; v < cells; ++v) {
+    if (component[v] != component[goal]) continue;
+    const Eigen::Vector3i c = Cells{l}.cell(v);
+    int best = INT_MAX;
+    for (const Eigen::Vector3i& e : ends) best = std::min(best, (c - e).cwiseAbs().maxCoeff());
+    h[v] = best == INT_MAX ? 0 : best + 1;
+  }
+  for (int v = cells; v < g.vertex_count; ++v) {
+    if (component[v] != component[goal]) continue;
+    int best = INT_MAX;
+    for (int k = g.first[v]; k < g.first[v + 1]; ++k)
+      if (l.is_cell(g.next[k])) best = std::min(best, h[g.next[k]]);
+    h[v] = best == INT_MAX ? 1 : best + 1;
+  }
+  h[goal] = 0;
+  return h;
 }
 
 }  // namespace
@@ -153,7 +221,7 @@ UavLattice build_uav_lattice(const World& world, std::span<const Vec3> points, c
   return l;
 }
 
-LatticeAgents::LatticeAgents(const UavLattice& lattice, std::vector<LatticeAgent> agents, double need_m)
+LatticeAgents::LatticeAgents(const UavLattice& lattice, std::vector<LatticeAgent> agents, double need_m, int threads)
     : lattice_(lattice), agents_(std::move(agents)), need_m_(need_m), patterns_(27) {
   reach_m_ = need_m_ + std::max(lattice_.longest_edge_m, std::sqrt(3.0) * lattice_.cell_m);
   for (const LatticeAgent& a : agents_)
@@ -164,7 +232,27 @@ LatticeAgents::LatticeAgents(const UavLattice& lattice, std::vector<LatticeAgent
     throw std::invalid_argument(
         std::to_string(targets) + " distinct targets on a lattice of " + std::to_string(lattice_.graph.vertex_count) +
         " vertices need " + std::to_string(bytes >> 20) + " MiB of distance tables; set a larger space_time_cell_m");
-  for (auto& [t, h] : to_target_) h = distances_to(lattice_.graph, t);
+  // Exact distances (one breadth-first sweep per target) where they are few enough; else a bound
+  // in closed form within the graph's components: the sweeps would cost more than the
+  // expansions the exact distances save.
+  const bool exact = static_cast<std::uint64_t>(targets) * lattice_.graph.vertex_count <= kExactTableEntries;
+  const std::vector<int> component = exact ? std::vector<int>{} : components(lattice_.graph);
+  std::vector<std::vector<int>*> tables;
+  std::vector<int> sources;
+  for (auto& [t, h] : to_target_) {
+    sources.push_back(t);
+    tables.push_back(&h);
+  }
+  const auto sweep = [&](std::size_t first, std::size_t step) {
+    for (std::size_t k = first; k < sources.size(); k += step)
+      *tables[k] = exact ? lattice_distances(lattice_, sources[k]) : tick_bounds(lattice_, component, sources[k]);
+  };
+  const std::size_t workers =
+      std::clamp<std::size_t>(static_cast<std::size_t>(threads), 1, std::max<std::size_t>(sources.size(), 1));
+  std::vector<std::thread> pool;
+  for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(sweep, w, workers);
+  sweep(0, workers);
+  for (std::thread& t : pool) t.join();
   for (const LatticeAgent& a : agents_) {
     int cost = 0, from = a.start;
     for (const int t : a.targets) {
@@ -193,6 +281,7 @@ SpaceTimeAnswer LatticeAgents::plan(int agent, const SpaceTimeTable& forbidden, 
     q.position = &lattice_.position;
     q.max_turn_rad = a.max_turn_rad;
     q.heading = arrival_direction(out.path, a.heading);
+    q.terminals_from = lattice_.cell_count();  // no path passes through another UAV's point
     SpaceTimeAnswer leg = search.find(lattice_.graph, q, stop);
     out.expanded += leg.expanded;
     if (!leg.found) {

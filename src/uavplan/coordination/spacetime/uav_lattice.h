@@ -70,11 +70,16 @@ struct LatticeAgent {
   Vec3 heading = Vec3::Zero();  // at the start (zero: any)
 };
 
+// Targets x vertices up to which the searches get exact distances to their targets (one sweep of
+// the graph each); beyond, a bound in closed form (the lattice's Chebyshev distance).
+inline constexpr std::uint64_t kExactTableEntries = std::uint64_t{1} << 23;
+
 class LatticeAgents final : public SpaceTimeModel {
  public:
   // `need_m`: centres closer than this conflict. Throws std::invalid_argument when the agents'
-  // distance tables (one per distinct target) would pass kMostDistanceTableBytes.
-  LatticeAgents(const UavLattice& lattice, std::vector<LatticeAgent> agents, double need_m);
+  // distance tables (one per distinct target, made on `threads` threads) would pass
+  // kMostDistanceTableBytes.
+  LatticeAgents(const UavLattice& lattice, std::vector<LatticeAgent> agents, double need_m, int threads = 1);
 
   int agent_count() const override { return static_cast<int>(agents_.size()); }
   int vertex_count() const override { return lattice_.graph.vertex_count; }

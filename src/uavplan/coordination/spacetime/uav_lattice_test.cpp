@@ -6,6 +6,7 @@
 #include <random>
 
 #include "uavplan/coordination/spacetime/mapf.h"
+#include "uavplan/coordination/spacetime/space_time_astar.h"
 #include "uavplan/simulation/trajectory.h"
 
 namespace uavplan {
@@ -63,6 +64,35 @@ TEST(UavLattice, EdgesKeepOffObstaclesAndPointsJoinTheLattice) {
     for (int k = g.first[v]; k < g.first[v + 1]; ++k)
       ASSERT_TRUE(f.world.segment_valid(f.lattice.position[v], f.lattice.position[g.next[k]], 0.5));
   for (std::size_t i = 0; i < f.points.size(); ++i) EXPECT_GT(g.degree(f.lattice.point_vertex(i)), 0);
+}
+
+// Alone (nothing forbidden) under a weaker heuristic than the exact distances, the search still
+// finds the shortest path: a vertex reached late first and early later keeps the early time.
+TEST(UavLattice, AloneTheSearchIsShortestUnderABound) {
+  const Fixture f;
+  const SpaceTimeGraph& g = f.lattice.graph;
+  std::mt19937 rng(4);
+  SpaceTimeSearch search;
+  SpaceTimeTable none;
+  none.clear(g.vertex_count);
+  const int cells = f.lattice.cell_count();
+  for (int k = 0; k < 200; ++k) {
+    int s = static_cast<int>(rng() % cells), t = static_cast<int>(rng() % cells);
+    if (g.degree(s) == 0 || g.degree(t) == 0) continue;
+    const std::vector<int> exact = distances_to(g, t);
+    if (exact[s] < 0) continue;
+    std::vector<int> bound(exact.size(), -1);  // Chebyshev cells less one: consistent, not exact
+    for (int v = 0; v < g.vertex_count; ++v)
+      if (exact[v] >= 0)
+        bound[v] =
+            std::max(0, static_cast<int>(std::lround(
+                            (f.lattice.position[v] - f.lattice.position[t]).cwiseAbs().maxCoeff() / f.lattice.cell_m)) -
+                            1);
+    const SpaceTimeQuery q{s, t, &bound, &none, nullptr, 1.0};
+    const SpaceTimeAnswer a = search.find(g, q, StopCondition{});
+    ASSERT_TRUE(a.found) << k;
+    ASSERT_EQ(a.cost, exact[s]) << k;
+  }
 }
 
 // The scan's conflicts are the trajectories' closest approaches below the separation: walks
