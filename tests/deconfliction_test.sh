@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Space-time deconfliction through the command line: six UAVs swapping across a circle, which
 # departure delays cannot all place. Delays alone fail with a message naming the option; the
-# default (auto) and every space-time method solve all six, the verifier holds each plan, the
-# same bytes come out twice, the exports read back; a bad option value is one line, exit 2.
+# default (auto) and every space-time method solve all six, also round moving obstacles; the
+# verifier holds each plan, the same bytes come out twice and on one thread, the exports read
+# back; a bad option value is one line, exit 2.
 # Usage: deconfliction_test.sh UAVPLAN_BINARY SOURCE_DIR
 set -u
 BIN=$1
@@ -31,6 +32,12 @@ done
 cmp -s "$TMP/x/plan.json" "$TMP/again/plan.json" || fail "two runs wrote different plans"
 "$BIN" plan "$SCEN" -o "$TMP/threads" --threads 1 >/dev/null 2>&1
 cmp -s "$TMP/x/plan.json" "$TMP/threads/plan.json" || fail "one thread wrote a different plan"
+
+# Moving obstacles known in advance are kept off in space and time too.
+MOVING="$SRC/tests/data/deconfliction/swap6_moving.yaml"
+"$BIN" plan "$MOVING" -o "$TMP/moving" --set deconfliction=space_time >"$TMP/log" 2>&1 || { fail "moving: exit $?"; cat "$TMP/log"; }
+grep -q "status: solved" "$TMP/log" || { fail "moving: not solved"; cat "$TMP/log"; }
+"$BIN" verify "$MOVING" "$TMP/moving/plan.json" >"$TMP/v" 2>&1 || { fail "moving: verify"; cat "$TMP/v"; }
 
 bash "$SRC/tests/exports_test.sh" "$BIN" "$SRC" "$SCEN" >"$TMP/exports" 2>&1 || { fail "exports"; cat "$TMP/exports"; }
 

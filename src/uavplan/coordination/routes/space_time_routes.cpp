@@ -230,10 +230,15 @@ Layer make_layer(const Scenario& sc, const MissionContext& ctx, const std::vecto
     }
   layer.clock.tick_s = layer.lattice->longest_edge_m / layer.fleet.speed_mps;
   layer.clock.max_dt_s = ctx.options.max_sample_dt_s;
-  for (const std::size_t i : which)
+  double radius_m = 0.0;
+  for (const std::size_t i : which) {
+    radius_m = std::max(radius_m, sc.uavs[i].radius_m);
     if (i < ctx.ground.start.size() && ctx.ground.start[i])
       layer.clock.t0_s =
           std::max(layer.clock.t0_s, (sc.uavs[i].start - *ctx.ground.start[i]).norm() / sc.uavs[i].speed.cruise_mps);
+  }
+  // Known in advance to UAVs without sensors (find_conflict keeps their radius off the surface).
+  layer.agents->keep_off_moving(sc.world.moving(), radius_m + kTimingMargin_m, layer.clock.t0_s, layer.clock.tick_s);
   return layer;
 }
 

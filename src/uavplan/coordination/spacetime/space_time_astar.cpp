@@ -19,12 +19,17 @@ SpaceTimeAnswer SpaceTimeSearch::find(const SpaceTimeGraph& g, const SpaceTimeQu
   SpaceTimeAnswer a;
   const std::vector<int>& h = *q.h;
   const SpaceTimeTable& forbidden = *q.forbidden;
-  const int goal_after = q.stays ? forbidden.last_time_at(q.goal) : -1;
-  if (h[q.start] < 0 || goal_after == INT_MAX || forbidden.at(q.start, q.start_t) > 0) return a;
+  const SpaceTimeTable* fixed = q.fixed;
+  const int goal_after =
+      !q.stays ? -1 : std::max(forbidden.last_time_at(q.goal), fixed ? fixed->last_time_at(q.goal) : -1);
+  if (h[q.start] < 0 || goal_after == INT_MAX || forbidden.at(q.start, q.start_t) > 0 ||
+      (fixed && fixed->at(q.start, q.start_t) > 0))
+    return a;
   // After the last forbidden time the table no longer changes (stays only): reaching a vertex
   // later is never better than reaching it then, so states past it are told apart by vertex
   // alone. The state space is finite and a walled-in goal is known in one sweep of the graph.
-  const int still = std::min(std::max(forbidden.last_time(), 0) + 1, SpaceTimeTable::kLastTime);
+  const int last = std::max(forbidden.last_time(), fixed ? fixed->last_time() : -1);
+  const int still = std::min(std::max(last, 0) + 1, SpaceTimeTable::kLastTime);
   const std::size_t f_slots =
       static_cast<std::size_t>(std::max(still, q.start_t)) + 2 * static_cast<std::size_t>(g.vertex_count) + 2;
   if (live_.size() < f_slots) {
@@ -68,6 +73,7 @@ SpaceTimeAnswer SpaceTimeSearch::find(const SpaceTimeGraph& g, const SpaceTimeQu
       const auto expand = [&](int v) {
         if (h[v] < 0 || (v != q.goal && v != cur.v && q.terminals_from >= 0 && v >= q.terminals_from)) return;
         if (forbidden.at(v, t1) > 0 || forbidden.moves(cur.v, v, cur.t) > 0 || !turn_ok(cur, v)) return;
+        if (fixed && (fixed->at(v, t1) > 0 || fixed->moves(cur.v, v, cur.t) > 0)) return;
         if (!first_visit(v, t1, still)) return;
         int meetings = cur.meetings;
         if (q.avoided) meetings += q.avoided->at(v, t1) + q.avoided->moves(cur.v, v, cur.t);

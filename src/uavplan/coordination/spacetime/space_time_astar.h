@@ -28,7 +28,8 @@ struct SpaceTimeQuery {
   const SpaceTimeTable* avoided = nullptr;    // met as seldom as the bound allows; may be null
   double w = 1.0;                             // the path is at most w times the shortest
   int start_t = 0;                            // the time it is at `start`
-  bool stays = true;  // it stays at the goal for ever (else it only has to reach it: a via point)
+  bool stays = true;                      // it stays at the goal for ever (else it only has to reach it: a via point)
+  const SpaceTimeTable* fixed = nullptr;  // never met either, the same for every agent; may be null
   // Vertices from this one on are entered only as the goal (other agents' own points); -1: all.
   int terminals_from = -1;
   // A turn limit between consecutive moves (waits between them do not count), with the vertices'

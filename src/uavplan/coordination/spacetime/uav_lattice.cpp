@@ -139,7 +139,25 @@ std::vector<int> tick_bounds(const UavLattice& l, const std::vector<int>& compon
   return h;
 }
 
+// Whether a body at p moving at v is beyond the lattice's reach for good (linear motion away).
+bool gone(const Aabb& bounds, const Vec3& p, const Vec3& v, double need_m) {
+  for (int a = 0; a < 3; ++a) {
+    if (p[a] < bounds.min[a] - need_m && v[a] <= 0.0) return true;
+    if (p[a] > bounds.max[a] + need_m && v[a] >= 0.0) return true;
+  }
+  return false;
+}
+
 }  // namespace
+
+Aabb LatticeAgents::lattice_bounds() const {
+  Aabb b;
+  for (const Vec3& p : lattice_.position) b.extend(p);
+  const double reach = std::max(lattice_.longest_edge_m, std::sqrt(3.0) * lattice_.cell_m);
+  b.min -= Vec3::Constant(reach);
+  b.max += Vec3::Constant(reach);
+  return b;
+}
 
 // The direction of the path's last move (`start` when it has none).
 Vec3 LatticeAgents::arrival_direction(const SpaceTimePath& path, const Vec3& start) const {
@@ -282,6 +300,7 @@ SpaceTimeAnswer LatticeAgents::plan(int agent, const SpaceTimeTable& forbidden, 
     q.max_turn_rad = a.max_turn_rad;
     q.heading = arrival_direction(out.path, a.heading);
     q.terminals_from = lattice_.cell_count();  // no path passes through another UAV's point
+    q.fixed = has_moving_ ? &moving_ : nullptr;
     SpaceTimeAnswer leg = search.find(lattice_.graph, q, stop);
     out.expanded += leg.expanded;
     if (!leg.found) {
@@ -338,51 +357,35 @@ void LatticeAgents::shift_pattern(int u, int v, Entries& out) const {
   }
 }
 
-// The conflicts of u -> v with moves from and to the UAVs' own points near it (and, when u or v
-// is one of them, with every lattice move near it).
-void LatticeAgents::add_near_points(int u, int v, Entries& out) const {
-  const Vec3& a0 = lattice_.position[u];
-  const Vec3& a1 = lattice_.position[v];
+// What a body moving a0 -> a1 in one step forbids the agents (centres closer than `need_m`):
+// being at a vertex near a0 at the step's start, and moves from the vertices near it (from the
+// UAVs' points only, unless `cells`); with `ends_next`, only moves whose ends keep clear of a1
+// (the next step's entries forbid the others: the same need in every step).
+void LatticeAgents::measure_near(const Vec3& a0, const Vec3& a1, double need_m, bool cells, bool ends_next,
+                                 Entries& out) const {
+  const SpaceTimeGraph& g = lattice_.graph;
   const auto consider = [&](int x) {
     const Vec3& b0 = lattice_.position[x];
-    if ((b0 - a0).norm() < need_m_) {
+    if ((b0 - a0).norm() < need_m) {
       out.vertices.push_back(x);
       return;
     }
     const auto move = [&](int y) {
       const Vec3& b1 = lattice_.position[y];
-      if ((b1 - a1).norm() >= need_m_ && moves_conflict(a0, a1, b0, b1)) out.moves.emplace_back(x, y);
+      if ((!ends_next || (b1 - a1).norm() >= need_m) && point_segment_distance(Vec3::Zero(), a0 - b0, a1 - b1) < need_m)
+        out.moves.emplace_back(x, y);
     };
     move(x);
-    const SpaceTimeGraph& g = lattice_.graph;
     for (int k = g.first[x]; k < g.first[x + 1]; ++k) move(g.next[k]);
   };
-  const bool lattice_move = lattice_.is_cell(u) && lattice_.is_cell(v);
   Aabb box = Aabb::of(a0, a1);
-  box.min -= Vec3::Constant(reach_m_);
-  box.max += Vec3::Constant(reach_m_);
-  for (int x = lattice_.cell_count(); x < lattice_.graph.vertex_count; ++x)
+  const double reach = need_m + std::max(lattice_.longest_edge_m, std::sqrt(3.0) * lattice_.cell_m);
+  box.min -= Vec3::Constant(reach);
+  box.max += Vec3::Constant(reach);
+  for (int x = lattice_.cell_count(); x < g.vertex_count; ++x)
     if (box.contains(lattice_.position[x])) consider(x);
-  // Lattice moves into a point start at a lattice vertex: found from that vertex's side below
-  // for a measured move; for a lattice move, its pattern lists only lattice moves, so moves
-  // from lattice vertices into points near it are added here.
-  const SpaceTimeGraph& g = lattice_.graph;
+  if (!cells) return;
   const Cells at{lattice_};
-  if (lattice_move) {
-    for (int p = lattice_.cell_count(); p < g.vertex_count; ++p) {
-      if (!box.contains(lattice_.position[p])) continue;
-      for (int k = g.first[p]; k < g.first[p + 1]; ++k) {
-        const int x = g.next[k];
-        if (!lattice_.is_cell(x)) continue;
-        const Vec3& b0 = lattice_.position[x];
-        if ((b0 - a0).norm() >= need_m_ && (lattice_.position[p] - a1).norm() >= need_m_ &&
-            moves_conflict(a0, a1, b0, lattice_.position[p]))
-          out.moves.emplace_back(x, p);
-      }
-    }
-    return;
-  }
-  // A move from or to a point: every lattice vertex near it, measured.
   const Eigen::Vector3i lo = cell_below(lattice_, box.min);
   const Eigen::Vector3i hi = cell_below(lattice_, box.max) + Eigen::Vector3i::Ones();
   for (int z = std::max(lo.z(), 0); z <= std::min(hi.z(), lattice_.nz - 1); ++z)
@@ -391,6 +394,71 @@ void LatticeAgents::add_near_points(int u, int v, Entries& out) const {
         const int c = at.vertex({x, y, z});
         if (g.degree(c) > 0) consider(c);
       }
+}
+
+// The conflicts of u -> v with moves from and to the UAVs' own points near it (and, when u or v
+// is one of them, with every lattice move near it).
+void LatticeAgents::add_near_points(int u, int v, Entries& out) const {
+  const Vec3& a0 = lattice_.position[u];
+  const Vec3& a1 = lattice_.position[v];
+  const bool lattice_move = lattice_.is_cell(u) && lattice_.is_cell(v);
+  measure_near(a0, a1, need_m_, !lattice_move, true, out);
+  if (!lattice_move) return;
+  // A lattice move's pattern lists only lattice moves, and the points' own moves are measured
+  // above: the moves from lattice vertices into points near it are left.
+  const SpaceTimeGraph& g = lattice_.graph;
+  Aabb box = Aabb::of(a0, a1);
+  box.min -= Vec3::Constant(reach_m_);
+  box.max += Vec3::Constant(reach_m_);
+  for (int p = lattice_.cell_count(); p < g.vertex_count; ++p) {
+    if (!box.contains(lattice_.position[p])) continue;
+    for (int k = g.first[p]; k < g.first[p + 1]; ++k) {
+      const int x = g.next[k];
+      if (!lattice_.is_cell(x)) continue;
+      const Vec3& b0 = lattice_.position[x];
+      if ((b0 - a0).norm() >= need_m_ && (lattice_.position[p] - a1).norm() >= need_m_ &&
+          moves_conflict(a0, a1, b0, lattice_.position[p]))
+        out.moves.emplace_back(x, p);
+    }
+  }
+}
+
+// Moving obstacles tick by tick from t0: what each forbids in its step (a corner of its path
+// within a step widens it by how far the obstacle strays from moving evenly), and where it stops,
+// for ever.
+void LatticeAgents::keep_off_moving(const std::vector<MovingObstacle>& obstacles, double keep_m, double t0_s,
+                                    double tick_s) {
+  if (obstacles.empty()) return;
+  moving_.clear(lattice_.graph.vertex_count);
+  has_moving_ = true;
+  const Aabb& bounds = lattice_bounds();
+  for (const MovingObstacle& m : obstacles) {
+    const double end_s = m.path.empty() ? World::kInf : m.path.back().t_s;
+    for (int k = 0; k < kMostMovingTicks; ++k) {
+      const double ta = t0_s + k * tick_s, tb = ta + tick_s;
+      const Vec3 a0 = m.position_at(ta), a1 = m.position_at(tb);
+      // How far the obstacle strays within the step from where moving a0 -> a1 evenly would put
+      // it at the same time: the most at one of its path's corners (the difference is
+      // piecewise linear in time, zero at both ends).
+      double bend = 0.0;
+      for (const TimedPoint& r : m.rows())
+        if (r.t_s > ta && r.t_s < tb) bend = std::max(bend, (r.p - (a0 + (r.t_s - ta) / tick_s * (a1 - a0))).norm());
+      const double need = m.radius_m + keep_m + bend + kMovingMargin_m;
+      Entries e;
+      const bool still = ta >= end_s || (m.path.empty() && m.velocity_mps.isZero());
+      if (still || (m.path.empty() && gone(bounds, a0, m.velocity_mps, need))) {
+        if (still) {
+          measure_near(a0, a0, need, true, true, e);
+          for (const int x : e.vertices) moving_.add_stay(x, k);
+          for (const auto& [x, y] : e.moves) moving_.add_move_stay(x, y, k);
+        }
+        break;
+      }
+      measure_near(a0, a1, need, true, false, e);  // the need may change from step to step
+      for (const int x : e.vertices) moving_.add_vertex(x, k);
+      for (const auto& [x, y] : e.moves) moving_.add_move(x, y, k);
+    }
+  }
 }
 
 void LatticeAgents::measure(int u, int v, Entries& out) const {

@@ -23,6 +23,7 @@
 #include "uavplan/coordination/spacetime/space_time_model.h"
 #include "uavplan/core/units.h"
 #include "uavplan/core/vec.h"
+#include "uavplan/world/moving.h"
 #include "uavplan/world/world.h"
 
 namespace uavplan {
@@ -73,6 +74,9 @@ struct LatticeAgent {
 // Targets x vertices up to which the searches get exact distances to their targets (one sweep of
 // the graph each); beyond, a bound in closed form (the lattice's Chebyshev distance).
 inline constexpr std::uint64_t kExactTableEntries = std::uint64_t{1} << 23;
+// Moving obstacles are followed this many ticks at most, and kept this much farther.
+inline constexpr int kMostMovingTicks = 1 << 14;
+inline constexpr double kMovingMargin_m = 1e-3;
 
 class LatticeAgents final : public SpaceTimeModel {
  public:
@@ -93,6 +97,13 @@ class LatticeAgents final : public SpaceTimeModel {
   // Whether an agent can reach each of its targets in turn (ignoring the others).
   bool reachable(int agent) const { return lone_[agent] >= 0; }
 
+  // Moving obstacles known in advance, kept `keep_m` from their surfaces (and kMovingMargin_m
+  // more), the lattice's tick k being t0_s + k tick_s: forbidden to every agent, followed until
+  // they stop (then for ever), leave the lattice for good, or kMostMovingTicks.
+  void keep_off_moving(const std::vector<MovingObstacle>& obstacles, double keep_m, double t0_s, double tick_s);
+  // Their entries (null without moving obstacles).
+  const SpaceTimeTable* moving() const { return has_moving_ ? &moving_ : nullptr; }
+
  private:
   // What the move u -> v (u == v: a wait at u) forbids another agent in its step: being at a
   // vertex at the step's start, and moves (waits too) during it.
@@ -105,6 +116,8 @@ class LatticeAgents final : public SpaceTimeModel {
   void measure(int u, int v, Entries& out) const;
   void shift_pattern(int u, int v, Entries& out) const;
   void add_near_points(int u, int v, Entries& out) const;
+  void measure_near(const Vec3& a0, const Vec3& a1, double need_m, bool cells, bool ends_next, Entries& out) const;
+  Aabb lattice_bounds() const;
   bool moves_conflict(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1) const;
   // Every conflict among the paths, by time, each as found; stops at the first when `first`.
   int scan(const std::vector<SpaceTimePath>& paths, bool first, PathConflict* out) const;
@@ -122,6 +135,8 @@ class LatticeAgents final : public SpaceTimeModel {
     std::vector<std::pair<Eigen::Vector3i, int>> moves;  // (offset of the other's start, its direction)
   };
   mutable std::vector<Pattern> patterns_;  // per direction (27: index 13 is the wait)
+  SpaceTimeTable moving_;                  // the moving obstacles' entries
+  bool has_moving_ = false;
 };
 
 }  // namespace uavplan
