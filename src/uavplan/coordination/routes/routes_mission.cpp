@@ -50,11 +50,12 @@ RoutesOptions routes_options(const MissionContext& ctx) {
   return o;
 }
 
-// The UAVs timed before the sensing ones fly: those without sensors that have a goal.
+// The UAVs space and time may plan: those without sensors that have a goal, flown as point masses
+// (a UAV with an autopilot model flies its own route, timed by delays).
 std::vector<std::size_t> timed_uavs(const Scenario& sc) {
   std::vector<std::size_t> out;
   for (std::size_t i = 0; i < sc.uavs.size(); ++i)
-    if (!senses(sc.uavs[i]) && sc.uavs[i].goal) out.push_back(i);
+    if (!senses(sc.uavs[i]) && !sc.uavs[i].model && sc.uavs[i].goal) out.push_back(i);
   return out;
 }
 
@@ -214,7 +215,7 @@ bool plan_and_time(const Scenario& sc, const Planner& planner, const MissionOpti
       continue;
     }
     horizon_s += 2.0 * up.route_length_m / u.speed.cruise_mps;
-    if (gave_up && !senses(u)) {
+    if (gave_up && !senses(u) && !u.model) {  // space and time plans it
       up.status = Status::failed;
       up.reason = Reason::conflict;
       up.message = "not timed: an earlier UAV found no departure delay";
@@ -363,8 +364,8 @@ void fly_sensing(const Scenario& sc, const MissionContext& ctx, const LocalLayer
 void deconflict(const Scenario& sc, const MissionContext& ctx, const RoutesOptions& o, const Planner& planner,
                 Plan& plan) {
   const std::vector<std::size_t> timed = timed_uavs(sc);
-  const bool sensing = std::any_of(sc.uavs.begin(), sc.uavs.end(), [](const UavSpec& u) { return senses(u); });
-  if (o.deconfliction == Deconfliction::space_time && !sensing) {
+  const bool others = std::any_of(sc.uavs.begin(), sc.uavs.end(), [](const UavSpec& u) { return senses(u) || u.model; });
+  if (o.deconfliction == Deconfliction::space_time && !others) {  // no route of the planner needed
     for (const UavSpec& u : sc.uavs) {
       UavPlan& up = plan.uavs.emplace_back();
       up.id = u.id;

@@ -141,12 +141,22 @@ MapfResult solve(const LatticeAgents& agents, MapfMethod method, const StopCondi
   return bounded;
 }
 
+// The solved UAVs of the plan outside `which` (flown by their own rules: an autopilot model).
+Committed planned_before(const Scenario& sc, const std::vector<std::size_t>& which, const Plan& plan) {
+  Committed out;
+  for (std::size_t i = 0; i < plan.uavs.size() && i < sc.uavs.size(); ++i)
+    if (plan.uavs[i].status == Status::solved && !plan.uavs[i].trajectory.empty() &&
+        std::find(which.begin(), which.end(), i) == which.end() && !sc.uavs[i].sensor_range_m)
+      out.emplace_back(&sc.uavs[i], &plan.uavs[i]);
+  return out;
+}
+
 // Each solved UAV checked as the verifier checks it, in scenario order against those before:
 // separation (and moving obstacles), turn and climb limits, the mission's own rules.
 void check_flights(const Scenario& sc, const std::vector<std::size_t>& which, const UavLattice& l,
                    const std::vector<SpaceTimePath>& paths, Plan& plan) {
   const Mission* mission = find_mission(sc.mission.type);
-  Committed committed;
+  Committed committed = planned_before(sc, which, plan);
   for (std::size_t k = 0; k < which.size(); ++k) {
     const std::size_t i = which[k];
     UavPlan& up = plan.uavs[i];
@@ -190,7 +200,7 @@ struct Layer {
 };
 
 Layer make_layer(const Scenario& sc, const MissionContext& ctx, const std::vector<std::size_t>& which,
-                 const SpaceTimeRoutesOptions& o) {
+                 const SpaceTimeRoutesOptions& o, const Plan& plan) {
   Layer layer;
   layer.fleet = fleet_of(sc, which);
   const Flights flights = flights_of(sc, ctx, which);
@@ -237,8 +247,17 @@ Layer make_layer(const Scenario& sc, const MissionContext& ctx, const std::vecto
       layer.clock.t0_s =
           std::max(layer.clock.t0_s, (sc.uavs[i].start - *ctx.ground.start[i]).norm() / sc.uavs[i].speed.cruise_mps);
   }
-  // Known in advance to UAVs without sensors (find_conflict keeps their radius off the surface).
-  layer.agents->keep_off_moving(sc.world.moving(), radius_m + kTimingMargin_m, layer.clock.t0_s, layer.clock.tick_s);
+  // Known in advance to UAVs without sensors (find_conflict keeps their radius off the surface),
+  // and so are the UAVs planned already: each a moving obstacle as wide as keeps the separation.
+  std::vector<MovingObstacle> moving = sc.world.moving();
+  for (const auto& [spec, flown] : planned_before(sc, which, plan)) {
+    MovingObstacle m{spec->id, 0.0, Vec3::Zero(), Vec3::Zero(), {}};
+    for (const std::size_t i : which)
+      m.radius_m = std::max(m.radius_m, required_separation_m(sc, *spec, sc.uavs[i]) - radius_m);
+    for (const TrajectorySample& r : flown->trajectory) m.path.push_back({r.t_s, r.p});
+    moving.push_back(std::move(m));
+  }
+  layer.agents->keep_off_moving(moving, radius_m + kTimingMargin_m, layer.clock.t0_s, layer.clock.tick_s);
   return layer;
 }
 
@@ -250,7 +269,7 @@ void plan_space_time(const Scenario& sc, const MissionContext& ctx, const std::v
   const auto fail_all = [&](Reason why, const std::string& message) {
     for (const std::size_t i : which) fail(plan.uavs[i], why, message);
   };
-  const Layer layer = make_layer(sc, ctx, which, o);
+  const Layer layer = make_layer(sc, ctx, which, o, plan);
   if (!layer.problem.empty()) return fail_all(layer.why, layer.problem);
   const StopCondition& stop = ctx.options.stop;
   const MapfResult r = solve(*layer.agents, o.method, stop);
@@ -282,7 +301,7 @@ std::vector<LoneFlight> lone_space_time_flights(const Scenario& sc, const Missio
                                                 const std::vector<std::size_t>& which,
                                                 const SpaceTimeRoutesOptions& o) {
   std::vector<LoneFlight> out(which.size());
-  const Layer layer = make_layer(sc, ctx, which, o);
+  const Layer layer = make_layer(sc, ctx, which, o, Plan{});
   if (!layer.agents) return out;
   SpaceTimeSearch search;
   SpaceTimeTable none;
