@@ -364,7 +364,8 @@ void fly_sensing(const Scenario& sc, const MissionContext& ctx, const LocalLayer
 void deconflict(const Scenario& sc, const MissionContext& ctx, const RoutesOptions& o, const Planner& planner,
                 Plan& plan) {
   const std::vector<std::size_t> timed = timed_uavs(sc);
-  const bool others = std::any_of(sc.uavs.begin(), sc.uavs.end(), [](const UavSpec& u) { return senses(u) || u.model; });
+  const bool others =
+      std::any_of(sc.uavs.begin(), sc.uavs.end(), [](const UavSpec& u) { return senses(u) || u.model; });
   if (o.deconfliction == Deconfliction::space_time && !others) {  // no route of the planner needed
     for (const UavSpec& u : sc.uavs) {
       UavPlan& up = plan.uavs.emplace_back();

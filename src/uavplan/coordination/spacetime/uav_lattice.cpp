@@ -148,6 +148,44 @@ bool gone(const Aabb& bounds, const Vec3& p, const Vec3& v, double need_m) {
   return false;
 }
 
+// Whether a UAV may fly straight from a to b in one move: within a lattice diagonal, its climb
+// limit, and clear of obstacles by the body.
+bool joinable(const World& world, const Vec3& a, const Vec3& b, double cell_m, const UavLatticeOptions& o) {
+  const Vec3 step = b - a;
+  if (step.norm() > std::sqrt(3.0) * cell_m || step.norm() < 1e-9) return false;
+  if (std::atan2(std::abs(step.z()), step.head<2>().norm()) > o.max_climb_rad + 1e-9) return false;
+  return world.segment_valid(a, b, o.body_m);
+}
+
+// The UAVs' points as vertices after the cells, each joined both ways to the free cells of the
+// 4 x 4 x 4 block round it, and to the points before it, that it may fly to in one move.
+void join_points(const World& world, std::span<const Vec3> points, const UavLatticeOptions& o,
+                 const std::vector<double>& clear, UavLattice& l, std::vector<std::vector<int>>& next) {
+  const int cells = l.cell_count();
+  const Cells at{l};
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const int pv = cells + static_cast<int>(i);
+    const Vec3& p = points[i];
+    l.position.push_back(p);
+    const Eigen::Vector3i lo = cell_below(l, p) - Eigen::Vector3i::Ones();
+    for (int dz = 0; dz < 4; ++dz)
+      for (int dy = 0; dy < 4; ++dy)
+        for (int dx = 0; dx < 4; ++dx) {
+          const Eigen::Vector3i n = lo + Eigen::Vector3i(dx, dy, dz);
+          if (!at.inside(n) || clear[at.vertex(n)] < 0.0) continue;
+          const int u = at.vertex(n);
+          if (!joinable(world, p, l.position[u], l.cell_m, o)) continue;
+          next[pv].push_back(u);
+          next[u].push_back(pv);
+        }
+    for (std::size_t k = 0; k < i; ++k)
+      if (joinable(world, p, points[k], l.cell_m, o)) {
+        next[pv].push_back(cells + static_cast<int>(k));
+        next[cells + static_cast<int>(k)].push_back(pv);
+      }
+  }
+}
+
 }  // namespace
 
 Aabb LatticeAgents::lattice_bounds() const {
@@ -198,34 +236,7 @@ UavLattice build_uav_lattice(const World& world, std::span<const Vec3> points, c
       if (clear[u] >= 0.0 && edge_clear(world, l.position[v], clear[v], l.position[u], o.body_m)) next[v].push_back(u);
     }
   }
-  const double reach = std::sqrt(3.0) * l.cell_m;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const int pv = cells + static_cast<int>(i);
-    const Vec3& p = points[i];
-    l.position.push_back(p);
-    const Eigen::Vector3i lo = cell_below(l, p) - Eigen::Vector3i::Ones();
-    for (int dz = 0; dz < 4; ++dz)
-      for (int dy = 0; dy < 4; ++dy)
-        for (int dx = 0; dx < 4; ++dx) {
-          const Eigen::Vector3i n = lo + Eigen::Vector3i(dx, dy, dz);
-          if (!at.inside(n)) continue;
-          const int u = at.vertex(n);
-          const Vec3 step = l.position[u] - p;
-          if (clear[u] < 0.0 || step.norm() > reach || step.norm() < 1e-9) continue;
-          if (std::atan2(std::abs(step.z()), step.head<2>().norm()) > o.max_climb_rad + 1e-9) continue;
-          if (!world.segment_valid(p, l.position[u], o.body_m)) continue;
-          next[pv].push_back(u);
-          next[u].push_back(pv);
-        }
-    for (std::size_t k = 0; k < i; ++k) {  // points near one another see each other directly
-      const Vec3 step = points[k] - p;
-      if (step.norm() > reach || step.norm() < 1e-9) continue;
-      if (std::atan2(std::abs(step.z()), step.head<2>().norm()) > o.max_climb_rad + 1e-9) continue;
-      if (!world.segment_valid(p, points[k], o.body_m)) continue;
-      next[pv].push_back(cells + static_cast<int>(k));
-      next[cells + static_cast<int>(k)].push_back(pv);
-    }
-  }
+  join_points(world, points, o, clear, l, next);
   l.graph.vertex_count = static_cast<int>(next.size());
   l.graph.first.assign(next.size() + 1, 0);
   for (std::size_t v = 0; v < next.size(); ++v) {
