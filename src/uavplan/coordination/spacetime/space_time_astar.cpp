@@ -13,6 +13,27 @@ std::uint64_t state_key(int v, int t) {
   return static_cast<std::uint64_t>(static_cast<std::uint32_t>(t)) << 32 | static_cast<std::uint32_t>(v);
 }
 
+// Whether the agent may be at v at time t.
+bool may_be_at(const SpaceTimeQuery& q, int v, int t) {
+  return q.forbidden->at(v, t) == 0 && (!q.fixed || q.fixed->at(v, t) == 0);
+}
+
+// Whether the agent may move u -> v (u == v: wait) from time t to t + 1.
+bool may_move(const SpaceTimeQuery& q, int u, int v, int t) {
+  if (v != q.goal && v != u && q.terminals_from >= 0 && v >= q.terminals_from) return false;
+  if (!may_be_at(q, v, t + 1) || q.forbidden->moves(u, v, t) > 0) return false;
+  return !q.fixed || q.fixed->moves(u, v, t) == 0;
+}
+
+// Whether moving on to v, having come from `from` into u (from < 0: none yet), keeps the turn
+// limit; a wait always does.
+bool turns_within(const SpaceTimeQuery& q, int from, int u, int v) {
+  if (q.position == nullptr || q.max_turn_rad >= kPi || v == u) return true;
+  const std::vector<Vec3>& at = *q.position;
+  const Vec3 in = from >= 0 ? Vec3(at[u] - at[from]) : q.heading;
+  return in.isZero() || turn_within(in, at[v] - at[u], q.max_turn_rad);
+}
+
 }  // namespace
 
 SpaceTimeAnswer SpaceTimeSearch::find(const SpaceTimeGraph& g, const SpaceTimeQuery& q, const StopCondition& stop) {
@@ -22,9 +43,7 @@ SpaceTimeAnswer SpaceTimeSearch::find(const SpaceTimeGraph& g, const SpaceTimeQu
   const SpaceTimeTable* fixed = q.fixed;
   const int goal_after =
       !q.stays ? -1 : std::max(forbidden.last_time_at(q.goal), fixed ? fixed->last_time_at(q.goal) : -1);
-  if (h[q.start] < 0 || goal_after == INT_MAX || forbidden.at(q.start, q.start_t) > 0 ||
-      (fixed && fixed->at(q.start, q.start_t) > 0))
-    return a;
+  if (h[q.start] < 0 || goal_after == INT_MAX || !may_be_at(q, q.start, q.start_t)) return a;
   // After the last forbidden time the table no longer changes (stays only): reaching a vertex
   // later is never better than reaching it then, so states past it are told apart by vertex
   // alone. The state space is finite and a walled-in goal is known in one sweep of the graph.
@@ -49,13 +68,6 @@ SpaceTimeAnswer SpaceTimeSearch::find(const SpaceTimeGraph& g, const SpaceTimeQu
   int f_top = f_min;  // highest f pushed: the buckets to empty afterwards
   first_visit(q.start, q.start_t, still);
   push({q.start, q.start_t, -1, 0, f_min, -1});
-  const bool turns = q.position != nullptr && q.max_turn_rad < kPi;
-  // Whether the move from node `cur` to v keeps the turn limit.
-  const auto turn_ok = [&](const Node& cur, int v) {
-    if (!turns || v == cur.v) return true;
-    const Vec3 in = cur.came_from >= 0 ? Vec3((*q.position)[cur.v] - (*q.position)[cur.came_from]) : q.heading;
-    return in.isZero() || turn_within(in, (*q.position)[v] - (*q.position)[cur.v], q.max_turn_rad);
-  };
   int found = -1;
   while (!focal_.empty()) {
     if ((a.expanded & 1023u) == 0 && stop.should_stop()) break;
@@ -71,9 +83,7 @@ SpaceTimeAnswer SpaceTimeSearch::find(const SpaceTimeGraph& g, const SpaceTimeQu
     if (cur.t < SpaceTimeTable::kLastTime) {
       const int t1 = cur.t + 1;
       const auto expand = [&](int v) {
-        if (h[v] < 0 || (v != q.goal && v != cur.v && q.terminals_from >= 0 && v >= q.terminals_from)) return;
-        if (forbidden.at(v, t1) > 0 || forbidden.moves(cur.v, v, cur.t) > 0 || !turn_ok(cur, v)) return;
-        if (fixed && (fixed->at(v, t1) > 0 || fixed->moves(cur.v, v, cur.t) > 0)) return;
+        if (h[v] < 0 || !may_move(q, cur.v, v, cur.t) || !turns_within(q, cur.came_from, cur.v, v)) return;
         if (!first_visit(v, t1, still)) return;
         int meetings = cur.meetings;
         if (q.avoided) meetings += q.avoided->at(v, t1) + q.avoided->moves(cur.v, v, cur.t);
