@@ -303,7 +303,7 @@ std::vector<LoneFlight> lone_space_time_flights(const Scenario& sc, const Missio
   std::vector<LoneFlight> out(which.size());
   const Layer layer = make_layer(sc, ctx, which, o, Plan{});
   if (!layer.agents) return out;
-  SpaceTimeSearch search;
+  SpaceTimeSearches search;
   SpaceTimeTable none;
   none.clear(layer.lattice->graph.vertex_count);
   for (std::size_t k = 0; k < which.size(); ++k) {

@@ -3,8 +3,9 @@
 // (uav_lattice.h), waits allowed, so that crossing traffic passes instead of waiting for a
 // departure slot. Each move takes one tick, the longest edge at the slowest UAV's cruise speed
 // (no UAV flies above its cruise speed); moves steeper than the smallest climb limit are left
-// out. The method: prioritised planning (eight orders), then ECBS (w = 1.3) with a bounded number
-// of high-level nodes where it finds none; or one of them, or CBS, by `space_time_method`.
+// out. The method: prioritised planning (eight orders; safe intervals, safe_interval_astar.h), then
+// ECBS (w = 1.3) with a bounded number of high-level nodes where it finds none; or one of them, or
+// CBS, by `space_time_method`.
 //
 // What it plans is checked as the verifier checks it before it is claimed: separation on the
 // trajectories (take-off and landing legs too), moving obstacles, turn and climb limits and the

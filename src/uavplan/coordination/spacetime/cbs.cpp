@@ -51,7 +51,7 @@ class ConflictSearch {
   std::set<std::pair<int, int>> by_bound_, by_cost_;  // open nodes: (bound, id), (cost, id)
   std::set<std::tuple<int, int, int>> focal_;         // (conflicts, cost, id), cost <= w * least bound
   int focal_cost_ = -1;
-  SpaceTimeSearch search_;
+  SpaceTimeSearches search_;
   SpaceTimeTable forbidden_, avoided_;
   std::uint64_t expanded_ = 0;
 };

@@ -40,9 +40,9 @@ class GridModel final : public SpaceTimeModel {
   int agent_count() const override { return static_cast<int>(p_.starts.size()); }
   int vertex_count() const override { return p_.graph.vertex_count; }
   SpaceTimeAnswer plan(int i, const SpaceTimeTable& forbidden, const SpaceTimeTable* avoided, double w,
-                       SpaceTimeSearch& search, const StopCondition& stop) const override {
+                       SpaceTimeSearches& search, const StopCondition& stop) const override {
     const SpaceTimeQuery q{p_.starts[i], p_.goals[i], &h_[i], &forbidden, avoided, w};
-    return search.find(p_.graph, q, stop);
+    return search.expanded.find(p_.graph, q, stop);
   }
   int lone_cost(int i) const override { return h_[i][p_.starts[i]]; }
   void add_path(int /*agent*/, const SpaceTimePath& path, SpaceTimeTable& table) const override {

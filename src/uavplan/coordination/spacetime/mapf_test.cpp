@@ -5,6 +5,7 @@
 
 #include "uavplan/coordination/spacetime/mapf.h"
 #include "uavplan/coordination/spacetime/mapf_conflicts.h"
+#include "uavplan/coordination/spacetime/safe_interval_astar.h"
 #include "uavplan/coordination/spacetime/space_time_astar.h"
 
 namespace uavplan {
@@ -47,6 +48,66 @@ bool any_conflict_brute(const std::vector<SpaceTimePath>& paths) {
 MapfProblem corridor_swap() {
   const Grid g = grid({".....", "##.##"});
   return {g.graph, {g.at(0, 0), g.at(4, 0)}, {g.at(4, 0), g.at(0, 0)}};
+}
+
+// Safe intervals find the time-expanded search's shortest path under random tables (vertices at
+// times, moves, waits, agents staying for ever), and every path they give keeps off the tables.
+TEST(SafeIntervalSearch, AsShortAsTheTimeExpandedSearchAndKeepsOff) {
+  std::mt19937 rng(21);
+  SpaceTimeSearch expanded;
+  SafeIntervalSearch intervals;
+  SpaceTimeTable table;
+  int found = 0;
+  for (int k = 0; k < 400; ++k) {
+    std::vector<std::string> rows;
+    for (int y = 0; y < 9; ++y) {
+      std::string r;
+      for (int x = 0; x < 9; ++x) r += rng() % 10 < 2 ? '#' : '.';
+      rows.push_back(r);
+    }
+    const Grid g = grid(rows);
+    std::vector<int> open;
+    for (int v = 0; v < g.graph.vertex_count; ++v)
+      if (!g.blocked[v]) open.push_back(v);
+    if (open.size() < 4) continue;
+    const auto any = [&] { return open[rng() % open.size()]; };
+    const int s = any(), t = any();
+    table.clear(g.graph.vertex_count);
+    for (int e = 0; e < 40; ++e) {
+      const int v = any(), time = static_cast<int>(rng() % 20);
+      switch (rng() % 5) {
+        case 0:
+          table.add_stay(v, 10 + time);
+          break;
+        case 1:
+          table.add_move(v, v, time);  // no waiting there then
+          break;
+        case 2:
+          if (g.graph.degree(v) > 0) table.add_move(v, g.graph.next[g.graph.first[v]], time);
+          break;
+        default:
+          table.add_vertex(v, time);
+      }
+    }
+    const std::vector<int> h = distances_to(g.graph, t);
+    const SpaceTimeQuery q{s, t, &h, &table, nullptr, 1.0};
+    const SpaceTimeAnswer a = expanded.find(g.graph, q, StopCondition{});
+    const SpaceTimeAnswer b = intervals.find(g.graph, q, StopCondition{});
+    ASSERT_EQ(a.found, b.found) << k;
+    if (!b.found) continue;
+    ++found;
+    ASSERT_EQ(a.cost, b.cost) << k;
+    ASSERT_EQ(b.path.front(), s);
+    ASSERT_EQ(b.path.back(), t);
+    for (int time = 0; time + 1 < static_cast<int>(b.path.size()); ++time) {
+      const int u = b.path[time], v = b.path[time + 1];
+      ASSERT_TRUE(u == v || g.graph.adjacent(u, v)) << k;
+      ASSERT_EQ(table.at(v, time + 1), 0) << k;
+      ASSERT_EQ(table.moves(u, v, time), 0) << k;
+    }
+    ASSERT_LT(table.last_time_at(t), static_cast<int>(b.path.size())) << k;  // it may stay at its goal
+  }
+  EXPECT_GT(found, 150);
 }
 
 TEST(SpaceTimeSearch, AloneIsShortestUnderAWeakHeuristic) {

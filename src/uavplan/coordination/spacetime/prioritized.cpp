@@ -14,7 +14,7 @@ MapfResult solve_prioritized(const SpaceTimeModel& model, int orders, const Stop
   std::vector<int> order(static_cast<std::size_t>(n));
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return model.lone_cost(a) > model.lone_cost(b); });
-  SpaceTimeSearch search;
+  SpaceTimeSearches search;
   SpaceTimeTable taken;
   std::vector<SpaceTimePath> paths(static_cast<std::size_t>(n));
   for (int k = 0; k < orders && !stop.should_stop(); ++k) {

@@ -4,34 +4,13 @@
 #include <climits>
 #include <cmath>
 
-#include "uavplan/vehicle/uav.h"
+#include "uavplan/coordination/spacetime/space_time_moves.h"
 
 namespace uavplan {
 namespace {
 
 std::uint64_t state_key(int v, int t) {
   return static_cast<std::uint64_t>(static_cast<std::uint32_t>(t)) << 32 | static_cast<std::uint32_t>(v);
-}
-
-// Whether the agent may be at v at time t.
-bool may_be_at(const SpaceTimeQuery& q, int v, int t) {
-  return q.forbidden->at(v, t) == 0 && (!q.fixed || q.fixed->at(v, t) == 0);
-}
-
-// Whether the agent may move u -> v (u == v: wait) from time t to t + 1.
-bool may_move(const SpaceTimeQuery& q, int u, int v, int t) {
-  if (v != q.goal && v != u && q.terminals_from >= 0 && v >= q.terminals_from) return false;
-  if (!may_be_at(q, v, t + 1) || q.forbidden->moves(u, v, t) > 0) return false;
-  return !q.fixed || q.fixed->moves(u, v, t) == 0;
-}
-
-// Whether moving on to v, having come from `from` into u (from < 0: none yet), keeps the turn
-// limit; a wait always does.
-bool turns_within(const SpaceTimeQuery& q, int from, int u, int v) {
-  if (q.position == nullptr || q.max_turn_rad >= kPi || v == u) return true;
-  const std::vector<Vec3>& at = *q.position;
-  const Vec3 in = from >= 0 ? Vec3(at[u] - at[from]) : q.heading;
-  return in.isZero() || turn_within(in, at[v] - at[u], q.max_turn_rad);
 }
 
 }  // namespace

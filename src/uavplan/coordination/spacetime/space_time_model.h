@@ -8,6 +8,7 @@
 #include <optional>
 #include <vector>
 
+#include "uavplan/coordination/spacetime/safe_interval_astar.h"
 #include "uavplan/coordination/spacetime/space_time_astar.h"
 #include "uavplan/coordination/spacetime/space_time_table.h"
 #include "uavplan/core/stop.h"
@@ -26,6 +27,13 @@ struct PathConflict {
   AgentStep a, b;
 };
 
+// The searches' buffers, kept between queries by the high level that owns them: the
+// time-expanded focal search, and the safe-interval search for hard constraints alone.
+struct SpaceTimeSearches {
+  SpaceTimeSearch expanded;
+  SafeIntervalSearch intervals;
+};
+
 class SpaceTimeModel {
  public:
   virtual ~SpaceTimeModel() = default;
@@ -34,7 +42,7 @@ class SpaceTimeModel {
   // Agent i's path, or none, keeping off `forbidden` and meeting `avoided` (may be null) as
   // seldom as a path within w of the shortest can.
   virtual SpaceTimeAnswer plan(int agent, const SpaceTimeTable& forbidden, const SpaceTimeTable* avoided, double w,
-                               SpaceTimeSearch& search, const StopCondition& stop) const = 0;
+                               SpaceTimeSearches& search, const StopCondition& stop) const = 0;
   // Steps of agent i's path alone (prioritised planning takes the longest first).
   virtual int lone_cost(int agent) const = 0;
   // What agent i's path forbids the others, into `table`.

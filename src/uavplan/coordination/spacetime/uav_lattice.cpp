@@ -110,23 +110,29 @@ std::vector<int> components(const SpaceTimeGraph& g) {
   return c;
 }
 
-// A lower bound on the moves from each vertex to `goal` through the lattice, exact in open space:
-// a lattice vertex needs its Chebyshev distance (in cells) to the nearest of the goal's lattice
-// neighbours, and one move more; a UAV's point one move more than its best neighbour. -1 off the
-// goal's component.
+// A lower bound on the moves from each vertex to `goal` through the lattice, exact in open space
+// round a goal whose neighbouring cells are free: a lattice vertex needs its Chebyshev distance
+// (in cells) to the box of the goal's lattice neighbours, and one move more; a UAV's point one
+// move more than its best neighbour. -1 off the goal's component.
 std::vector<int> tick_bounds(const UavLattice& l, const std::vector<int>& component, int goal) {
   const SpaceTimeGraph& g = l.graph;
-  std::vector<Eigen::Vector3i> ends;  // the goal's lattice neighbours, in cells
+  const Cells at{l};
+  Eigen::Vector3i lo = Eigen::Vector3i::Constant(INT_MAX), hi = Eigen::Vector3i::Constant(INT_MIN);
   for (int k = g.first[goal]; k < g.first[goal + 1]; ++k)
-    if (l.is_cell(g.next[k])) ends.push_back(Cells{l}.cell(g.next[k]));
+    if (l.is_cell(g.next[k])) {
+      lo = lo.cwiseMin(at.cell(g.next[k]));
+      hi = hi.cwiseMax(at.cell(g.next[k]));
+    }
   std::vector<int> h(l.position.size(), -1);
   const int cells = l.cell_count();
   for (int v = 0; v < cells; ++v) {
     if (component[v] != component[goal]) continue;
-    const Eigen::Vector3i c = Cells{l}.cell(v);
-    int best = INT_MAX;
-    for (const Eigen::Vector3i& e : ends) best = std::min(best, (c - e).cwiseAbs().maxCoeff());
-    h[v] = best == INT_MAX ? 0 : best + 1;
+    if (lo.x() > hi.x()) {  // no lattice neighbour: it is reached from points only
+      h[v] = 0;
+      continue;
+    }
+    const Eigen::Vector3i c = at.cell(v);
+    h[v] = (lo - c).cwiseMax(c - hi).cwiseMax(0).maxCoeff() + 1;
   }
   for (int v = cells; v < g.vertex_count; ++v) {
     if (component[v] != component[goal]) continue;
@@ -299,7 +305,7 @@ LatticeAgents::LatticeAgents(const UavLattice& lattice, std::vector<LatticeAgent
 
 // Leg after leg; each starts where and when the one before ended.
 SpaceTimeAnswer LatticeAgents::plan(int agent, const SpaceTimeTable& forbidden, const SpaceTimeTable* avoided, double w,
-                                    SpaceTimeSearch& search, const StopCondition& stop) const {
+                                    SpaceTimeSearches& search, const StopCondition& stop) const {
   const LatticeAgent& a = agents_[agent];
   SpaceTimeAnswer out;
   out.path.push_back(a.start);
@@ -312,7 +318,9 @@ SpaceTimeAnswer LatticeAgents::plan(int agent, const SpaceTimeTable& forbidden, 
     q.heading = arrival_direction(out.path, a.heading);
     q.terminals_from = lattice_.cell_count();  // no path passes through another UAV's point
     q.fixed = has_moving_ ? &moving_ : nullptr;
-    SpaceTimeAnswer leg = search.find(lattice_.graph, q, stop);
+    // Hard constraints alone (prioritised planning): safe intervals; else the focal search.
+    SpaceTimeAnswer leg = avoided == nullptr && w == 1.0 ? search.intervals.find(lattice_.graph, q, stop)
+                                                         : search.expanded.find(lattice_.graph, q, stop);
     out.expanded += leg.expanded;
     if (!leg.found) {
       out.found = false;

@@ -88,7 +88,7 @@ class LatticeAgents final : public SpaceTimeModel {
   int agent_count() const override { return static_cast<int>(agents_.size()); }
   int vertex_count() const override { return lattice_.graph.vertex_count; }
   SpaceTimeAnswer plan(int agent, const SpaceTimeTable& forbidden, const SpaceTimeTable* avoided, double w,
-                       SpaceTimeSearch& search, const StopCondition& stop) const override;
+                       SpaceTimeSearches& search, const StopCondition& stop) const override;
   int lone_cost(int agent) const override { return lone_[agent]; }
   void add_path(int agent, const SpaceTimePath& path, SpaceTimeTable& table) const override;
   std::optional<PathConflict> first_conflict(const std::vector<SpaceTimePath>& paths) const override;
