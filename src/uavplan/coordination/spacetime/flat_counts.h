@@ -34,9 +34,20 @@ class FlatCounts {
     counts_[i] += count;
   }
   // Adds `key` once: true when it was not there.
-  bool insert(std::uint64_t key) {
-    if (get(key) != 0) return false;
-    add(key);
+  bool insert(std::uint64_t key) { return keep_least(key, 1); }
+  // Sets `key` to `value` (above 0) when it is not there or holds more: true when it did. One probe.
+  bool keep_least(std::uint64_t key, int value) {
+    if (2 * (size_ + 1) > keys_.size()) grow();
+    const std::size_t i = slot(key);
+    if (stamps_[i] == generation_) {
+      if (counts_[i] <= value) return false;
+      counts_[i] = value;
+      return true;
+    }
+    stamps_[i] = generation_;
+    keys_[i] = key;
+    counts_[i] = value;
+    ++size_;
     return true;
   }
   int get(std::uint64_t key) const {

@@ -48,10 +48,7 @@ SpaceTimeAnswer SafeIntervalSearch::find(const SpaceTimeGraph& g, const SpaceTim
   const auto heap_order = [this](int x, int y) { return better(y, x); };
   // The earliest arrival at (v, its interval) wins; later ones are dropped.
   const auto reach = [&](int v, int t, int end, int parent, int came_from) {
-    const std::uint64_t key = interval_key(v, end, still);
-    const int seen = reached_.get(key);
-    if (seen != 0 && seen <= t + 1) return;
-    reached_.add(key, t + 1 - seen);
+    if (!reached_.keep_least(interval_key(v, end, still), t + 1)) return;
     nodes_.push_back({v, t, parent, std::max(t + h[v], earliest_end), came_from});
     open_.push_back(static_cast<int>(nodes_.size()) - 1);
     std::push_heap(open_.begin(), open_.end(), heap_order);

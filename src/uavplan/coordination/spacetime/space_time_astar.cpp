@@ -94,12 +94,7 @@ SpaceTimeAnswer SpaceTimeSearch::find(const SpaceTimeGraph& g, const SpaceTimeQu
 // earlier time beats a later one (A* may reach a vertex late before it reaches it early): the
 // table keeps the earliest time + 1.
 bool SpaceTimeSearch::first_visit(int v, int t, int still) {
-  if (t < still) return generated_.insert(state_key(v, t));
-  const std::uint64_t key = state_key(v, still);
-  const int seen = generated_.get(key);
-  if (seen != 0 && seen <= t + 1) return false;
-  generated_.add(key, t + 1 - seen);
-  return true;
+  return t < still ? generated_.insert(state_key(v, t)) : generated_.keep_least(state_key(v, still), t + 1);
 }
 
 void SpaceTimeSearch::push(const Node& node) {
