@@ -44,7 +44,11 @@ bash "$SRC/tests/exports_test.sh" "$BIN" "$SRC" "$SCEN" >"$TMP/exports" 2>&1 || 
 "$BIN" plan "$SCEN" -o "$TMP/bad" --set deconfliction=sideways >"$TMP/out" 2>"$TMP/err"
 rc=$?
 [ "$rc" = 2 ] || fail "bad deconfliction: exit $rc, expected 2"
-[ "$(wc -l <"$TMP/err")" = 1 ] && grep -q "deconfliction" "$TMP/err" || { fail "bad deconfliction: message"; cat "$TMP/err"; }
+if [ "$(wc -l <"$TMP/err")" != 1 ] || ! grep -q "deconfliction" "$TMP/err"; then
+  fail "bad deconfliction: message"
+  cat "$TMP/err"
+fi
 [ ! -e "$TMP/bad/plan.json" ] || fail "bad deconfliction: wrote a plan"
 
-[ "$fails" = 0 ] && echo "deconfliction_test: ok" || { echo "$fails failed"; exit 1; }
+[ "$fails" = 0 ] && echo "deconfliction_test: ok"
+exit $((fails > 0))
