@@ -110,37 +110,6 @@ TEST(SafeIntervalSearch, AsShortAsTheTimeExpandedSearchAndKeepsOff) {
   EXPECT_GT(found, 150);
 }
 
-TEST(SpaceTimeSearch, AloneIsShortestUnderAWeakHeuristic) {
-  std::mt19937 rng(3);
-  SpaceTimeSearch search;
-  SpaceTimeTable none;
-  for (int k = 0; k < 300; ++k) {
-    std::vector<std::string> rows;
-    for (int y = 0; y < 12; ++y) {
-      std::string r;
-      for (int x = 0; x < 12; ++x) r += rng() % 10 < 3 ? '#' : '.';
-      rows.push_back(r);
-    }
-    const Grid g = grid(rows);
-    std::vector<int> open;
-    for (int v = 0; v < g.graph.vertex_count; ++v)
-      if (!g.blocked[v]) open.push_back(v);
-    if (open.size() < 2) continue;
-    const int s = open[rng() % open.size()], t = open[rng() % open.size()];
-    const std::vector<int> exact = distances_to(g.graph, t);
-    if (exact[s] < 0) continue;
-    std::vector<int> half(exact.size(), -1);  // consistent, admissible, not exact
-    for (std::size_t v = 0; v < exact.size(); ++v)
-      if (exact[v] >= 0)
-        half[v] = (std::abs(static_cast<int>(v) % 12 - t % 12) + std::abs(static_cast<int>(v) / 12 - t / 12)) / 2;
-    none.clear(g.graph.vertex_count);
-    const SpaceTimeQuery q{s, t, &half, &none, nullptr, 1.0};
-    const SpaceTimeAnswer a = search.find(g.graph, q, StopCondition{});
-    ASSERT_TRUE(a.found) << k;
-    ASSERT_EQ(a.cost, exact[s]) << k;
-  }
-}
-
 TEST(SpaceTimeSearch, AloneItTakesTheShortestPath) {
   const Grid g = grid({"....", ".##.", "...."});
   const std::vector<int> h = distances_to(g.graph, g.at(3, 2));
