@@ -165,10 +165,50 @@ void add_formation_metrics(Plan& plan, const std::vector<const UavPlan*>& flown)
   plan.metrics["backing_up_m"] = back;
 }
 
+// The smallest distance between two flown UAVs (for formation_mission, while either is in the
+// air). Only pairs whose lower bound is within a reach are measured, nearest bound first, until a
+// bound clears the smallest distance found; a reach that held none nearer than itself grows
+// fourfold (the pairs it measured are not measured again), up to every pair.
+double smallest_separation_m(const Scenario& sc, const std::vector<const UavPlan*>& flown) {
+  if (flown.size() < 2) return World::kInf;
+  std::vector<const Trajectory*> trs;
+  trs.reserve(flown.size());
+  double widest_m = 0.0;
+  for (const UavPlan* up : flown) {
+    trs.push_back(&up->trajectory);
+    widest_m = std::max(widest_m, sc.find_uav(up->id)->radius_m);
+  }
+  const SweptBoxes boxes(trs);
+  const double extent_m = boxes.extent_m();
+  double min_sep = World::kInf, done_m = 0.0;
+  // A plan that verified keeps its pairs at least the separation apart: a first reach of twice
+  // that mostly holds the nearest pair.
+  double reach_m = std::max({2.0 * sc.mission.separation_m, 4.0 * widest_m, extent_m / 1024.0, 1e-9});
+  for (;;) {
+    std::vector<SweptBoxes::NearPair> pairs = boxes.pairs_within(reach_m);
+    std::sort(pairs.begin(), pairs.end(), [](const SweptBoxes::NearPair& a, const SweptBoxes::NearPair& b) {
+      return a.bound_m < b.bound_m || (a.bound_m == b.bound_m && (a.i < b.i || (a.i == b.i && a.j < b.j)));
+    });
+    for (const SweptBoxes::NearPair& pr : pairs) {
+      if (pr.bound_m >= min_sep) break;
+      if (pr.bound_m < done_m) continue;
+      // formation_mission: in the air (on the ground only bodies count, and a landed UAV is gone)
+      min_sep = std::min(min_sep, sc.mission.type == MissionType::formation_mission
+                                      ? airfield_encounter(sc, *sc.find_uav(flown[pr.i]->id), *trs[pr.i],
+                                                           *sc.find_uav(flown[pr.j]->id), *trs[pr.j])
+                                            .airborne_min_m
+                                      : boxes.closest_below(trs, pr.i, pr.j, min_sep).distance_m);
+    }
+    if (min_sep < reach_m || reach_m > extent_m) return min_sep;
+    done_m = reach_m;
+    reach_m *= 4.0;
+  }
+}
+
 }  // namespace
 
 void compute_metrics(const Scenario& sc, Plan& plan) {
-  double min_sep = World::kInf, t_min = World::kInf, t_max = -World::kInf, l_min = World::kInf, l_max = -World::kInf;
+  double t_min = World::kInf, t_max = -World::kInf, l_min = World::kInf, l_max = -World::kInf;
   double total = 0.0, p3_total = 0.0;
   std::vector<const UavPlan*> flown;
   const std::vector<Arrival> arrivals = arrival_points(sc);
@@ -208,33 +248,7 @@ void compute_metrics(const Scenario& sc, Plan& plan) {
   plan.metrics.clear();
   if (flown.empty()) return;
   add_formation_metrics(plan, flown);
-  {
-    // Smallest separation: pairs in the order of their lower bounds, until a bound clears the
-    // smallest distance found.
-    std::vector<const Trajectory*> trs;
-    trs.reserve(flown.size());
-    for (const UavPlan* up : flown) trs.push_back(&up->trajectory);
-    const SweptBoxes boxes(trs);
-    struct Pair {
-      double bound_m;
-      std::uint32_t i, j;
-    };
-    std::vector<Pair> pairs;
-    for (std::uint32_t i = 0; i < trs.size(); ++i)
-      for (std::uint32_t j = i + 1; j < trs.size(); ++j) pairs.push_back({boxes.lower_bound_m(i, j), i, j});
-    std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
-      return a.bound_m < b.bound_m || (a.bound_m == b.bound_m && (a.i < b.i || (a.i == b.i && a.j < b.j)));
-    });
-    for (const Pair& pr : pairs) {
-      if (pr.bound_m >= min_sep) break;
-      // formation_mission: in the air (on the ground only bodies count, and a landed UAV is gone)
-      min_sep = std::min(min_sep, sc.mission.type == MissionType::formation_mission
-                                      ? airfield_encounter(sc, *sc.find_uav(flown[pr.i]->id), *trs[pr.i],
-                                                           *sc.find_uav(flown[pr.j]->id), *trs[pr.j])
-                                            .airborne_min_m
-                                      : closest_approach(*trs[pr.i], *trs[pr.j]).distance_m);
-    }
-  }
+  const double min_sep = smallest_separation_m(sc, flown);
   plan.metrics["total_length_m"] = total;
   if (sc.mission.type == MissionType::group) plan.metrics["p3_group_score"] = p3_total;  // P3's score, of a group
   if (std::isfinite(t_max)) plan.metrics["arrival_spread_s"] = t_max - t_min;            // inf: a UAV never arrives

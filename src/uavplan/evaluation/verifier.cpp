@@ -191,15 +191,18 @@ void check_uav(const Scenario& sc, const Mission& mission, const UavSpec& u, con
 void check_pairs(const Scenario& sc, const Mission& mission, const FlownUavs& flown, Violations& out) {
   std::vector<const Trajectory*> trs;
   for (const auto& f : flown) trs.push_back(&f.second->trajectory);
-  const SweptBoxes boxes(trs);  // pairs never near enough to conflict are skipped
-  for (std::size_t i = 0; i < flown.size(); ++i)
-    for (std::size_t j = i + 1; j < flown.size(); ++j) {
-      const auto& [ua, pa] = flown[i];
-      const auto& [ub, pb] = flown[j];
-      const double need = required_separation_m(sc, *ua, *ub);
-      if (boxes.lower_bound_m(i, j) >= need) continue;
-      mission.check_pair(sc, *ua, pa->trajectory, *ub, pb->trajectory, need, out);
-    }
+  // Pairs never near enough to conflict are skipped: no pair needs more than the separation or
+  // twice the largest body, so only the pairs within that are checked, in (i, j) order.
+  double widest_m = 0.0;
+  for (const auto& f : flown) widest_m = std::max(widest_m, f.first->radius_m);
+  const double reach_m = std::max(sc.mission.separation_m, 2.0 * widest_m);
+  for (const SweptBoxes::NearPair& near : SweptBoxes(trs).pairs_within(reach_m)) {
+    const auto& [ua, pa] = flown[near.i];
+    const auto& [ub, pb] = flown[near.j];
+    const double need = required_separation_m(sc, *ua, *ub);
+    if (near.bound_m >= need) continue;
+    mission.check_pair(sc, *ua, pa->trajectory, *ub, pb->trajectory, need, out);
+  }
 }
 
 }  // namespace

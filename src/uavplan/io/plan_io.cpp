@@ -26,8 +26,6 @@ double r6(double x) {
   return r == 0.0 ? 0.0 : r;  // no "-0.0"
 }
 
-Json vec(const Vec3& p) { return Json::array({p.x(), p.y(), p.z()}); }
-
 Json metrics_json(const std::map<std::string, double>& m) {
   Json j = Json::object();
   for (const auto& [k, v] : m) j[k] = std::isfinite(v) ? Json(r6(v)) : Json(nullptr);
@@ -53,9 +51,9 @@ void write_primitive(const Json& j, std::string& out) {
   write_number(j.get<double>(), out);
 }
 
-// A trajectory's rows are not built as a tree (a third of the time of writing a plan went to
-// that): the tree holds a binary value in their place, with the UAV's index as its subtype, and
-// this writes the rows as write_json would have.
+// A UAV's waypoints and trajectory rows are not built as a tree (a third of the time of writing
+// a plan went to that): the tree holds binary values in their place, subtype 2 k for UAV k's
+// waypoints and 2 k + 1 for its rows, and these are written as write_json would have.
 using Splice = std::function<void(std::uint64_t index, std::size_t depth, std::string& out)>;
 
 // Pretty JSON with every all-number array (a waypoint, a trajectory row) on one line.
@@ -97,6 +95,26 @@ void write_json(const Json& j, int depth, std::string& out, const Splice& splice
   } else {
     write_primitive(j, out);
   }
+}
+
+// The points as write_json writes an array of all-number arrays.
+void write_points(const std::vector<Vec3>& pts, std::size_t depth, std::string& out) {
+  if (pts.empty()) {
+    out += "[]";
+    return;
+  }
+  out += "[\n";
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    out.append(depth + 1, ' ');
+    out += '[';
+    for (int k = 0; k < 3; ++k) {
+      if (k) out += ',';
+      write_number(pts[i][k], out);
+    }
+    out += i + 1 < pts.size() ? "],\n" : "]\n";
+  }
+  out.append(depth, ' ');
+  out += ']';
 }
 
 // The rows as write_json writes an array of all-number arrays.
@@ -162,10 +180,19 @@ struct Reader {
   }
 };
 
+// An object whose members are all inserted before it grows: ordered_json keeps members in a
+// vector of pairs with a const key, which cannot move, so each growth would deep-copy every
+// member so far (a plan's whole UAV array, a UAV's waypoints).
+Json object_for(std::size_t members) {
+  Json j = Json::object();
+  j.get_ref<Json::object_t&>().reserve(members);
+  return j;
+}
+
 }  // namespace
 
 std::string plan_to_json(const Plan& plan, const PlanWriteOptions& options) {
-  Json j;
+  Json j = object_for(12);
   j["format"] = "uavplan-plan";
   j["version"] = 1;
   j["scenario"] = plan.scenario;
@@ -174,17 +201,16 @@ std::string plan_to_json(const Plan& plan, const PlanWriteOptions& options) {
   j["status"] = std::string(to_string(plan.status));
   j["message"] = plan.message;
   Json uavs = Json::array();
+  uavs.get_ref<Json::array_t&>().reserve(plan.uavs.size());
   for (const UavPlan& u : plan.uavs) {
-    Json ju;
+    Json ju = object_for(12);
     ju["id"] = u.id;
     ju["status"] = std::string(to_string(u.status));
     if (u.reason != Reason::none) ju["reason"] = std::string(to_string(u.reason));
     ju["message"] = u.message;
-    // Built apart and moved in: ju[key] looks the key up in an ordered map every time.
-    Json waypoints = Json::array();
-    for (const auto& p : u.waypoints) waypoints.push_back(vec(p));
-    ju["waypoints"] = std::move(waypoints);
-    ju["trajectory"] = Json::binary({}, uavs.size());  // write_rows writes it
+    // The waypoints and the rows are spliced in as they are written (write_points, write_rows).
+    ju["waypoints"] = Json::binary({}, 2 * uavs.size());
+    ju["trajectory"] = Json::binary({}, 2 * uavs.size() + 1);
     ju["length_m"] = u.length_m;
     ju["route_length_m"] = u.route_length_m;
     if (std::isfinite(u.arrival_s)) ju["arrival_s"] = u.arrival_s;  // none: never at its goal to stay
@@ -220,7 +246,11 @@ std::string plan_to_json(const Plan& plan, const PlanWriteOptions& options) {
   std::string out;
   out.reserve(2048 + 96 * rows);  // a row is about 80 characters
   write_json(j, 0, out, [&](std::uint64_t k, std::size_t depth, std::string& o) {
-    write_rows(plan.uavs[k].trajectory, depth, o);
+    const UavPlan& u = plan.uavs[k / 2];
+    if (k % 2 == 0)
+      write_points(u.waypoints, depth, o);
+    else
+      write_rows(u.trajectory, depth, o);
   });
   out += '\n';
   return out;

@@ -89,6 +89,53 @@ class Cursor {
 
 }  // namespace
 
+namespace {
+
+// position_at(tr, t) where `next` is the first sample after t (upper_bound), no search.
+Vec3 between(const Trajectory& tr, std::size_t next, double t) {
+  if (next == 0) return tr.front().p;
+  if (next == tr.size()) return tr.back().p;
+  const TrajectorySample& a = tr[next - 1];
+  const TrajectorySample& b = tr[next];
+  const double span = b.t_s - a.t_s;
+  return span <= 0.0 ? b.p : Vec3(a.p + (t - a.t_s) / span * (b.p - a.p));
+}
+
+}  // namespace
+
+Encounter closest_approach_between(const Trajectory& a, const Trajectory& b, double t_from_s, double t_to_s) {
+  Encounter e;
+  if (a.empty() || b.empty() || !(t_from_s <= t_to_s)) return e;
+  auto first_after = [&](const Trajectory& tr) {
+    return static_cast<std::size_t>(std::upper_bound(tr.begin(), tr.end(), t_from_s,
+                                                     [](double x, const TrajectorySample& s) { return x < s.t_s; }) -
+                                    tr.begin());
+  };
+  std::size_t i = first_after(a), j = first_after(b);
+  double t_prev = t_from_s;
+  Vec3 pa_prev = position_at(a, t_from_s), pb_prev = position_at(b, t_from_s);
+  auto consider = [&](double t, const Vec3& pa, const Vec3& pb) {
+    double u = 0.0;
+    const double dist = point_segment_distance(Vec3::Zero(), pa_prev - pb_prev, pa - pb, &u);
+    if (dist < e.distance_m) {
+      e.distance_m = dist;
+      e.t_s = t_prev + u * (t - t_prev);
+      e.where = pa_prev + u * (pa - pa_prev);
+    }
+    t_prev = t, pa_prev = pa, pb_prev = pb;
+  };
+  consider(t_from_s, pa_prev, pb_prev);
+  while (i < a.size() || j < b.size()) {
+    const double t = i == a.size() ? b[j].t_s : j == b.size() ? a[i].t_s : std::min(a[i].t_s, b[j].t_s);
+    if (t >= t_to_s) break;
+    while (i < a.size() && a[i].t_s == t) ++i;
+    while (j < b.size() && b[j].t_s == t) ++j;
+    consider(t, between(a, i, t), between(b, j, t));
+  }
+  consider(t_to_s, position_at(a, t_to_s), position_at(b, t_to_s));
+  return e;
+}
+
 Encounter closest_approach(const Trajectory& a, const Trajectory& b, double t_max_s) {
   Encounter e;
   if (a.empty() || b.empty()) return e;
@@ -138,6 +185,7 @@ SweptBoxes::SweptBoxes(std::span<const Trajectory* const> trs, int slices) : sli
   for (const Trajectory* tr : trs)
     if (!tr->empty()) t0 = std::min(t0, tr->front().t_s), t1 = std::max(t1, tr->back().t_s);
   const double w = t1 > t0 ? (t1 - t0) / slices_ : 1.0;
+  t0_s_ = t0, width_s_ = w, t1_s_ = t1;
   boxes_.resize(trs.size() * static_cast<std::size_t>(slices_));
   for (std::size_t n = 0; n < trs.size(); ++n) {
     const Trajectory& tr = *trs[n];
@@ -168,6 +216,77 @@ double SweptBoxes::lower_bound_m(std::size_t i, std::size_t j) const {
     best = std::min(best, gap.squaredNorm());
   }
   return std::sqrt(best);
+}
+
+std::vector<SweptBoxes::NearPair> SweptBoxes::pairs_within(double reach_m) const {
+  const std::size_t n = slices_ > 0 ? boxes_.size() / static_cast<std::size_t>(slices_) : 0;
+  std::vector<std::uint64_t> keys;  // i << 32 | j, every slice's near pairs
+  std::vector<std::uint32_t> order;
+  const double reach2 = reach_m * reach_m;
+  for (int s = 0; s < slices_; ++s) {
+    auto box = [&](std::uint32_t k) -> const Aabb& { return boxes_[k * static_cast<std::size_t>(slices_) + s]; };
+    order.clear();
+    for (std::uint32_t k = 0; k < n; ++k)
+      if (!box(k).empty()) order.push_back(k);
+    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+      return box(a).min.x() < box(b).min.x() || (box(a).min.x() == box(b).min.x() && a < b);
+    });
+    for (std::size_t x = 0; x < order.size(); ++x) {
+      const Aabb& a = box(order[x]);
+      for (std::size_t y = x + 1; y < order.size() && box(order[y]).min.x() - a.max.x() < reach_m; ++y) {
+        const Aabb& b = box(order[y]);
+        const Vec3 gap = (a.min - b.max).cwiseMax(b.min - a.max).cwiseMax(Vec3::Zero());
+        if (gap.squaredNorm() >= reach2) continue;
+        const std::uint32_t i = std::min(order[x], order[y]), j = std::max(order[x], order[y]);
+        keys.push_back(std::uint64_t{i} << 32 | j);
+      }
+    }
+  }
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  std::vector<NearPair> out;
+  out.reserve(keys.size());
+  for (const std::uint64_t k : keys) {
+    const auto i = static_cast<std::uint32_t>(k >> 32), j = static_cast<std::uint32_t>(k & 0xffffffffu);
+    out.push_back({i, j, lower_bound_m(i, j)});
+  }
+  return out;
+}
+
+std::vector<std::pair<double, double>> SweptBoxes::near_spans(std::size_t i, std::size_t j, double below_m) const {
+  const Aabb* a = &boxes_[i * static_cast<std::size_t>(slices_)];
+  const Aabb* b = &boxes_[j * static_cast<std::size_t>(slices_)];
+  std::vector<std::pair<double, double>> out;
+  for (int s = 0; s < slices_; ++s) {
+    if (a[s].empty() || b[s].empty()) continue;
+    const Vec3 gap = (a[s].min - b[s].max).cwiseMax(b[s].min - a[s].max).cwiseMax(Vec3::Zero());
+    if (gap.norm() >= below_m) continue;
+    const double from = t0_s_ + s * width_s_, to = s + 1 == slices_ ? t1_s_ : t0_s_ + (s + 1) * width_s_;
+    if (!out.empty() && out.back().second == from)
+      out.back().second = to;
+    else
+      out.emplace_back(from, to);
+  }
+  return out;
+}
+
+Encounter SweptBoxes::closest_below(std::span<const Trajectory* const> trs, std::size_t i, std::size_t j,
+                                    double below_m) const {
+  Encounter e;
+  // Before the common span and after it every trajectory holds its first and last position,
+  // as at the span's ends.
+  for (const auto& [from, to] : near_spans(i, j, below_m)) {
+    const Encounter here = closest_approach_between(*trs[i], *trs[j], from, to);
+    if (here.distance_m < e.distance_m) e = here;
+  }
+  return e;
+}
+
+double SweptBoxes::extent_m() const {
+  Aabb all;
+  for (const Aabb& b : boxes_)
+    if (!b.empty()) all.extend(b);
+  return all.empty() ? 0.0 : all.extent().norm();
 }
 
 Encounter closest_moving_approach(const World& world, const Trajectory& tr, int* index_out) {

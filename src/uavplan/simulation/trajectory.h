@@ -3,8 +3,10 @@
 // after its last it stays at its last (hovering or landed at the goal).
 #pragma once
 
+#include <cstdint>
 #include <limits>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "uavplan/core/vec.h"
@@ -54,6 +56,8 @@ struct Encounter {
 // merged sample times, so each piece is a closed-form minimum), up to time t_max_s.
 Encounter closest_approach(const Trajectory& a, const Trajectory& b,
                            double t_max_s = std::numeric_limits<double>::infinity());
+// The same over the times [t_from_s, t_to_s] only.
+Encounter closest_approach_between(const Trajectory& a, const Trajectory& b, double t_from_s, double t_to_s);
 
 // Lower bounds on closest_approach for many pairs at once: the common time span cut into
 // slices, each trajectory's bounding box per slice; two trajectories are never nearer than
@@ -64,9 +68,28 @@ class SweptBoxes {
   explicit SweptBoxes(std::span<const Trajectory* const> trajectories, int slices = 64);
   double lower_bound_m(std::size_t i, std::size_t j) const;
 
+  struct NearPair {
+    std::uint32_t i, j;  // i < j
+    double bound_m;      // lower_bound_m(i, j)
+  };
+  // Every pair whose lower bound is below `reach_m`, ordered by (i, j); the others are never
+  // nearer than `reach_m`. Per slice a sort and sweep along x, so a group's pairs cost about
+  // slices * n log n plus the pairs near each other, not n^2.
+  std::vector<NearPair> pairs_within(double reach_m) const;
+  // The diagonal of all boxes together: pairs_within of more holds every pair.
+  double extent_m() const;
+  // The time spans (runs of slices) in which trajectories i and j may come nearer than
+  // `below_m`: outside them they never do.
+  std::vector<std::pair<double, double>> near_spans(std::size_t i, std::size_t j, double below_m) const;
+  // closest_approach of trajectories i and j (those this was made of) if it is below `below_m`,
+  // measured over the near spans only; else a distance of at least `below_m`.
+  Encounter closest_below(std::span<const Trajectory* const> trajectories, std::size_t i, std::size_t j,
+                          double below_m) const;
+
  private:
   int slices_ = 0;
-  std::vector<Aabb> boxes_;  // trajectory-major, `slices_` each
+  double t0_s_ = 0.0, width_s_ = 1.0, t1_s_ = 0.0;  // the slices' common span and width
+  std::vector<Aabb> boxes_;                         // trajectory-major, `slices_` each
 };
 
 // Exact smallest gap between the trajectory and the surface of any moving obstacle;

@@ -90,6 +90,64 @@ TEST(Trajectory, SweptBoxesNeverOverstateTheClosestApproach) {
   EXPECT_GT(pruned, 100) << "the bound is useful: most far pairs are cleared";
 }
 
+// Random routes with departure delays, so the trajectories start and end at different times.
+std::vector<Trajectory> random_flights(Rng& r, int count, double side_m) {
+  std::vector<Trajectory> trs;
+  for (int k = 0; k < count; ++k) {
+    std::vector<Vec3> pts;
+    for (int i = 0; i < 4; ++i) pts.emplace_back(r.uniform(0, side_m), r.uniform(0, side_m), r.uniform(0, 20));
+    trs.push_back(time_route(pts, r.uniform(2, 8), r.uniform(0, 20), 1.0));
+  }
+  return trs;
+}
+
+TEST(Trajectory, PairsWithinAreExactlyThePairsWhoseBoundIsBelowTheReach) {
+  Rng r(11);
+  const std::vector<Trajectory> trs = random_flights(r, 60, 300);
+  std::vector<const Trajectory*> ptrs;
+  for (const auto& t : trs) ptrs.push_back(&t);
+  const SweptBoxes boxes(ptrs, 16);
+  for (const double reach : {0.5, 5.0, 20.0, 80.0, boxes.extent_m() * 1.01}) {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> expected;
+    for (std::uint32_t i = 0; i < trs.size(); ++i)
+      for (std::uint32_t j = i + 1; j < trs.size(); ++j)
+        if (boxes.lower_bound_m(i, j) < reach) expected.emplace_back(i, j);
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> got;
+    for (const auto& p : boxes.pairs_within(reach)) {
+      EXPECT_EQ(p.bound_m, boxes.lower_bound_m(p.i, p.j));
+      got.emplace_back(p.i, p.j);
+    }
+    EXPECT_EQ(got, expected) << "reach " << reach;
+  }
+  EXPECT_EQ(boxes.pairs_within(boxes.extent_m() * 1.01).size(), trs.size() * (trs.size() - 1) / 2);
+}
+
+TEST(Trajectory, ClosestBelowEqualsTheClosestApproachWhereItIsBelow) {
+  Rng r(12);
+  const std::vector<Trajectory> trs = random_flights(r, 40, 150);
+  std::vector<const Trajectory*> ptrs;
+  for (const auto& t : trs) ptrs.push_back(&t);
+  const SweptBoxes boxes(ptrs, 32);
+  int below = 0;
+  for (std::size_t i = 0; i < trs.size(); ++i)
+    for (std::size_t j = i + 1; j < trs.size(); ++j) {
+      const Encounter exact = closest_approach(trs[i], trs[j]);
+      // Over the whole span: the same encounter.
+      const Encounter whole = closest_approach_between(trs[i], trs[j], -1.0, 1e6);
+      ASSERT_NEAR(whole.distance_m, exact.distance_m, 1e-9);
+      for (const double cut : {5.0, 15.0, 40.0}) {
+        const Encounter e = boxes.closest_below(ptrs, i, j, cut);
+        if (exact.distance_m < cut) {
+          ++below;
+          ASSERT_NEAR(e.distance_m, exact.distance_m, 1e-9) << i << " " << j << " below " << cut;
+        } else {
+          ASSERT_GE(e.distance_m, cut - 1e-9);
+        }
+      }
+    }
+  EXPECT_GT(below, 50);
+}
+
 TEST(Trajectory, MovingObstacleAfterArrivalCounts) {
   WorldSpec ws;
   ws.bounds = Aabb{Vec3(-100, -100, 0), Vec3(100, 100, 20)};
