@@ -19,7 +19,10 @@
 namespace uavplan {
 namespace {
 
-using Json = nlohmann::ordered_json;
+using Json = nlohmann::ordered_json;  // written: members in the order they are set
+// Read: an object is a std::map, so inserting a member never moves the others (an ordered_json
+// copies every member so far each time its vector grows: a plan's UAV array, a UAV's rows).
+using JsonIn = nlohmann::json;
 
 double r6(double x) {
   const double r = std::round(x * 1e6) / 1e6;
@@ -150,24 +153,24 @@ struct Reader {
     }
     throw InputError(file, line, place, what);
   }
-  const Json& req(const Json& obj, const char* key, const std::string& place) const {
+  const JsonIn& req(const JsonIn& obj, const char* key, const std::string& place) const {
     if (!obj.is_object()) fail(place, "expected an object");
     const auto it = obj.find(key);
     if (it == obj.end()) fail(place, std::string("missing required key '") + key + "'");
     return *it;
   }
-  double number(const Json& v, const std::string& place) const {
+  double number(const JsonIn& v, const std::string& place) const {
     if (!v.is_number()) fail(place, "expected a number");
     const double x = v.get<double>();
     if (!std::isfinite(x)) fail(place, "must be finite");
     return x;
   }
-  std::string text(const Json& v, const std::string& place) const {
+  std::string text(const JsonIn& v, const std::string& place) const {
     if (!v.is_string()) fail(place, "expected a string");
     return v.get<std::string>();
   }
   // Metrics as written: numbers, or null for a value that is not finite (+inf clearance).
-  std::map<std::string, double> metrics(const Json& v, const std::string& place) const {
+  std::map<std::string, double> metrics(const JsonIn& v, const std::string& place) const {
     if (!v.is_object()) fail(place, "expected an object");
     std::map<std::string, double> out;
     for (const auto& [k, x] : v.items()) {
@@ -258,21 +261,43 @@ std::string plan_to_json(const Plan& plan, const PlanWriteOptions& options) {
 
 namespace {
 
+// nlohmann's tree builder, noting a key met twice in one object (the builder keeps the last).
+// sax_parse calls these members statically: no callback per value, as parse(text, callback)
+// would make.
+class DuplicateKeySax : public nlohmann::detail::json_sax_dom_parser<JsonIn> {
+ public:
+  using Base = nlohmann::detail::json_sax_dom_parser<JsonIn>;
+  explicit DuplicateKeySax(JsonIn& tree) : Base(tree) {}
+  bool start_object(std::size_t n) {
+    keys_.emplace_back();
+    return Base::start_object(n);
+  }
+  bool end_object() {
+    keys_.pop_back();
+    return Base::end_object();
+  }
+  bool key(std::string& k) {
+    auto& seen = keys_.back();  // few keys an object: a list
+    duplicate_ = duplicate_ || std::find(seen.begin(), seen.end(), k) != seen.end();
+    seen.push_back(k);
+    return Base::key(k);
+  }
+  bool duplicate() const { return duplicate_; }
+
+ private:
+  std::vector<std::vector<std::string>> keys_;  // of the objects open while parsing
+  bool duplicate_ = false;
+};
+
 // The JSON tree of a plan file: valid JSON, no key twice in one object.
-Json parse_plan_json(const std::string& text, const std::string& file) {
-  Json j;
+JsonIn parse_plan_json(const std::string& text, const std::string& file) {
+  JsonIn j;
   bool duplicate = false;
-  std::vector<std::set<std::string>> keys;  // of the objects open while parsing
-  const Json::parser_callback_t cb = [&](int, Json::parse_event_t ev, Json& parsed) {
-    if (ev == Json::parse_event_t::object_start) keys.emplace_back();
-    if (ev == Json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
-    if (ev == Json::parse_event_t::key && !keys.empty())
-      duplicate |= !keys.back().insert(parsed.get<std::string>()).second;
-    return true;
-  };
   try {
-    j = Json::parse(text, cb);
-  } catch (const Json::exception& e) {
+    DuplicateKeySax sax(j);
+    JsonIn::sax_parse(text, &sax);
+    duplicate = sax.duplicate();
+  } catch (const JsonIn::exception& e) {
     throw_json_error(e, text, file);
   }
   if (duplicate) {  // nlohmann kept the last of them: name it with its line
@@ -287,33 +312,56 @@ Json parse_plan_json(const std::string& text, const std::string& file) {
 
 // `[t, x, y, z]` rows. The input limits of scenarios hold here too: times from 0 (a mission
 // starts at 0; a UAV is at its first row before it) to 1e9 s, coordinates within 1e9 m.
-Trajectory read_rows(const Reader& r, const Json& tr, const std::string& at) {
+// An array of `n` finite numbers, read into `out` (no place names built unless it fails).
+bool read_numbers(const JsonIn& v, std::size_t n, double* out) {
+  if (!v.is_array() || v.size() != n) return false;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!v[k].is_number()) return false;
+    out[k] = v[k].get<double>();
+    if (!std::isfinite(out[k])) return false;
+  }
+  return true;
+}
+
+Trajectory read_rows(const Reader& r, const JsonIn& tr, const std::string& at) {
   if (!tr.is_array()) r.fail(at + ".trajectory", "expected an array");
   Trajectory rows;
+  rows.reserve(tr.size());
   for (std::size_t k = 0; k < tr.size(); ++k) {
+    double v[4];
+    const bool ok = read_numbers(tr[k], 4, v);
+    if (ok && v[0] >= 0.0 && v[0] <= 1e9 && std::max({std::abs(v[1]), std::abs(v[2]), std::abs(v[3])}) <= 1e9) {
+      rows.push_back({v[0], Vec3(v[1], v[2], v[3])});
+      continue;
+    }
     const std::string row = at + ".trajectory[" + std::to_string(k) + "]";
     if (!tr[k].is_array() || tr[k].size() != 4) r.fail(row, "expected [t, x, y, z]");
     const double t_s = r.number(tr[k][0], row);
     if (t_s < 0.0 || t_s > 1e9) r.fail(row, "time must be from 0 to 1e9 s, got " + num_text(t_s));
-    const Vec3 at_m(r.number(tr[k][1], row), r.number(tr[k][2], row), r.number(tr[k][3], row));
-    if (at_m.cwiseAbs().maxCoeff() > 1e9) r.fail(row, "coordinates must be within 1e9 m");
-    rows.push_back({t_s, at_m});
+    for (int a = 1; a <= 3; ++a) r.number(tr[k][a], row);
+    r.fail(row, "coordinates must be within 1e9 m");
   }
   return rows;
 }
 
-std::vector<Vec3> read_waypoints(const Reader& r, const Json& w, const std::string& at) {
+std::vector<Vec3> read_waypoints(const Reader& r, const JsonIn& w, const std::string& at) {
   if (!w.is_array()) r.fail(at + ".waypoints", "expected an array");
   std::vector<Vec3> out;
+  out.reserve(w.size());
   for (std::size_t k = 0; k < w.size(); ++k) {
+    double v[3];
+    if (read_numbers(w[k], 3, v)) {
+      out.emplace_back(v[0], v[1], v[2]);
+      continue;
+    }
     const std::string wp = at + ".waypoints[" + std::to_string(k) + "]";
     if (!w[k].is_array() || w[k].size() != 3) r.fail(wp, "expected [x, y, z]");
-    out.emplace_back(r.number(w[k][0], wp), r.number(w[k][1], wp), r.number(w[k][2], wp));
+    for (int a = 0; a < 3; ++a) r.number(w[k][a], wp);
   }
   return out;
 }
 
-PlanStats read_stats(const Reader& r, const Json& st, const std::string& at) {
+PlanStats read_stats(const Reader& r, const JsonIn& st, const std::string& at) {
   if (!st.is_object()) r.fail(at + ".stats", "expected an object");
   const auto count = [&](const char* key) -> std::uint64_t {
     if (!st.contains(key)) return 0;
@@ -329,7 +377,7 @@ PlanStats read_stats(const Reader& r, const Json& st, const std::string& at) {
   return stats;
 }
 
-UavPlan read_uav_plan(const Reader& r, const Json& ju, const std::string& at) {
+UavPlan read_uav_plan(const Reader& r, const JsonIn& ju, const std::string& at) {
   UavPlan u;
   u.id = r.text(r.req(ju, "id", at), at + ".id");
   const auto us = status_from_string(r.text(r.req(ju, "status", at), at + ".status"));
@@ -351,7 +399,7 @@ UavPlan read_uav_plan(const Reader& r, const Json& ju, const std::string& at) {
   return u;
 }
 
-FormationLog read_formation_log(const Reader& r, const Json& f) {
+FormationLog read_formation_log(const Reader& r, const JsonIn& f) {
   FormationLog log;
   log.eta_s = r.number(r.req(f, "eta_s", "formation"), "formation.eta_s");
   if (f.contains("worst_slot_error_m"))
@@ -363,7 +411,7 @@ FormationLog read_formation_log(const Reader& r, const Json& f) {
     const std::string at = std::string("formation.") + key;
     if (!f[key].is_array()) r.fail(at, "expected an array");
     for (std::size_t k = 0; k < f[key].size(); ++k) {
-      const Json& e = f[key][k];
+      const JsonIn& e = f[key][k];
       const std::string place = at + "[" + std::to_string(k) + "]";
       if (std::string(key) == "phases")
         log.phases.push_back(
@@ -381,11 +429,11 @@ FormationLog read_formation_log(const Reader& r, const Json& f) {
 
 Plan parse_plan(const std::string& raw, const std::string& file) {
   const std::string text = checked_text(raw, file);
-  const Json j = parse_plan_json(text, file);
+  const JsonIn j = parse_plan_json(text, file);
   const Reader r{file, text};
   if (!j.is_object()) r.fail("", "the top level must be a JSON object");
   if (r.text(r.req(j, "format", ""), "format") != "uavplan-plan") r.fail("format", "expected \"uavplan-plan\"");
-  const Json& ver = r.req(j, "version", "");
+  const JsonIn& ver = r.req(j, "version", "");
   if (!ver.is_number_integer() || ver.get<long long>() != 1)
     r.fail("version", "unsupported version (this build reads version 1)");
   Plan p;
@@ -399,7 +447,7 @@ Plan parse_plan(const std::string& raw, const std::string& file) {
   const auto status = status_from_string(r.text(r.req(j, "status", ""), "status"));
   if (!status) r.fail("status", "expected solved, partial or failed");
   p.status = *status;
-  const Json& uavs = r.req(j, "uavs", "");
+  const JsonIn& uavs = r.req(j, "uavs", "");
   if (!uavs.is_array()) r.fail("uavs", "expected an array");
   for (std::size_t i = 0; i < uavs.size(); ++i) {
     const std::string at = "uavs[" + std::to_string(i) + "]";

@@ -77,6 +77,15 @@ TEST(PlanIo, MalformedPlansNameThePlace) {
   expect_error(R"({"format": "uavplan-plan", "version": 1, "status": "solved",
                   "uavs": [{"id": "a", "status": "solved", "trajectory": []}, {"id": "a", "status": "solved", "trajectory": []}]})",
                "duplicate");
+  // Each row's checks, behind the fast path for rows that hold.
+  const std::string uav = R"({"format": "uavplan-plan", "version": 1, "status": "solved", "uavs": [{"id": "a",
+                             "status": "solved", )";
+  expect_error(uav + R"("trajectory": [[0, 1, 2, 3], [-1, 1, 2, 3]]}]})", "uavs[0].trajectory[1]: time must be");
+  expect_error(uav + R"("trajectory": [[0, 1, 2e9, 3]]}]})", "uavs[0].trajectory[0]: coordinates must be within");
+  expect_error(uav + R"("trajectory": [[0, 1, 2, 3], [1, 2, 3, 4, 5]]}]})", "uavs[0].trajectory[1]: expected [t,");
+  expect_error(uav + R"("waypoints": [[0, 1, 2], [1, null, 3]], "trajectory": []}]})",
+               "uavs[0].waypoints[1]: expected a number");
+  expect_error(uav + R"("waypoints": [[0, 1]], "trajectory": []}]})", "uavs[0].waypoints[0]: expected [x, y, z]");
 }
 
 TEST(PlanIo, ErrorsCarryTheLineAndDuplicateKeysAreRefused) {
