@@ -8,7 +8,6 @@
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <set>
 
 #include "uavplan/core/text.h"
 #include "uavplan/io/files.h"
@@ -310,8 +309,6 @@ JsonIn parse_plan_json(const std::string& text, const std::string& file) {
   return j;
 }
 
-// `[t, x, y, z]` rows. The input limits of scenarios hold here too: times from 0 (a mission
-// starts at 0; a UAV is at its first row before it) to 1e9 s, coordinates within 1e9 m.
 // An array of `n` finite numbers, read into `out` (no place names built unless it fails).
 bool read_numbers(const JsonIn& v, std::size_t n, double* out) {
   if (!v.is_array() || v.size() != n) return false;
@@ -323,6 +320,8 @@ bool read_numbers(const JsonIn& v, std::size_t n, double* out) {
   return true;
 }
 
+// `[t, x, y, z]` rows. The input limits of scenarios hold here too: times from 0 (a mission
+// starts at 0; a UAV is at its first row before it) to 1e9 s, coordinates within 1e9 m.
 Trajectory read_rows(const Reader& r, const JsonIn& tr, const std::string& at) {
   if (!tr.is_array()) r.fail(at + ".trajectory", "expected an array");
   Trajectory rows;
