@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "uavplan/planning/search/search_buffers.h"
+#include "uavplan/planning/search/best_first.h"
 
 namespace uavplan {
 
@@ -14,51 +14,49 @@ CellAStarOptions CellAStarOptions::from_params(const Params& params) {
   return o;
 }
 
+namespace {
+
+// A cell's neighbours on the graph, each costed by the graph's edge cost.
+struct CellExpansion {
+  const CellGraph& g;
+  const StopCondition& stop;
+  // The stop without the expansion count: a count limit belongs to the colony's iterations.
+  bool stop_now(std::uint64_t expanded) const { return (expanded & 4095) == 0 && stop.should_stop(); }
+  template <class Relax>
+  void expand(std::uint32_t v, const SearchBuffers::Node& n, Relax& relax) const {
+    const CellMap& m = g.map();
+    int i = 0, j = 0, k = 0;
+    m.unpack(v, i, j, k);
+    const Vec3 pv = m.centre(i, j, k);
+    for (int mv = 0; mv < CellGraph::kMoves; ++mv) {
+      const std::int64_t w = g.neighbour(i, j, k, mv);
+      if (w < 0) continue;
+      const Vec3 pw = m.centre(w);
+      relax(static_cast<std::uint32_t>(w), n.g + g.cost(pv, pw), v, pw);
+    }
+  }
+};
+
+}  // namespace
+
 std::optional<std::vector<std::int64_t>> cell_astar_search(const CellGraph& g, std::int64_t from, std::int64_t to,
                                                            PlanStats& stats, const StopCondition& stop) {
   const CellMap& m = g.map();
   // Search state in pages touched on first use, stamped per query: a fine map's nodes cost
   // nothing until reached (zeroing 17 bytes per node of a 30 M node map took a second per leg,
   // out of the stop condition's reach).
-  thread_local SearchBuffers buf;
-  buf.begin(m.nodes());
+  thread_local BestFirst<> search;
+  search.begin(m.nodes());
   const Vec3 goal = m.centre(to);
-  const auto cell = [](std::int64_t n) { return static_cast<std::uint32_t>(n); };
-  buf.at(cell(from)).g = 0.0;
-  buf.push(g.heuristic(m.centre(from), goal), 0.0, cell(from));
-  while (!buf.open_empty()) {
-    stats.open_max = std::max<std::uint64_t>(stats.open_max, buf.open_size());
-    const SearchBuffers::Entry e = buf.pop();
-    SearchBuffers::Node& nv = buf.at(e.cell);
-    if (SearchBuffers::closed(nv) || e.g > nv.g) continue;
-    SearchBuffers::close(nv);
-    if ((++stats.nodes_expanded & 4095) == 0 && stop.should_stop()) return std::nullopt;
-    const std::int64_t v = e.cell;
-    if (v == to) {
-      std::vector<std::int64_t> path{to};
-      while (path.back() != from) path.push_back(buf.at(cell(path.back())).parent);
-      std::reverse(path.begin(), path.end());
-      return path;
-    }
-    int i = 0, j = 0, k = 0;
-    m.unpack(v, i, j, k);
-    const Vec3 pv = m.centre(i, j, k);
-    const double gv = nv.g;
-    for (int mv = 0; mv < CellGraph::kMoves; ++mv) {
-      const std::int64_t w = g.neighbour(i, j, k, mv);
-      if (w < 0) continue;
-      SearchBuffers::Node& nw = buf.at(cell(w));
-      if (SearchBuffers::closed(nw)) continue;
-      const Vec3 pw = m.centre(w);
-      const double c = gv + g.cost(pv, pw);
-      if (c < nw.g) {
-        nw.g = c;
-        nw.parent = cell(v);
-        buf.push(c + g.heuristic(pw, goal), c, cell(w));
-      }
-    }
-  }
-  return std::nullopt;
+  const auto h = [&](const Vec3& p) { return g.heuristic(p, goal); };
+  CellExpansion expansion{g, stop};
+  SearchCounts counts;
+  const auto a = static_cast<std::uint32_t>(from), b = static_cast<std::uint32_t>(to);
+  const SearchEnd end = search.run(expansion, h, a, SearchBuffers::kNoParent, m.centre(from), b, counts);
+  stats.nodes_expanded += counts.expanded;
+  stats.open_max = std::max(stats.open_max, counts.open_max);
+  if (end != SearchEnd::goal) return std::nullopt;
+  return search.path(a, b);
 }
 
 PlanResult CellAStarPlanner::do_plan(const Problem& problem, const World& world, const StopCondition& stop) const {

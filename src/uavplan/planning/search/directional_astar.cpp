@@ -480,7 +480,18 @@ struct DirectionalSearch::Run {
     return self.clearance_at(world, point, p, self.clearance_cap_m_);
   }
 
-  bool stop_now();
+  // The engine's policy (best_first.h).
+  struct Heuristic {
+    const Run* run;
+    double operator()(const Vec3& to) const { return run->q.heuristic_weight * run->h(to); }
+  };
+  using Relax = BestFirst<>::Relax<Heuristic>;
+
+ public:
+  bool stop_now(std::uint64_t expanded);
+  void expand(std::uint32_t id, const SearchBuffers::Node& n, Relax& relax);
+
+ private:
   void relax(std::uint32_t from, double g_from, std::uint32_t id, const Vec3& to, double length_m);
   void try_goal(std::uint32_t from, double g_from, const Vec3& p, const std::optional<Vec3>& heading);
   const DirectionalCones::Cone& cone_for(int dx, int dy, int dz);
@@ -510,13 +521,15 @@ struct DirectionalSearch::Run {
   // With f = g + h a lower bound on the length through a node, the length bound prunes.
   const bool bounded;
   bool beyond_bound = false;
-  int children = 0;  // of the node being expanded
+  int children = 0;               // of the node being expanded
+  Relax* engine_relax = nullptr;  // of the node being expanded
   DirectionalRoute out;
 };
 
 // Past max_expansions, or the stop (checked every 256 expansions): `out` says which.
-bool DirectionalSearch::Run::stop_now() {
-  if (static_cast<std::int64_t>(++out.expanded) <= q.max_expansions &&
+bool DirectionalSearch::Run::stop_now(std::uint64_t expanded) {
+  out.expanded = expanded;
+  if (static_cast<std::int64_t>(out.expanded) <= q.max_expansions &&
       !((out.expanded & 255) == 0 && stop.should_stop(out.expanded)))
     return false;
   out.stopped = static_cast<std::int64_t>(out.expanded) <= q.max_expansions;
@@ -538,13 +551,7 @@ void DirectionalSearch::Run::relax(std::uint32_t from, double g_from, std::uint3
       return;
     }
   }
-  SearchBuffers::Node& c = self.buf_.at(id);
-  if (SearchBuffers::closed(c) || ng >= c.g) return;
-  c.g = ng;
-  c.parent = from;
-  self.open_.push(f >= 0.0 ? f : ng + q.heuristic_weight * h(to), ng, id);
-  ++out.generated;
-  out.open_max = std::max<std::uint64_t>(out.open_max, self.open_.size());
+  (*engine_relax)(id, ng, from, to);
 }
 
 // Within reach of the goal: the last segment to the exact goal.
@@ -632,48 +639,46 @@ void DirectionalSearch::Run::expand_general(std::uint32_t id, const SearchBuffer
   try_goal(id, n.g, p, heading);
 }
 
+void DirectionalSearch::Run::expand(std::uint32_t id, const SearchBuffers::Node& n, Relax& relax) {
+  engine_relax = &relax;
+  int i = 0, j = 0, k = 0;  // the lattice coordinates of a lattice node
+  if (id < start_id) lat.coords(id >> bin_bits, i, j, k);
+  const Vec3 p = id < start_id ? lat.at(i, j, k) : position(id);
+  children = 0;
+  if (id != start_id && n.parent != start_id) {
+    if (level_locked && std::abs(q.goal.z() - p.z()) > goal_hop_m) {
+      ++out.dead_zones;
+      return;
+    }
+    expand_cone(id, n, i, j, k, p);
+  } else {
+    expand_general(id, n, p);
+  }
+  if (children == 0) ++out.dead_zones;  // closed; the next best node is taken (P4 eq. 7)
+}
+
 DirectionalRoute DirectionalSearch::Run::search() {
-  self.buf_.begin(lat.size() * (bin_bits ? 8 : 1) + 2);
-  self.buf_.at(start_id).g = 0.0;
   const double h0 = h(q.start);
+  // Children beyond the length bound are never pushed: only the start can be.
+  if (bounded && h0 > q.max_length_m) {
+    out.message = "no route within the length bound";
+    return std::move(out);
+  }
   // f grows by a fraction of a step per expansion: buckets of half a cell hold a few hundred
   // entries each.
-  self.open_.reset(h0, 0.5 * q.cell_m);
-  self.open_.push(h0, 0.0, start_id);
-  while (!self.open_.empty()) {
-    const OpenList::Entry e = self.open_.pop();
-    SearchBuffers::Node& n = self.buf_.at(e.id);
-    // A node's later entries carry its best g and parent (read from the node), so any entry of a
-    // node expands it the same way: only the first one counts.
-    if (SearchBuffers::closed(n)) continue;
-    if (bounded && e.f > q.max_length_m) {
-      out.message = "no route within the length bound";
-      return std::move(out);
-    }
-    SearchBuffers::close(n);
-    if (e.id == goal_id) break;
-    if (stop_now()) return std::move(out);
-    int i = 0, j = 0, k = 0;  // the lattice coordinates of a lattice node
-    if (e.id < start_id) lat.coords(e.id >> bin_bits, i, j, k);
-    const Vec3 p = e.id < start_id ? lat.at(i, j, k) : position(e.id);
-    children = 0;
-    if (e.id != start_id && n.parent != start_id) {
-      if (level_locked && std::abs(q.goal.z() - p.z()) > goal_hop_m) {
-        ++out.dead_zones;
-        continue;
-      }
-      expand_cone(e.id, n, i, j, k, p);
-    } else {
-      expand_general(e.id, n, p);
-    }
-    if (children == 0) ++out.dead_zones;  // closed; the next best node is taken (P4 eq. 7)
-  }
+  self.search_.begin(lat.size() * (bin_bits ? 8 : 1) + 2, h0, 0.5 * q.cell_m);
+  SearchCounts counts;
+  const SearchEnd end =
+      self.search_.run(*this, Heuristic{this}, start_id, SearchBuffers::kNoParent, q.start, goal_id, counts);
+  out.generated = counts.generated;
+  out.open_max = counts.open_max;
+  if (end == SearchEnd::stopped) return std::move(out);
   return finish();
 }
 
 // The route back from the goal, or why there is none.
 DirectionalRoute DirectionalSearch::Run::finish() {
-  SearchBuffers::Node& goal = self.buf_.at(goal_id);
+  const SearchBuffers::Node& goal = self.search_.node(goal_id);
   if (!SearchBuffers::closed(goal)) {
     out.message = beyond_bound ? "no route within the length bound"
                                : "no route within the turn and climb limits (" + std::to_string(out.dead_zones) +
@@ -682,11 +687,8 @@ DirectionalRoute DirectionalSearch::Run::finish() {
   }
   out.found = true;
   out.length_m = goal.g;
-  for (std::uint32_t id = goal_id;; id = self.buf_.at(id).parent) {
-    out.waypoints.push_back(position(id));
-    if (id == start_id) break;
-  }
-  std::reverse(out.waypoints.begin(), out.waypoints.end());
+  for (const std::int64_t id : self.search_.path(start_id, goal_id))
+    out.waypoints.push_back(position(static_cast<std::uint32_t>(id)));
   return std::move(out);
 }
 

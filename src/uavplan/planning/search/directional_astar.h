@@ -22,8 +22,7 @@
 
 #include "uavplan/planning/params.h"
 #include "uavplan/planning/planner.h"
-#include "uavplan/planning/search/open_list.h"
-#include "uavplan/planning/search/search_buffers.h"
+#include "uavplan/planning/search/best_first.h"
 #include "uavplan/world/shapes.h"
 
 namespace uavplan {
@@ -132,9 +131,7 @@ class DirectionalSearch {
       : cones_(std::move(cones)) {}
   DirectionalRoute run(const World& world, const DirectionalQuery& q, const StopCondition& stop);
   // Bytes held for reuse: search nodes, open list, clearance cache (cone tables not counted).
-  std::size_t memory_bytes() const {
-    return buf_.memory_bytes() + open_.memory_bytes() + clearance_.capacity() * sizeof(float);
-  }
+  std::size_t memory_bytes() const { return search_.memory_bytes() + clearance_.capacity() * sizeof(float); }
 
  private:
   struct Run;  // one search on these buffers (directional_astar.cpp)
@@ -145,8 +142,7 @@ class DirectionalSearch {
   bool levels_reachable(const World& world, const DirectionalQuery& q, DirectionalCones::Table& table);
   float clearance_at(const World& world, std::uint32_t point, const Vec3& p, double cap_m);
 
-  SearchBuffers buf_;
-  OpenList open_;
+  BestFirst<> search_;
   std::shared_ptr<DirectionalCones> cones_;
   // Clearance of lattice points (capped at clearance_cap_m_), for one world and lattice; NaN
   // where not yet computed.

@@ -44,62 +44,58 @@ GridAStar::GridAStar(const BitGrid& grid, std::vector<GridMove> moves, GridHeuri
   for (const GridMove& m : moves_) offsets_.push_back(grid.index(m.di, m.dj, m.dk) - grid.index(0, 0, 0));
 }
 
-double GridAStar::h(int i, int j, int k, int gi, int gj, int gk) const {
-  if (heuristic_ == GridHeuristic::octile) return c_[0] * octile_distance(gi - i, gj - j, gk - k);
-  const double x = (gi - i) * c_[0], y = (gj - j) * c_[1], z = (gk - k) * c_[2];
-  return std::sqrt(x * x + y * y + z * z);
+GridSearchResult grid_result(BestFirst<>& search, SearchEnd end, const SearchCounts& counts, std::uint32_t start,
+                             std::uint32_t goal) {
+  GridSearchResult out;
+  out.expanded = counts.expanded;
+  out.generated = counts.generated;
+  out.open_max = counts.open_max;
+  out.stopped = end == SearchEnd::stopped;
+  if (end != SearchEnd::goal) return out;
+  out.found = true;
+  out.cost = search.node(goal).g;
+  out.cells = search.path(start, goal);
+  return out;
+}
+
+// The moves of the table whose bounding box is free, each costed by its length.
+struct GridAStar::Expansion {
+  const GridAStar& self;
+  const StopCondition& stop;
+  bool stop_now(std::uint64_t expanded) const { return stop_due(stop, expanded, 4096); }
+  template <class Relax>
+  void expand(std::uint32_t id, const SearchBuffers::Node& n, Relax& relax) const {
+    GridCell c;
+    self.grid_->coords(id, c.i, c.j, c.k);
+    const std::uint32_t mask = self.grid_->free_mask(c.i, c.j, c.k);
+    for (std::size_t m = 0; m < self.moves_.size(); ++m) {
+      const GridMove& mv = self.moves_[m];
+      if ((mask & mv.need) != mv.need) continue;
+      relax(static_cast<std::uint32_t>(id + self.offsets_[m]), n.g + mv.cost, id,
+            GridCell{c.i + mv.di, c.j + mv.dj, c.k + mv.dk});
+    }
+  }
+};
+
+template <class Heuristic>
+GridSearchResult GridAStar::run(std::int64_t start, std::int64_t goal, const Heuristic& h, const StopCondition& stop) {
+  GridCell s;
+  grid_->coords(start, s.i, s.j, s.k);
+  search_.begin(grid_->size());
+  Expansion expansion{*this, stop};
+  SearchCounts counts;
+  const auto from = static_cast<std::uint32_t>(start), to = static_cast<std::uint32_t>(goal);
+  const SearchEnd end = search_.run(expansion, h, from, SearchBuffers::kNoParent, s, to, counts);
+  return grid_result(search_, end, counts, from, to);
 }
 
 GridSearchResult GridAStar::search(std::int64_t start, std::int64_t goal, const StopCondition& stop) {
-  GridSearchResult out;
   const BitGrid& g = *grid_;
-  if (start < 0 || goal < 0 || start >= g.size() || goal >= g.size() || g.blocked(start) || g.blocked(goal)) return out;
-  int gi, gj, gk;
-  g.coords(goal, gi, gj, gk);
-  buf_.begin(g.size());
-  {
-    int i, j, k;
-    g.coords(start, i, j, k);
-    buf_.at(static_cast<std::uint32_t>(start)).g = 0.0;
-    buf_.push(h(i, j, k, gi, gj, gk), 0.0, static_cast<std::uint32_t>(start));
-  }
-  while (!buf_.open_empty()) {
-    out.open_max = std::max<std::uint64_t>(out.open_max, buf_.open_size());
-    const SearchBuffers::Entry e = buf_.pop();
-    SearchBuffers::Node& n = buf_.at(e.cell);
-    if (SearchBuffers::closed(n) || e.g > n.g) continue;  // stale entry
-    SearchBuffers::close(n);
-    if (e.cell == goal) break;
-    if ((++out.expanded & 4095) == 0 && stop.should_stop(out.expanded)) {
-      out.stopped = true;
-      return out;
-    }
-    int i, j, k;
-    g.coords(e.cell, i, j, k);
-    const std::uint32_t mask = g.free_mask(i, j, k);
-    const double gn = n.g;
-    for (std::size_t m = 0; m < moves_.size(); ++m) {
-      const GridMove& mv = moves_[m];
-      if ((mask & mv.need) != mv.need) continue;
-      const auto nc = static_cast<std::uint32_t>(e.cell + offsets_[m]);
-      SearchBuffers::Node& nn = buf_.at(nc);
-      const double ng = gn + mv.cost;
-      if (ng < nn.g && !SearchBuffers::closed(nn)) {
-        nn.g = ng;
-        nn.parent = e.cell;
-        buf_.push(ng + h(i + mv.di, j + mv.dj, k + mv.dk, gi, gj, gk), ng, nc);
-        ++out.generated;
-      }
-    }
-  }
-  SearchBuffers::Node& goal_node = buf_.at(static_cast<std::uint32_t>(goal));
-  if (!SearchBuffers::closed(goal_node)) return out;
-  out.found = true;
-  out.cost = goal_node.g;
-  for (std::uint32_t c = static_cast<std::uint32_t>(goal); c != SearchBuffers::kNoParent; c = buf_.at(c).parent)
-    out.cells.push_back(c);
-  std::reverse(out.cells.begin(), out.cells.end());
-  return out;
+  if (start < 0 || goal < 0 || start >= g.size() || goal >= g.size() || g.blocked(start) || g.blocked(goal)) return {};
+  GridCell t;
+  g.coords(goal, t.i, t.j, t.k);
+  if (heuristic_ == GridHeuristic::octile) return run(start, goal, OctileToGoal{t, c_[0]}, stop);
+  return run(start, goal, EuclideanToGoal{t, c_[0], c_[1], c_[2]}, stop);
 }
 
 }  // namespace uavplan

@@ -4,13 +4,14 @@
 // the grid's size. Optimal for the move costs (tested against Dijkstra and MovingAI optima).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
 #include "uavplan/core/stop.h"
 #include "uavplan/core/units.h"
+#include "uavplan/planning/search/best_first.h"
 #include "uavplan/planning/search/bit_grid.h"
-#include "uavplan/planning/search/search_buffers.h"
 
 namespace uavplan {
 
@@ -40,6 +41,10 @@ struct GridSearchResult {
   std::uint64_t open_max = 0;
 };
 
+// A search's end on `search` as a result: counts, and the path along the parents when found.
+GridSearchResult grid_result(BestFirst<>& search, SearchEnd end, const SearchCounts& counts, std::uint32_t start,
+                             std::uint32_t goal);
+
 class GridAStar {
  public:
   // The grid must outlive the search object. One object per thread (it owns buffers).
@@ -47,20 +52,40 @@ class GridAStar {
             double cz = 1);
 
   GridSearchResult search(std::int64_t start, std::int64_t goal, const StopCondition& stop = {});
-  std::size_t buffer_bytes() const { return buf_.memory_bytes(); }
+  std::size_t buffer_bytes() const { return search_.memory_bytes(); }
 
  private:
-  double h(int i, int j, int k, int gi, int gj, int gk) const;
+  struct Expansion;  // grid_astar.cpp
+  template <class Heuristic>
+  GridSearchResult run(std::int64_t start, std::int64_t goal, const Heuristic& h, const StopCondition& stop);
 
   const BitGrid* grid_;
   std::vector<GridMove> moves_;
   std::vector<std::int64_t> offsets_;
   GridHeuristic heuristic_;
   double c_[3];
-  SearchBuffers buf_;
+  BestFirst<> search_;
 };
 
 // Octile distance between cells for cubic cells of size 1.
 double octile_distance(int dx, int dy, int dz);
+
+struct GridCell {
+  int i, j, k;
+};
+// Lower bounds on the cost from a cell to `goal`, for cells of size (cx, cy, cz).
+struct OctileToGoal {  // exact without obstacles for cubic cells (cx the cell size)
+  GridCell goal;
+  double cx = 1.0;
+  double operator()(const GridCell& c) const { return cx * octile_distance(goal.i - c.i, goal.j - c.j, goal.k - c.k); }
+};
+struct EuclideanToGoal {  // any cell shape, any-angle paths
+  GridCell goal;
+  double cx = 1.0, cy = 1.0, cz = 1.0;
+  double operator()(const GridCell& c) const {
+    const double x = (goal.i - c.i) * cx, y = (goal.j - c.j) * cy, z = (goal.k - c.k) * cz;
+    return std::sqrt(x * x + y * y + z * z);
+  }
+};
 
 }  // namespace uavplan

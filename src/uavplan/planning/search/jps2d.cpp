@@ -75,58 +75,39 @@ int Jps2d::directions(int x, int y, std::uint32_t parent, int dirs[8][2]) const 
   return nd;
 }
 
-GridSearchResult Jps2d::search(std::int64_t start, std::int64_t goal, const StopCondition& stop) {
-  GridSearchResult out;
-  const BitGrid& g = *grid_;
-  if (start < 0 || goal < 0 || start >= g.size() || goal >= g.size() || g.blocked(start) || g.blocked(goal)) return out;
-  int k;
-  g.coords(goal, gx_, gy_, k);
-  buf_.begin(g.size());
-  auto h = [&](int x, int y) { return octile_distance(gx_ - x, gy_ - y, 0); };
-  {
-    int sx, sy;
-    g.coords(start, sx, sy, k);
-    buf_.at(static_cast<std::uint32_t>(start)).g = 0.0;
-    buf_.push(h(sx, sy), 0.0, static_cast<std::uint32_t>(start));
-  }
-  int dirs[8][2];
-  while (!buf_.open_empty()) {
-    out.open_max = std::max<std::uint64_t>(out.open_max, buf_.open_size());
-    const SearchBuffers::Entry e = buf_.pop();
-    SearchBuffers::Node& n = buf_.at(e.cell);
-    if (SearchBuffers::closed(n) || e.g > n.g) continue;
-    SearchBuffers::close(n);
-    if (e.cell == goal) break;
-    if ((++out.expanded & 1023) == 0 && stop.should_stop(out.expanded)) {
-      out.stopped = true;
-      return out;
-    }
-    int x, y;
-    g.coords(e.cell, x, y, k);
-    const int nd = directions(x, y, n.parent, dirs);
+// A node's successors are the jump points along its pruned directions.
+struct Jps2d::Expansion {
+  const Jps2d& self;
+  const StopCondition& stop;
+  bool stop_now(std::uint64_t expanded) const { return stop_due(stop, expanded, 1024); }
+  template <class Relax>
+  void expand(std::uint32_t id, const SearchBuffers::Node& n, Relax& relax) const {
+    int x, y, k, dirs[8][2];
+    self.grid_->coords(id, x, y, k);
+    const int nd = self.directions(x, y, n.parent, dirs);
     for (int d = 0; d < nd; ++d) {
       int jx = x, jy = y;
-      if (!jump(jx, jy, dirs[d][0], dirs[d][1])) continue;
-      const auto jc = static_cast<std::uint32_t>(g.index(jx, jy, 0));
-      SearchBuffers::Node& jn = buf_.at(jc);
-      if (SearchBuffers::closed(jn)) continue;
-      const double ng = n.g + octile_distance(jx - x, jy - y, 0);
-      if (ng < jn.g) {
-        jn.g = ng;
-        jn.parent = e.cell;
-        buf_.push(ng + h(jx, jy), ng, jc);
-        ++out.generated;
-      }
+      if (!self.jump(jx, jy, dirs[d][0], dirs[d][1])) continue;
+      relax(static_cast<std::uint32_t>(self.grid_->index(jx, jy, 0)), n.g + octile_distance(jx - x, jy - y, 0), id,
+            GridCell{jx, jy, 0});
     }
   }
-  SearchBuffers::Node& gn = buf_.at(static_cast<std::uint32_t>(goal));
-  if (!SearchBuffers::closed(gn)) return out;
-  out.found = true;
-  out.cost = gn.g;
-  for (std::uint32_t c = static_cast<std::uint32_t>(goal); c != SearchBuffers::kNoParent; c = buf_.at(c).parent)
-    out.cells.push_back(c);
-  std::reverse(out.cells.begin(), out.cells.end());
-  return out;
+};
+
+GridSearchResult Jps2d::search(std::int64_t start, std::int64_t goal, const StopCondition& stop) {
+  const BitGrid& g = *grid_;
+  if (start < 0 || goal < 0 || start >= g.size() || goal >= g.size() || g.blocked(start) || g.blocked(goal)) return {};
+  GridCell s, t;
+  g.coords(goal, t.i, t.j, t.k);
+  g.coords(start, s.i, s.j, s.k);
+  gx_ = t.i;
+  gy_ = t.j;
+  search_.begin(g.size());
+  Expansion expansion{*this, stop};
+  SearchCounts counts;
+  const auto from = static_cast<std::uint32_t>(start), to = static_cast<std::uint32_t>(goal);
+  const SearchEnd end = search_.run(expansion, OctileToGoal{t, 1.0}, from, SearchBuffers::kNoParent, s, to, counts);
+  return grid_result(search_, end, counts, from, to);
 }
 
 std::vector<std::int64_t> Jps2d::expand_path(const std::vector<std::int64_t>& jp) const {

@@ -10,7 +10,6 @@
 #include "uavplan/core/stop.h"
 #include "uavplan/planning/search/bit_grid.h"
 #include "uavplan/planning/search/grid_astar.h"
-#include "uavplan/planning/search/search_buffers.h"
 
 namespace uavplan {
 
@@ -24,6 +23,7 @@ class Jps2d {
   std::vector<std::int64_t> expand_path(const std::vector<std::int64_t>& jump_points) const;
 
  private:
+  struct Expansion;  // jps2d.cpp
   bool free(int x, int y) const { return !grid_->blocked(x, y, 0); }
   bool jump_straight(int& x, int& y, int dx, int dy) const;
   bool jump(int& x, int& y, int dx, int dy) const;
@@ -33,7 +33,7 @@ class Jps2d {
 
   const BitGrid* grid_;
   int gx_ = 0, gy_ = 0;
-  SearchBuffers buf_;
+  BestFirst<> search_;
 };
 
 }  // namespace uavplan

@@ -1,9 +1,8 @@
 // Search state reused across queries: per-cell g-value, parent and open/closed flag in pages
 // allocated on first touch, and a generation stamp so that a new query costs nothing to clear
-// (no O(cells) reset). Plus the open list: a binary heap of (f, g, cell) with lazy deletion.
+// (no O(cells) reset). The open list is apart (open_list.h); best_first.h joins the two.
 #pragma once
 
-#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -28,7 +27,6 @@ class SearchBuffers {
       for (auto& p : pages_) p.reset();
       generation_ = 1;
     }
-    open_.clear();
   }
 
   // The node of `cell`, fresh (g = inf, no parent, open) if not touched in this query.
@@ -42,25 +40,8 @@ class SearchBuffers {
   static bool closed(const Node& n) { return n.stamp & 1u; }
   static void close(Node& n) { n.stamp |= 1u; }
 
-  struct Entry {
-    double f, g;
-    std::uint32_t cell;
-  };
-  void push(double f, double g, std::uint32_t cell) {
-    open_.push_back({f, g, cell});
-    std::push_heap(open_.begin(), open_.end(), Worse{});
-  }
-  Entry pop() {
-    std::pop_heap(open_.begin(), open_.end(), Worse{});
-    const Entry e = open_.back();
-    open_.pop_back();
-    return e;
-  }
-  bool open_empty() const { return open_.empty(); }
-  std::size_t open_size() const { return open_.size(); }
-
   std::size_t memory_bytes() const {
-    std::size_t b = pages_.capacity() * sizeof(pages_[0]) + open_.capacity() * sizeof(Entry);
+    std::size_t b = pages_.capacity() * sizeof(pages_[0]);
     for (const auto& p : pages_)
       if (p) b += kPageSize * sizeof(Node);
     return b;
@@ -69,14 +50,7 @@ class SearchBuffers {
  private:
   static constexpr int kPageBits = 12;
   static constexpr std::int64_t kPageSize = std::int64_t{1} << kPageBits;
-  // Heap order: smaller f first; among equal f, larger g (deeper) first. A function object, so
-  // the heap operations inline it.
-  struct Worse {
-    bool operator()(const Entry& a, const Entry& b) const { return a.f != b.f ? a.f > b.f : a.g < b.g; }
-  };
-
   std::vector<std::unique_ptr<Node[]>> pages_;
-  std::vector<Entry> open_;
   std::uint32_t generation_ = 0;
 };
 

@@ -64,42 +64,52 @@ bool LazyThetaStar::visible(std::uint32_t a, std::uint32_t b) const {
 }
 
 void LazyThetaStar::set_vertex(std::uint32_t cell, std::uint32_t mask) {
-  SearchBuffers::Node* n = &buf_.at(cell);
-  if (n->parent == cell || visible(n->parent, cell)) return;
+  SearchBuffers::Node& n = search_.node(cell);
+  if (n.parent == cell || visible(n.parent, cell)) return;
   double best = std::numeric_limits<double>::infinity();
-  std::uint32_t best_parent = n->parent;
+  std::uint32_t best_parent = n.parent;
   for (std::size_t m = 0; m < moves_.size(); ++m) {
     if ((mask & moves_[m].need) != moves_[m].need) continue;
     const auto nc = static_cast<std::uint32_t>(cell + offsets_[m]);
-    const SearchBuffers::Node& nn = buf_.at(nc);
-    n = &buf_.at(cell);  // a page may have been allocated: re-take the reference
+    const SearchBuffers::Node& nn = search_.node(nc);
     if (SearchBuffers::closed(nn) && nn.g + moves_[m].cost < best) {
       best = nn.g + moves_[m].cost;
       best_parent = nc;
     }
   }
-  n->g = best;
-  n->parent = best_parent;
+  n.g = best;
+  n.parent = best_parent;
 }
 
-void LazyThetaStar::relax_neighbours(std::uint32_t cell, std::uint32_t mask, std::uint32_t goal,
-                                     GridSearchResult& out) {
-  const std::uint32_t parent = buf_.at(cell).parent;
-  const double gp = buf_.at(parent).g;
-  for (std::size_t m = 0; m < moves_.size(); ++m) {
-    if ((mask & moves_[m].need) != moves_[m].need) continue;
-    const auto nc = static_cast<std::uint32_t>(cell + offsets_[m]);
-    SearchBuffers::Node& nn = buf_.at(nc);
-    if (SearchBuffers::closed(nn)) continue;
-    const double ng = gp + distance(parent, nc);
-    if (ng < nn.g) {
-      nn.g = ng;
-      nn.parent = parent;
-      buf_.push(ng + distance(nc, goal), ng, nc);
-      ++out.generated;
+// A node's free grid neighbours, each offered the node's parent (path 2, assumed visible until
+// the neighbour is settled).
+struct LazyThetaStar::Expansion {
+  LazyThetaStar& self;
+  const StopCondition& stop;
+  GridCell at{};
+  std::uint32_t mask = 0;
+
+  bool stop_now(std::uint64_t expanded) const { return stop_due(stop, expanded, 1024); }
+  void settle(std::uint32_t id) {
+    self.grid_->coords(id, at.i, at.j, at.k);
+    mask = self.grid_->free_mask(at.i, at.j, at.k);
+    self.set_vertex(id, mask);
+  }
+  template <class Relax>
+  void expand(std::uint32_t, const SearchBuffers::Node& n, Relax& relax) const {
+    const std::uint32_t parent = n.parent;
+    const double gp = self.search_.node(parent).g;
+    GridCell p;
+    self.grid_->coords(parent, p.i, p.j, p.k);
+    const std::int64_t id = self.grid_->index(at.i, at.j, at.k);
+    for (std::size_t m = 0; m < self.moves_.size(); ++m) {
+      const GridMove& mv = self.moves_[m];
+      if ((mask & mv.need) != mv.need) continue;
+      const GridCell to{at.i + mv.di, at.j + mv.dj, at.k + mv.dk};
+      relax(static_cast<std::uint32_t>(id + self.offsets_[m]), gp + EuclideanToGoal{p}(to), parent, to);
     }
   }
-}
+};
 
 void LazyThetaStar::keep_pulled_if_shorter(std::int64_t start, std::int64_t goal, const StopCondition& stop,
                                            GridSearchResult& out) {
@@ -125,42 +135,18 @@ void LazyThetaStar::keep_pulled_if_shorter(std::int64_t start, std::int64_t goal
 }
 
 GridSearchResult LazyThetaStar::search(std::int64_t start, std::int64_t goal, const StopCondition& stop) {
-  GridSearchResult out;
   const BitGrid& g = *grid_;
-  if (start < 0 || goal < 0 || start >= g.size() || goal >= g.size() || g.blocked(start) || g.blocked(goal)) return out;
+  if (start < 0 || goal < 0 || start >= g.size() || goal >= g.size() || g.blocked(start) || g.blocked(goal)) return {};
   const auto s0 = static_cast<std::uint32_t>(start), goal_c = static_cast<std::uint32_t>(goal);
-  buf_.begin(g.size());
-  SearchBuffers::Node& n0 = buf_.at(s0);
-  n0.g = 0.0;
-  n0.parent = s0;
-  buf_.push(distance(s0, goal_c), 0.0, s0);
-  while (!buf_.open_empty()) {
-    out.open_max = std::max<std::uint64_t>(out.open_max, buf_.open_size());
-    const SearchBuffers::Entry e = buf_.pop();
-    const SearchBuffers::Node& n = buf_.at(e.cell);
-    if (SearchBuffers::closed(n) || e.g > n.g) continue;
-    int i, j, k;
-    g.coords(e.cell, i, j, k);
-    const std::uint32_t mask = g.free_mask(i, j, k);
-    set_vertex(e.cell, mask);
-    SearchBuffers::close(buf_.at(e.cell));
-    if (e.cell == goal_c) break;
-    if ((++out.expanded & 1023) == 0 && stop.should_stop(out.expanded)) {
-      out.stopped = true;
-      return out;
-    }
-    relax_neighbours(e.cell, mask, goal_c, out);
-  }
-  SearchBuffers::Node& gn = buf_.at(goal_c);
-  if (!SearchBuffers::closed(gn)) return out;
-  out.found = true;
-  out.cost = gn.g;
-  for (std::uint32_t c = goal_c;; c = buf_.at(c).parent) {
-    out.cells.push_back(c);
-    if (c == s0) break;
-  }
-  std::reverse(out.cells.begin(), out.cells.end());
-  keep_pulled_if_shorter(start, goal, stop, out);
+  GridCell s, t;
+  g.coords(start, s.i, s.j, s.k);
+  g.coords(goal, t.i, t.j, t.k);
+  search_.begin(g.size());
+  Expansion expansion{*this, stop};
+  SearchCounts counts;
+  const SearchEnd end = search_.run(expansion, EuclideanToGoal{t}, s0, s0, s, goal_c, counts);
+  GridSearchResult out = grid_result(search_, end, counts, s0, goal_c);
+  if (out.found) keep_pulled_if_shorter(start, goal, stop, out);
   return out;
 }
 

@@ -11,7 +11,6 @@
 #include "uavplan/core/stop.h"
 #include "uavplan/planning/search/bit_grid.h"
 #include "uavplan/planning/search/grid_astar.h"
-#include "uavplan/planning/search/search_buffers.h"
 
 namespace uavplan {
 
@@ -31,15 +30,14 @@ class LazyThetaStar {
   bool visible(std::uint32_t a, std::uint32_t b) const;
   // SetVertex: a node's parent was assumed visible; if not, the best closed grid neighbour.
   void set_vertex(std::uint32_t cell, std::uint32_t mask);
-  // The free neighbours of `cell`, each given the cell's parent (path 2, assumed visible).
-  void relax_neighbours(std::uint32_t cell, std::uint32_t mask, std::uint32_t goal, GridSearchResult& out);
+  struct Expansion;  // theta_star.cpp
   // The string-pulled optimal grid path, kept in `out` when shorter.
   void keep_pulled_if_shorter(std::int64_t start, std::int64_t goal, const StopCondition& stop, GridSearchResult& out);
 
   const BitGrid* grid_;
   std::vector<GridMove> moves_;
   std::vector<std::int64_t> offsets_;
-  SearchBuffers buf_;
+  BestFirst<> search_;
   GridAStar grid_search_;
 };
 

@@ -1,0 +1,125 @@
+#include "uavplan/planning/search/best_first.h"
+
+#include <gtest/gtest.h>
+
+#include <queue>
+
+#include "uavplan/core/rng.h"
+#include "uavplan/core/vec.h"
+
+namespace uavplan {
+namespace {
+
+// A random geometric graph: points in a square, each joined to a few others by edges at least
+// as long as the straight line, so the Euclidean distance is a consistent heuristic.
+struct Graph {
+  struct Edge {
+    std::uint32_t to;
+    double cost;
+  };
+  std::vector<Vec3> at;
+  std::vector<std::vector<Edge>> out;
+};
+
+Graph random_graph(int n, std::uint64_t seed) {
+  Rng rng(seed);
+  Graph g;
+  for (int i = 0; i < n; ++i) g.at.emplace_back(rng.uniform(0, 100), rng.uniform(0, 100), 0.0);
+  g.out.resize(n);
+  for (int i = 0; i < n; ++i)
+    for (int e = 0; e < 3; ++e) {
+      const auto j = static_cast<std::uint32_t>(rng.uniform_int(0, n - 1));
+      const double c = (g.at[i] - g.at[j]).norm() * rng.uniform(1.0, 1.5);
+      g.out[i].push_back({j, c});
+      g.out[j].push_back({static_cast<std::uint32_t>(i), c});
+    }
+  return g;
+}
+
+// Oracle: textbook Dijkstra.
+std::vector<double> dijkstra(const Graph& g, std::uint32_t s) {
+  std::vector<double> d(g.at.size(), std::numeric_limits<double>::infinity());
+  using E = std::pair<double, std::uint32_t>;
+  std::priority_queue<E, std::vector<E>, std::greater<>> pq;
+  d[s] = 0;
+  pq.push({0, s});
+  while (!pq.empty()) {
+    const auto [du, u] = pq.top();
+    pq.pop();
+    if (du > d[u]) continue;
+    for (const Graph::Edge& e : g.out[u])
+      if (du + e.cost < d[e.to]) pq.push({d[e.to] = du + e.cost, e.to});
+  }
+  return d;
+}
+
+struct GraphExpansion {
+  const Graph& g;
+  std::uint64_t stop_at = 0;  // 0: never
+  int settled = 0;
+  bool stop_now(std::uint64_t expanded) const { return stop_at && expanded >= stop_at; }
+  void settle(std::uint32_t) { ++settled; }
+  template <class Relax>
+  void expand(std::uint32_t id, const SearchBuffers::Node& n, Relax& relax) const {
+    for (const Graph::Edge& e : g.out[id]) relax(e.to, n.g + e.cost, id, e.to);
+  }
+};
+
+// The goal's g is Dijkstra's distance, and the path's edges add up to it, whatever the open
+// list's buckets and with or without a heuristic.
+TEST(BestFirst, FindsDijkstrasDistanceWithEitherOpenListAndHeuristic) {
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    const Graph g = random_graph(400, seed);
+    const std::vector<double> d = dijkstra(g, 0);
+    for (const double width : {std::numeric_limits<double>::infinity(), 2.0})
+      for (const bool euclidean : {false, true}) {
+        const auto goal = static_cast<std::uint32_t>(1 + seed * 13 % 399);
+        const auto h = [&](std::uint32_t v) { return euclidean ? (g.at[v] - g.at[goal]).norm() : 0.0; };
+        BestFirst<> search;
+        search.begin(400, h(0), width);
+        GraphExpansion expansion{g};
+        SearchCounts counts;
+        const SearchEnd end = search.run(expansion, h, 0u, SearchBuffers::kNoParent, 0u, goal, counts);
+        ASSERT_EQ(end == SearchEnd::goal, std::isfinite(d[goal])) << seed;
+        EXPECT_EQ(expansion.settled, static_cast<int>(counts.expanded) + (end == SearchEnd::goal ? 1 : 0));
+        if (end != SearchEnd::goal) continue;
+        EXPECT_NEAR(search.node(goal).g, d[goal], 1e-9) << seed;
+        const std::vector<std::int64_t> path = search.path(0, goal);
+        double along = 0.0;
+        for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+          double best = std::numeric_limits<double>::infinity();
+          for (const Graph::Edge& e : g.out[path[i]])
+            if (e.to == path[i + 1]) best = std::min(best, e.cost);
+          along += best;
+        }
+        EXPECT_NEAR(along, d[goal], 1e-9) << seed;
+        EXPECT_GE(counts.generated, counts.expanded);
+        EXPECT_GE(counts.open_max, 1u);
+      }
+  }
+}
+
+TEST(BestFirst, EndsWhenThePolicyStopsOrTheListRunsDry) {
+  const Graph g = random_graph(400, 3);
+  const auto zero = [](std::uint32_t) { return 0.0; };
+  BestFirst<> search;
+  search.begin(401);
+  GraphExpansion stopping{g, 5};
+  SearchCounts counts;
+  EXPECT_EQ(search.run(stopping, zero, 0u, SearchBuffers::kNoParent, 0u, 400u, counts), SearchEnd::stopped);
+  EXPECT_EQ(counts.expanded, 5u);
+  // Node 400 has no edges: every reachable node is closed, then the list is dry. A second
+  // query on the same buffers starts clean.
+  for (int round = 0; round < 2; ++round) {
+    search.begin(401);
+    GraphExpansion all{g};
+    SearchCounts c;
+    EXPECT_EQ(search.run(all, zero, 0u, SearchBuffers::kNoParent, 0u, 400u, c), SearchEnd::exhausted);
+    const std::vector<double> d = dijkstra(g, 0);
+    const auto reachable = std::count_if(d.begin(), d.end(), [](double v) { return std::isfinite(v); });
+    EXPECT_EQ(c.expanded, static_cast<std::uint64_t>(reachable));
+  }
+}
+
+}  // namespace
+}  // namespace uavplan
