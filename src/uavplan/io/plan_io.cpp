@@ -99,45 +99,35 @@ void write_json(const Json& j, int depth, std::string& out, const Splice& splice
   }
 }
 
-// The points as write_json writes an array of all-number arrays.
-void write_points(const std::vector<Vec3>& pts, std::size_t depth, std::string& out) {
-  if (pts.empty()) {
+// An array of `rows` arrays of `Width` numbers (value(i, k)), as write_json writes it.
+template <int Width, class Value>
+void write_number_rows(std::size_t rows, std::size_t depth, std::string& out, const Value& value) {
+  if (rows == 0) {
     out += "[]";
     return;
   }
   out += "[\n";
-  for (std::size_t i = 0; i < pts.size(); ++i) {
+  for (std::size_t i = 0; i < rows; ++i) {
     out.append(depth + 1, ' ');
     out += '[';
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < Width; ++k) {
       if (k) out += ',';
-      write_number(pts[i][k], out);
+      write_number(value(i, k), out);
     }
-    out += i + 1 < pts.size() ? "],\n" : "]\n";
+    out += i + 1 < rows ? "],\n" : "]\n";
   }
   out.append(depth, ' ');
   out += ']';
 }
 
-// The rows as write_json writes an array of all-number arrays.
+void write_points(const std::vector<Vec3>& pts, std::size_t depth, std::string& out) {
+  write_number_rows<3>(pts.size(), depth, out, [&](std::size_t i, int k) { return pts[i][k]; });
+}
+
+// A row: time, then position.
 void write_rows(const Trajectory& tr, std::size_t depth, std::string& out) {
-  if (tr.empty()) {
-    out += "[]";
-    return;
-  }
-  out += "[\n";
-  for (std::size_t i = 0; i < tr.size(); ++i) {
-    out.append(depth + 1, ' ');
-    out += '[';
-    write_number(tr[i].t_s, out);
-    for (int k = 0; k < 3; ++k) {
-      out += ',';
-      write_number(tr[i].p[k], out);
-    }
-    out += i + 1 < tr.size() ? "],\n" : "]\n";
-  }
-  out.append(depth, ' ');
-  out += ']';
+  write_number_rows<4>(tr.size(), depth, out,
+                       [&](std::size_t i, int k) { return k == 0 ? tr[i].t_s : tr[i].p[k - 1]; });
 }
 
 struct Reader {

@@ -51,20 +51,20 @@ bool passes_within(const Trajectory& tr, const Vec3& p, double tol_m, TrackProgr
   return false;
 }
 
-Vec3 position_at(const Trajectory& tr, double t) {
-  if (tr.empty()) return Vec3::Zero();
-  if (t <= tr.front().t_s) return tr.front().p;
-  if (t >= tr.back().t_s) return tr.back().p;
-  const auto it =
-      std::upper_bound(tr.begin(), tr.end(), t, [](double x, const TrajectorySample& s) { return x < s.t_s; });
-  const TrajectorySample& b = *it;
-  const TrajectorySample& a = *(it - 1);
+namespace {
+
+// The point at t on the piece from sample a to sample b (b's point where they share a time).
+Vec3 on_piece(const TrajectorySample& a, const TrajectorySample& b, double t) {
   const double span = b.t_s - a.t_s;
-  if (span <= 0.0) return b.p;
-  return a.p + (t - a.t_s) / span * (b.p - a.p);
+  return span <= 0.0 ? b.p : Vec3(a.p + (t - a.t_s) / span * (b.p - a.p));
 }
 
-namespace {
+// position_at(tr, t) where `next` is the first sample after t (upper_bound), no search.
+Vec3 between(const Trajectory& tr, std::size_t next, double t) {
+  if (next == 0) return tr.front().p;
+  if (next == tr.size()) return tr.back().p;
+  return on_piece(tr[next - 1], tr[next], t);
+}
 
 // position_at for non-decreasing times, walking forward instead of searching.
 class Cursor {
@@ -75,11 +75,7 @@ class Cursor {
     if (t <= tr.front().t_s) return tr.front().p;
     if (t >= tr.back().t_s) return tr.back().p;
     while (tr[next_].t_s <= t) ++next_;  // the first sample after t, as position_at's upper_bound
-    const TrajectorySample& b = tr[next_];
-    const TrajectorySample& a = tr[next_ - 1];
-    const double span = b.t_s - a.t_s;
-    if (span <= 0.0) return b.p;
-    return a.p + (t - a.t_s) / span * (b.p - a.p);
+    return on_piece(tr[next_ - 1], tr[next_], t);
   }
 
  private:
@@ -87,21 +83,30 @@ class Cursor {
   std::size_t next_ = 1;
 };
 
-}  // namespace
-
-namespace {
-
-// position_at(tr, t) where `next` is the first sample after t (upper_bound), no search.
-Vec3 between(const Trajectory& tr, std::size_t next, double t) {
-  if (next == 0) return tr.front().p;
-  if (next == tr.size()) return tr.back().p;
-  const TrajectorySample& a = tr[next - 1];
-  const TrajectorySample& b = tr[next];
-  const double span = b.t_s - a.t_s;
-  return span <= 0.0 ? b.p : Vec3(a.p + (t - a.t_s) / span * (b.p - a.p));
+// Two UAVs flying straight from (pa0, pb0) at t0 to (pa1, pb1) at t1: their offset moves along a
+// segment, and its point nearest the origin is their closest approach on that piece; kept in `e`
+// when nearer than what it holds.
+void nearer_on_piece(Encounter& e, double t0, const Vec3& pa0, const Vec3& pb0, double t1, const Vec3& pa1,
+                     const Vec3& pb1) {
+  double u = 0.0;
+  const double dist = point_segment_distance(Vec3::Zero(), pa0 - pb0, pa1 - pb1, &u);
+  if (dist < e.distance_m) {
+    e.distance_m = dist;
+    e.t_s = t0 + u * (t1 - t0);
+    e.where = pa0 + u * (pa1 - pa0);
+  }
 }
 
 }  // namespace
+
+Vec3 position_at(const Trajectory& tr, double t) {
+  if (tr.empty()) return Vec3::Zero();
+  if (t <= tr.front().t_s) return tr.front().p;
+  if (t >= tr.back().t_s) return tr.back().p;
+  const auto it =
+      std::upper_bound(tr.begin(), tr.end(), t, [](double x, const TrajectorySample& s) { return x < s.t_s; });
+  return on_piece(*(it - 1), *it, t);
+}
 
 Encounter closest_approach_between(const Trajectory& a, const Trajectory& b, double t_from_s, double t_to_s) {
   Encounter e;
@@ -115,13 +120,7 @@ Encounter closest_approach_between(const Trajectory& a, const Trajectory& b, dou
   double t_prev = t_from_s;
   Vec3 pa_prev = position_at(a, t_from_s), pb_prev = position_at(b, t_from_s);
   auto consider = [&](double t, const Vec3& pa, const Vec3& pb) {
-    double u = 0.0;
-    const double dist = point_segment_distance(Vec3::Zero(), pa_prev - pb_prev, pa - pb, &u);
-    if (dist < e.distance_m) {
-      e.distance_m = dist;
-      e.t_s = t_prev + u * (t - t_prev);
-      e.where = pa_prev + u * (pa - pa_prev);
-    }
+    nearer_on_piece(e, t_prev, pa_prev, pb_prev, t, pa, pb);
     t_prev = t, pa_prev = pa, pb_prev = pb;
   };
   consider(t_from_s, pa_prev, pb_prev);
@@ -140,15 +139,6 @@ Encounter closest_approach(const Trajectory& a, const Trajectory& b, double t_ma
   Encounter e;
   if (a.empty() || b.empty()) return e;
   Cursor ca(a), cb(b);
-  auto consider = [&](double t0, const Vec3& pa0, const Vec3& pb0, double t1, const Vec3& pa1, const Vec3& pb1) {
-    double u = 0.0;
-    const double dist = point_segment_distance(Vec3::Zero(), pa0 - pb0, pa1 - pb1, &u);
-    if (dist < e.distance_m) {
-      e.distance_m = dist;
-      e.t_s = t0 + u * (t1 - t0);
-      e.where = pa0 + u * (pa1 - pa0);
-    }
-  };
   // The merged sample times in order (each once), cut at t_max_s.
   std::size_t i = 0, j = 0;
   bool first = true, cut = false;
@@ -165,9 +155,9 @@ Encounter closest_approach(const Trajectory& a, const Trajectory& b, double t_ma
     }
     const Vec3 pa = ca.at(t), pb = cb.at(t);
     if (first)
-      consider(t, pa, pb, t, pa, pb);
+      nearer_on_piece(e, t, pa, pb, t, pa, pb);
     else
-      consider(t_prev, pa_prev, pb_prev, t, pa, pb);
+      nearer_on_piece(e, t_prev, pa_prev, pb_prev, t, pa, pb);
     first = false;
     t_prev = t;
     pa_prev = pa;
@@ -175,7 +165,7 @@ Encounter closest_approach(const Trajectory& a, const Trajectory& b, double t_ma
   }
   if (first) {  // every sample after t_max_s: where both are at t_max_s
     const Vec3 pa = ca.at(t_max_s), pb = cb.at(t_max_s);
-    consider(t_max_s, pa, pb, t_max_s, pa, pb);
+    nearer_on_piece(e, t_max_s, pa, pb, t_max_s, pa, pb);
   }
   return e;
 }

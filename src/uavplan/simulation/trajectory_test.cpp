@@ -69,74 +69,72 @@ TEST(Trajectory, ClosestApproachUpToAHorizonAndOnSharedTimes) {
   EXPECT_DOUBLE_EQ(closest_approach(one, other).distance_m, 5.0);
 }
 
-TEST(Trajectory, SweptBoxesNeverOverstateTheClosestApproach) {
-  Rng r(9);
-  std::vector<Trajectory> trs;
-  for (int k = 0; k < 30; ++k) {
-    std::vector<Vec3> pts;
-    for (int i = 0; i < 4; ++i) pts.emplace_back(r.uniform(0, 200), r.uniform(0, 200), r.uniform(0, 20));
-    trs.push_back(time_route(pts, r.uniform(2, 8), r.uniform(0, 20), 1.0));
+// Random routes with departure delays (so the trajectories start and end at different times),
+// and their swept boxes.
+struct Flights {
+  Flights(std::uint64_t seed, int count, double side_m, int slices)
+      : trs(random(seed, count, side_m)), ptrs(pointers(trs)), boxes(ptrs, slices) {}
+  static std::vector<const Trajectory*> pointers(const std::vector<Trajectory>& trs) {
+    std::vector<const Trajectory*> out;
+    for (const auto& t : trs) out.push_back(&t);
+    return out;
   }
+  static std::vector<Trajectory> random(std::uint64_t seed, int count, double side_m) {
+    Rng r(seed);
+    std::vector<Trajectory> out;
+    for (int k = 0; k < count; ++k) {
+      std::vector<Vec3> pts;
+      for (int i = 0; i < 4; ++i) pts.emplace_back(r.uniform(0, side_m), r.uniform(0, side_m), r.uniform(0, 20));
+      out.push_back(time_route(pts, r.uniform(2, 8), r.uniform(0, 20), 1.0));
+    }
+    return out;
+  }
+  std::vector<Trajectory> trs;
   std::vector<const Trajectory*> ptrs;
-  for (const auto& t : trs) ptrs.push_back(&t);
-  const SweptBoxes boxes(ptrs, 16);
+  SweptBoxes boxes;
+};
+
+TEST(Trajectory, SweptBoxesNeverOverstateTheClosestApproach) {
+  const Flights f(9, 30, 200, 16);
   int pruned = 0;
-  for (std::size_t i = 0; i < trs.size(); ++i)
-    for (std::size_t j = i + 1; j < trs.size(); ++j) {
-      const double exact = closest_approach(trs[i], trs[j]).distance_m;
-      ASSERT_LE(boxes.lower_bound_m(i, j), exact + 1e-12);
-      pruned += boxes.lower_bound_m(i, j) > 5.0;
+  for (std::size_t i = 0; i < f.trs.size(); ++i)
+    for (std::size_t j = i + 1; j < f.trs.size(); ++j) {
+      const double exact = closest_approach(f.trs[i], f.trs[j]).distance_m;
+      ASSERT_LE(f.boxes.lower_bound_m(i, j), exact + 1e-12);
+      pruned += f.boxes.lower_bound_m(i, j) > 5.0;
     }
   EXPECT_GT(pruned, 100) << "the bound is useful: most far pairs are cleared";
 }
 
-// Random routes with departure delays, so the trajectories start and end at different times.
-std::vector<Trajectory> random_flights(Rng& r, int count, double side_m) {
-  std::vector<Trajectory> trs;
-  for (int k = 0; k < count; ++k) {
-    std::vector<Vec3> pts;
-    for (int i = 0; i < 4; ++i) pts.emplace_back(r.uniform(0, side_m), r.uniform(0, side_m), r.uniform(0, 20));
-    trs.push_back(time_route(pts, r.uniform(2, 8), r.uniform(0, 20), 1.0));
-  }
-  return trs;
-}
-
 TEST(Trajectory, PairsWithinAreExactlyThePairsWhoseBoundIsBelowTheReach) {
-  Rng r(11);
-  const std::vector<Trajectory> trs = random_flights(r, 60, 300);
-  std::vector<const Trajectory*> ptrs;
-  for (const auto& t : trs) ptrs.push_back(&t);
-  const SweptBoxes boxes(ptrs, 16);
-  for (const double reach : {0.5, 5.0, 20.0, 80.0, boxes.extent_m() * 1.01}) {
+  const Flights f(11, 60, 300, 16);
+  const std::uint32_t n = static_cast<std::uint32_t>(f.trs.size());
+  for (const double reach : {0.5, 5.0, 20.0, 80.0, f.boxes.extent_m() * 1.01}) {
     std::vector<std::pair<std::uint32_t, std::uint32_t>> expected;
-    for (std::uint32_t i = 0; i < trs.size(); ++i)
-      for (std::uint32_t j = i + 1; j < trs.size(); ++j)
-        if (boxes.lower_bound_m(i, j) < reach) expected.emplace_back(i, j);
+    for (std::uint32_t i = 0; i < n; ++i)
+      for (std::uint32_t j = i + 1; j < n; ++j)
+        if (f.boxes.lower_bound_m(i, j) < reach) expected.emplace_back(i, j);
     std::vector<std::pair<std::uint32_t, std::uint32_t>> got;
-    for (const auto& p : boxes.pairs_within(reach)) {
-      EXPECT_EQ(p.bound_m, boxes.lower_bound_m(p.i, p.j));
+    for (const auto& p : f.boxes.pairs_within(reach)) {
+      EXPECT_EQ(p.bound_m, f.boxes.lower_bound_m(p.i, p.j));
       got.emplace_back(p.i, p.j);
     }
     EXPECT_EQ(got, expected) << "reach " << reach;
   }
-  EXPECT_EQ(boxes.pairs_within(boxes.extent_m() * 1.01).size(), trs.size() * (trs.size() - 1) / 2);
+  EXPECT_EQ(f.boxes.pairs_within(f.boxes.extent_m() * 1.01).size(), n * (n - 1) / 2);
 }
 
 TEST(Trajectory, ClosestBelowEqualsTheClosestApproachWhereItIsBelow) {
-  Rng r(12);
-  const std::vector<Trajectory> trs = random_flights(r, 40, 150);
-  std::vector<const Trajectory*> ptrs;
-  for (const auto& t : trs) ptrs.push_back(&t);
-  const SweptBoxes boxes(ptrs, 32);
+  const Flights f(12, 40, 150, 32);
   int below = 0;
-  for (std::size_t i = 0; i < trs.size(); ++i)
-    for (std::size_t j = i + 1; j < trs.size(); ++j) {
-      const Encounter exact = closest_approach(trs[i], trs[j]);
+  for (std::size_t i = 0; i < f.trs.size(); ++i)
+    for (std::size_t j = i + 1; j < f.trs.size(); ++j) {
+      const Encounter exact = closest_approach(f.trs[i], f.trs[j]);
       // Over the whole span: the same encounter.
-      const Encounter whole = closest_approach_between(trs[i], trs[j], -1.0, 1e6);
+      const Encounter whole = closest_approach_between(f.trs[i], f.trs[j], -1.0, 1e6);
       ASSERT_NEAR(whole.distance_m, exact.distance_m, 1e-9);
       for (const double cut : {5.0, 15.0, 40.0}) {
-        const Encounter e = boxes.closest_below(ptrs, i, j, cut);
+        const Encounter e = f.boxes.closest_below(f.ptrs, i, j, cut);
         if (exact.distance_m < cut) {
           ++below;
           ASSERT_NEAR(e.distance_m, exact.distance_m, 1e-9) << i << " " << j << " below " << cut;
