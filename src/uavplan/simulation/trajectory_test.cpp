@@ -76,14 +76,17 @@ struct Flights {
       : trs(random(seed, count, side_m)), ptrs(pointers(trs)), boxes(ptrs, slices) {}
   static std::vector<const Trajectory*> pointers(const std::vector<Trajectory>& trs) {
     std::vector<const Trajectory*> out;
+    out.reserve(trs.size());
     for (const auto& t : trs) out.push_back(&t);
     return out;
   }
   static std::vector<Trajectory> random(std::uint64_t seed, int count, double side_m) {
     Rng r(seed);
     std::vector<Trajectory> out;
+    out.reserve(static_cast<std::size_t>(count));
     for (int k = 0; k < count; ++k) {
       std::vector<Vec3> pts;
+      pts.reserve(4);
       for (int i = 0; i < 4; ++i) pts.emplace_back(r.uniform(0, side_m), r.uniform(0, side_m), r.uniform(0, 20));
       out.push_back(time_route(pts, r.uniform(2, 8), r.uniform(0, 20), 1.0));
     }
