@@ -10,7 +10,7 @@
 namespace uavplan::bench {
 
 struct MovingAiOptions {
-  std::string algorithm = "astar";  // astar | jps (2-D) | theta
+  std::string algorithm = "astar";  // astar | jps | jps+ (2-D; jps+ with its jump table) | theta
   int limit = 0;                    // 0: every problem; else this many, spread evenly
   bool reference = true;            // also run the textbook A*
 };
@@ -28,6 +28,7 @@ struct MovingAiReport {
   bool three_d = false;
   int cells[3] = {0, 0, 0};
   double load_ms = 0.0;
+  double preprocess_ms = 0.0, table_mb = 0.0;  // jps+: the jump table, built once per map
   double grid_mb = 0.0, peak_rss_mb = 0.0;
   std::vector<MovingAiProblemResult> problems;
 

@@ -25,19 +25,6 @@ std::vector<GridMove> bounding_box_moves(const BitGrid& g, double cx, double cy,
   return moves;
 }
 
-double octile_distance(int dx, int dy, int dz) {
-  constexpr double kS2 = 1.4142135623730951, kS3 = 1.7320508075688772;
-  if (dz == 0) {
-    const int a = std::abs(dx), b = std::abs(dy);
-    return a < b ? (kS2 - 1.0) * a + b : (kS2 - 1.0) * b + a;
-  }
-  int a = std::abs(dx), b = std::abs(dy), c = std::abs(dz);
-  if (a > b) std::swap(a, b);
-  if (b > c) std::swap(b, c);
-  if (a > b) std::swap(a, b);  // a <= b <= c
-  return kS3 * a + kS2 * (b - a) + (c - b);
-}
-
 GridAStar::GridAStar(const BitGrid& grid, std::vector<GridMove> moves, GridHeuristic heuristic, double cx, double cy,
                      double cz)
     : grid_(&grid), moves_(std::move(moves)), heuristic_(heuristic), c_{cx, cy, cz} {

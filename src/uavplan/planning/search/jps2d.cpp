@@ -1,34 +1,80 @@
 #include "uavplan/planning/search/jps2d.h"
 
 #include <algorithm>
+#include <cstdlib>
+#include <limits>
 #include <stdexcept>
 
 namespace uavplan {
 namespace {
+
 int sign(int v) { return (v > 0) - (v < 0); }
+
 }  // namespace
 
 Jps2d::Jps2d(const BitGrid& grid) : grid_(&grid) {
   if (grid.nz() != 1) throw std::invalid_argument("Jump Point Search here is 2-D: the grid must have one layer");
+  rows_ = BitLines(grid, false);
+  cols_ = BitLines(grid, true);
 }
 
-// Straight jump from (x, y) along (dx, dy) (one of them 0); on success (x, y) is the jump point.
+void Jps2d::precompute() { table_.emplace(*grid_, rows_, cols_); }
+
+// Straight jump from (x, y) along (dx, dy) (one of them 0), from the table or on the rows or
+// columns; on success (x, y) is the jump point.
 bool Jps2d::jump_straight(int& x, int& y, int dx, int dy) const {
-  for (;;) {
-    x += dx;
-    y += dy;
-    if (!free(x, y)) return false;
-    if (x == gx_ && y == gy_) return true;
-    if (dx != 0) {
-      if ((free(x, y + 1) && !free(x - dx, y + 1)) || (free(x, y - 1) && !free(x - dx, y - 1))) return true;
-    } else {
-      if ((free(x + 1, y) && !free(x + 1, y - dy)) || (free(x - 1, y) && !free(x - 1, y - dy))) return true;
+  const bool along_x = dx != 0;
+  const int line = along_x ? y : x, step = along_x ? dx : dy;
+  int& pos = along_x ? x : y;
+  const std::int64_t goal = (along_x ? gy_ : gx_) == line ? (along_x ? gx_ : gy_) : -1;
+  if (table_) {
+    const std::int32_t s = table_->steps(grid_->index(x, y, 0), JumpTable::direction(dx, dy));
+    const std::int64_t ahead = goal < 0 ? -1 : (goal - pos) * step;
+    if (ahead > 0 && ahead <= std::abs(s)) {  // the goal comes first
+      pos = static_cast<int>(goal);
+      return true;
     }
+    if (s <= 0) return false;
+    pos += s * step;
+    return true;
   }
+  const LineStop to = scan_line(along_x ? rows_ : cols_, line, pos, step, goal);
+  if (!to.jump_point) return false;
+  pos = static_cast<int>(to.at);
+  return true;
+}
+
+// A diagonal jump from the table: its own stop, or earlier where it crosses the goal's row or
+// column and a straight jump from there reaches the goal (the goal lies ahead within that
+// straight jump's steps).
+bool Jps2d::jump_diagonal_table(int& x, int& y, int dx, int dy) const {
+  const std::int32_t s = table_->steps(grid_->index(x, y, 0), JumpTable::direction(dx, dy));
+  const std::int64_t reach = std::abs(s);
+  std::int64_t best = s > 0 ? s : std::numeric_limits<std::int64_t>::max();
+  const std::int64_t k_row = static_cast<std::int64_t>(gy_ - y) * dy, k_col = static_cast<std::int64_t>(gx_ - x) * dx;
+  if (k_row >= 1 && k_row <= reach && k_row < best) {
+    const int cx = x + static_cast<int>(k_row) * dx;
+    const std::int64_t ahead = static_cast<std::int64_t>(gx_ - cx) * dx;
+    if (ahead == 0 ||
+        (ahead > 0 && ahead <= std::abs(table_->steps(grid_->index(cx, gy_, 0), JumpTable::direction(dx, 0)))))
+      best = k_row;
+  }
+  if (k_col >= 1 && k_col <= reach && k_col < best) {
+    const int cy = y + static_cast<int>(k_col) * dy;
+    const std::int64_t ahead = static_cast<std::int64_t>(gy_ - cy) * dy;
+    if (ahead == 0 ||
+        (ahead > 0 && ahead <= std::abs(table_->steps(grid_->index(gx_, cy, 0), JumpTable::direction(0, dy)))))
+      best = k_col;
+  }
+  if (best == std::numeric_limits<std::int64_t>::max()) return false;
+  x += static_cast<int>(best) * dx;
+  y += static_cast<int>(best) * dy;
+  return true;
 }
 
 bool Jps2d::jump(int& x, int& y, int dx, int dy) const {
   if (dx == 0 || dy == 0) return jump_straight(x, y, dx, dy);
+  if (table_) return jump_diagonal_table(x, y, dx, dy);
   for (;;) {
     if (!(free(x + dx, y) && free(x, y + dy) && free(x + dx, y + dy))) return false;
     x += dx;

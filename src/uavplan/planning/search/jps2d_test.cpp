@@ -41,6 +41,48 @@ TEST(Jps2d, SameCostAsAStarOnRandomGrids) {
   }
 }
 
+// Wide, sparse grids: straight jumps run over several 64-cell words, in all four directions.
+TEST(Jps2d, SameCostAsAStarWhereJumpsCrossWords) {
+  Rng r(32);
+  for (int trial = 0; trial < 60; ++trial) {
+    BitGrid g(150 + trial % 11, 140 + trial % 13, 1);
+    const double density = 0.01 + 0.1 * r.uniform01();
+    for (std::int64_t c = 0; c < g.size(); ++c) g.set_blocked(c, r.uniform01() < density);
+    GridAStar astar(g, bounding_box_moves(g), GridHeuristic::octile);
+    Jps2d jps(g);
+    for (int q = 0; q < 5; ++q) {
+      const std::int64_t s = r.uniform_int(0, g.size() - 1), t = r.uniform_int(0, g.size() - 1);
+      const GridSearchResult a = astar.search(s, t), j = jps.search(s, t);
+      ASSERT_EQ(a.found, j.found) << "trial " << trial;
+      if (a.found) {
+        ASSERT_NEAR(a.cost, j.cost, 1e-9) << "trial " << trial;
+      }
+    }
+  }
+}
+
+// JPS+ reads its jumps from the table: the same jump points as scanning, so the same searches,
+// expansion for expansion, goals anywhere (on a jump's line, across a diagonal, at a wall).
+TEST(Jps2d, TheTableGivesTheSameSearchesAsScanning) {
+  Rng r(33);
+  for (int trial = 0; trial < 80; ++trial) {
+    BitGrid g(trial % 2 ? 150 + trial % 11 : 20 + trial % 9, 30 + trial % 17 * 7, 1);
+    const double density = 0.01 + 0.35 * r.uniform01();
+    for (std::int64_t c = 0; c < g.size(); ++c) g.set_blocked(c, r.uniform01() < density);
+    Jps2d scan(g), table(g);
+    table.precompute();
+    ASSERT_TRUE(table.precomputed());
+    for (int q = 0; q < 20; ++q) {
+      const std::int64_t s = r.uniform_int(0, g.size() - 1), t = r.uniform_int(0, g.size() - 1);
+      const GridSearchResult a = scan.search(s, t), b = table.search(s, t);
+      ASSERT_EQ(a.found, b.found) << "trial " << trial;
+      ASSERT_EQ(a.cells, b.cells) << "trial " << trial;
+      ASSERT_EQ(a.expanded, b.expanded) << "trial " << trial;
+      ASSERT_EQ(a.generated, b.generated) << "trial " << trial;
+    }
+  }
+}
+
 TEST(Jps2d, RejectsThreeDimensionalGrids) { EXPECT_THROW(Jps2d(BitGrid(4, 4, 2)), std::invalid_argument); }
 
 }  // namespace
