@@ -98,7 +98,10 @@ int Jps2d::directions(int x, int y, std::uint32_t parent, int dirs[8][2]) const 
   }
   int px, py, k;
   grid_->coords(parent, px, py, k);
-  const int dx = sign(x - px), dy = sign(y - py);
+  // The direction of the last step: a jump from the parent runs diagonally first, then straight
+  // along the longer axis (a successor found from a diagonal's intermediate cell).
+  const int ax = std::abs(x - px), ay = std::abs(y - py);
+  const int dx = ax >= ay ? sign(x - px) : 0, dy = ay >= ax ? sign(y - py) : 0;
   if (dx && dy) {
     dirs[nd][0] = dx, dirs[nd++][1] = 0;
     dirs[nd][0] = 0, dirs[nd++][1] = dy;
@@ -121,7 +124,12 @@ int Jps2d::directions(int x, int y, std::uint32_t parent, int dirs[8][2]) const 
   return nd;
 }
 
-// A node's successors are the jump points along its pruned directions.
+// A node's successors are the jump points along its pruned directions. Along a diagonal, the
+// cells where it would stop are not made nodes (JPS2's pruning of intermediate jump points,
+// Harabor and Grastien 2014): the straight jumps from each of them are the node's successors,
+// at the cost of the diagonal then the straight run (the octile distance), and the diagonal goes
+// on past them. A diagonal move has no forced neighbours without corner cutting, so those
+// straight jumps and the diagonal's continuation are all that expanding such a cell would give.
 struct Jps2d::Expansion {
   const Jps2d& self;
   const StopCondition& stop;
@@ -130,12 +138,27 @@ struct Jps2d::Expansion {
   void expand(std::uint32_t id, const SearchBuffers::Node& n, Relax& relax) const {
     int x, y, k, dirs[8][2];
     self.grid_->coords(id, x, y, k);
-    const int nd = self.directions(x, y, n.parent, dirs);
-    for (int d = 0; d < nd; ++d) {
-      int jx = x, jy = y;
-      if (!self.jump(jx, jy, dirs[d][0], dirs[d][1])) continue;
+    const auto offer = [&](int jx, int jy) {
       relax(static_cast<std::uint32_t>(self.grid_->index(jx, jy, 0)), n.g + octile_distance(jx - x, jy - y, 0), id,
             GridCell{jx, jy, 0});
+    };
+    const int nd = self.directions(x, y, n.parent, dirs);
+    for (int d = 0; d < nd; ++d) {
+      const int dx = dirs[d][0], dy = dirs[d][1];
+      int jx = x, jy = y;
+      if (dx == 0 || dy == 0) {
+        if (self.jump_straight(jx, jy, dx, dy)) offer(jx, jy);
+        continue;
+      }
+      while (self.jump(jx, jy, dx, dy)) {
+        if (jx == self.gx_ && jy == self.gy_) {
+          offer(jx, jy);
+          break;
+        }
+        int hx = jx, hy = jy, vx = jx, vy = jy;
+        if (self.jump_straight(hx, hy, dx, 0)) offer(hx, hy);
+        if (self.jump_straight(vx, vy, 0, dy)) offer(vx, vy);
+      }
     }
   }
 };
