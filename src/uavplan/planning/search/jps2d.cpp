@@ -72,16 +72,27 @@ bool Jps2d::jump_diagonal_table(int& x, int& y, int dx, int dy) const {
   return true;
 }
 
-bool Jps2d::jump(int& x, int& y, int dx, int dy) const {
-  if (dx == 0 || dy == 0) return jump_straight(x, y, dx, dy);
-  if (table_) return jump_diagonal_table(x, y, dx, dy);
+// Walks the diagonal from (x, y) and offers what expanding each of its stops would give: the goal
+// where the diagonal reaches it, else the straight jumps from the cell that find a jump point.
+// Scanning, every diagonal cell is such a candidate and its two straight jumps run once; with
+// the table, only the stops it records (or the crossing of the goal's row or column).
+template <class Offer>
+void Jps2d::walk_diagonal(int x, int y, int dx, int dy, const Offer& offer) const {
   for (;;) {
-    if (!(free(x + dx, y) && free(x, y + dy) && free(x + dx, y + dy))) return false;
-    x += dx;
-    y += dy;
-    if (x == gx_ && y == gy_) return true;
+    if (table_) {
+      if (!jump_diagonal_table(x, y, dx, dy)) return;
+    } else {
+      if (!(free(x + dx, y) && free(x, y + dy) && free(x + dx, y + dy))) return;
+      x += dx;
+      y += dy;
+    }
+    if (x == gx_ && y == gy_) {
+      offer(x, y);
+      return;
+    }
     int hx = x, hy = y, vx = x, vy = y;
-    if (jump_straight(hx, hy, dx, 0) || jump_straight(vx, vy, 0, dy)) return true;
+    if (jump_straight(hx, hy, dx, 0)) offer(hx, hy);
+    if (jump_straight(vx, vy, 0, dy)) offer(vx, vy);
   }
 }
 
@@ -146,19 +157,10 @@ struct Jps2d::Expansion {
     for (int d = 0; d < nd; ++d) {
       const int dx = dirs[d][0], dy = dirs[d][1];
       int jx = x, jy = y;
-      if (dx == 0 || dy == 0) {
-        if (self.jump_straight(jx, jy, dx, dy)) offer(jx, jy);
-        continue;
-      }
-      while (self.jump(jx, jy, dx, dy)) {
-        if (jx == self.gx_ && jy == self.gy_) {
-          offer(jx, jy);
-          break;
-        }
-        int hx = jx, hy = jy, vx = jx, vy = jy;
-        if (self.jump_straight(hx, hy, dx, 0)) offer(hx, hy);
-        if (self.jump_straight(vx, vy, 0, dy)) offer(vx, vy);
-      }
+      if (dx != 0 && dy != 0)
+        self.walk_diagonal(x, y, dx, dy, offer);
+      else if (self.jump_straight(jx, jy, dx, dy))
+        offer(jx, jy);
     }
   }
 };

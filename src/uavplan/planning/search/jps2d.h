@@ -38,7 +38,8 @@ class Jps2d {
   bool free(int x, int y) const { return !grid_->blocked(x, y, 0); }
   bool jump_straight(int& x, int& y, int dx, int dy) const;
   bool jump_diagonal_table(int& x, int& y, int dx, int dy) const;
-  bool jump(int& x, int& y, int dx, int dy) const;
+  template <class Offer>
+  void walk_diagonal(int x, int y, int dx, int dy, const Offer& offer) const;
   // The pruned directions from (x, y) reached from `parent`: all eight at the start, else the
   // natural and the forced ones. Returns how many.
   int directions(int x, int y, std::uint32_t parent, int dirs[8][2]) const;

@@ -7,11 +7,20 @@
 namespace uavplan {
 namespace {
 
-TEST(Jps2d, SameCostAsAStarOnRandomGrids) {
-  Rng r(31);
-  for (int trial = 0; trial < 300; ++trial) {
-    BitGrid g(40 + trial % 7, 30 + trial % 5, 1);
-    const double density = 0.05 + 0.4 * r.uniform01();
+// Random grids of nx0 + trial % nx_mod by ny0 + trial % ny_mod cells, blocked with a density
+// drawn from [density_lo, density_lo + density_span): JPS finds A*'s cost, and its expanded path
+// is a chain of legal grid moves of that length.
+struct RandomGrids {
+  std::uint64_t seed;
+  int trials, nx0, nx_mod, ny0, ny_mod;
+  double density_lo, density_span;
+};
+
+void expect_same_cost_as_astar(const RandomGrids& o) {
+  Rng r(o.seed);
+  for (int trial = 0; trial < o.trials; ++trial) {
+    BitGrid g(o.nx0 + trial % o.nx_mod, o.ny0 + trial % o.ny_mod, 1);
+    const double density = o.density_lo + o.density_span * r.uniform01();
     for (std::int64_t c = 0; c < g.size(); ++c) g.set_blocked(c, r.uniform01() < density);
     GridAStar astar(g, bounding_box_moves(g), GridHeuristic::octile);
     Jps2d jps(g);
@@ -21,7 +30,6 @@ TEST(Jps2d, SameCostAsAStarOnRandomGrids) {
       ASSERT_EQ(a.found, j.found) << "trial " << trial;
       if (!a.found) continue;
       ASSERT_NEAR(a.cost, j.cost, 1e-9) << "trial " << trial;
-      // The expanded path is a chain of legal grid moves of the same length.
       const auto cells = jps.expand_path(j.cells);
       ASSERT_EQ(cells.front(), s);
       ASSERT_EQ(cells.back(), t);
@@ -41,25 +49,10 @@ TEST(Jps2d, SameCostAsAStarOnRandomGrids) {
   }
 }
 
+TEST(Jps2d, SameCostAsAStarOnRandomGrids) { expect_same_cost_as_astar({31, 300, 40, 7, 30, 5, 0.05, 0.4}); }
+
 // Wide, sparse grids: straight jumps run over several 64-cell words, in all four directions.
-TEST(Jps2d, SameCostAsAStarWhereJumpsCrossWords) {
-  Rng r(32);
-  for (int trial = 0; trial < 60; ++trial) {
-    BitGrid g(150 + trial % 11, 140 + trial % 13, 1);
-    const double density = 0.01 + 0.1 * r.uniform01();
-    for (std::int64_t c = 0; c < g.size(); ++c) g.set_blocked(c, r.uniform01() < density);
-    GridAStar astar(g, bounding_box_moves(g), GridHeuristic::octile);
-    Jps2d jps(g);
-    for (int q = 0; q < 5; ++q) {
-      const std::int64_t s = r.uniform_int(0, g.size() - 1), t = r.uniform_int(0, g.size() - 1);
-      const GridSearchResult a = astar.search(s, t), j = jps.search(s, t);
-      ASSERT_EQ(a.found, j.found) << "trial " << trial;
-      if (a.found) {
-        ASSERT_NEAR(a.cost, j.cost, 1e-9) << "trial " << trial;
-      }
-    }
-  }
-}
+TEST(Jps2d, SameCostAsAStarWhereJumpsCrossWords) { expect_same_cost_as_astar({32, 60, 150, 11, 140, 13, 0.01, 0.1}); }
 
 // JPS+ reads its jumps from the table: the same jump points as scanning, so the same searches,
 // expansion for expansion, goals anywhere (on a jump's line, across a diagonal, at a wall).
