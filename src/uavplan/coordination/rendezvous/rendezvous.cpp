@@ -326,9 +326,12 @@ class Lengthener {
     return limits;
   }
   // The re-planning steps run many searches; each keeps P4's one state per lattice point and a
-  // route that gets stuck is simply not a candidate.
+  // route that gets stuck is simply not a candidate. Without the relaxed heuristic: its reverse
+  // search costs more than these short, length-bounded searches save (each step and direction
+  // count, each virtual threat, would need its own).
   static DirectionalQuery replan_query(DirectionalQuery q) {
     q.heading_states = false;
+    q.relaxed_heuristic = false;
     q.max_expansions = std::min<std::int64_t>(q.max_expansions, kReplanExpansions);
     return q;
   }

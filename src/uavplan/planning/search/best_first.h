@@ -10,14 +10,23 @@
 //   void expand(std::uint32_t id, const SearchBuffers::Node& n, Relax& relax);
 // and optionally
 //   void settle(std::uint32_t id);                         // before `id` is closed (Theta*'s SetVertex)
+//   double refine(std::uint32_t id, double f, double g);   // lazy heuristic (below)
 // `expand` offers each child through relax(child, g, parent, position): g is the child's cost
 // through `parent` (the node itself, or for Theta* the node's parent), and the heuristic, a
 // callable on the policy's own position type (cell coordinates, a point), is evaluated only when
 // the child improves.
+//
+// `refine` is for a heuristic too costly for every child (directional A*'s relaxed distances):
+// children go in with a cheap lower bound, and a node's f is raised to the costly bound when it
+// comes off the list; if that is larger, the node goes back in with it (never when infinite:
+// the goal is out of its reach). Nodes are still closed in the order of the costly f, so the
+// search expands what A* with the costly heuristic expands, but evaluates it only for nodes
+// taken off the list, not for every child.
 #pragma once
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "uavplan/core/stop.h"
@@ -88,6 +97,13 @@ class BestFirst {
       SearchBuffers::Node& n = nodes_.at(e.id);
       // A node's later entries are stale: it carries its best g and parent itself.
       if (SearchBuffers::closed(n)) continue;
+      if constexpr (requires { expansion.refine(e.id, e.f, n.g); }) {
+        const double f = expansion.refine(e.id, e.f, n.g);
+        if (f > e.f) {
+          if (f < std::numeric_limits<double>::infinity()) open_.push(f, n.g, e.id);
+          continue;
+        }
+      }
       if constexpr (requires { expansion.settle(e.id); }) expansion.settle(e.id);
       SearchBuffers::close(n);
       if (e.id == goal) return SearchEnd::goal;

@@ -99,6 +99,59 @@ TEST(BestFirst, FindsDijkstrasDistanceWithEitherOpenListAndHeuristic) {
   }
 }
 
+// The lazy heuristic (refine): children go in with h = 0 and a node's f is raised to the exact
+// distance to the goal as it comes off the list. The search closes the nodes that A* with the
+// exact heuristic closes, in the same order (same count), and finds the same distance; refine
+// is asked only for nodes taken off the list. A node refined to infinity is never expanded.
+struct LazyExpansion : GraphExpansion {
+  const std::vector<double>& to_goal;
+  std::uint32_t walled = SearchBuffers::kNoParent;  // refined to infinity (kNoParent: none)
+  int refined = 0;
+  double refine(std::uint32_t id, double f, double g_id) {
+    ++refined;
+    if (id == walled) return std::numeric_limits<double>::infinity();
+    return std::max(f, g_id + to_goal[id]);
+  }
+  void settle(std::uint32_t id) {
+    ++settled;
+    EXPECT_NE(id, walled);
+  }
+};
+
+TEST(BestFirst, RefineRaisesFAsNodesComeOffTheList) {
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    const Graph g = random_graph(400, seed);
+    const auto goal = static_cast<std::uint32_t>(1 + seed * 17 % 399);
+    const std::vector<double> from_start = dijkstra(g, 0), to_goal = dijkstra(g, goal);
+    if (!std::isfinite(to_goal[0])) continue;
+    const auto exact = [&](std::uint32_t v) { return to_goal[v]; };
+    const auto zero = [](std::uint32_t) { return 0.0; };
+    BestFirst<> eager;
+    eager.begin(400, exact(0), 2.0);
+    GraphExpansion plain{g};
+    SearchCounts eager_counts;
+    ASSERT_EQ(eager.run(plain, exact, 0u, SearchBuffers::kNoParent, 0u, goal, eager_counts), SearchEnd::goal);
+    BestFirst<> lazy;
+    lazy.begin(400, 0.0, 2.0);
+    LazyExpansion refining{{g}, to_goal};
+    SearchCounts lazy_counts;
+    ASSERT_EQ(lazy.run(refining, zero, 0u, SearchBuffers::kNoParent, 0u, goal, lazy_counts), SearchEnd::goal);
+    EXPECT_NEAR(lazy.node(goal).g, from_start[goal], 1e-9) << seed;
+    EXPECT_EQ(lazy_counts.expanded, eager_counts.expanded) << seed;
+    EXPECT_LE(refining.refined, static_cast<int>(2 * lazy_counts.generated + 1));
+    // The first node of the optimal path walled off: the route goes around it or none is found.
+    const std::vector<std::int64_t> path = lazy.path(0, goal);
+    if (path.size() < 3) continue;
+    LazyExpansion walling{{g}, to_goal, static_cast<std::uint32_t>(path[1])};
+    lazy.begin(400, 0.0, 2.0);
+    SearchCounts c;
+    const SearchEnd end = lazy.run(walling, zero, 0u, SearchBuffers::kNoParent, 0u, goal, c);
+    if (end == SearchEnd::goal) {
+      EXPECT_GE(lazy.node(goal).g, from_start[goal] - 1e-9);
+    }
+  }
+}
+
 TEST(BestFirst, EndsWhenThePolicyStopsOrTheListRunsDry) {
   const Graph g = random_graph(400, 3);
   const auto zero = [](std::uint32_t) { return 0.0; };

@@ -31,12 +31,14 @@ DirectionalAStarOptions DirectionalAStarOptions::from_params(const Params& param
   o.min_turn_radius_m = r.number("min_turn_radius_m", o.min_turn_radius_m, 0.0, 1e9);
   o.heuristic_weight = r.number("heuristic_weight", o.heuristic_weight, 1.0, 10.0);
   o.climb_bound = r.boolean("climb_bound", o.climb_bound);
+  o.relaxed_heuristic = r.boolean("relaxed_heuristic", o.relaxed_heuristic);
   r.finish();
   return o;
 }
 
 namespace {
 
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr double kDefaultYaw_rad = kPi / 3;    // P4's psi_max when the UAV states none
 constexpr double kDefaultPitch_rad = kPi / 6;  // P4's phi_max
 
@@ -376,6 +378,7 @@ DirectionalQuery DirectionalAStarPlanner::query_for(const Problem& pb, const Wor
   q.max_expansions = options_.max_expansions;
   q.heuristic_weight = options_.heuristic_weight;
   q.climb_bound = options_.climb_bound;
+  q.relaxed_heuristic = options_.relaxed_heuristic;
   return q;
 }
 
@@ -416,6 +419,7 @@ struct DirectionalSearch::Run {
         stride_z(static_cast<std::int64_t>(lat.n[0]) * lat.n[1]),
         inv_sin_pitch(query.climb_bound ? 1.0 / std::sin(std::min(query.max_pitch_rad + kAngleTolerance_rad, kPi / 2))
                                         : 0.0),
+        inv_move_climb(inv_sin_pitch),
         bounded(query.heuristic_weight == 1.0 && std::isfinite(query.max_length_m)) {
     // With a short step no lattice move may keep the climb limit and change level (at 30 deg a
     // level takes sqrt(3) cells across): then a node on a level from which the goal hop cannot
@@ -423,6 +427,7 @@ struct DirectionalSearch::Run {
     level_locked =
         !flat && std::abs(q.goal.z() - q.start.z()) > goal_hop_m && !engine.levels_reachable(world, q, cone_table);
     prepare_clearances();
+    if (q.climb_bound || q.relaxed_heuristic) collect_relaxed_moves();
   }
 
   DirectionalRoute search();
@@ -456,13 +461,23 @@ struct DirectionalSearch::Run {
     return i >= reach && i < lat.n[0] - reach && j >= reach && j < lat.n[1] - reach &&
            (flat || (k >= reach && k < lat.n[2] - reach));
   }
-  // h: the Euclidean distance (P4 eq. 6); with climb_bound, raised to |dz| / sin(phi_max) where
-  // that is larger: every segment climbs at most sin(phi_max) of its length, so no route to the
-  // goal is shorter (still a lower bound, and consistent along feasible segments). It changes
-  // nothing where the climb is gentle and spares a climb-limited search (a spiral up) most of
-  // its expansions.
+  // h: the Euclidean distance (P4 eq. 6); with climb_bound, raised to the least length that can
+  // climb |dz|: a lattice move climbs at most `move_climb` of its length (the steepest move of
+  // the search's cones: 26.6 deg where the limit is 30), the exact last segment to the goal, of
+  // at most goal_hop_m, sin(phi_max) (climb_length). Still a lower bound, and consistent along
+  // feasible segments; it changes nothing where the climb is gentle and spares a climb-limited
+  // search (a spiral up) most of its expansions. h0 is the start's, which leaves by a general
+  // move: sin(phi_max) throughout.
   double h(const Vec3& to) const {
-    return std::max((q.goal - to).norm(), std::abs(q.goal.z() - to.z()) * inv_sin_pitch);
+    return std::max((q.goal - to).norm(), climb_length(std::abs(q.goal.z() - to.z()), goal_hop_m));
+  }
+  double h0() const { return std::max((q.goal - q.start).norm(), std::abs(q.goal.z() - q.start.z()) * inv_sin_pitch); }
+  // The shortest route that climbs `dz` with one segment of at most `steep_m` at sin(phi_max) and
+  // lattice moves at move_climb.
+  double climb_length(double dz, double steep_m) const {
+    if (inv_sin_pitch == 0.0) return 0.0;
+    const double steep_climb_m = steep_m / inv_sin_pitch;
+    return dz <= steep_climb_m ? dz * inv_sin_pitch : steep_m + (dz - steep_climb_m) * inv_move_climb;
   }
   // One clearance per lattice point replaces the segment checks of all its children when it
   // exceeds the longest child plus the inflation (every child segment stays inside that ball).
@@ -480,7 +495,25 @@ struct DirectionalSearch::Run {
     return self.clearance_at(world, point, p, self.clearance_cap_m_);
   }
 
-  // The engine's policy (best_first.h).
+  // The relaxed problem (DirectionalAStarOptions::relaxed_heuristic): its moves, and its exact
+  // distances to the goal by a reverse search toward the start, resumed until the point asked
+  // for is closed.
+  struct Move {
+    std::int16_t d[3];
+    double length_m;
+  };
+  void start_relaxed();
+  void collect_relaxed_moves();
+  void seed_relaxed_goal();
+  double relaxed_distance(std::uint32_t point);
+  bool relaxed_edge_ok(std::uint32_t from_pt, const Vec3& from, float c_to, const Vec3& to, double length_m);
+  // From a lattice point back to the start, whose move to its child is a general one.
+  double relaxed_h(const Vec3& p) const {
+    return std::max((q.start - p).norm(), climb_length(std::abs(q.start.z() - p.z()), start_hop_m));
+  }
+
+  // The engine's policy (best_first.h): children go in with h, and the relaxed distance raises a
+  // node's f as it comes off the list (refine).
   struct Heuristic {
     const Run* run;
     double operator()(const Vec3& to) const { return run->q.heuristic_weight * run->h(to); }
@@ -489,6 +522,7 @@ struct DirectionalSearch::Run {
 
  public:
   bool stop_now(std::uint64_t expanded);
+  double refine(std::uint32_t id, double f, double g);
   void expand(std::uint32_t id, const SearchBuffers::Node& n, Relax& relax);
 
  private:
@@ -518,18 +552,140 @@ struct DirectionalSearch::Run {
   std::vector<const DirectionalCones::Cone*> cone_index;
   const std::int64_t stride_y, stride_z;
   const double inv_sin_pitch;
+  double inv_move_climb;  // 1 / the steepest lattice move's climb per length (collect_relaxed_moves)
+  // The longest general move (from the start): L cells to the target, snapped within a cell.
+  const double start_hop_m = (q.step_cells + std::sqrt(3.0)) * q.cell_m;
   // With f = g + h a lower bound on the length through a node, the length bound prunes.
   const bool bounded;
   bool beyond_bound = false;
   int children = 0;               // of the node being expanded
   Relax* engine_relax = nullptr;  // of the node being expanded
+  std::vector<Move> relaxed_moves;
+  bool relaxed_started = false, relaxed_stopped = false;
+  bool relaxed_reached = false;  // some node the search took had a finite relaxed distance
   DirectionalRoute out;
 };
 
-// Past max_expansions, or the stop (checked every 256 expansions): `out` says which.
+void DirectionalSearch::Run::start_relaxed() {
+  relaxed_started = true;
+  self.relaxed_dist_.assign(static_cast<std::size_t>(lat.size()), kInfinity);
+  self.relaxed_closed_.assign(static_cast<std::size_t>(lat.size()), 0);
+  // f of the reverse search starts near the start-goal bound and grows by a fraction of a step
+  // per expansion, as the forward search's.
+  self.relaxed_open_.reset(std::max(0.0, relaxed_h(q.goal) - goal_hop_m), 0.5 * q.cell_m);
+  seed_relaxed_goal();
+}
+
+// Every move the forward search can make between lattice points: the general moves of the
+// start's children (collisions ignored: a superset), then the children of every cone they lead to.
+void DirectionalSearch::Run::collect_relaxed_moves() {
+  std::unordered_set<std::uint32_t> seen;
+  std::vector<std::uint32_t> frontier;
+  auto add = [&](int dx, int dy, int dz) {
+    if ((dx != 0 || dy != 0 || dz != 0) && seen.insert(pack_offset(dx, dy, dz)).second) {
+      frontier.push_back(pack_offset(dx, dy, dz));
+      relaxed_moves.push_back(
+          Move{{static_cast<std::int16_t>(dx), static_cast<std::int16_t>(dy), static_cast<std::int16_t>(dz)},
+               q.cell_m * Vec3(dx, dy, dz).norm()});
+    }
+  };
+  const std::optional<Vec3> h0 = q.heading_rad ? std::optional<Vec3>(heading_vector(*q.heading_rad)) : std::nullopt;
+  general_children(lat, q, lim, flat, q.start, h0, [&](std::uint32_t, const Vec3& c) {
+    general_children(lat, q, lim, flat, c, c - q.start, [&](std::uint32_t, const Vec3& g) {
+      const Vec3 d = (g - c) / q.cell_m;
+      add(static_cast<int>(std::lround(d.x())), static_cast<int>(std::lround(d.y())),
+          static_cast<int>(std::lround(d.z())));
+    });
+  });
+  while (!frontier.empty()) {
+    const std::uint32_t k = frontier.back();
+    frontier.pop_back();
+    const int dx = static_cast<int>(k >> 20) - 512, dy = static_cast<int>((k >> 10) & 1023) - 512,
+              dz = static_cast<int>(k & 1023) - 512;
+    for (const DirectionalCones::Child& c : cone_for(dx, dy, dz).children) add(c.d[0], c.d[1], c.d[2]);
+  }
+  double climb = 0.0;  // per length, of the steepest move
+  for (const Move& mv : relaxed_moves) climb = std::max(climb, std::abs(mv.d[2]) * q.cell_m / mv.length_m);
+  if (climb > 0.0 && inv_sin_pitch > 0.0) inv_move_climb = std::max(inv_sin_pitch, 1.0 / climb);
+}
+
+// The reverse search starts from every lattice point with a clear last segment to the goal (as
+// try_goal, less the turn), at its length.
+void DirectionalSearch::Run::seed_relaxed_goal() {
+  const double r = goal_hop_m;
+  int lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = std::max(0, static_cast<int>(std::ceil((q.goal[a] - r - lat.origin[a]) / q.cell_m)));
+    hi[a] = std::min(lat.n[a] - 1, static_cast<int>(std::floor((q.goal[a] + r - lat.origin[a]) / q.cell_m)));
+  }
+  for (int k = lo[2]; k <= hi[2]; ++k)
+    for (int j = lo[1]; j <= hi[1]; ++j)
+      for (int i = lo[0]; i <= hi[0]; ++i) {
+        const Vec3 p = lat.at(i, j, k);
+        const double d = (q.goal - p).norm();
+        if (d > r || !segment_ok(p, q.goal)) continue;
+        const std::uint32_t pt = lat.index(i, j, k);
+        double& dist = self.relaxed_dist_[pt];
+        if (d < dist) {
+          dist = d;
+          self.relaxed_open_.push(d + relaxed_h(p), d, pt);
+        }
+      }
+}
+
+// The forward search's test of a move between lattice points (expand_cone), less the turn. `c_to`
+// is the clearance of the move's end: where it covers the move, the start's is not needed.
+bool DirectionalSearch::Run::relaxed_edge_ok(std::uint32_t from_pt, const Vec3& from, float c_to, const Vec3& to,
+                                             double length_m) {
+  if (from.z() > q.ceiling_m) return false;
+  for (const Sphere& sp : q.virtual_threats)
+    if (point_segment_distance(sp.center, from, to) < sp.radius_m + q.inflation_m) return false;
+  if (static_cast<double>(c_to) - q.inflation_m >= length_m) return true;
+  const double c_from = clearance(from_pt, from);
+  if (c_from + c_to - 2 * q.inflation_m >= length_m) return true;
+  if (c_from + 1e-6 * (std::abs(c_from) + q.inflation_m) < q.inflation_m) return false;
+  return !world.segment_collides(from, to, q.inflation_m);
+}
+
+// The relaxed problem's distance from `point` to the goal: the reverse search goes on until the
+// point is closed (Reverse Resumable A*); infinite where the goal is out of reach.
+double DirectionalSearch::Run::relaxed_distance(std::uint32_t point) {
+  std::vector<double>& dist = self.relaxed_dist_;
+  std::vector<std::uint8_t>& closed = self.relaxed_closed_;
+  OpenList& open = self.relaxed_open_;
+  if (closed[point]) return dist[point];
+  while (!open.empty() && !relaxed_stopped) {
+    const OpenList::Entry e = open.pop();
+    if (closed[e.id]) continue;
+    closed[e.id] = 1;
+    const double g = dist[e.id];
+    if ((++out.relaxed_expanded & 255) == 0 && stop.should_stop(out.expanded)) relaxed_stopped = true;
+    int i, j, k;
+    lat.coords(e.id, i, j, k);
+    const Vec3 to = lat.at(i, j, k);
+    const float c_to = clearance(e.id, to);
+    for (const Move& mv : relaxed_moves) {
+      const int pi = i - mv.d[0], pj = j - mv.d[1], pk = k - mv.d[2];
+      if (pi < 0 || pi >= lat.n[0] || pj < 0 || pj >= lat.n[1] || pk < 0 || pk >= lat.n[2]) continue;
+      const auto from_pt = static_cast<std::uint32_t>(e.id - mv.d[0] - mv.d[1] * stride_y - mv.d[2] * stride_z);
+      const double ng = g + mv.length_m;
+      if (closed[from_pt] || !(ng < dist[from_pt])) continue;
+      const Vec3 from = lat.at(pi, pj, pk);
+      if (!relaxed_edge_ok(from_pt, from, c_to, to, mv.length_m)) continue;
+      dist[from_pt] = ng;
+      open.push(ng + relaxed_h(from), ng, from_pt);
+    }
+    if (e.id == point) return g;
+  }
+  // Stopped: the Euclidean bound (the forward search stops at its next expansion).
+  return relaxed_stopped ? h(lat.point(point)) : kInfinity;
+}
+
+// Past max_expansions, or the stop (checked every 256 expansions, and by the relaxed search):
+// `out` says which.
 bool DirectionalSearch::Run::stop_now(std::uint64_t expanded) {
   out.expanded = expanded;
-  if (static_cast<std::int64_t>(out.expanded) <= q.max_expansions &&
+  if (static_cast<std::int64_t>(out.expanded) <= q.max_expansions && !relaxed_stopped &&
       !((out.expanded & 255) == 0 && stop.should_stop(out.expanded)))
     return false;
   out.stopped = static_cast<std::int64_t>(out.expanded) <= q.max_expansions;
@@ -543,15 +699,27 @@ bool DirectionalSearch::Run::stop_now(std::uint64_t expanded) {
 void DirectionalSearch::Run::relax(std::uint32_t from, double g_from, std::uint32_t id, const Vec3& to,
                                    double length_m) {
   const double ng = g_from + length_m;
-  double f = -1.0;
-  if (bounded) {  // never popped before the search gives up: not worth a place in the list
-    f = ng + h(to);
-    if (f > q.max_length_m) {
-      beyond_bound = true;
-      return;
-    }
+  // Never popped before the search gives up: not worth a place in the list.
+  if (bounded && ng + h(to) > q.max_length_m) {
+    beyond_bound = true;
+    return;
   }
   (*engine_relax)(id, ng, from, to);
+}
+
+// A lattice node coming off the list: f with the relaxed distance (at least h: it is the length
+// of a route of real segments); infinite where the goal is out of reach even without turn limits,
+// or beyond the length bound.
+double DirectionalSearch::Run::refine(std::uint32_t id, double f, double g) {
+  if (!q.relaxed_heuristic || id >= start_id) return f;
+  if (!relaxed_started) start_relaxed();
+  const double left = relaxed_distance(id >> bin_bits);
+  relaxed_reached = relaxed_reached || left < kInfinity;
+  if (bounded && g + left > q.max_length_m) {
+    beyond_bound = true;
+    return kInfinity;
+  }
+  return std::max(f, g + q.heuristic_weight * left);
 }
 
 // Within reach of the goal: the last segment to the exact goal.
@@ -658,7 +826,7 @@ void DirectionalSearch::Run::expand(std::uint32_t id, const SearchBuffers::Node&
 }
 
 DirectionalRoute DirectionalSearch::Run::search() {
-  const double h0 = h(q.start);
+  const double h0 = this->h0();
   // Children beyond the length bound are never pushed: only the start can be.
   if (bounded && h0 > q.max_length_m) {
     out.message = "no route within the length bound";
@@ -680,9 +848,16 @@ DirectionalRoute DirectionalSearch::Run::search() {
 DirectionalRoute DirectionalSearch::Run::finish() {
   const SearchBuffers::Node& goal = self.search_.node(goal_id);
   if (!SearchBuffers::closed(goal)) {
-    out.message = beyond_bound ? "no route within the length bound"
-                               : "no route within the turn and climb limits (" + std::to_string(out.dead_zones) +
-                                     " dead zones); " + limits_hint(q, flat);
+    if (beyond_bound)
+      out.message = "no route within the length bound";
+    else if (relaxed_started && !relaxed_reached)
+      out.message =
+          "no route within the turn and climb limits: no lattice route reaches the goal even without the turn "
+          "limits (obstacles, the bounds, the ceiling or the climb limit close it off); " +
+          limits_hint(q, flat);
+    else
+      out.message = "no route within the turn and climb limits (" + std::to_string(out.dead_zones) + " dead zones); " +
+                    limits_hint(q, flat);
     return std::move(out);
   }
   out.found = true;
@@ -710,9 +885,9 @@ void DirectionalAStarPlanner::require_lattice(const World& world, const Directio
   for (int a = 0; a < 3; ++a) points *= 1.0 + std::floor(ext[a] / q.cell_m + 1e-9);
   char what[80];
   std::snprintf(what, sizeof what, "planner.params.cell_m = %g m", q.cell_m);
-  // Per lattice point: a cached clearance (4 bytes) and search nodes (16 bytes) for up to 8
-  // heading sectors, per engine.
-  require_grid(points * 8.0, engines * (4.0 / 8.0 + 16.0), stop, what);
+  // Per lattice point: a cached clearance (4 bytes), search nodes (16 bytes) for up to 8
+  // heading sectors and a node of the relaxed heuristic's search (16 bytes), per engine.
+  require_grid(points * 8.0, engines * ((4.0 + 16.0) / 8.0 + 16.0), stop, what);
 }
 
 PlanResult DirectionalAStarPlanner::do_plan(const Problem& pb, const World& world, const StopCondition& stop) const {

@@ -45,6 +45,12 @@ struct DirectionalAStarOptions {
   // route lengths with far fewer expansions where the climb limit binds (a spiral up; half the
   // open nodes on P4's Table 3). false: P4's own h, the Euclidean distance (eq. 6).
   bool climb_bound = true;
+  // h raised to the exact length left in the relaxed problem: the same lattice, obstacles and
+  // moves (those of every cone the search can reach), no turn limit between moves; computed from
+  // the goal as the search asks (Reverse Resumable A*, Silver 2005). A lower bound and consistent,
+  // so the same route lengths; it closes the gap that makes a Euclidean h open every state within
+  // the route's excess length (an ellipsoid), and prunes points that cannot reach the goal at all.
+  bool relaxed_heuristic = true;
 
   static DirectionalAStarOptions from_params(const Params& params);
 };
@@ -55,7 +61,8 @@ struct DirectionalRoute {
   std::vector<Vec3> waypoints;
   double length_m = 0.0;
   std::uint64_t expanded = 0, generated = 0, dead_zones = 0;
-  std::uint64_t open_max = 0;  // the most entries the open list held at once
+  std::uint64_t open_max = 0;          // the most entries the open list held at once
+  std::uint64_t relaxed_expanded = 0;  // points the relaxed heuristic's reverse search closed
   std::string message;
 };
 
@@ -76,7 +83,8 @@ struct DirectionalQuery {
   // closed facing a wall can still be passed facing along it; false: P4's one state per point.
   bool heading_states = true;
   double heuristic_weight = 1.0;
-  bool climb_bound = false;  // see DirectionalAStarOptions
+  bool climb_bound = false;        // see DirectionalAStarOptions
+  bool relaxed_heuristic = false;  // see DirectionalAStarOptions
   // Give up once every open route is longer than this (f = g + h is a lower bound on the
   // length through a node when heuristic_weight is 1): the rendezvous' multi-step search
   // need not finish a route that cannot beat its best.
@@ -131,7 +139,10 @@ class DirectionalSearch {
       : cones_(std::move(cones)) {}
   DirectionalRoute run(const World& world, const DirectionalQuery& q, const StopCondition& stop);
   // Bytes held for reuse: search nodes, open list, clearance cache (cone tables not counted).
-  std::size_t memory_bytes() const { return search_.memory_bytes() + clearance_.capacity() * sizeof(float); }
+  std::size_t memory_bytes() const {
+    return search_.memory_bytes() + relaxed_dist_.capacity() * sizeof(double) + relaxed_closed_.capacity() +
+           relaxed_open_.memory_bytes() + clearance_.capacity() * sizeof(float);
+  }
 
  private:
   struct Run;  // one search on these buffers (directional_astar.cpp)
@@ -143,6 +154,12 @@ class DirectionalSearch {
   float clearance_at(const World& world, std::uint32_t point, const Vec3& p, double cap_m);
 
   BestFirst<> search_;
+  // The relaxed heuristic's reverse search (one per query; its own loop: it pauses and resumes):
+  // a distance and a closed flag per lattice point (dense: it reads every neighbour of a point,
+  // where paged nodes cost a lookup each).
+  std::vector<double> relaxed_dist_;
+  std::vector<std::uint8_t> relaxed_closed_;
+  OpenList relaxed_open_;
   std::shared_ptr<DirectionalCones> cones_;
   // Clearance of lattice points (capped at clearance_cap_m_), for one world and lattice; NaN
   // where not yet computed.

@@ -160,18 +160,19 @@ TEST(DirectionalAStar, SharedConeTablesGiveTheSameRoutesAcrossThreads) {
   }
 }
 
-// Climbing 8 km at 20 deg in a 12 km square: the route spirals up. With the climb bound (the
-// default) the search expands far fewer nodes than with P4's Euclidean h, and its route keeps
-// every limit and the length.
+// Climbing 8 km at 20 deg in a 12 km square: the route spirals up. With the climb bound the
+// search expands far fewer nodes than with P4's Euclidean h, and its route keeps every limit and
+// the length (the relaxed heuristic off in both, to see the climb bound alone).
 TEST(DirectionalAStar, ClimbBoundSparesASpiralSearch) {
   WorldSpec ws;
   ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(12000, 12000, 12000)};
   const World w(std::move(ws));
   Problem p = problem(Vec3(2000, 2000, 1000), Vec3(10000, 10000, 9000), 0.0);
   p.uav.max_climb_rad = deg_to_rad(20);
-  const DirectionalAStarPlanner euclid(
-      DirectionalAStarOptions::from_params({{"cell_m", "500"}, {"climb_bound", "false"}}));
-  const DirectionalAStarPlanner climb(DirectionalAStarOptions::from_params({{"cell_m", "500"}}));
+  const DirectionalAStarPlanner euclid(DirectionalAStarOptions::from_params(
+      {{"cell_m", "500"}, {"climb_bound", "false"}, {"relaxed_heuristic", "false"}}));
+  const DirectionalAStarPlanner climb(
+      DirectionalAStarOptions::from_params({{"cell_m", "500"}, {"relaxed_heuristic", "false"}}));
   const PlanResult a = euclid.plan(p, w, {});
   const PlanResult b = climb.plan(p, w, {});
   expect_feasible(a, p, w);
@@ -179,6 +180,69 @@ TEST(DirectionalAStar, ClimbBoundSparesASpiralSearch) {
   EXPECT_GE(b.route.length_m(), 8000.0 / std::sin(deg_to_rad(20)) - 1e-6);  // the bound holds
   EXPECT_NEAR(b.route.length_m(), a.route.length_m(), 1e-6);                // both optimal on the same lattice
   EXPECT_LT(2 * b.stats.nodes_expanded, a.stats.nodes_expanded);
+}
+
+// The relaxed heuristic (the exact length left without turn limits, from a reverse search) is a
+// consistent lower bound: on random sphere worlds every route keeps its length, and the search
+// expands a fraction of the states that the Euclidean and climb bound expand.
+TEST(DirectionalAStar, RelaxedHeuristicKeepsTheLengthsAndOpensFewer) {
+  Rng r(77);
+  const DirectionalAStarPlanner plain(
+      DirectionalAStarOptions::from_params({{"cell_m", "1000"}, {"relaxed_heuristic", "false"}}));
+  const DirectionalAStarPlanner relaxed(DirectionalAStarOptions::from_params({{"cell_m", "1000"}}));
+  std::uint64_t plain_expanded = 0, relaxed_expanded = 0;
+  int solved = 0;
+  for (int trial = 0; trial < 10; ++trial) {
+    WorldSpec ws;
+    ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(30000, 30000, 10000)};
+    for (int k = 0; k < 6; ++k)
+      ws.obstacles.push_back(
+          Sphere{Vec3(r.uniform(8000, 22000), r.uniform(8000, 22000), r.uniform(0, 10000)), r.uniform(1500, 4000)});
+    const World w(std::move(ws));
+    const Problem p = problem(Vec3(4000, 5000, 2000), Vec3(27000, 26000, 7000), r.uniform(-kPi, kPi));
+    if (w.point_collides(p.uav.start, 10) || w.point_collides(p.goal, 10)) continue;
+    const PlanResult a = plain.plan(p, w, {});
+    const PlanResult b = relaxed.plan(p, w, {});
+    ASSERT_EQ(a.status, b.status) << trial << ": " << a.message << " | " << b.message;
+    if (a.status != Status::solved) continue;
+    expect_feasible(b, p, w);
+    EXPECT_NEAR(b.route.length_m(), a.route.length_m(), 1e-6) << trial;
+    plain_expanded += a.stats.nodes_expanded;
+    relaxed_expanded += b.stats.nodes_expanded;
+    ++solved;
+  }
+  EXPECT_GT(solved, 5);
+  EXPECT_LT(2 * relaxed_expanded, plain_expanded);  // 2.7x fewer when written
+}
+
+// A goal caged in by six walls: no lattice point has a clear last segment to it, so the relaxed
+// distance is infinite everywhere and the search ends after the start's children; with the
+// Euclidean bound alone it searches every state it can reach first.
+TEST(DirectionalAStar, RelaxedHeuristicEndsAtOnceWhenTheGoalIsCaged) {
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(30000, 30000, 10000)};
+  const Vec3 lo(18000, 18000, 3000), hi(24000, 24000, 9000);  // the cage's inside
+  const double t = 500;                                       // wall thickness
+  ws.obstacles.push_back(Box{Vec3(lo.x() - t, lo.y() - t, lo.z() - t), Vec3(hi.x() + t, hi.y() + t, lo.z())});
+  ws.obstacles.push_back(Box{Vec3(lo.x() - t, lo.y() - t, hi.z()), Vec3(hi.x() + t, hi.y() + t, hi.z() + t)});
+  ws.obstacles.push_back(Box{Vec3(lo.x() - t, lo.y() - t, lo.z()), Vec3(lo.x(), hi.y() + t, hi.z())});
+  ws.obstacles.push_back(Box{Vec3(hi.x(), lo.y() - t, lo.z()), Vec3(hi.x() + t, hi.y() + t, hi.z())});
+  ws.obstacles.push_back(Box{Vec3(lo.x(), lo.y() - t, lo.z()), Vec3(hi.x(), lo.y(), hi.z())});
+  ws.obstacles.push_back(Box{Vec3(lo.x(), hi.y(), lo.z()), Vec3(hi.x(), hi.y() + t, hi.z())});
+  const World w(std::move(ws));
+  // The goal between lattice points, more than a last hop (1.5 L + 1 cells) from every wall
+  // point outside: 21.5 km, 6 km, with 1 km cells and L = 2.5.
+  const Problem p = problem(Vec3(4000, 5000, 2000), Vec3(21000, 21000, 6000), 0.0);
+  const DirectionalAStarPlanner relaxed(DirectionalAStarOptions::from_params({{"cell_m", "1000"}}));
+  const DirectionalAStarPlanner plain(
+      DirectionalAStarOptions::from_params({{"cell_m", "1000"}, {"relaxed_heuristic", "false"}}));
+  const PlanResult a = relaxed.plan(p, w, {});
+  const PlanResult b = plain.plan(p, w, {});
+  EXPECT_NE(a.status, Status::solved);
+  EXPECT_NE(b.status, Status::solved);
+  EXPECT_NE(a.message.find("even without the turn limits"), std::string::npos) << a.message;
+  EXPECT_LE(a.stats.nodes_expanded, 1u);
+  EXPECT_GT(b.stats.nodes_expanded, 1000u);
 }
 
 TEST(DirectionalAStar, ParametersAreChecked) {
