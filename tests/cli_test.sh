@@ -580,7 +580,10 @@ if [ -z "$level" ]; then echo "FAIL climb.cells.hint: $(cat "$TMP/stdout")"; fai
   "$BIN" plan "$TMP/climb.yaml" -o "$TMP/climb" --set "level_m=$level" >/dev/null 2>&1; check climb.cells.hint.solves 0 $?
   "$BIN" verify "$TMP/climb.yaml" "$TMP/climb/plan.json" >/dev/null 2>&1; check climb.cells.hint.verifies 0 $?
 fi
-"$BIN" plan "$TMP/climb.yaml" -o "$TMP/climb" --algorithm directional_astar >"$TMP/stdout" 2>&1; check climb.lattice.fails 1 $?
+# The lattice's step is derived long enough to climb at 5 deg (11.5 cells); given shorter, no move
+# can change height, and the hint names the step that can.
+"$BIN" plan "$TMP/climb.yaml" -o "$TMP/climb" --algorithm directional_astar --set step_cells=2.5 >"$TMP/stdout" 2>&1
+check climb.lattice.fails 1 $?
 grep -q "a: leg 1 (start to goal): no route within the turn and climb limits.*planner.params.step_cells >= 11.5" "$TMP/stdout" ||
   { echo "FAIL climb.lattice.hint: $(cat "$TMP/stdout")"; fails=$((fails + 1)); }
 "$BIN" plan "$TMP/climb.yaml" -o "$TMP/climb" --algorithm rrt --set max_nodes=50 >"$TMP/stdout" 2>&1; check climb.rrt.fails 1 $?

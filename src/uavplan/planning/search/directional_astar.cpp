@@ -359,6 +359,17 @@ float DirectionalSearch::clearance_at(const World& world, std::uint32_t point, c
   return v;
 }
 
+// L when the scenario gives none: max(2.5, 2 / psi_max) (lattice directions L cells away are about
+// 1 / L rad apart, so a finer turn limit needs a longer step to turn at all), and in 3-D at least
+// 1 / tan(phi_max), rounded up to a tenth: the least climb of a move, one cell in L, must keep the
+// climb limit, or the search could never change height (15 deg: 3.8 cells).
+static double default_step_cells(const World& world, const DirectionalQuery& q) {
+  double l = std::max(2.5, 2.0 / q.max_yaw_rad);
+  if (make_lattice(world, q.cell_m).n[2] > 1 && q.max_pitch_rad < kPi / 2 - 1e-9)
+    l = std::max(l, std::ceil(10.0 / std::tan(q.max_pitch_rad) - 1e-9) / 10.0);
+  return l;
+}
+
 DirectionalQuery DirectionalAStarPlanner::query_for(const Problem& pb, const World& world) const {
   const UavSpec& u = pb.uav;
   DirectionalQuery q;
@@ -371,7 +382,7 @@ DirectionalQuery DirectionalAStarPlanner::query_for(const Problem& pb, const Wor
   const double uav_pitch = u.max_climb_rad < kPi / 2 - 1e-9 ? u.max_climb_rad : kDefaultPitch_rad;
   q.max_yaw_rad = options_.max_yaw_rad > 0.0 ? std::min(options_.max_yaw_rad, u.max_turn_rad) : uav_yaw;
   q.max_pitch_rad = options_.max_pitch_rad > 0.0 ? std::min(options_.max_pitch_rad, u.max_climb_rad) : uav_pitch;
-  q.step_cells = options_.step_cells > 0.0 ? options_.step_cells : std::max(2.5, 2.0 / q.max_yaw_rad);
+  q.step_cells = options_.step_cells > 0.0 ? options_.step_cells : default_step_cells(world, q);
   const SegmentRule rule(world, u);
   q.inflation_m = rule.inflation_m();
   q.ceiling_m = rule.ceiling_m();

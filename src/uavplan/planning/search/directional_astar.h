@@ -29,8 +29,9 @@ namespace uavplan {
 
 struct DirectionalAStarOptions {
   double cell_m = 0.0;         // lattice spacing; 0 = derived from the world (see below)
-  double step_cells = 0.0;     // L; 0 = max(2.5, 2 / psi_max): lattice directions L cells away are
-                               // about 1/L rad apart, so a finer turn limit needs a longer step
+  double step_cells = 0.0;     // L; 0 = max(2.5, 2 / psi_max, in 3-D 1 / tan(phi_max)): lattice
+                               // directions L cells away are about 1/L rad apart, so a finer turn
+                               // limit needs a longer step; a move climbs at least one cell in L
   int directions = 3;          // M, for yaw and (in 3-D) for pitch
   double max_yaw_rad = 0.0;    // psi_max; 0 = the UAV's max_turn (60 deg if it has none)
   double max_pitch_rad = 0.0;  // phi_max; 0 = the UAV's max_climb (30 deg if it has none)
