@@ -473,8 +473,8 @@ struct DirectionalSearch::Run {
            (flat || (k >= reach && k < lat.n[2] - reach));
   }
   // h: the Euclidean distance (P4 eq. 6); with climb_bound, raised to the least length that can
-  // climb |dz|: a lattice move climbs at most `move_climb` of its length (the steepest move of
-  // the search's cones: 26.6 deg where the limit is 30), the exact last segment to the goal, of
+  // climb |dz|: a lattice move climbs at most 1 / inv_move_climb of its length (the steepest move
+  // of the search's cones: 26.6 deg where the limit is 30), the exact last segment to the goal, of
   // at most goal_hop_m, sin(phi_max) (climb_length). Still a lower bound, and consistent along
   // feasible segments; it changes nothing where the climb is gentle and spares a climb-limited
   // search (a spiral up) most of its expansions. h0 is the start's, which leaves by a general
@@ -484,7 +484,7 @@ struct DirectionalSearch::Run {
   }
   double h0() const { return std::max((q.goal - q.start).norm(), std::abs(q.goal.z() - q.start.z()) * inv_sin_pitch); }
   // The shortest route that climbs `dz` with one segment of at most `steep_m` at sin(phi_max) and
-  // lattice moves at move_climb.
+  // lattice moves at 1 / inv_move_climb.
   double climb_length(double dz, double steep_m) const {
     if (inv_sin_pitch == 0.0) return 0.0;
     const double steep_climb_m = steep_m / inv_sin_pitch;
@@ -897,8 +897,8 @@ void DirectionalAStarPlanner::require_lattice(const World& world, const Directio
   char what[80];
   std::snprintf(what, sizeof what, "planner.params.cell_m = %g m", q.cell_m);
   // Per lattice point: a cached clearance (4 bytes), search nodes (16 bytes) for up to 8
-  // heading sectors and a node of the relaxed heuristic's search (16 bytes), per engine.
-  require_grid(points * 8.0, engines * ((4.0 + 16.0) / 8.0 + 16.0), stop, what);
+  // heading sectors and the relaxed heuristic's distance and flag (9 bytes), per engine.
+  require_grid(points * 8.0, engines * ((4.0 + 9.0) / 8.0 + 16.0), stop, what);
 }
 
 PlanResult DirectionalAStarPlanner::do_plan(const Problem& pb, const World& world, const StopCondition& stop) const {
