@@ -162,17 +162,16 @@ TEST(DirectionalAStar, SharedConeTablesGiveTheSameRoutesAcrossThreads) {
 
 // Climbing 8 km at 20 deg in a 12 km square: the route spirals up. With the climb bound the
 // search expands far fewer nodes than with P4's Euclidean h, and its route keeps every limit and
-// the length (the relaxed heuristic off in both, to see the climb bound alone).
+// the length.
 TEST(DirectionalAStar, ClimbBoundSparesASpiralSearch) {
   WorldSpec ws;
   ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(12000, 12000, 12000)};
   const World w(std::move(ws));
   Problem p = problem(Vec3(2000, 2000, 1000), Vec3(10000, 10000, 9000), 0.0);
   p.uav.max_climb_rad = deg_to_rad(20);
-  const DirectionalAStarPlanner euclid(DirectionalAStarOptions::from_params(
-      {{"cell_m", "500"}, {"climb_bound", "false"}, {"relaxed_heuristic", "false"}}));
-  const DirectionalAStarPlanner climb(
-      DirectionalAStarOptions::from_params({{"cell_m", "500"}, {"relaxed_heuristic", "false"}}));
+  const DirectionalAStarPlanner euclid(
+      DirectionalAStarOptions::from_params({{"cell_m", "500"}, {"climb_bound", "false"}}));
+  const DirectionalAStarPlanner climb(DirectionalAStarOptions::from_params({{"cell_m", "500"}}));
   const PlanResult a = euclid.plan(p, w, {});
   const PlanResult b = climb.plan(p, w, {});
   expect_feasible(a, p, w);
@@ -187,9 +186,9 @@ TEST(DirectionalAStar, ClimbBoundSparesASpiralSearch) {
 // expands a fraction of the states that the Euclidean and climb bound expand.
 TEST(DirectionalAStar, RelaxedHeuristicKeepsTheLengthsAndOpensFewer) {
   Rng r(77);
-  const DirectionalAStarPlanner plain(
-      DirectionalAStarOptions::from_params({{"cell_m", "1000"}, {"relaxed_heuristic", "false"}}));
-  const DirectionalAStarPlanner relaxed(DirectionalAStarOptions::from_params({{"cell_m", "1000"}}));
+  const DirectionalAStarPlanner plain(DirectionalAStarOptions::from_params({{"cell_m", "1000"}}));
+  const DirectionalAStarPlanner relaxed(
+      DirectionalAStarOptions::from_params({{"cell_m", "1000"}, {"relaxed_heuristic", "true"}}));
   std::uint64_t plain_expanded = 0, relaxed_expanded = 0;
   int solved = 0;
   for (int trial = 0; trial < 10; ++trial) {
@@ -233,9 +232,9 @@ TEST(DirectionalAStar, RelaxedHeuristicEndsAtOnceWhenTheGoalIsCaged) {
   // The goal between lattice points, more than a last hop (1.5 L + 1 cells) from every wall
   // point outside: 21.5 km, 6 km, with 1 km cells and L = 2.5.
   const Problem p = problem(Vec3(4000, 5000, 2000), Vec3(21000, 21000, 6000), 0.0);
-  const DirectionalAStarPlanner relaxed(DirectionalAStarOptions::from_params({{"cell_m", "1000"}}));
-  const DirectionalAStarPlanner plain(
-      DirectionalAStarOptions::from_params({{"cell_m", "1000"}, {"relaxed_heuristic", "false"}}));
+  const DirectionalAStarPlanner relaxed(
+      DirectionalAStarOptions::from_params({{"cell_m", "1000"}, {"relaxed_heuristic", "true"}}));
+  const DirectionalAStarPlanner plain(DirectionalAStarOptions::from_params({{"cell_m", "1000"}}));
   const PlanResult a = relaxed.plan(p, w, {});
   const PlanResult b = plain.plan(p, w, {});
   EXPECT_NE(a.status, Status::solved);
