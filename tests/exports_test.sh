@@ -20,5 +20,8 @@ node "$SRC/tests/qgc_plan_check.mjs" "$TMP" $ids
 node "$SRC/tests/gis_readback_check.mjs" "$TMP" "$obstacles" $ids
 # The standalone command writes the same files as plan --export.
 "$BIN" export "$SCEN" "$TMP/plan.json" --format qgc --firmware "$FIRMWARE" -o "$TMP/again" >/dev/null
-for id in $ids; do cmp "$TMP/$id.plan" "$TMP/again/$id.plan"; done
+for id in $ids; do
+  stem=$(node --input-type=module -e "import {fileStem} from '$SRC/tests/file_stem.mjs'; console.log(fileStem(process.argv[1]))" "$id")
+  cmp "$TMP/$stem.plan" "$TMP/again/$stem.plan"
+done
 echo "exports_test: ok ($SCEN)"

@@ -5,6 +5,7 @@
 import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
+import { fileStem } from './file_stem.mjs';
 
 const [dir, obstacleCountArg, ...ids] = process.argv.slice(2);
 let failures = 0;
@@ -30,7 +31,7 @@ function wktPoints(wkt) {
   return inner.split(',').map((p) => p.trim().split(/\s+/).map(Number));
 }
 function trajectory(id) {
-  return fs.readFileSync(path.join(dir, `${id}.csv`), 'utf8').trim().split('\n').slice(1).map((r) => r.split(',').map(Number));
+  return fs.readFileSync(path.join(dir, `${fileStem(id)}.csv`), 'utf8').trim().split('\n').slice(1).map((r) => r.split(',').map(Number));
 }
 function sameRoute(label, pts, traj) {
   // Every exported vertex (lon, lat, alt) is a trajectory row's (lon, lat, alt); ends match.

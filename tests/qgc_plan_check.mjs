@@ -4,6 +4,7 @@
 //   node qgc_plan_check.mjs DIR UAV_ID...
 import fs from 'node:fs';
 import path from 'node:path';
+import { fileStem } from './file_stem.mjs';
 
 const [dir, ...ids] = process.argv.slice(2);
 let failures = 0;
@@ -204,10 +205,11 @@ function checkAgainstCsv(file, plan, csvFile) {
 
 if (!dir || ids.length === 0) { console.error('usage: node qgc_plan_check.mjs DIR UAV_ID...'); process.exit(2); }
 for (const id of ids) {
-  const planFile = path.join(dir, `${id}.plan`);
+  const stem = fileStem(id);
+  const planFile = path.join(dir, `${stem}.plan`);
   const plan = checkPlan(planFile);
-  checkWpl(path.join(dir, `${id}.waypoints`), plan);
-  if (plan) checkAgainstCsv(planFile, plan, path.join(dir, `${id}.csv`));
+  checkWpl(path.join(dir, `${stem}.waypoints`), plan);
+  if (plan) checkAgainstCsv(planFile, plan, path.join(dir, `${stem}.csv`));
 }
 if (failures) process.exit(1);
 console.log(`qgc_plan_check: ok (${ids.length} UAVs: .plan, .waypoints, .csv)`);
