@@ -109,10 +109,14 @@ struct Lattice {
   }
 };
 
-Lattice make_lattice(const World& world, double cell) {
+// The lattice of a query: points every `cell` from the bounds' lower corner. A world less than a
+// cell high has one level, at the start's height (clamped into the bounds), not on the floor.
+Lattice make_lattice(const World& world, const DirectionalQuery& q) {
+  const double cell = q.cell_m;
   Lattice l{world.bounds().min, cell, {1, 1, 1}};
   const Vec3 ext = world.bounds().extent();
   for (int a = 0; a < 3; ++a) l.n[a] = 1 + static_cast<int>(std::min(std::floor(ext[a] / cell + 1e-9), 2e6));
+  if (l.n[2] == 1) l.origin.z() = std::clamp(q.start.z(), world.bounds().min.z(), world.bounds().max.z());
   l.inv_n0 = 1.0 / l.n[0];
   l.inv_n01 = 1.0 / (static_cast<double>(l.n[0]) * l.n[1]);
   return l;
@@ -328,7 +332,7 @@ bool DirectionalCones::level_change_reachable(Table& table, const std::vector<st
 
 bool DirectionalSearch::levels_reachable(const World& world, const DirectionalQuery& q,
                                          DirectionalCones::Table& table) {
-  const Lattice lat = make_lattice(world, q.cell_m);
+  const Lattice lat = make_lattice(world, q);
   const bool flat = lat.n[2] == 1;
   if (flat) return true;
   const ConeLimits lim(q);
@@ -365,7 +369,7 @@ float DirectionalSearch::clearance_at(const World& world, std::uint32_t point, c
 // climb limit, or the search could never change height (15 deg: 3.8 cells).
 static double default_step_cells(const World& world, const DirectionalQuery& q) {
   double l = std::max(2.5, 2.0 / q.max_yaw_rad);
-  if (make_lattice(world, q.cell_m).n[2] > 1 && q.max_pitch_rad < kPi / 2 - 1e-9)
+  if (make_lattice(world, q).n[2] > 1 && q.max_pitch_rad < kPi / 2 - 1e-9)
     l = std::max(l, std::ceil(10.0 / std::tan(q.max_pitch_rad) - 1e-9) / 10.0);
   return l;
 }
@@ -413,7 +417,7 @@ struct DirectionalSearch::Run {
         world(w),
         q(query),
         stop(st),
-        lat(make_lattice(w, query.cell_m)),
+        lat(make_lattice(w, query)),
         flat(lat.n[2] == 1),
         start_id(static_cast<std::uint32_t>(lat.size() * bins)),
         goal_id(start_id + 1),
@@ -495,9 +499,10 @@ struct DirectionalSearch::Run {
   void prepare_clearances() {
     const double cap_m = (reach + 1) * q.cell_m + q.inflation_m;
     if (self.clearance_world_ != &world || self.clearance_cell_m_ != q.cell_m || self.clearance_cap_m_ < cap_m ||
-        self.clearance_.size() != static_cast<std::size_t>(lat.size())) {
+        self.clearance_origin_z_ != lat.origin.z() || self.clearance_.size() != static_cast<std::size_t>(lat.size())) {
       self.clearance_world_ = &world;
       self.clearance_cell_m_ = q.cell_m;
+      self.clearance_origin_z_ = lat.origin.z();
       self.clearance_cap_m_ = cap_m;
       self.clearance_.assign(static_cast<std::size_t>(lat.size()), std::numeric_limits<float>::quiet_NaN());
     }
@@ -880,7 +885,7 @@ DirectionalRoute DirectionalSearch::Run::finish() {
 
 DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const DirectionalQuery& q,
                                                   const StopCondition& stop, std::uint32_t bins) {
-  const std::int64_t states = make_lattice(world, q.cell_m).size() * bins;
+  const std::int64_t states = make_lattice(world, q).size() * bins;
   if (states + 2 >= static_cast<std::int64_t>(SearchBuffers::kNoParent)) {
     DirectionalRoute out;
     out.message = "lattice too large; give a larger cell_m";

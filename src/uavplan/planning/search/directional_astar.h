@@ -168,6 +168,7 @@ class DirectionalSearch {
   // where not yet computed.
   const World* clearance_world_ = nullptr;
   double clearance_cell_m_ = 0.0, clearance_cap_m_ = 0.0;
+  double clearance_origin_z_ = 0.0;  // a one-level lattice lies at its query's start height
   std::vector<float> clearance_;
 };
 

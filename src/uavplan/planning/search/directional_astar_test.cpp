@@ -244,6 +244,26 @@ TEST(DirectionalAStar, RelaxedHeuristicEndsAtOnceWhenTheGoalIsCaged) {
   EXPECT_GT(b.stats.nodes_expanded, 1000u);
 }
 
+// A world less than a cell high has a one-level lattice: it lies at the start's height, so a
+// route flies there (it used to drop to the floor of the world and climb back at the goal).
+// One engine, two starts at different heights: each route keeps its own (the clearance cache
+// belongs to one lattice).
+TEST(DirectionalAStar, AOneLevelLatticeLiesAtTheStartsHeight) {
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(5000, 3000, 60)};
+  ws.obstacles.push_back(Box{Vec3(2400, 0, 0), Vec3(2600, 2300, 100)});
+  const World w(std::move(ws));
+  const DirectionalAStarPlanner planner(DirectionalAStarOptions::from_params({{"cell_m", "100"}}));
+  DirectionalSearch search;
+  for (const double z : {30.0, 50.0, 12.5}) {
+    const Problem p = problem(Vec3(300, 300, z), Vec3(4700, 300, z), std::nullopt);
+    const DirectionalRoute r = search.run(w, planner.query_for(p, w), {});
+    ASSERT_TRUE(r.found) << r.message;
+    for (const Vec3& pt : r.waypoints) EXPECT_DOUBLE_EQ(pt.z(), z);
+    EXPECT_GT(r.length_m, 2 * std::hypot(2200.0, 2000.0) - 1.0);  // around the wall's end at y = 2300
+  }
+}
+
 TEST(DirectionalAStar, ParametersAreChecked) {
   EXPECT_THROW(DirectionalAStarOptions::from_params({{"directions", "0"}}), std::invalid_argument);
   EXPECT_THROW(DirectionalAStarOptions::from_params({{"step", "2"}}), std::invalid_argument);
