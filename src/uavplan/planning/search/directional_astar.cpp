@@ -510,6 +510,14 @@ struct DirectionalSearch::Run {
   float clearance(std::uint32_t point, const Vec3& p) {
     return self.clearance_at(world, point, p, self.clearance_cap_m_);
   }
+  // A move from a to b (a's clearance c_a, b's c_b): clear if the two clearances cover it (every
+  // point of it is within clearance - inflation of one end); blocked if b itself is within the
+  // inflation (by more than the cache's float rounding); else the exact check.
+  bool move_clear(double c_a, double c_b, const Vec3& a, const Vec3& b, double length_m) const {
+    if (c_a + c_b - 2 * q.inflation_m >= length_m) return true;
+    if (c_b + 1e-6 * (std::abs(c_b) + q.inflation_m) < q.inflation_m) return false;
+    return !world.segment_collides(a, b, q.inflation_m);
+  }
 
   // The relaxed problem (DirectionalAStarOptions::relaxed_heuristic): its moves, and its exact
   // distances to the goal by a reverse search toward the start, resumed until the point asked
@@ -657,10 +665,7 @@ bool DirectionalSearch::Run::relaxed_edge_ok(std::uint32_t from_pt, const Vec3& 
   for (const Sphere& sp : q.virtual_threats)
     if (point_segment_distance(sp.center, from, to) < sp.radius_m + q.inflation_m) return false;
   if (static_cast<double>(c_to) - q.inflation_m >= length_m) return true;
-  const double c_from = clearance(from_pt, from);
-  if (c_from + c_to - 2 * q.inflation_m >= length_m) return true;
-  if (c_from + 1e-6 * (std::abs(c_from) + q.inflation_m) < q.inflation_m) return false;
-  return !world.segment_collides(from, to, q.inflation_m);
+  return move_clear(c_to, clearance(from_pt, from), to, from, length_m);
 }
 
 // The relaxed problem's distance from `point` to the goal: the reverse search goes on until the
@@ -782,16 +787,7 @@ void DirectionalSearch::Run::expand_cone(std::uint32_t id, const SearchBuffers::
         }))
       continue;
     const auto child_pt = static_cast<std::uint32_t>(pt + c.d[0] + c.d[1] * stride_y + c.d[2] * stride_z);
-    // Clear if the two end clearances cover the segment: every point of it is within
-    // (clearance - inflation) of one end. Blocked if the child itself is within the inflation
-    // (by more than the cache's float rounding). Else the exact check.
-    if (!all_clear) {
-      const double clearance_child = clearance(child_pt, to);
-      if (static_cast<double>(clearance_p) + clearance_child - 2 * q.inflation_m < c.length_cells * q.cell_m &&
-          (clearance_child + 1e-6 * (std::abs(clearance_child) + q.inflation_m) < q.inflation_m ||
-           world.segment_collides(p, to, q.inflation_m)))
-        continue;
-    }
+    if (!all_clear && !move_clear(clearance_p, clearance(child_pt, to), p, to, c.length_cells * q.cell_m)) continue;
     ++children;
     // g adds the lattice length of the move, cell |d|, not |to - p|: the same for every point,
     // free of the rounding of positions far from the origin.

@@ -32,17 +32,22 @@ void expect_feasible(const PlanResult& r, const Problem& p, const World& w) {
   for (std::size_t i = 1; i < pts.size(); ++i) EXPECT_TRUE(rule(pts[i - 1], pts[i]));
 }
 
+// A 30 x 30 x 10 km world with six random spheres in its middle.
+World random_sphere_world(Rng& r) {
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(30000, 30000, 10000)};
+  for (int k = 0; k < 6; ++k)
+    ws.obstacles.push_back(
+        Sphere{Vec3(r.uniform(8000, 22000), r.uniform(8000, 22000), r.uniform(0, 10000)), r.uniform(1500, 4000)});
+  return World(std::move(ws));
+}
+
 TEST(DirectionalAStar, RandomSphereWorldsKeepTurnAndClimbLimits) {
   Rng r(51);
   const DirectionalAStarPlanner planner(DirectionalAStarOptions::from_params({{"cell_m", "1000"}}));
   int solved = 0;
   for (int trial = 0; trial < 12; ++trial) {
-    WorldSpec ws;
-    ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(30000, 30000, 10000)};
-    for (int k = 0; k < 6; ++k)
-      ws.obstacles.push_back(
-          Sphere{Vec3(r.uniform(8000, 22000), r.uniform(8000, 22000), r.uniform(0, 10000)), r.uniform(1500, 4000)});
-    const World w(std::move(ws));
+    const World w = random_sphere_world(r);
     const Problem p = problem(Vec3(5000, 5000, 2000), Vec3(28000, 27000, 6000), r.uniform(-kPi, kPi));
     if (w.point_collides(p.uav.start, 10) || w.point_collides(p.goal, 10)) continue;
     const PlanResult res = planner.plan(p, w, {});
@@ -192,12 +197,7 @@ TEST(DirectionalAStar, RelaxedHeuristicKeepsTheLengthsAndOpensFewer) {
   std::uint64_t plain_expanded = 0, relaxed_expanded = 0;
   int solved = 0;
   for (int trial = 0; trial < 10; ++trial) {
-    WorldSpec ws;
-    ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(30000, 30000, 10000)};
-    for (int k = 0; k < 6; ++k)
-      ws.obstacles.push_back(
-          Sphere{Vec3(r.uniform(8000, 22000), r.uniform(8000, 22000), r.uniform(0, 10000)), r.uniform(1500, 4000)});
-    const World w(std::move(ws));
+    const World w = random_sphere_world(r);
     const Problem p = problem(Vec3(4000, 5000, 2000), Vec3(27000, 26000, 7000), r.uniform(-kPi, kPi));
     if (w.point_collides(p.uav.start, 10) || w.point_collides(p.goal, 10)) continue;
     const PlanResult a = plain.plan(p, w, {});
