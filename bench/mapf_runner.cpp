@@ -79,10 +79,6 @@ std::vector<Loaded> load_instances(const std::string& dir, int limit) {
   return kept;
 }
 
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
 // libMultiRobotPlanning's ECBS (w = 1.3) and CBS on these instances, measured on this machine
 // (../shared/data/README.md): agents -> {solved share, median ms, worst ms}; < 0 not given.
 struct Anchor {

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "stats.h"
 #include "textbook_astar.h"
 #include "uavplan/core/rng.h"
 #include "uavplan/io/movingai.h"
@@ -20,9 +21,6 @@
 
 namespace uavplan::bench {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 double percentile(std::vector<double> v, double q) {
   if (v.empty()) return 0.0;

@@ -62,9 +62,9 @@ struct Outcome {
   double nodes = 0.0;
 };
 
-class Clock {
+class Stopwatch {
  public:
-  Clock() : t0_(std::chrono::steady_clock::now()) {}
+  Stopwatch() : t0_(std::chrono::steady_clock::now()) {}
   double ms() const {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0_).count();
   }
@@ -127,7 +127,7 @@ class ExactMotion final : public ob::MotionValidator {
 
 Outcome run_ompl(const std::string& name, const Check& check, const Vec3& start, const Vec3& goal, double budget_ms) {
   Outcome o;
-  const Clock clock;
+  const Stopwatch clock;
   auto space = std::make_shared<ob::RealVectorStateSpace>(2);
   ob::RealVectorBounds b(2);
   b.setLow(0, 0);
@@ -188,7 +188,7 @@ Outcome run_ompl(const std::string& name, const Check& check, const Vec3& start,
 Outcome run_ours(const RrtOptions& options, const SegmentRule& rule, const Problem1& p, const Vec3& start,
                  const Vec3& goal, const World& world, std::uint64_t seed) {
   Outcome o;
-  const Clock clock;
+  const Stopwatch clock;
   RrtQuery q;
   q.start = start;
   q.goal = goal;

@@ -19,9 +19,6 @@
 namespace uavplan::bench {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
-
 double p1_cost(const std::vector<Vec3>& pts, const World& w) {
   double c = 0.0;
   for (std::size_t i = 1; i < pts.size(); ++i) c += p1_edge_cost(pts[i - 1], pts[i], w, {});

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdio>
 
+#include "stats.h"
 #include "uavplan/evaluation/verifier.h"
 #include "uavplan/io/scenario_io.h"
 #include "uavplan/planning/cells/cell_astar.h"
@@ -34,10 +35,6 @@ std::vector<double> stop_times(const std::vector<Vec3>& wp, const Problem& p) {
     }
   }
   return t;
-}
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 // Whether a planned route holds under the UAV's limits and the exact segment rule.

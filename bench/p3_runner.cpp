@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "stats.h"
 #include "uavplan/coordination/group/group_planner.h"
 #include "uavplan/coordination/mission_planner.h"
 #include "uavplan/core/rng.h"
@@ -14,9 +15,6 @@
 
 namespace uavplan::bench {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 // n UAVs in a square block at the lower left (3-D: a cube of layers 1.5 m apart from 2 m up),
 // goals in the same block shape at the upper right, random spheres in between and among the

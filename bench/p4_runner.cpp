@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "stats.h"
 #include "uavplan/coordination/rendezvous/rendezvous.h"
 #include "uavplan/core/units.h"
 #include "uavplan/io/scenario_io.h"
@@ -16,9 +17,6 @@
 
 namespace uavplan::bench {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 struct RouteStats {
   bool found = false;

@@ -19,9 +19,6 @@
 namespace uavplan::bench {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
-
 double heading(const Vec3& d) { return std::atan2(d.y(), d.x()); }
 
 struct Shape {

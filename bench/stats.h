@@ -1,11 +1,19 @@
-// Small statistics the benchmark tables share.
+// Small statistics and the clock the benchmark tables share.
 #pragma once
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <vector>
 
 namespace uavplan::bench {
+
+using Clock = std::chrono::steady_clock;
+
+// Milliseconds since t0 on the steady clock.
+inline double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
 
 // The upper median (the middle element of an odd count); 0 for none.
 inline double median(std::vector<double> v) {

@@ -137,12 +137,12 @@ void report_exports(const std::string& dir, const PreparedExport& done) {
 
 namespace {
 
-struct Args {
+struct ExportCommandArgs {
   std::string scenario, plan, out_dir = "out";
   ExportArgs exp;
 };
 
-int run_export(const Args& a) {
+int run_export(const ExportCommandArgs& a) {
   check_output_dir(a.out_dir);
   Scenario sc;
   Plan plan;
@@ -163,7 +163,7 @@ int run_export(const Args& a) {
 }  // namespace
 
 void add_export_command(CLI::App& app, std::function<int()>& run) {
-  auto args = std::make_shared<Args>();
+  auto args = std::make_shared<ExportCommandArgs>();
   CLI::App* cmd = app.add_subcommand(
       "export", "Export a verified plan for QGroundControl / PX4 / ArduPilot, GIS tools or spreadsheets");
   cmd->add_option("scenario", args->scenario, "Scenario file (needs an origin except for csv)")->required();

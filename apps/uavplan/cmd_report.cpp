@@ -10,11 +10,11 @@
 namespace uavplan::cli {
 namespace {
 
-struct Args {
+struct ReportArgs {
   std::string scenario, plan, out = "out/report.html";
 };
 
-int run_report(const Args& a) {
+int run_report(const ReportArgs& a) {
   check_output_dir(a.out);
   Scenario sc;
   Plan plan;
@@ -29,7 +29,7 @@ int run_report(const Args& a) {
 }  // namespace
 
 void add_report_command(CLI::App& app, std::function<int()>& run) {
-  auto args = std::make_shared<Args>();
+  auto args = std::make_shared<ReportArgs>();
   CLI::App* cmd =
       app.add_subcommand("report", "Write a self-contained HTML report: 3-D view, charts, metrics, verification");
   cmd->add_option("scenario", args->scenario, "Scenario file")->required();

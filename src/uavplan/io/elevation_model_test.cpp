@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "uavplan/io/input_error.h"
+#include "uavplan/io/io_test_fixtures.h"
 #include "uavplan/io/scenario_io.h"
 
 namespace uavplan {
@@ -25,15 +26,6 @@ const char* kUtm32nPrj =
     R"(PRIMEM["Greenwich",0],UNIT["degree",0.0174532925199433]],PROJECTION["Transverse_Mercator"],)"
     R"(PARAMETER["latitude_of_origin",0],PARAMETER["central_meridian",9],PARAMETER["scale_factor",0.9996],)"
     R"(PARAMETER["false_easting",500000],PARAMETER["false_northing",0],UNIT["metre",1]])";
-
-struct TempDir {
-  fs::path path;
-  explicit TempDir(const std::string& tag)
-      : path(fs::temp_directory_path() / ("uavplan_dem_" + tag + "_" + std::to_string(::getpid()))) {
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
 
 Vec2 utm_of(double lat, double lon) {
   int zone = 0;
@@ -68,7 +60,7 @@ std::string write_grid(const fs::path& dir, const std::string& prj) {
 }
 
 TEST(ElevationModel, PlacesARasterInAnotherCrsThroughTheOrigin) {
-  const TempDir d("utm");
+  const test::TempDir d("dem_utm");
   const std::string asc = write_grid(d.path, kUtm32nPrj);
   const GeoFrame frame(kOrigin);
   const Aabb bounds{Vec3(-400, -400, 0), Vec3(400, 400, 500)};
@@ -109,7 +101,7 @@ TEST(ElevationModel, PlacesARasterInAnotherCrsThroughTheOrigin) {
 }
 
 TEST(ElevationModel, ACellIsTheHighestPixelItTouches) {
-  const TempDir d("coarse");
+  const test::TempDir d("dem_coarse");
   const std::string asc = write_grid(d.path, kUtm32nPrj);
   const GeoFrame frame(kOrigin);
   const Aabb bounds{Vec3(-400, -400, 0), Vec3(400, 400, 500)};
@@ -132,7 +124,7 @@ std::string error_of(const std::function<void()>& f) {
 }
 
 TEST(ElevationModel, BadFilesAreClearErrors) {
-  const TempDir d("bad");
+  const test::TempDir d("dem_bad");
   const GeoFrame frame(kOrigin);
   const Aabb bounds{Vec3(-400, -400, 0), Vec3(400, 400, 500)};
   const std::string asc = write_grid(d.path, "");

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "uavplan/io/input_error.h"
+#include "uavplan/io/io_test_fixtures.h"
 
 namespace uavplan {
 namespace {
@@ -22,20 +23,10 @@ std::string slurp(const fs::path& p) {
   return ss.str();
 }
 
-struct TempDir {
-  fs::path path;
-  explicit TempDir(const std::string& tag)
-      : path(fs::temp_directory_path() / ("uavplan_files_" + tag + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
-
 // Links planted under every temporary name this process could take, and at the target itself:
 // the write creates a fresh file, the links' targets keep their bytes, and the target is a file.
 TEST(Files, PlantedLinksAreNeverWrittenThrough) {
-  TempDir d("links");
+  test::TempDir d("files_links");
   const fs::path victim = d.path / "victim.txt";
   std::ofstream(victim) << "precious";
   const std::string target = (d.path / "plan.json").string();
@@ -55,7 +46,7 @@ TEST(Files, PlantedLinksAreNeverWrittenThrough) {
 // A file that cannot be written (a folder in its way) leaves the folder as it was: no file of the
 // set renamed in, no temporary left.
 TEST(Files, StagedFilesAreAllOrNothing) {
-  TempDir d("staged");
+  test::TempDir d("files_staged");
   std::ofstream(d.path / "a.csv") << "old a";
   fs::create_directories(d.path / "b.csv");
   {
@@ -84,7 +75,7 @@ TEST(Files, StagedFilesAreAllOrNothing) {
 
 // The OS error is named in the message (here: a folder that cannot be created under a file).
 TEST(Files, ErrorsNameTheFileAndTheOsError) {
-  TempDir d("errors");
+  test::TempDir d("files_errors");
   std::ofstream(d.path / "file") << "x";
   try {
     write_file_atomic((d.path / "file" / "plan.json").string(), "x");
@@ -101,7 +92,7 @@ TEST(Files, EmptyOutputFolderIsBadInput) {
 
 // Devices and FIFOs are refused before they are opened (a FIFO would block, /dev/zero never end).
 TEST(Files, OnlyRegularFilesAreRead) {
-  TempDir d("fifo");
+  test::TempDir d("files_fifo");
   const fs::path fifo = d.path / "buildings.geojson";
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
   EXPECT_THROW(read_text_file(fifo.string()), InputError);
@@ -112,7 +103,7 @@ TEST(Files, OnlyRegularFilesAreRead) {
 
 // Temporaries of a process that is gone are removed; a link of that name is left alone.
 TEST(Files, StaleTemporariesOfDeadProcessesOnly) {
-  TempDir d("stale");
+  test::TempDir d("files_stale");
   const std::string dead = "999999999";  // above the kernel's largest pid
   std::ofstream(d.path / ("x.tmp." + dead + ".3")) << "left";
   std::ofstream(d.path / ("y.tmp." + std::to_string(::getpid()))) << "mine";

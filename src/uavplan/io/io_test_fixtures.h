@@ -1,6 +1,10 @@
-// The small scenario and plan the io tests (exports, report) share.
+// What the io tests share: the small scenario and plan (exports, report), a temporary folder.
 #pragma once
 
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -8,6 +12,20 @@
 #include "uavplan/coordination/contract/scenario.h"
 
 namespace uavplan::test {
+
+// A fresh folder uavplan_TAG_PID under the system's temporary folder, removed with its contents
+// at the end of the scope.
+struct TempDir {
+  std::filesystem::path path;
+  explicit TempDir(const std::string& tag)
+      : path(std::filesystem::temp_directory_path() / ("uavplan_" + tag + "_" + std::to_string(::getpid()))) {
+    std::filesystem::remove_all(path);
+    std::filesystem::create_directories(path);
+  }
+  ~TempDir() { std::filesystem::remove_all(path); }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+};
 
 // A 1000 x 1000 x 100 m world near Zurich with one UAV "a/1" at (0, 0, 10).
 inline Scenario scenario_with(std::vector<Obstacle> obstacles = {}) {

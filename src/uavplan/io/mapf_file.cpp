@@ -19,10 +19,10 @@ constexpr std::size_t kMostValues = 4'000'000;
 
 // A key a const node lacks reads as a node that throws on every question but IsDefined: every
 // check asks that first.
-int line_of(const YAML::Node& n) { return n.IsDefined() && n.Mark().line >= 0 ? n.Mark().line + 1 : 0; }
+int node_line(const YAML::Node& n) { return n.IsDefined() && n.Mark().line >= 0 ? n.Mark().line + 1 : 0; }
 
 [[noreturn]] void bad(const std::string& file, const YAML::Node& n, const std::string& place, const std::string& what) {
-  throw InputError(file, line_of(n), place, what);
+  throw InputError(file, node_line(n), place, what);
 }
 
 int whole_number(const std::string& file, const YAML::Node& n, const std::string& place) {

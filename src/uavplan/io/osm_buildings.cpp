@@ -43,7 +43,7 @@ std::optional<double> non_negative(const json& v) {
   return std::nullopt;
 }
 
-struct Reader {
+struct OsmReader {
   const std::string& file;
   const GeoFrame& frame;
   const BuildingOptions& opt;
@@ -180,7 +180,7 @@ std::vector<Prism> buildings_from_geojson(const std::string& text, const std::st
   }
   BuildingCounts local_counts;
   std::vector<Prism> out;
-  const Reader r{file, frame, options, counts ? *counts : local_counts, out};
+  const OsmReader r{file, frame, options, counts ? *counts : local_counts, out};
   if (!doc.is_object() || !doc.contains("type") || !doc["type"].is_string())
     r.fail("", "expected a GeoJSON object with a 'type'");
   if (doc.contains("crs") && doc["crs"].is_object()) {

@@ -130,7 +130,7 @@ void write_rows(const Trajectory& tr, std::size_t depth, std::string& out) {
                        [&](std::size_t i, int k) { return k == 0 ? tr[i].t_s : tr[i].p[k - 1]; });
 }
 
-struct Reader {
+struct PlanReader {
   const std::string& file;
   const std::string& source;
   // The line of the place is looked up only for the error (a YAML reading of the JSON text).
@@ -312,7 +312,7 @@ bool read_numbers(const JsonIn& v, std::size_t n, double* out) {
 
 // `[t, x, y, z]` rows. The input limits of scenarios hold here too: times from 0 (a mission
 // starts at 0; a UAV is at its first row before it) to 1e9 s, coordinates within 1e9 m.
-Trajectory read_rows(const Reader& r, const JsonIn& tr, const std::string& at) {
+Trajectory read_rows(const PlanReader& r, const JsonIn& tr, const std::string& at) {
   if (!tr.is_array()) r.fail(at + ".trajectory", "expected an array");
   Trajectory rows;
   rows.reserve(tr.size());
@@ -333,7 +333,7 @@ Trajectory read_rows(const Reader& r, const JsonIn& tr, const std::string& at) {
   return rows;
 }
 
-std::vector<Vec3> read_waypoints(const Reader& r, const JsonIn& w, const std::string& at) {
+std::vector<Vec3> read_waypoints(const PlanReader& r, const JsonIn& w, const std::string& at) {
   if (!w.is_array()) r.fail(at + ".waypoints", "expected an array");
   std::vector<Vec3> out;
   out.reserve(w.size());
@@ -350,7 +350,7 @@ std::vector<Vec3> read_waypoints(const Reader& r, const JsonIn& w, const std::st
   return out;
 }
 
-PlanStats read_stats(const Reader& r, const JsonIn& st, const std::string& at) {
+PlanStats read_stats(const PlanReader& r, const JsonIn& st, const std::string& at) {
   if (!st.is_object()) r.fail(at + ".stats", "expected an object");
   const auto count = [&](const char* key) -> std::uint64_t {
     if (!st.contains(key)) return 0;
@@ -366,7 +366,7 @@ PlanStats read_stats(const Reader& r, const JsonIn& st, const std::string& at) {
   return stats;
 }
 
-UavPlan read_uav_plan(const Reader& r, const JsonIn& ju, const std::string& at) {
+UavPlan read_uav_plan(const PlanReader& r, const JsonIn& ju, const std::string& at) {
   UavPlan u;
   u.id = r.text(r.req(ju, "id", at), at + ".id");
   const auto us = status_from_string(r.text(r.req(ju, "status", at), at + ".status"));
@@ -388,7 +388,7 @@ UavPlan read_uav_plan(const Reader& r, const JsonIn& ju, const std::string& at) 
   return u;
 }
 
-FormationLog read_formation_log(const Reader& r, const JsonIn& f) {
+FormationLog read_formation_log(const PlanReader& r, const JsonIn& f) {
   FormationLog log;
   log.eta_s = r.number(r.req(f, "eta_s", "formation"), "formation.eta_s");
   if (f.contains("worst_slot_error_m"))
@@ -419,7 +419,7 @@ FormationLog read_formation_log(const Reader& r, const JsonIn& f) {
 Plan parse_plan(const std::string& raw, const std::string& file) {
   const std::string text = checked_text(raw, file);
   const JsonIn j = parse_plan_json(text, file);
-  const Reader r{file, text};
+  const PlanReader r{file, text};
   if (!j.is_object()) r.fail("", "the top level must be a JSON object");
   if (r.text(r.req(j, "format", ""), "format") != "uavplan-plan") r.fail("format", "expected \"uavplan-plan\"");
   const JsonIn& ver = r.req(j, "version", "");

@@ -12,11 +12,11 @@ namespace {
 
 using test::scenario_with;
 
-Plan sample_plan() { return test::plan_of({test::sample_uav()}); }
+Plan report_plan() { return test::plan_of({test::sample_uav()}); }
 
 TEST(Report, PageCarriesDataAndViewer) {
   const Scenario sc = scenario_with({Box{Vec3(300, 300, 0), Vec3(320, 320, 60)}});
-  Plan plan = sample_plan();
+  Plan plan = report_plan();
   plan.uavs[0].message = "</script><b>";
   const auto data = nlohmann::json::parse(report_data_json(sc, plan, {}));
   EXPECT_EQ(data["uavs"][0]["trajectory"].size(), 5u);
@@ -39,7 +39,7 @@ TEST(Report, PageCarriesDataAndViewer) {
 
 TEST(Report, MetricsAreThoseOfTheTrajectoriesShown) {
   const Scenario sc = scenario_with({Box{Vec3(300, 300, 0), Vec3(320, 320, 60)}});
-  Plan plan = sample_plan();
+  Plan plan = report_plan();
   plan.uavs[0].metrics = {{"length_m", 1.0}};  // a plan file saying something else
   const auto data = nlohmann::json::parse(report_data_json(sc, plan, {}));
   const auto& m = data["uavs"][0]["metrics"];
@@ -58,7 +58,7 @@ TEST(Report, HeightProfileFollowsTheGroundUnderTheRoute) {
   // Terrain 4 m high for x in [50, 100), 0 elsewhere (cells of 50 m).
   w.terrain = TerrainGrid(Vec2(0, 0), 50.0, 3, 3, {0, 4, 0, 0, 4, 0, 0, 4, 0});
   sc.world = World(std::move(w));
-  const auto data = nlohmann::json::parse(report_data_json(sc, sample_plan(), {}));
+  const auto data = nlohmann::json::parse(report_data_json(sc, report_plan(), {}));
   const auto& p = data["uavs"][0]["profile"];
   const auto& s = p["s_m"];
   ASSERT_GE(s.size(), 400u);
@@ -77,7 +77,7 @@ TEST(Report, HeightProfileFollowsTheGroundUnderTheRoute) {
   // A flat world has no height profile.
   Scenario flat = scenario_with();
   flat.world = World(WorldSpec{Aabb{Vec3(0, 0, 10), Vec3(1000, 1000, 10)}, {}, {}, {}, {}, {}, {}});
-  EXPECT_TRUE(nlohmann::json::parse(report_data_json(flat, sample_plan(), {}))["uavs"][0]["profile"].is_null());
+  EXPECT_TRUE(nlohmann::json::parse(report_data_json(flat, report_plan(), {}))["uavs"][0]["profile"].is_null());
 }
 
 TEST(Report, RadarShellsWhereTheThreatCostFallsToTheFuelCost) {
@@ -85,7 +85,7 @@ TEST(Report, RadarShellsWhereTheThreatCostFallsToTheFuelCost) {
   WorldSpec w = sc.world.spec();
   w.radars = {Radar{Vec3(500, 500, 0), 1e4}};
   sc.world = World(std::move(w));
-  const auto data = nlohmann::json::parse(report_data_json(sc, sample_plan(), {}));
+  const auto data = nlohmann::json::parse(report_data_json(sc, report_plan(), {}));
   const auto& shells = data["threats"][0]["shells_m"];
   ASSERT_EQ(shells.size(), 3u);
   EXPECT_NEAR(shells[0].get<double>(), 10.0, 1e-6);  // 1e4 / d^4 = 1
@@ -125,7 +125,7 @@ TEST(Report, PhasesAndTheSpacingInTheAir) {
     }
   }
   // Other missions: no phases.
-  EXPECT_TRUE(nlohmann::json::parse(report_data_json(scenario_with(), sample_plan(), {}))["phases"].empty());
+  EXPECT_TRUE(nlohmann::json::parse(report_data_json(scenario_with(), report_plan(), {}))["phases"].empty());
 }
 
 }  // namespace

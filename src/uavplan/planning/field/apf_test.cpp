@@ -17,7 +17,7 @@ World flat_world(std::vector<Obstacle> obstacles) {
   return World(std::move(ws));
 }
 
-UavSpec uav() {
+UavSpec field_uav() {
   UavSpec u;
   u.radius_m = 0.1;
   return u;
@@ -31,7 +31,7 @@ ApfOptions opts(bool improved) {
 
 TEST(Apf, FreeSpacePointsAtTheGoal) {
   const World w = flat_world({});
-  const PotentialField f(w, uav(), apf_resolved(opts(true), uav(), w));
+  const PotentialField f(w, field_uav(), apf_resolved(opts(true), field_uav(), w));
   EXPECT_TRUE(f.direction(Vec3(0, 0, 0), Vec3(10, 5, 0), {}).isApprox(Vec3(10, 5, 0).normalized(), 1e-12));
 }
 
@@ -41,9 +41,9 @@ TEST(Apf, RepulsionDeflectsAndTheSectorRuleKeepsOnlyTheNearest) {
   const World two =
       flat_world({Sphere{Vec3(0.8, 0.3, 0), 0.1}, Sphere{Vec3(1.2, 0.46, 0), 0.1}});  // same sector, farther
   for (const bool improved : {true, false}) {
-    const ApfOptions o = apf_resolved(opts(improved), uav(), one);
-    const Vec3 d1 = PotentialField(one, uav(), o).direction(p, goal, {});
-    const Vec3 d2 = PotentialField(two, uav(), o).direction(p, goal, {});
+    const ApfOptions o = apf_resolved(opts(improved), field_uav(), one);
+    const Vec3 d1 = PotentialField(one, field_uav(), o).direction(p, goal, {});
+    const Vec3 d2 = PotentialField(two, field_uav(), o).direction(p, goal, {});
     EXPECT_LT(d1.y(), 0.0) << "pushed away from the obstacle above the path";
     if (improved)
       EXPECT_TRUE(d1.isApprox(d2, 1e-12)) << "the farther obstacle in the same sector is ignored";
@@ -55,7 +55,7 @@ TEST(Apf, RepulsionDeflectsAndTheSectorRuleKeepsOnlyTheNearest) {
 TEST(Apf, RepulsionFadesNearTheGoal) {
   // The same obstacle beside the UAV: far from the goal it pushes harder than next to it.
   const World w = flat_world({Sphere{Vec3(0, 0.6, 0), 0.1}});
-  const PotentialField f(w, uav(), apf_resolved(opts(true), uav(), w));
+  const PotentialField f(w, field_uav(), apf_resolved(opts(true), field_uav(), w));
   const Vec3 far = f.direction(Vec3(0, 0, 0), Vec3(10, 0, 0), {});
   const Vec3 near = f.direction(Vec3(0, 0, 0), Vec3(1.0, 0, 0), {});
   EXPECT_LT(std::abs(near.y()), std::abs(far.y()));
@@ -63,7 +63,7 @@ TEST(Apf, RepulsionFadesNearTheGoal) {
 
 TEST(Apf, StepsAreSafeFromObstaclesAndPeers) {
   const World w = flat_world({Sphere{Vec3(1, 0, 0), 0.3}});
-  const PotentialField f(w, uav(), apf_resolved(opts(true), uav(), w));
+  const PotentialField f(w, field_uav(), apf_resolved(opts(true), field_uav(), w));
   const std::vector<PeerMotion> peers{{Vec3(0.5, 0.6, 0), Vec3(0.5, 0.5, 0), 0.1}};
   Vec3 p(0, 0, 0);
   for (int k = 0; k < 40; ++k) {
@@ -76,7 +76,7 @@ TEST(Apf, StepsAreSafeFromObstaclesAndPeers) {
 
 TEST(Apf, ReachesTheGoalPastAWallOrFailsWithAReason) {
   const World w = flat_world({Box{Vec3(5, -3, -1), Vec3(5.5, 3, 1)}});
-  const PotentialField f(w, uav(), apf_resolved(opts(true), uav(), w));
+  const PotentialField f(w, field_uav(), apf_resolved(opts(true), field_uav(), w));
   const ApfRun run = run_apf(f, Vec3(0, 0, 0), Vec3(10, 0, 0));
   ASSERT_TRUE(run.reached) << run.message;  // the wall is short: the guide goes round it
   for (std::size_t i = 1; i < run.points.size(); ++i)
@@ -84,7 +84,7 @@ TEST(Apf, ReachesTheGoalPastAWallOrFailsWithAReason) {
   // Enclosed goal: bounded, with a reason.
   const World cage = flat_world({Box{Vec3(8, -2, -1), Vec3(12, -1.5, 1)}, Box{Vec3(8, 1.5, -1), Vec3(12, 2, 1)},
                                  Box{Vec3(8, -2, -1), Vec3(8.5, 2, 1)}, Box{Vec3(11.5, -2, -1), Vec3(12, 2, 1)}});
-  const PotentialField fc(cage, uav(), apf_resolved(opts(true), uav(), cage));
+  const PotentialField fc(cage, field_uav(), apf_resolved(opts(true), field_uav(), cage));
   const ApfRun trapped = run_apf(fc, Vec3(0, 0, 0), Vec3(10, 0, 0));
   EXPECT_FALSE(trapped.reached);
   EXPECT_NE(trapped.message.find("no route to the goal"), std::string::npos) << trapped.message;
@@ -94,7 +94,7 @@ TEST(Apf, EscapesACupAlongTheGuideRoute) {
   // A cup open toward the start, the goal behind its bottom: the field alone settles inside.
   const World cup = flat_world({Box{Vec3(6, -3, -1), Vec3(6.5, 3, 1)}, Box{Vec3(2, 2.5, -1), Vec3(6.5, 3, 1)},
                                 Box{Vec3(2, -3, -1), Vec3(6.5, -2.5, 1)}});
-  const PotentialField f(cup, uav(), apf_resolved(opts(true), uav(), cup));
+  const PotentialField f(cup, field_uav(), apf_resolved(opts(true), field_uav(), cup));
   FieldFlight flight(f, Vec3(0, 0, 0), Vec3(10, 0, 0), 8);
   std::vector<Vec3> path{flight.position()};
   for (int k = 0; k < 2000 && !flight.arrived() && !flight.failed(); ++k) path.push_back(flight.advance({}, {}));
@@ -109,7 +109,7 @@ TEST(Apf, EscapesACupAlongTheGuideRoute) {
 TEST(Apf, GuideRoutesAroundKeepOutsAndForgetsThem) {
   // A wall with one gap at y = 0; a keep-out in the gap sends the route round the wall's end.
   const World w = flat_world({Box{Vec3(5, -10, -1), Vec3(5.5, -0.5, 1)}, Box{Vec3(5, 0.5, -1), Vec3(5.5, 6, 1)}});
-  FieldGuide guide(w, uav(), 0.25);
+  FieldGuide guide(w, field_uav(), 0.25);
   auto length = [](const std::vector<Vec3>& r) {
     double l = 0;
     for (std::size_t i = 1; i < r.size(); ++i) l += (r[i] - r[i - 1]).norm();

@@ -18,7 +18,7 @@ World threat_world(std::vector<Radar> radars, std::vector<Obstacle> obstacles = 
   return World(std::move(ws));
 }
 
-UavSpec uav() {
+UavSpec roadmap_uav() {
   UavSpec u;
   u.id = "u";
   u.start = Vec3(20, 20, 50);
@@ -31,7 +31,7 @@ UavSpec uav() {
 TEST(ThreatRoadmap, EdgesRunMidwayBetweenNeighbouringThreats) {
   const World w = threat_world(
       {{Vec3(200, 200, 50), 1}, {Vec3(400, 200, 50), 1}, {Vec3(400, 400, 50), 1}, {Vec3(200, 400, 50), 1}});
-  const SegmentRule rule(w, uav());
+  const SegmentRule rule(w, roadmap_uav());
   const Roadmap map = threat_roadmap(w, rule, 50.0, {});
   EXPECT_EQ(map.sites, 4u);
   // Four rays from the centre to the bounds, and the bounds' outline through their ends and the
@@ -55,7 +55,7 @@ TEST(ThreatRoadmap, EdgesThroughObstaclesAreDropped) {
   const std::vector<Radar> r{
       {Vec3(200, 200, 50), 1}, {Vec3(400, 200, 50), 1}, {Vec3(400, 400, 50), 1}, {Vec3(200, 400, 50), 1}};
   const World w = threat_world(r, {Cylinder{Vec2(300, 500), 20, 0, 100}});  // on the northern ray
-  const SegmentRule rule(w, uav());
+  const SegmentRule rule(w, roadmap_uav());
   const Roadmap map = threat_roadmap(w, rule, 50.0, {});
   for (const Roadmap::Edge& e : map.edges) EXPECT_TRUE(rule(map.vertices[e.a], map.vertices[e.b]));
   // The northern ray is cut at the cylinder; the diagram now runs around its outline instead.
@@ -65,7 +65,7 @@ TEST(ThreatRoadmap, EdgesThroughObstaclesAreDropped) {
                    (map.vertices[e.b] - Vec3(300, 300, 50)).norm() < 1e-6;
   EXPECT_EQ(from_centre, 4);  // the centre still has its four neighbours (the northern one short of the cylinder)
   Problem p;
-  p.uav = uav();
+  p.uav = roadmap_uav();
   p.uav.start = Vec3(300, 590, 50);  // north of the cylinder
   p.goal = Vec3(300, 310, 50);
   const PlanResult r1 = make_planner("voronoi_dijkstra", {})->plan(p, w, {});
@@ -83,7 +83,7 @@ World random_threats(std::uint64_t seed, int n, double weight) {
 // Corner to corner across the field.
 Problem across() {
   Problem p;
-  p.uav = uav();
+  p.uav = roadmap_uav();
   p.uav.start = Vec3(5, 5, 50);
   p.goal = Vec3(595, 595, 50);
   return p;
