@@ -22,10 +22,9 @@ else
 fi
 if [ -f "$BUILD/compile_commands.json" ] && command -v clang-tidy >/dev/null; then
   mapfile -t changed < <(git diff --name-only HEAD~1 HEAD 2>/dev/null | grep -E '^(src|apps)/.*\.cpp$' | head -6)
-  # clang cannot read GCC's precompiled headers: the commands without them (every file includes
-  # what it uses).
+  # One command per file: unity batches split, without GCC's precompiled headers.
   db=$(mktemp -d)
-  sed -E 's/ -Winvalid-pch//; s/ -include [^ ]*cmake_pch\.hxx//' "$BUILD/compile_commands.json" >"$db/compile_commands.json"
+  python3 scripts/per_file_compile_db.py "$BUILD" "$db"
   for f in "${changed[@]}"; do
     [ -f "$f" ] || continue
     clang-tidy -p "$db" --quiet "$f" 2>/dev/null | grep -E 'warning:' | sed 's/^/lint: /'
