@@ -17,6 +17,7 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 
+#include "stats.h"
 #include "uavplan/core/rng.h"
 #include "uavplan/planning/sampling/rrt.h"
 #include "uavplan/planning/smoothing/waypoint_pruning.h"
@@ -60,17 +61,6 @@ struct Outcome {
   bool ok = false;
   double ms = 0.0, cost = 0.0;
   double nodes = 0.0;
-};
-
-class Stopwatch {
- public:
-  Stopwatch() : t0_(std::chrono::steady_clock::now()) {}
-  double ms() const {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0_).count();
-  }
-
- private:
-  std::chrono::steady_clock::time_point t0_;
 };
 
 // The same segment check for every planner: the world's rule and the discs, exactly.
@@ -127,7 +117,7 @@ class ExactMotion final : public ob::MotionValidator {
 
 Outcome run_ompl(const std::string& name, const Check& check, const Vec3& start, const Vec3& goal, double budget_ms) {
   Outcome o;
-  const Stopwatch clock;
+  const Clock::time_point t0 = Clock::now();
   auto space = std::make_shared<ob::RealVectorStateSpace>(2);
   ob::RealVectorBounds b(2);
   b.setLow(0, 0);
@@ -166,7 +156,7 @@ Outcome run_ompl(const std::string& name, const Check& check, const Vec3& start,
   planner->setup();
   const ob::PlannerStatus st = planner->solve(ob::timedPlannerTerminationCondition(seconds));
   if (st != ob::PlannerStatus::EXACT_SOLUTION) {
-    o.ms = clock.ms();
+    o.ms = ms_since(t0);
     return o;
   }
   std::vector<Vec3> path;
@@ -176,7 +166,7 @@ Outcome run_ompl(const std::string& name, const Check& check, const Vec3& start,
   // The improved RRT's simplification: P1's pruning within one UAV step, then the shortcut.
   const TimedSegmentCheck ok = [&](const Vec3& a, double, const Vec3& c) { return check.segment(a, c); };
   path = shortcut_within_limits(prune_within_step(path, kSpeed_mps * kPeriod_s, 5, {}, ok), {}, ok);
-  o.ms = clock.ms();
+  o.ms = ms_since(t0);
   o.ok = true;
   o.cost = Route{path}.length_m();
   ob::PlannerData data(si);  // (not timed)
@@ -188,7 +178,7 @@ Outcome run_ompl(const std::string& name, const Check& check, const Vec3& start,
 Outcome run_ours(const RrtOptions& options, const SegmentRule& rule, const Problem1& p, const Vec3& start,
                  const Vec3& goal, const World& world, std::uint64_t seed) {
   Outcome o;
-  const Stopwatch clock;
+  const Clock::time_point t0 = Clock::now();
   RrtQuery q;
   q.start = start;
   q.goal = goal;
@@ -200,7 +190,7 @@ Outcome run_ours(const RrtOptions& options, const SegmentRule& rule, const Probl
   q.uav_step_m = kSpeed_mps * kPeriod_s;
   q.seed = seed;
   const RrtResult r = rrt_search(rule, kPi, q, options, {});
-  o.ms = clock.ms();
+  o.ms = ms_since(t0);
   o.ok = r.ok;
   o.nodes = r.nodes;
   if (r.ok) o.cost = Route{r.path}.length_m();
