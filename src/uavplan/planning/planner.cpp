@@ -10,12 +10,11 @@
 namespace uavplan {
 namespace {
 
-std::string fmt(const Vec3& p) { return point_text(p); }
-
 void check_point(const std::string& what, const Vec3& p, const World& world) {
   if (!p.allFinite()) throw std::invalid_argument(what + " is not finite");
-  if (!world.in_bounds(p)) throw std::invalid_argument(what + " " + fmt(p) + " is outside the world bounds");
-  if (world.clearance(p, 1e-9) <= 0.0) throw std::invalid_argument(what + " " + fmt(p) + " is inside an obstacle");
+  if (!world.in_bounds(p)) throw std::invalid_argument(what + " " + point_text(p) + " is outside the world bounds");
+  if (world.clearance(p, 1e-9) <= 0.0)
+    throw std::invalid_argument(what + " " + point_text(p) + " is inside an obstacle");
 }
 
 }  // namespace

@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 
 #include "uavplan/core/geometry.h"
 #include "uavplan/core/rng.h"
+#include "uavplan/core/text.h"
 #include "uavplan/planning/sampling/chaotic_sampler.h"
 #include "uavplan/planning/sampling/rrt_tree.h"
 #include "uavplan/planning/smoothing/waypoint_pruning.h"
@@ -134,12 +134,6 @@ bool path_ok(const std::vector<Vec3>& path, const EdgeCheck& ok, const PruneLimi
 // A search whose tree has not left its start after this many iterations is boxed in.
 constexpr std::uint64_t kBoxedInIterations = 2000;
 
-std::string fmt(const Vec3& p) {
-  char buf[96];
-  std::snprintf(buf, sizeof buf, "(%.1f, %.1f, %.1f)", p.x(), p.y(), p.z());
-  return buf;
-}
-
 // The tree of one search and how it grows (P1 steps 2-6): goal-biased or sampled targets, steps
 // within the turn and climb limits, edges checked by `ok`.
 class RrtGrowth {
@@ -247,11 +241,11 @@ class RrtGrowth {
 // search (a failure, or the goal at the start).
 bool settled_before_search(const SegmentRule& rule, const RrtQuery& q, RrtResult& res) {
   if (!rule.point_ok(q.start)) {
-    res.message = "start " + fmt(q.start) + " is outside the free space";
+    res.message = "start " + point_text(q.start) + " is outside the free space";
     return true;
   }
   if (!rule.point_ok(q.goal)) {
-    res.message = "goal " + fmt(q.goal) + " is outside the free space";
+    res.message = "goal " + point_text(q.goal) + " is outside the free space";
     return true;
   }
   if ((q.goal - q.start).norm() == 0.0) {
@@ -340,8 +334,8 @@ PlanResult RrtPlanner::do_plan(const Problem& pb, const World& world, const Stop
     if (!r.ok) {
       out.route.waypoints.clear();
       out.reason = r.stopped ? Reason::stopped : Reason::budget;
-      out.message = name_ + ": " + leg_name(leg, stops.size()) + " from " + fmt(q.start) + " to " + fmt(q.goal) + ": " +
-                    r.message;
+      out.message = name_ + ": " + leg_name(leg, stops.size()) + " from " + point_text(q.start) + " to " +
+                    point_text(q.goal) + ": " + r.message;
       return out;
     }
     for (std::size_t i = 1; i < r.path.size(); ++i) {
