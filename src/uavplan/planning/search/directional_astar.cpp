@@ -756,8 +756,9 @@ void DirectionalSearch::Run::try_goal(std::uint32_t from, double g_from, const V
 const DirectionalCones::Cone& DirectionalSearch::Run::cone_for(int dx, int dy, int dz) {
   if (std::abs(dx) > reach || std::abs(dy) > reach || std::abs(dz) > reach)
     return self.cones_->cone(cone_table, dx, dy, dz);
-  const DirectionalCones::Cone*& slot =
-      cone_index[static_cast<std::size_t>(((dz + reach) * side + dy + reach) * side + dx + reach)];
+  const auto offset = [this](int d) { return static_cast<std::size_t>(d + reach); };
+  const auto width = static_cast<std::size_t>(side);
+  const DirectionalCones::Cone*& slot = cone_index[(offset(dz) * width + offset(dy)) * width + offset(dx)];
   if (!slot) slot = &self.cones_->cone(cone_table, dx, dy, dz);
   return *slot;
 }

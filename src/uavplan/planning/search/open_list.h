@@ -38,7 +38,7 @@ class OpenList {
   bool empty() const { return size_ == 0; }
   std::size_t size() const { return size_; }
   std::size_t memory_bytes() const {
-    std::size_t b = buckets_.capacity() * sizeof(buckets_[0]);
+    std::size_t b = buckets_.capacity() * sizeof(std::vector<Entry>);
     for (const auto& v : buckets_) b += v.capacity() * sizeof(Entry);
     return b;
   }
