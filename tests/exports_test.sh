@@ -12,15 +12,14 @@ trap 'rm -rf "$TMP"' EXIT
 
 "$BIN" plan "$SCEN" -o "$TMP" --export qgc,wpl,geojson,kml,csv --firmware "$FIRMWARE" >"$TMP/log" || {
   cat "$TMP/log"; echo "FAIL: plan did not solve $SCEN"; exit 1; }
-ids=$(node -e 'const p=require(process.argv[1]); console.log(p.uavs.filter(u=>u.trajectory.length>=2).map(u=>u.id).join(" "))' "$TMP/plan.json")
+# The ids NUL-separated: an id may hold spaces or any other character.
+mapfile -d '' ids < <(node -e 'const p=require(process.argv[1]); for (const u of p.uavs) if (u.trajectory.length>=2) process.stdout.write(u.id + "\0")' "$TMP/plan.json")
 obstacles=$("$BIN" info "$SCEN" | awk '$1 == "obstacles" {print $2}')
-# shellcheck disable=SC2086
-node "$SRC/tests/qgc_plan_check.mjs" "$TMP" $ids
-# shellcheck disable=SC2086
-node "$SRC/tests/gis_readback_check.mjs" "$TMP" "$obstacles" $ids
+node "$SRC/tests/qgc_plan_check.mjs" "$TMP" "${ids[@]}"
+node "$SRC/tests/gis_readback_check.mjs" "$TMP" "$obstacles" "${ids[@]}"
 # The standalone command writes the same files as plan --export.
 "$BIN" export "$SCEN" "$TMP/plan.json" --format qgc --firmware "$FIRMWARE" -o "$TMP/again" >/dev/null
-for id in $ids; do
+for id in "${ids[@]}"; do
   stem=$(node --input-type=module -e "import {fileStem} from '$SRC/tests/file_stem.mjs'; console.log(fileStem(process.argv[1]))" "$id")
   cmp "$TMP/$stem.plan" "$TMP/again/$stem.plan"
 done

@@ -12,13 +12,18 @@ let failures = 0;
 const fail = (msg) => { console.error(`gis_readback_check: ${msg}`); failures++; };
 const ogr = (...args) => execFileSync('ogr2ogr', args, { encoding: 'utf8', maxBuffer: 64 << 20 });
 
-// ogr2ogr CSV with WKT geometry; returns [{WKT, ...fields}].
+// ogr2ogr CSV with WKT geometry (RFC 4180: a quote inside a quoted field is doubled); returns
+// [{WKT, ...fields}].
 function readCsv(text) {
   const lines = text.trim().split('\n');
   const split = (l) => {
     const out = []; let cur = ''; let q = false;
-    for (const ch of l) {
-      if (ch === '"') q = !q; else if (ch === ',' && !q) { out.push(cur); cur = ''; } else cur += ch;
+    for (let k = 0; k < l.length; k++) {
+      const ch = l[k];
+      if (q && ch === '"' && l[k + 1] === '"') { cur += '"'; k++; }
+      else if (ch === '"') q = !q;
+      else if (ch === ',' && !q) { out.push(cur); cur = ''; }
+      else cur += ch;
     }
     out.push(cur);
     return out;
