@@ -11,7 +11,6 @@
 #include <ompl/util/RandomNumbers.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <functional>
 #include <mutex>
