@@ -45,7 +45,7 @@ namespace {
 std::vector<char> block_under_tall_boxes(const World& world, VoxelGrid& g, double reach) {
   const auto& obstacles = world.obstacles();
   std::vector<char> done(obstacles.size(), 0);
-  const double top_centre = g.center(0, 0, g.nz() - 1).z();
+  const double top_centre = g.center_z(g.nz() - 1);
   std::vector<double> from_z;  // per column: the lowest blocked height
   for (std::size_t n = 0; n < obstacles.size(); ++n) {
     const Box* b = std::get_if<Box>(&obstacles[n]);
@@ -57,7 +57,7 @@ std::vector<char> block_under_tall_boxes(const World& world, VoxelGrid& g, doubl
     g.cell_of(b->max + Vec3::Constant(reach), i1, j1, k1);
     for (int j = j0; j <= j1; ++j)
       for (int i = i0; i <= i1; ++i) {
-        const Vec2 c = g.center(i, j, 0).head<2>();
+        const Vec2 c = g.center_xy(i, j);
         const Vec2 off = (b->min.head<2>() - c).cwiseMax(c - b->max.head<2>()).cwiseMax(0.0);
         const double d2 = off.squaredNorm();
         if (d2 >= reach * reach) continue;
@@ -69,7 +69,7 @@ std::vector<char> block_under_tall_boxes(const World& world, VoxelGrid& g, doubl
   for (int j = 0; j < g.ny(); ++j)
     for (int i = 0; i < g.nx(); ++i) {
       const double z = from_z[static_cast<std::size_t>(j) * g.nx() + i];
-      for (int k = g.nz() - 1; k >= 0 && g.center(i, j, k).z() > z; --k) g.set_blocked(g.index(i, j, k));
+      for (int k = g.nz() - 1; k >= 0 && g.center_z(k) > z; --k) g.set_blocked(g.index(i, j, k));
     }
   return done;
 }
@@ -118,11 +118,11 @@ VoxelGrid voxelize(const World& world, const Vec3& cell, double inflation_m, dou
     for (int j = 0; j < g.ny(); ++j) {
       stop.throw_if_stopped();
       for (int i = 0; i < g.nx(); ++i) {
-        const Vec2 c = g.center(i, j, 0).head<2>();
+        const Vec2 c = g.center_xy(i, j);
         const double under = t->height_at(c.x(), c.y()), near_top = t->highest_near(c, reach);
         for (int k = 0; k < g.nz(); ++k) {
-          const Vec3 p = g.center(i, j, k);
-          if (p.z() > under && (p.z() - near_top >= reach || t->point_distance(p, reach) >= reach)) break;
+          const double z = g.center_z(k);
+          if (z > under && (z - near_top >= reach || t->point_distance(Vec3(c.x(), c.y(), z), reach) >= reach)) break;
           g.set_blocked(g.index(i, j, k));
         }
       }
