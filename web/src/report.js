@@ -546,6 +546,8 @@ const table = el('table', { id: 'uav-metrics' },
 for (const u of data.uavs)
   table.append(el('tr', {}, el('td', {}, u.id), el('td', {}, u.status), ...cols.map(([c]) => el('td', {}, metricText(u, c)))));
 left.append(el('div', { class: 'scroll' }, table));
+// The route's metrics leave the vertical take-off and landing legs out (evaluation/metrics.cpp).
+left.append(el('p', { class: 'muted' }, 'max turn, max climb and min AGL: the route between take-off and landing (the vertical legs are left out).'));
 left.append(el('h2', {}, 'Plan metrics'));
 const planTable = el('table', { id: 'plan-metrics' });
 for (const [k, v] of Object.entries(data.metrics)) planTable.append(el('tr', {}, el('td', {}, k), el('td', {}, fmt(v, 4))));
