@@ -38,8 +38,8 @@ asan-build: deps
 	  -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 $(CMAKE_FLAGS) >/dev/null
 	@cmake --build $(ASAN_BUILD) -j $(JOBS)
 
-# The whole test suite (unit, CLI, exports, the report's writer) under AddressSanitizer + UBSan (CI runs it);
-# the random-world property sweeps run a sample of their worlds (core/build_info.h).
+# The whole test suite (unit, CLI, exports, the report's writer) under AddressSanitizer + UBSan
+# (CI runs it); the random-world property sweeps run a sample of their worlds (core/build_info.h).
 # Not under ASan: --threads giving the same bytes (release checks it; the threads' races are
 # TSan's, below), and the export matrix (every bundled scenario planned and exported six times:
 # the firmware rules are the release run's; the export code runs under ASan in the unit tests

@@ -32,14 +32,15 @@ class VoxelGrid {
   std::int64_t index(int i, int j, int k) const { return cells_.index(i, j, k); }
   void coords(std::int64_t idx, int& i, int& j, int& k) const { cells_.coords(idx, i, j, k); }
   bool inside(int i, int j, int k) const { return cells_.inside(i, j, k); }
-  Vec3 center(int i, int j, int k) const {
-    return origin_ + Vec3((i + 0.5) * cell_.x(), (j + 0.5) * cell_.y(), (k + 0.5) * cell_.z());
-  }
   // The centre's height and its horizontal place alone: the voxelisation's column loops ask
   // these per cell, and a whole Vec3 each time was most of their cost in a sanitizer build.
   double center_z(int k) const { return origin_.z() + (k + 0.5) * cell_.z(); }
   Vec2 center_xy(int i, int j) const {
     return {origin_.x() + (i + 0.5) * cell_.x(), origin_.y() + (j + 0.5) * cell_.y()};
+  }
+  Vec3 center(int i, int j, int k) const {
+    const Vec2 xy = center_xy(i, j);
+    return {xy.x(), xy.y(), center_z(k)};
   }
   Vec3 center(std::int64_t idx) const {
     int i, j, k;
