@@ -1,6 +1,7 @@
-// The blocked cells of a 2-D grid as bit lines read 64 cells at a time (JPS2's block-based
-// jumps, Harabor and Grastien 2014): the rows, or the columns (the grid transposed, so that a
-// vertical jump reads consecutive bits too). Cells outside the grid read as blocked.
+// The blocked cells of a grid as bit lines read 64 cells at a time (JPS2's block-based jumps,
+// Harabor and Grastien 2014): the lines along one axis, the grid transposed when that axis is
+// not x, so that a jump along any axis reads consecutive bits. Cells outside the grid read as
+// blocked.
 #pragma once
 
 #include <algorithm>
@@ -14,18 +15,31 @@ namespace uavplan {
 class BitLines {
  public:
   BitLines() = default;
-  // Layer 0 of `grid` by rows (line j holds cells (i, j)) or by columns (line i holds (i, j)).
-  BitLines(const BitGrid& grid, bool columns)
-      : lines_(columns ? grid.nx() : grid.ny()), length_(columns ? grid.ny() : grid.nx()) {
+  // The lines of `grid` along `axis` (0 x, 1 y, 2 z): line u + n_u * w holds the cells whose
+  // other two coordinates, in x, y, z order, are u and w (a 2-D grid's rows along x, its
+  // columns along y).
+  BitLines(const BitGrid& grid, int axis) : length_(axis == 0 ? grid.nx() : axis == 1 ? grid.ny() : grid.nz()) {
+    const int n[3] = {grid.nx(), grid.ny(), grid.nz()};
+    across_ = axis == 0 ? n[1] : n[0];
+    lines_ = static_cast<int>(grid.size() / std::max(length_, 1));
     bits_.assign(static_cast<std::size_t>((static_cast<std::int64_t>(lines_) * length_ + 63) / 64 + 1), 0);
-    for (int l = 0; l < lines_; ++l)
-      for (int p = 0; p < length_; ++p)
-        if (columns ? grid.blocked(l, p, 0) : grid.blocked(p, l, 0)) {
-          const std::int64_t idx = static_cast<std::int64_t>(l) * length_ + p;
+    int c[3];
+    for (c[2] = 0; c[2] < n[2]; ++c[2])
+      for (c[1] = 0; c[1] < n[1]; ++c[1])
+        for (c[0] = 0; c[0] < n[0]; ++c[0]) {
+          if (!grid.blocked(grid.index(c[0], c[1], c[2]))) continue;
+          const int u = c[axis == 0 ? 1 : 0], w = c[axis == 2 ? 1 : 2];
+          const std::int64_t idx = (static_cast<std::int64_t>(w) * across_ + u) * length_ + c[axis];
           bits_[static_cast<std::size_t>(idx >> 6)] |= std::uint64_t{1} << (idx & 63);
         }
   }
 
+  // The line of the cells with other coordinates (u, w), or -1 when they are outside the grid
+  // (a line that reads as blocked).
+  int line(int u, int w) const {
+    const int along_w = across_ > 0 ? lines_ / across_ : 0;
+    return u < 0 || w < 0 || u >= across_ || w >= along_w ? -1 : w * across_ + u;
+  }
   int lines() const { return lines_; }
   int length() const { return length_; }
   std::size_t memory_bytes() const { return bits_.capacity() * sizeof(std::uint64_t); }
@@ -48,8 +62,8 @@ class BitLines {
   }
 
  private:
-  int lines_ = 0, length_ = 0;
-  std::vector<std::uint64_t> bits_;  // line-major, one zero word of padding
+  int lines_ = 0, length_ = 0, across_ = 0;  // across_: how many values u takes
+  std::vector<std::uint64_t> bits_;          // line-major, one zero word of padding
 };
 
 }  // namespace uavplan

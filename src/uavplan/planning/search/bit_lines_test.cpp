@@ -16,7 +16,7 @@ TEST(BitLines, WindowsReadTheGridCellByCell) {
     for (std::int64_t c = 0; c < g.size(); ++c)
       if (r.uniform01() < 0.3) g.set_blocked(c);
     for (const bool columns : {false, true}) {
-      const BitLines lines(g, columns);
+      const BitLines lines(g, columns ? 1 : 0);
       for (int line = -1; line <= lines.lines(); ++line)
         for (std::int64_t from = -70; from <= lines.length() + 2; ++from) {
           const std::uint64_t w = lines.window(line, from);
@@ -29,6 +29,33 @@ TEST(BitLines, WindowsReadTheGridCellByCell) {
           }
         }
     }
+  }
+}
+
+// In 3-D, the lines along each axis read the cells with that coordinate running and the other
+// two fixed (line(u, w) names them; -1 outside the grid, read as blocked).
+TEST(BitLines, LinesAlongEachAxisOfAVolume) {
+  Rng r(9);
+  BitGrid g(70, 5, 4);
+  for (std::int64_t c = 0; c < g.size(); ++c)
+    if (r.uniform01() < 0.3) g.set_blocked(c);
+  const int n[3] = {g.nx(), g.ny(), g.nz()};
+  for (int axis = 0; axis < 3; ++axis) {
+    const BitLines lines(g, axis);
+    const int a = axis == 0 ? 1 : 0, b = axis == 2 ? 1 : 2;  // the other two axes, in order
+    for (int u = -1; u <= n[a]; ++u)
+      for (int w = -1; w <= n[b]; ++w)
+        for (std::int64_t from = -3; from <= n[axis]; from += 5) {
+          const std::uint64_t bits = lines.window(lines.line(u, w), from);
+          for (int q = 0; q < 64; ++q) {
+            int c[3];
+            c[axis] = static_cast<int>(from + q);
+            c[a] = u;
+            c[b] = w;
+            ASSERT_EQ((bits >> q) & 1u, g.blocked(c[0], c[1], c[2]) ? 1u : 0u)
+                << "axis " << axis << " u " << u << " w " << w << " from " << from << " bit " << q;
+          }
+        }
   }
 }
 

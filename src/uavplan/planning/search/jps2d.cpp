@@ -14,8 +14,8 @@ int sign(int v) { return (v > 0) - (v < 0); }
 
 Jps2d::Jps2d(const BitGrid& grid) : grid_(&grid) {
   if (grid.nz() != 1) throw std::invalid_argument("Jump Point Search here is 2-D: the grid must have one layer");
-  rows_ = BitLines(grid, false);
-  cols_ = BitLines(grid, true);
+  rows_ = BitLines(grid, 0);
+  cols_ = BitLines(grid, 1);
 }
 
 void Jps2d::precompute() { table_.emplace(*grid_, rows_, cols_); }
