@@ -17,6 +17,7 @@
 #include "uavplan/io/movingai.h"
 #include "uavplan/planning/search/grid_astar.h"
 #include "uavplan/planning/search/jps2d.h"
+#include "uavplan/planning/search/jps3d.h"
 #include "uavplan/planning/search/theta_star.h"
 
 namespace uavplan::bench {
@@ -86,7 +87,8 @@ MovingAiReport run_movingai(const std::string& map_path, const std::string& scen
   rep.algorithm = opt.algorithm;
   rep.reference = opt.reference;
   rep.three_d = is_movingai_3d(map_path);
-  if (rep.three_d && jump) throw std::invalid_argument("jps is 2-D only here; use astar or theta");
+  if (rep.three_d && opt.algorithm == "jps+")
+    throw std::invalid_argument("jps+ (a jump table) is 2-D only here; use jps, astar or theta");
   auto t0 = Clock::now();
   const BitGrid grid = rep.three_d ? read_movingai_3dmap(map_path) : read_movingai_map(map_path);
   rep.load_ms = ms_since(t0);
@@ -105,7 +107,8 @@ MovingAiReport run_movingai(const std::string& map_path, const std::string& scen
   }
 
   GridAStar astar(grid, bounding_box_moves(grid), GridHeuristic::octile);
-  std::unique_ptr<Jps2d> jps = jump ? std::make_unique<Jps2d>(grid) : nullptr;
+  std::unique_ptr<Jps2d> jps = jump && !rep.three_d ? std::make_unique<Jps2d>(grid) : nullptr;
+  std::unique_ptr<Jps3d> jps3 = jump && rep.three_d ? std::make_unique<Jps3d>(grid) : nullptr;
   if (opt.algorithm == "jps+") {
     t0 = Clock::now();
     jps->precompute();
@@ -125,7 +128,10 @@ MovingAiReport run_movingai(const std::string& map_path, const std::string& scen
       const std::int64_t s = grid.index(p.start[0], p.start[1], p.start[2]);
       const std::int64_t g = grid.index(p.goal[0], p.goal[1], p.goal[2]);
       t0 = Clock::now();
-      const GridSearchResult res = jps ? jps->search(s, g) : any_angle ? theta.search(s, g) : astar.search(s, g);
+      const GridSearchResult res = jps         ? jps->search(s, g)
+                                   : jps3      ? jps3->search(s, g)
+                                   : any_angle ? theta.search(s, g)
+                                               : astar.search(s, g);
       r.ms = ms_since(t0);
       r.solved = res.found;
       r.cost = res.cost;

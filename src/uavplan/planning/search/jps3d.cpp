@@ -1,0 +1,340 @@
+#include "uavplan/planning/search/jps3d.h"
+
+#include <bit>
+#include <cstdlib>
+#include <limits>
+#include <stdexcept>
+
+namespace uavplan {
+// A named namespace, not an anonymous one: Jps3d::Expansion (declared in the header) holds these
+// types, which GCC accepts from an anonymous namespace only in the main file (-Wsubobject-linkage,
+// and the unity build makes this file part of another).
+namespace jps3d_rules {
+
+// A move (or a cell beside the current one) as its bit in BitGrid::free_mask: (dz+1)*9 +
+// (dy+1)*3 + (dx+1); 13 is no move, and a node with it (the start, the goal) goes every way.
+constexpr int kMoves = 27, kAny = 13;
+struct Offset {
+  int v[3];
+};
+Offset offset_of(int move) { return {{move % 3 - 1, move / 3 % 3 - 1, move / 9 - 1}}; }
+int axes_of(int move) {
+  const Offset o = offset_of(move);
+  return (o.v[0] != 0) + (o.v[1] != 0) + (o.v[2] != 0);
+}
+
+// The bits of `from` + every non-empty sub-move of `m`: the bounding box a move m from `from`
+// needs free. The cells lie beside the current one (asserted by construction: the throw is a
+// broken table, not an input).
+std::uint32_t box_bits(const Offset& from, const Offset& m) {
+  std::uint32_t bits = 0;
+  for (int s = 1; s < 8; ++s) {
+    Offset c = from;
+    bool sub = true;
+    for (int a = 0; a < 3; ++a)
+      if (s >> a & 1) {
+        sub = sub && m.v[a] != 0;
+        c.v[a] += m.v[a];
+      }
+    if (!sub) continue;
+    for (int a = 0; a < 3; ++a)
+      if (c.v[a] < -1 || c.v[a] > 1) throw std::logic_error("jps3d: a replacement path leaves the 3x3x3 block");
+    bits |= 1u << ((c.v[2] + 1) * 9 + (c.v[1] + 1) * 3 + (c.v[0] + 1));
+  }
+  return bits;
+}
+
+bool is_sub_move(const Offset& s, const Offset& d) {  // s's components a subset of d's
+  for (int a = 0; a < 3; ++a)
+    if (s.v[a] != 0 && s.v[a] != d.v[a]) return false;
+  return true;
+}
+
+// Move e is forced after move d when it is legal (`need` free) and its replacement from the cell
+// before is not: some cell of `replace` is blocked. Cells known free (the move d itself, e's own
+// box) are left out of `replace`.
+struct Rule {
+  std::uint32_t need, replace;
+  int move;
+};
+
+struct Tables {
+  std::uint32_t need[kMoves] = {};
+  int sub[kMoves][7] = {}, subs[kMoves] = {};
+  Rule rules[kMoves][kMoves] = {};
+  int n_rules[kMoves] = {};
+
+  Tables() {
+    const Offset zero{{0, 0, 0}};
+    for (int m = 0; m < kMoves; ++m)
+      if (m != kAny) need[m] = box_bits(zero, offset_of(m));
+    for (int d = 0; d < kMoves; ++d) {
+      if (d == kAny) continue;
+      const Offset dv = offset_of(d), before{{-dv.v[0], -dv.v[1], -dv.v[2]}};
+      const std::uint32_t known =
+          box_bits(before, dv) | 1u << ((before.v[2] + 1) * 9 + (before.v[1] + 1) * 3 + (before.v[0] + 1));
+      for (int e = 0; e < kMoves; ++e) {
+        if (e == kAny) continue;
+        const Offset ev = offset_of(e);
+        if (is_sub_move(ev, dv)) {
+          sub[d][subs[d]++] = e;
+          continue;
+        }
+        const std::uint32_t replace = replacement(before, dv, ev) & ~(need[e] | known);
+        if (replace) rules[d][n_rules[d]++] = {need[e], replace, e};
+      }
+    }
+  }
+
+  // The cells of the path that replaces "d then e" from the cell before: e then d when d is a
+  // sub-move of e (the same cost), else the canonical path to the same cell (all axes it moves
+  // on, then those it moves two on), strictly shorter. Nothing when e undoes d.
+  static std::uint32_t replacement(const Offset& before, const Offset& d, const Offset& e) {
+    if (is_sub_move(d, e)) {
+      const Offset mid{{before.v[0] + e.v[0], before.v[1] + e.v[1], before.v[2] + e.v[2]}};
+      return box_bits(before, e) | box_bits(mid, d);
+    }
+    Offset first{}, second{};
+    bool moves = false;
+    for (int a = 0; a < 3; ++a) {
+      const int v = d.v[a] + e.v[a];
+      first.v[a] = (v > 0) - (v < 0);
+      second.v[a] = std::abs(v) == 2 ? first.v[a] : 0;
+      moves = moves || v != 0;
+    }
+    if (!moves) return 0;
+    const Offset mid{{before.v[0] + first.v[0], before.v[1] + first.v[1], before.v[2] + first.v[2]}};
+    return box_bits(before, first) | box_bits(mid, second);
+  }
+
+  bool legal(std::uint32_t mask, int move) const { return (mask & need[move]) == need[move]; }
+  bool forced(std::uint32_t mask, const Rule& r) const {
+    return (mask & r.need) == r.need && (mask & r.replace) != r.replace;
+  }
+  // Whether a cell reached by move d, with neighbourhood `mask`, has a forced move: a jump point.
+  bool jump_point(std::uint32_t mask, int d) const {
+    for (int r = 0; r < n_rules[d]; ++r)
+      if (forced(mask, rules[d][r])) return true;
+    return false;
+  }
+};
+
+// The free_mask of the cell at bit p of the nine line reads along `axis` around it (read q holds
+// the line at offsets q % 3 - 1, q / 3 - 1 on the other two axes, in x, y, z order).
+std::uint32_t neighbourhood(const std::uint64_t r[9], int p, int axis) {
+  std::uint32_t mask = 0;
+  for (int q = 0; q < 9; ++q) {
+    const auto f = static_cast<std::uint32_t>(~(r[q] >> (p - 1)) & 7u);  // before, at, after
+    const int u = q % 3, w = q / 3;
+    if (axis == 0) {
+      mask |= f << (3 * q);
+      continue;
+    }
+    const int stride = axis == 1 ? 3 : 9, base = axis == 1 ? w * 9 + u : w * 3 + u;
+    mask |= ((f & 1u) | (f >> 1 & 1u) << stride | (f >> 2 & 1u) << 2 * stride) << base;
+  }
+  return mask;
+}
+
+const Tables& tables() {
+  static const Tables t;
+  return t;
+}
+
+}  // namespace jps3d_rules
+
+Jps3d::Jps3d(const BitGrid& grid) : grid_(&grid) {
+  if (grid.size() * jps3d_rules::kMoves >= std::int64_t{std::numeric_limits<std::uint32_t>::max()})
+    throw std::invalid_argument("Jump Point Search in 3-D: the grid has too many cells (27 nodes each, under 2^32)");
+  for (int a = 0; a < 3; ++a) lines_[a] = BitLines(grid, a);
+  (void)jps3d_rules::tables();
+}
+
+std::size_t Jps3d::line_bytes() const {
+  return lines_[0].memory_bytes() + lines_[1].memory_bytes() + lines_[2].memory_bytes();
+}
+
+int Jps3d::WalkLimit::first_over(const int c[3], int axis, int cur, int step) const {
+  int at[3] = {c[0], c[1], c[2]};
+  const auto over_at = [&](int t) {
+    at[axis] = cur + t * step;
+    return over(at);
+  };
+  if (!over_at(61)) return 62;
+  int lo = 0, hi = 61;  // f never falls along a line: the first cell past the limit by halving
+  while (lo < hi) {
+    const int m = (lo + hi) / 2;
+    if (over_at(m))
+      hi = m;
+    else
+      lo = m + 1;
+  }
+  return lo;
+}
+
+// Reads the nine lines around the jump 62 cells at a time; a cell whose nine neighbours along the
+// line (before, at, after) are the same in all nine has no forced move (its neighbourhood is the
+// same slab three times, so every replacement lies in what the move itself needs), so only cells
+// where some line changes are tested exactly, on the neighbourhood those reads hold.
+bool Jps3d::jump_straight(int c[3], int axis, int step, const WalkLimit& limit) const {
+  using namespace jps3d_rules;
+  const Tables& tb = tables();
+  const int ua = axis == 0 ? 1 : 0, wa = axis == 2 ? 1 : 2;
+  const BitLines& lines = lines_[axis];
+  int near[9];
+  for (int q = 0; q < 9; ++q) near[q] = lines.line(c[ua] + q % 3 - 1, c[wa] + q / 3 - 1);
+  const bool goal_line = goal_[ua] == c[ua] && goal_[wa] == c[wa];
+  const int move = kAny + step * (axis == 0 ? 1 : axis == 1 ? 3 : 9);
+  constexpr std::uint64_t kCells = ((std::uint64_t{1} << 62) - 1) << 1;  // bits 1..62
+  int cur = c[axis] + step;
+  for (;;) {
+    // Bit p of a read is cell from + p; cells cur .. cur + 61 * step are bits 1..62, so each has
+    // both neighbours along the line in the read.
+    const std::int64_t from = step > 0 ? cur - 1 : cur - 62;
+    std::uint64_t r[9], differ = 0;
+    for (int q = 0; q < 9; ++q) {
+      r[q] = lines.window(near[q], from);
+      differ |= r[q] ^ (r[q] >> 1);
+    }
+    differ &= ~std::uint64_t{0} >> 1;  // bit p: cells p and p + 1 differ
+    std::uint64_t test = (differ | differ << 1) & kCells;
+    const auto ahead_of = [&](int p) { return step > 0 ? p - 1 : 62 - p; };
+    const int cut = limit.first_over(c, axis, cur, step);  // cells ahead of cur within the limit
+    const int goal_ahead = goal_line ? (goal_[axis] - cur) * step : -1;
+    for (;;) {
+      const int p = test ? (step > 0 ? std::countr_zero(test) : 63 - std::countl_zero(test)) : -1;
+      const int t = p < 0 ? 62 : ahead_of(p);
+      if (goal_ahead >= 0 && goal_ahead <= std::min(t, cut) && goal_ahead < 62) {
+        c[axis] = goal_[axis];
+        return true;
+      }
+      if (t <= cut && t < 62) {
+        if (r[4] >> p & 1u) return false;  // the line ends
+        c[axis] = cur + t * step;
+        if (tb.jump_point(neighbourhood(r, p, axis), move)) return true;
+        test &= ~(std::uint64_t{1} << p);
+        continue;
+      }
+      if (cut < 62) {
+        c[axis] = cur + cut * step;
+        return true;
+      }
+      break;
+    }
+    cur += 62 * step;
+  }
+}
+
+// A node's moves: every legal one at the start, else the sub-moves of the move that reached it
+// and the forced ones. Each is walked to the nodes it leads to (see the header).
+struct Jps3d::Expansion {
+  const Jps3d& self;
+  const StopCondition& stop;
+  std::int64_t goal_cell;
+  bool stop_now(std::uint64_t expanded) const { return stop_due(stop, expanded, 1024); }
+
+  template <class Relax>
+  void expand(std::uint32_t id, const SearchBuffers::Node& n, Relax& relax) const {
+    using namespace jps3d_rules;
+    const Tables& t = tables();
+    const BitGrid& g = *self.grid_;
+    const int reached = static_cast<int>(id % kMoves);
+    int at[3];
+    g.coords(id / kMoves, at[0], at[1], at[2]);
+    const std::uint32_t mask = g.free_mask(at[0], at[1], at[2]);
+    const auto offer = [&](const int c[3], int move) {
+      const std::int64_t cell = g.index(c[0], c[1], c[2]);
+      const auto to = static_cast<std::uint32_t>(cell * kMoves + (cell == goal_cell ? kAny : move));
+      relax(to, n.g + octile_distance(c[0] - at[0], c[1] - at[1], c[2] - at[2]), id, GridCell{c[0], c[1], c[2]});
+    };
+    WalkLimit limit{{at[0], at[1], at[2]}, {self.goal_[0], self.goal_[1], self.goal_[2]}, n.g, 0.0};
+    limit.f_max = n.g + octile_distance(self.goal_[0] - at[0], self.goal_[1] - at[1], self.goal_[2] - at[2]) + 1e-9;
+    const auto walk = [&](int move) {
+      if (t.legal(mask, move)) walk_move(at, move, mask, limit, offer);
+    };
+    if (reached == kAny) {
+      for (int m = 0; m < kMoves; ++m)
+        if (m != kAny) walk(m);
+      return;
+    }
+    for (int s = 0; s < t.subs[reached]; ++s) walk(t.sub[reached][s]);
+    for (int r = 0; r < t.n_rules[reached]; ++r)
+      if (t.forced(mask, t.rules[reached][r])) walk(t.rules[reached][r].move);
+  }
+
+  // Walks a legal move from `from` and offers the nodes it finds.
+  template <class Offer>
+  void walk_move(const int from[3], int move, std::uint32_t mask, const WalkLimit& limit, const Offer& offer) const {
+    using namespace jps3d_rules;
+    const Offset m = offset_of(move);
+    if (axes_of(move) > 1) return walk_diagonal(from, move, mask, limit, offer);
+    int c[3] = {from[0], from[1], from[2]};
+    const int axis = m.v[0] ? 0 : m.v[1] ? 1 : 2;
+    if (self.jump_straight(c, axis, m.v[axis], limit)) offer(c, move);
+  }
+
+  // A move along two or three axes: along it until the goal, the first cell past the limit or one
+  // with a forced move (each a node); from every cell before, the walks of its smaller sub-moves,
+  // without making the cell a node (JPS2's pruning of intermediate jump points).
+  template <class Offer>
+  void walk_diagonal(const int from[3], int move, std::uint32_t mask, const WalkLimit& limit,
+                     const Offer& offer) const {
+    using namespace jps3d_rules;
+    const Tables& t = tables();
+    const Offset m = offset_of(move);
+    int c[3] = {from[0], from[1], from[2]};
+    while (t.legal(mask, move)) {
+      for (int a = 0; a < 3; ++a) c[a] += m.v[a];
+      const bool goal = c[0] == self.goal_[0] && c[1] == self.goal_[1] && c[2] == self.goal_[2];
+      if (goal || limit.over(c)) return offer(c, move);
+      mask = self.grid_->free_mask(c[0], c[1], c[2]);
+      if (t.jump_point(mask, move)) return offer(c, move);
+      for (int s = 0; s < t.subs[move]; ++s) {
+        const int sub = t.sub[move][s];
+        if (sub != move && t.legal(mask, sub)) walk_move(c, sub, mask, limit, offer);
+      }
+    }
+  }
+};
+
+GridSearchResult Jps3d::search(std::int64_t start, std::int64_t goal, const StopCondition& stop) {
+  using jps3d_rules::kAny;
+  using jps3d_rules::kMoves;
+  const BitGrid& g = *grid_;
+  if (start < 0 || goal < 0 || start >= g.size() || goal >= g.size() || g.blocked(start) || g.blocked(goal)) return {};
+  GridCell s, t;
+  g.coords(start, s.i, s.j, s.k);
+  g.coords(goal, t.i, t.j, t.k);
+  goal_[0] = t.i;
+  goal_[1] = t.j;
+  goal_[2] = t.k;
+  search_.begin(g.size() * kMoves);
+  Expansion expansion{*this, stop, goal};
+  SearchCounts counts;
+  const auto from = static_cast<std::uint32_t>(start * kMoves + kAny),
+             to = static_cast<std::uint32_t>(goal * kMoves + kAny);
+  const SearchEnd end = search_.run(expansion, OctileToGoal{t, 1.0}, from, SearchBuffers::kNoParent, s, to, counts);
+  GridSearchResult out = grid_result(search_, end, counts, from, to);
+  for (std::int64_t& c : out.cells) c /= kMoves;
+  return out;
+}
+
+// Between two jump points the walk went along the moves with every remaining axis, then fewer:
+// stepping by the sign of what is left on each axis retraces it.
+std::vector<std::int64_t> Jps3d::expand_path(const std::vector<std::int64_t>& jp) const {
+  std::vector<std::int64_t> cells;
+  if (jp.empty()) return cells;
+  cells.push_back(jp[0]);
+  for (std::size_t i = 1; i < jp.size(); ++i) {
+    int c[3], to[3];
+    grid_->coords(jp[i - 1], c[0], c[1], c[2]);
+    grid_->coords(jp[i], to[0], to[1], to[2]);
+    while (c[0] != to[0] || c[1] != to[1] || c[2] != to[2]) {
+      for (int a = 0; a < 3; ++a) c[a] += (to[a] > c[a]) - (to[a] < c[a]);
+      cells.push_back(grid_->index(c[0], c[1], c[2]));
+    }
+  }
+  return cells;
+}
+
+}  // namespace uavplan
