@@ -108,7 +108,7 @@ std::string bundled_scenarios(const std::string& file) {
 // A paper's tables from scenarios in a folder (--scenarios): exit 0 when its targets are met,
 // 2 on a bad scenario file.
 CLI::App* add_tables(CLI::App* cmd, std::function<int()>& run, const std::string& name, const std::string& what,
-                     const std::string& files, std::function<std::string(const std::string&, bool*)> tables) {
+                     const std::string& files, const std::function<std::string(const std::string&, bool*)>& tables) {
   auto dir = std::make_shared<std::string>();
   CLI::App* sub = cmd->add_subcommand(name, what);
   sub->add_option(
