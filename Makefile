@@ -56,12 +56,14 @@ asan: asan-build
 # instrumented, so TSan cannot see the synchronisation of its task handoffs and would report
 # every run's data.
 TSAN_TESTS ?= Rendezvous|DirectionalAStar|Cellular|Cells|RoutesOnManyThreads
-# Only the executables those tests are in. Without precompiled headers and file by file (no
-# unity batches): the layers below evaluation are built as a user's compiler sees them, so a file
-# that does not include what it uses fails here.
+# Only the executables those tests are in. The libraries without precompiled headers and file by
+# file (no unity batches): the layers up to evaluation are built as a user's compiler sees them,
+# so a file that does not include what it uses fails here. Their unit tests are batched on
+# precompiled headers (UAVPLAN_BATCH_TESTS): a test file is not what a user's program compiles.
 TSAN_TARGETS ?= uavplan_coordination_test uavplan_evaluation_test uavplan_planning_test
 tsan: deps
-	@cmake -S . -B build-tsan $(SAN_FLAGS) -DUAVPLAN_TSAN=ON -DUAVPLAN_PCH=OFF -DUAVPLAN_UNITY=OFF $(CMAKE_FLAGS) >/dev/null
+	@cmake -S . -B build-tsan $(SAN_FLAGS) -DUAVPLAN_TSAN=ON -DUAVPLAN_PCH=OFF -DUAVPLAN_UNITY=OFF \
+	  -DUAVPLAN_BATCH_TESTS=ON $(CMAKE_FLAGS) >/dev/null
 	@cmake --build build-tsan -j $(JOBS) --target $(TSAN_TARGETS)
 	cd build-tsan && TSAN_OPTIONS=halt_on_error=1 ctest --output-on-failure -j $(JOBS) -R "$(TSAN_TESTS)"
 
