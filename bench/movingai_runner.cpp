@@ -108,7 +108,13 @@ MovingAiReport run_movingai(const std::string& map_path, const std::string& scen
 
   GridAStar astar(grid, bounding_box_moves(grid), GridHeuristic::octile);
   std::unique_ptr<Jps2d> jps = jump && !rep.three_d ? std::make_unique<Jps2d>(grid) : nullptr;
-  std::unique_ptr<Jps3d> jps3 = jump && rep.three_d ? std::make_unique<Jps3d>(grid) : nullptr;
+  std::unique_ptr<Jps3d> jps3;
+  if (jump && rep.three_d) {
+    t0 = Clock::now();
+    jps3 = std::make_unique<Jps3d>(grid);
+    rep.preprocess_ms = ms_since(t0);
+    rep.table_mb = static_cast<double>(jps3->line_bytes()) / (1024.0 * 1024.0);
+  }
   if (opt.algorithm == "jps+") {
     t0 = Clock::now();
     jps->precompute();
@@ -161,6 +167,12 @@ std::string format_movingai(const MovingAiReport& rep) {
   out += buf;
   if (rep.algorithm == "jps+") {
     std::snprintf(buf, sizeof buf, "jump table: built once in %.1f ms (not in the query times), %.2f MB\n",
+                  rep.preprocess_ms, rep.table_mb);
+    out += buf;
+  }
+  if (rep.algorithm == "jps" && rep.three_d) {
+    std::snprintf(buf, sizeof buf,
+                  "bit lines along x, y and z: built once in %.1f ms (not in the query times), %.2f MB\n",
                   rep.preprocess_ms, rep.table_mb);
     out += buf;
   }
