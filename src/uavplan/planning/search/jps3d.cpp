@@ -1,5 +1,6 @@
 #include "uavplan/planning/search/jps3d.h"
 
+#include <algorithm>
 #include <bit>
 #include <cstdlib>
 #include <limits>
@@ -111,6 +112,19 @@ struct Tables {
   bool forced(std::uint32_t mask, const Rule& r) const {
     return (mask & r.need) == r.need && (mask & r.replace) != r.replace;
   }
+  // The moves a cell with neighbourhood `mask` goes on with, reached by the moves in `reached`
+  // (one bit each): every legal one for kAny, else the sub-moves and the forced moves.
+  std::uint32_t continuations(std::uint32_t reached, std::uint32_t mask) const {
+    if (reached >> kAny & 1u) return mask & ~(1u << kAny);  // the legal moves are the free cells' bits
+    std::uint32_t out = 0;
+    for (; reached; reached &= reached - 1) {
+      const int d = std::countr_zero(reached);
+      for (int s = 0; s < subs[d]; ++s) out |= 1u << sub[d][s];
+      for (int r = 0; r < n_rules[d]; ++r)
+        if (forced(mask, rules[d][r])) out |= 1u << rules[d][r].move;
+    }
+    return out;
+  }
   // Whether a cell reached by move d, with neighbourhood `mask`, has a forced move: a jump point.
   bool jump_point(std::uint32_t mask, int d) const {
     for (int r = 0; r < n_rules[d]; ++r)
@@ -144,8 +158,8 @@ const Tables& tables() {
 }  // namespace jps3d_rules
 
 Jps3d::Jps3d(const BitGrid& grid) : grid_(&grid) {
-  if (grid.size() * jps3d_rules::kMoves >= std::int64_t{std::numeric_limits<std::uint32_t>::max()})
-    throw std::invalid_argument("Jump Point Search in 3-D: the grid has too many cells (27 nodes each, under 2^32)");
+  if (grid.size() >= std::int64_t{std::numeric_limits<std::uint32_t>::max()})
+    throw std::invalid_argument("Jump Point Search in 3-D: the grid has too many cells (under 2^32 - 1)");
   for (int a = 0; a < 3; ++a) lines_[a] = BitLines(grid, a);
   (void)jps3d_rules::tables();
 }
@@ -160,8 +174,9 @@ int Jps3d::WalkLimit::first_over(const int c[3], int axis, int cur, int step) co
     at[axis] = cur + t * step;
     return over(at);
   };
+  if (over_at(0)) return 0;  // most lines off the goal's way: past the limit at once
   if (!over_at(61)) return 62;
-  int lo = 0, hi = 61;  // f never falls along a line: the first cell past the limit by halving
+  int lo = 1, hi = 61;  // f never falls along a line: the first cell past the limit by halving
   while (lo < hi) {
     const int m = (lo + hi) / 2;
     if (over_at(m))
@@ -225,12 +240,13 @@ bool Jps3d::jump_straight(int c[3], int axis, int step, const WalkLimit& limit) 
   }
 }
 
-// A node's moves: every legal one at the start, else the sub-moves of the move that reached it
-// and the forced ones. Each is walked to the nodes it leads to (see the header).
+// A node's moves: every legal one at the start, else the sub-moves of the moves that reached it
+// at its g and the forced ones, less those walked from it before. Each is walked to the nodes it
+// leads to (see the header).
 struct Jps3d::Expansion {
-  const Jps3d& self;
+  Jps3d& self;
   const StopCondition& stop;
-  std::int64_t goal_cell;
+  std::uint32_t goal_cell;
   bool stop_now(std::uint64_t expanded) const { return stop_due(stop, expanded, 1024); }
 
   template <class Relax>
@@ -238,28 +254,69 @@ struct Jps3d::Expansion {
     using namespace jps3d_rules;
     const Tables& t = tables();
     const BitGrid& g = *self.grid_;
-    const int reached = static_cast<int>(id % kMoves);
     int at[3];
-    g.coords(id / kMoves, at[0], at[1], at[2]);
+    g.coords(id, at[0], at[1], at[2]);
     const std::uint32_t mask = g.free_mask(at[0], at[1], at[2]);
-    const auto offer = [&](const int c[3], int move) {
-      const std::int64_t cell = g.index(c[0], c[1], c[2]);
-      const auto to = static_cast<std::uint32_t>(cell * kMoves + (cell == goal_cell ? kAny : move));
-      relax(to, n.g + octile_distance(c[0] - at[0], c[1] - at[1], c[2] - at[2]), id, GridCell{c[0], c[1], c[2]});
-    };
-    WalkLimit limit{{at[0], at[1], at[2]}, {self.goal_[0], self.goal_[1], self.goal_[2]}, n.g, 0.0};
-    limit.f_max = n.g + octile_distance(self.goal_[0] - at[0], self.goal_[1] - at[1], self.goal_[2] - at[2]) + 1e-9;
-    const auto walk = [&](int move) {
+    std::uint32_t reached = 1u << arrival(id, n.parent), walked = 0;
+    MoveSets::Entry* ties = self.moves_.find(id);
+    if (ties && ties->g == n.g) {
+      reached = ties->reached;
+      walked = ties->walked;
+    }
+    std::uint32_t todo = t.continuations(reached, mask) & ~walked;
+    if (ties && ties->g == n.g) ties->walked |= todo;
+    const double g0 = n.g;
+    const auto offer = [&](const int c[3], int move) { arrive(c, move, id, at, g0, relax); };
+    WalkLimit limit{{at[0], at[1], at[2]}, {self.goal_[0], self.goal_[1], self.goal_[2]}, g0, 0.0};
+    limit.f_max = g0 + octile_distance(self.goal_[0] - at[0], self.goal_[1] - at[1], self.goal_[2] - at[2]) + 1e-9;
+    for (; todo; todo &= todo - 1) {
+      const int move = std::countr_zero(todo);
       if (t.legal(mask, move)) walk_move(at, move, mask, limit, offer);
-    };
-    if (reached == kAny) {
-      for (int m = 0; m < kMoves; ++m)
-        if (m != kAny) walk(m);
+    }
+  }
+
+  // The move a walk from `parent` ends with at `cell` (kAny at the start): a walk takes its moves
+  // with the most axes first, so it ends along the axes it goes furthest on.
+  int arrival(std::uint32_t cell, std::uint32_t parent) const {
+    if (parent == SearchBuffers::kNoParent) return jps3d_rules::kAny;
+    int c[3], p[3];
+    self.grid_->coords(cell, c[0], c[1], c[2]);
+    self.grid_->coords(parent, p[0], p[1], p[2]);
+    const int far = std::max({std::abs(c[0] - p[0]), std::abs(c[1] - p[1]), std::abs(c[2] - p[2])});
+    int move = jps3d_rules::kAny;
+    for (int a = 0, w = 1; a < 3; ++a, w *= 3)
+      if (std::abs(c[a] - p[a]) == far) move += (c[a] > p[a] ? 1 : -1) * w;
+    return move;
+  }
+
+  // A walk from `parent` reached cell c by `move`. A better g goes through the search's relax; the
+  // same g (to rounding) by another move adds that move to the cell's set, and a cell already
+  // expanded is put back on the list for what the move adds.
+  template <class Relax>
+  void arrive(const int c[3], int move, std::uint32_t parent, const int from[3], double g0, Relax& relax) const {
+    constexpr double kTie = 1e-9;
+    const auto cell = static_cast<std::uint32_t>(self.grid_->index(c[0], c[1], c[2]));
+    const double cost = g0 + octile_distance(c[0] - from[0], c[1] - from[1], c[2] - from[2]);
+    SearchBuffers::Node& node = self.search_.node(cell);
+    if (cost < node.g - kTie) {
+      relax(cell, cost, parent, GridCell{c[0], c[1], c[2]});
       return;
     }
-    for (int s = 0; s < t.subs[reached]; ++s) walk(t.sub[reached][s]);
-    for (int r = 0; r < t.n_rules[reached]; ++r)
-      if (t.forced(mask, t.rules[reached][r])) walk(t.rules[reached][r].move);
+    const int first = arrival(cell, node.parent);
+    if (cost > node.g + kTie || cell == goal_cell || move == first) return;
+    MoveSets::Entry& e = self.moves_.at(cell);
+    const bool closed = SearchBuffers::closed(node);
+    if (e.g != node.g) {  // the first tie at this g: the set starts with the parent's move
+      e.g = node.g;
+      e.reached = 1u << first;
+      e.walked = closed ? jps3d_rules::tables().continuations(e.reached, self.grid_->free_mask(c[0], c[1], c[2])) : 0;
+    }
+    if (e.reached >> move & 1u) return;
+    e.reached |= 1u << move;
+    if (!closed) return;  // still on the list: it takes the move with it
+    SearchBuffers::reopen(node);
+    const double h = octile_distance(self.goal_[0] - c[0], self.goal_[1] - c[1], self.goal_[2] - c[2]);
+    self.search_.open().push(node.g + h, node.g, cell);
   }
 
   // Walks a legal move from `from` and offers the nodes it finds.
@@ -298,8 +355,6 @@ struct Jps3d::Expansion {
 };
 
 GridSearchResult Jps3d::search(std::int64_t start, std::int64_t goal, const StopCondition& stop) {
-  using jps3d_rules::kAny;
-  using jps3d_rules::kMoves;
   const BitGrid& g = *grid_;
   if (start < 0 || goal < 0 || start >= g.size() || goal >= g.size() || g.blocked(start) || g.blocked(goal)) return {};
   GridCell s, t;
@@ -308,15 +363,56 @@ GridSearchResult Jps3d::search(std::int64_t start, std::int64_t goal, const Stop
   goal_[0] = t.i;
   goal_[1] = t.j;
   goal_[2] = t.k;
-  search_.begin(g.size() * kMoves);
-  Expansion expansion{*this, stop, goal};
+  search_.begin(g.size());
+  moves_.begin();
+  const auto from = static_cast<std::uint32_t>(start), to = static_cast<std::uint32_t>(goal);
+  Expansion expansion{*this, stop, to};
   SearchCounts counts;
-  const auto from = static_cast<std::uint32_t>(start * kMoves + kAny),
-             to = static_cast<std::uint32_t>(goal * kMoves + kAny);
   const SearchEnd end = search_.run(expansion, OctileToGoal{t, 1.0}, from, SearchBuffers::kNoParent, s, to, counts);
-  GridSearchResult out = grid_result(search_, end, counts, from, to);
-  for (std::int64_t& c : out.cells) c /= kMoves;
-  return out;
+  return grid_result(search_, end, counts, from, to);
+}
+
+void Jps3d::MoveSets::begin() {
+  used_ = 0;
+  if (++stamp_ != 0) return;
+  for (Entry& e : slots_) e.stamp = 0;  // the stamp wrapped: forget every entry
+  stamp_ = 1;
+}
+
+std::size_t Jps3d::MoveSets::slot(std::uint32_t cell) const {  // Fibonacci hashing: the high bits
+  const int bits = std::countr_zero(slots_.size());
+  return static_cast<std::size_t>((std::uint64_t{cell} * 0x9E3779B97F4A7C15ull) >> (64 - bits));
+}
+
+Jps3d::MoveSets::Entry* Jps3d::MoveSets::find(std::uint32_t cell) {
+  if (used_ == 0) return nullptr;  // no tie yet in this query
+  for (std::size_t i = slot(cell);; i = (i + 1) & (slots_.size() - 1)) {
+    Entry& e = slots_[i];
+    if (e.stamp != stamp_) return nullptr;
+    if (e.cell == cell) return &e;
+  }
+}
+
+Jps3d::MoveSets::Entry& Jps3d::MoveSets::at(std::uint32_t cell) {
+  if (2 * (used_ + 1) > slots_.size()) {  // keep the table at most half full
+    std::vector<Entry> old(std::max<std::size_t>(1024, 2 * slots_.size()), Entry{0.0, 0, 0, 0, 0});
+    old.swap(slots_);
+    for (const Entry& e : old)
+      if (e.stamp == stamp_) {
+        std::size_t i = slot(e.cell);
+        while (slots_[i].stamp == stamp_) i = (i + 1) & (slots_.size() - 1);
+        slots_[i] = e;
+      }
+  }
+  for (std::size_t i = slot(cell);; i = (i + 1) & (slots_.size() - 1)) {
+    Entry& e = slots_[i];
+    if (e.stamp != stamp_) {
+      e = {-1.0, cell, stamp_, 0, 0};
+      ++used_;
+      return e;
+    }
+    if (e.cell == cell) return e;
+  }
 }
 
 // Between two jump points the walk went along the moves with every remaining axis, then fewer:

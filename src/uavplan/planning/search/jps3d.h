@@ -16,8 +16,9 @@
 // cell a node (JPS2's pruning of intermediate jump points). In 3-D such a walk sweeps a plane or a
 // volume, so every walk stops where f = g + h would rise above the expanded node's: the cell there
 // becomes a node, and the walk goes on only if the search comes back to it (f never falls along a
-// walk). A node is a cell and the move that reached it, so a cell reached by two moves at the same
-// cost keeps both continuations. docs/decisions/0018 compares it with A* on the Warframe maps.
+// walk). A node is a cell; a cell reached again at its best g by another move is expanded again
+// for the moves that one adds (once per move at most), so no continuation of an optimal path is lost.
+// docs/decisions/0018 compares it with A* on the Warframe maps.
 #pragma once
 
 #include <cstdint>
@@ -32,8 +33,8 @@ namespace uavplan {
 
 class Jps3d {
  public:
-  // Throws std::invalid_argument when the grid has 2^32 / 27 cells or more (a node is a cell and
-  // a move). The grid must outlive the object; one object per thread (it owns buffers).
+  // Throws std::invalid_argument when the grid has 2^32 - 1 cells or more. The grid must outlive
+  // the object; one object per thread (it owns buffers).
   explicit Jps3d(const BitGrid& grid);
 
   // result.cells are the jump points; expand_path() gives every cell.
@@ -44,6 +45,26 @@ class Jps3d {
 
  private:
   struct Expansion;  // jps3d.cpp
+  // For the cells reached again at their best g by another move (a tie): the moves that reached
+  // them at that g, and the moves walked from them. Other cells need no entry: their one move is
+  // the end of their parent's walk. Open addressing, stamped per query (nothing cleared between
+  // queries), grown by doubling.
+  class MoveSets {
+   public:
+    struct Entry {
+      double g;  // the cell's g the sets belong to (an older, worse g's sets are stale)
+      std::uint32_t cell, stamp, reached, walked;  // reached, walked: one bit per move
+    };
+    void begin();
+    Entry* find(std::uint32_t cell);
+    Entry& at(std::uint32_t cell);  // found or added; invalidated by the next call
+
+   private:
+    std::size_t slot(std::uint32_t cell) const;
+    std::vector<Entry> slots_;
+    std::size_t used_ = 0;
+    std::uint32_t stamp_ = 0;
+  };
   // A walk from a node stops at the first cell whose f (the node's g, the walk's length, the
   // octile distance on) exceeds f_max, and that cell becomes a node: the walk goes on from there
   // only if the search comes to it. f never falls along a walk, so the cells past it are no nearer.
@@ -67,6 +88,7 @@ class Jps3d {
   BitLines lines_[3];
   int goal_[3] = {0, 0, 0};
   BestFirst<> search_;
+  MoveSets moves_;
 };
 
 }  // namespace uavplan

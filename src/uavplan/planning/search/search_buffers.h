@@ -39,6 +39,7 @@ class SearchBuffers {
   }
   static bool closed(const Node& n) { return n.stamp & 1u; }
   static void close(Node& n) { n.stamp |= 1u; }
+  static void reopen(Node& n) { n.stamp &= ~1u; }  // to be expanded again (3-D JPS: a new move at a tie)
 
   std::size_t memory_bytes() const {
     std::size_t b = pages_.capacity() * sizeof(pages_[0]);
