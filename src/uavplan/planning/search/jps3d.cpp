@@ -115,7 +115,7 @@ struct Tables {
   // The moves a cell with neighbourhood `mask` goes on with, reached by the moves in `reached`
   // (one bit each): every legal one for kAny, else the sub-moves and the forced moves.
   std::uint32_t continuations(std::uint32_t reached, std::uint32_t mask) const {
-    if (reached >> kAny & 1u) return mask & ~(1u << kAny);  // the legal moves are the free cells' bits
+    if (reached >> kAny & 1u) return mask & ~(1u << kAny);  // to every free neighbour (boxes checked on the walk)
     std::uint32_t out = 0;
     for (; reached; reached &= reached - 1) {
       const int d = std::countr_zero(reached);
