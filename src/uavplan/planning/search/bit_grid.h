@@ -29,6 +29,8 @@ class BitGrid {
   bool blocked(std::int64_t idx) const { return (bits_[idx >> 6] >> (idx & 63)) & 1u; }
   bool blocked(int i, int j, int k) const { return !inside(i, j, k) || blocked(index(i, j, k)); }
   bool free(int i, int j, int k) const { return !blocked(i, j, k); }
+  // A cell index inside the grid whose cell is free (a search's start or goal).
+  bool free(std::int64_t idx) const { return idx >= 0 && idx < size() && !blocked(idx); }
   void set_blocked(std::int64_t idx, bool b = true) {
     const std::uint64_t bit = std::uint64_t{1} << (idx & 63);
     bits_[idx >> 6] = b ? (bits_[idx >> 6] | bit) : (bits_[idx >> 6] & ~bit);

@@ -78,7 +78,7 @@ GridSearchResult GridAStar::run(std::int64_t start, std::int64_t goal, const Heu
 
 GridSearchResult GridAStar::search(std::int64_t start, std::int64_t goal, const StopCondition& stop) {
   const BitGrid& g = *grid_;
-  if (start < 0 || goal < 0 || start >= g.size() || goal >= g.size() || g.blocked(start) || g.blocked(goal)) return {};
+  if (!g.free(start) || !g.free(goal)) return {};
   GridCell t;
   g.coords(goal, t.i, t.j, t.k);
   if (heuristic_ == GridHeuristic::octile) return run(start, goal, OctileToGoal{t, c_[0]}, stop);

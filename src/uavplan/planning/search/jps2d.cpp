@@ -167,7 +167,7 @@ struct Jps2d::Expansion {
 
 GridSearchResult Jps2d::search(std::int64_t start, std::int64_t goal, const StopCondition& stop) {
   const BitGrid& g = *grid_;
-  if (start < 0 || goal < 0 || start >= g.size() || goal >= g.size() || g.blocked(start) || g.blocked(goal)) return {};
+  if (!g.free(start) || !g.free(goal)) return {};
   GridCell s, t;
   g.coords(goal, t.i, t.j, t.k);
   g.coords(start, s.i, s.j, s.k);

@@ -259,12 +259,13 @@ struct Jps3d::Expansion {
     const std::uint32_t mask = g.free_mask(at[0], at[1], at[2]);
     std::uint32_t reached = 1u << arrival(id, n.parent), walked = 0;
     MoveSets::Entry* ties = self.moves_.find(id);
-    if (ties && ties->g == n.g) {
+    if (ties && ties->g != n.g) ties = nullptr;  // a worse g's set
+    if (ties) {
       reached = ties->reached;
       walked = ties->walked;
     }
-    std::uint32_t todo = t.continuations(reached, mask) & ~walked;
-    if (ties && ties->g == n.g) ties->walked |= todo;
+    std::uint32_t todo = t.continuations(reached, mask) & ~walked;  // the moves not walked yet
+    if (ties) ties->walked |= todo;
     const double g0 = n.g;
     const auto offer = [&](const int c[3], int move) { arrive(c, move, id, at, g0, relax); };
     WalkLimit limit{{at[0], at[1], at[2]}, {self.goal_[0], self.goal_[1], self.goal_[2]}, g0, 0.0};
@@ -302,8 +303,9 @@ struct Jps3d::Expansion {
       relax(cell, cost, parent, GridCell{c[0], c[1], c[2]});
       return;
     }
+    if (cost > node.g + kTie || cell == goal_cell) return;
     const int first = arrival(cell, node.parent);
-    if (cost > node.g + kTie || cell == goal_cell || move == first) return;
+    if (move == first) return;
     MoveSets::Entry& e = self.moves_.at(cell);
     const bool closed = SearchBuffers::closed(node);
     if (e.g != node.g) {  // the first tie at this g: the set starts with the parent's move
@@ -356,7 +358,7 @@ struct Jps3d::Expansion {
 
 GridSearchResult Jps3d::search(std::int64_t start, std::int64_t goal, const StopCondition& stop) {
   const BitGrid& g = *grid_;
-  if (start < 0 || goal < 0 || start >= g.size() || goal >= g.size() || g.blocked(start) || g.blocked(goal)) return {};
+  if (!g.free(start) || !g.free(goal)) return {};
   GridCell s, t;
   g.coords(start, s.i, s.j, s.k);
   g.coords(goal, t.i, t.j, t.k);

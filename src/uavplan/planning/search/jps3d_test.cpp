@@ -29,6 +29,21 @@ void expect_legal_path(const BitGrid& g, const Jps3d& jps, const GridSearchResul
   ASSERT_NEAR(len, r.cost, 1e-9);
 }
 
+// Between `queries` random cells of g: JPS finds A*'s cost (or none where A* finds none), on a
+// legal path.
+void expect_same_cost_as_astar(const BitGrid& g, Rng& r, int queries, int trial) {
+  GridAStar astar(g, bounding_box_moves(g), GridHeuristic::octile);
+  Jps3d jps(g);
+  for (int q = 0; q < queries; ++q) {
+    const std::int64_t s = r.uniform_int(0, g.size() - 1), t = r.uniform_int(0, g.size() - 1);
+    const GridSearchResult a = astar.search(s, t), j = jps.search(s, t);
+    ASSERT_EQ(a.found, j.found) << "trial " << trial << " query " << q;
+    if (!a.found) continue;
+    ASSERT_NEAR(a.cost, j.cost, 1e-9) << "trial " << trial << " query " << q;
+    expect_legal_path(g, jps, j, s, t);
+  }
+}
+
 // Random volumes, from nearly empty to nearly walled off, some longer than a bit word along each
 // axis: JPS finds A*'s cost (or none where A* finds none) between random cells.
 TEST(Jps3d, SameCostAsAStarOnRandomVolumes) {
@@ -39,16 +54,7 @@ TEST(Jps3d, SameCostAsAStarOnRandomVolumes) {
     BitGrid g(nx, ny, nz);
     const double density = 0.45 * r.uniform01();
     for (std::int64_t c = 0; c < g.size(); ++c) g.set_blocked(c, r.uniform01() < density);
-    GridAStar astar(g, bounding_box_moves(g), GridHeuristic::octile);
-    Jps3d jps(g);
-    for (int q = 0; q < 12; ++q) {
-      const std::int64_t s = r.uniform_int(0, g.size() - 1), t = r.uniform_int(0, g.size() - 1);
-      const GridSearchResult a = astar.search(s, t), j = jps.search(s, t);
-      ASSERT_EQ(a.found, j.found) << "trial " << trial << " query " << q;
-      if (!a.found) continue;
-      ASSERT_NEAR(a.cost, j.cost, 1e-9) << "trial " << trial << " query " << q;
-      expect_legal_path(g, jps, j, s, t);
-    }
+    expect_same_cost_as_astar(g, r, 12, trial);
   }
 }
 
@@ -65,16 +71,7 @@ TEST(Jps3d, SameCostAsAStarAmongBoxes) {
         for (int y = y0; y < std::min(y0 + dy, g.ny()); ++y)
           for (int x = x0; x < std::min(x0 + dx, g.nx()); ++x) g.set_blocked(g.index(x, y, z));
     }
-    GridAStar astar(g, bounding_box_moves(g), GridHeuristic::octile);
-    Jps3d jps(g);
-    for (int q = 0; q < 20; ++q) {
-      const std::int64_t s = r.uniform_int(0, g.size() - 1), t = r.uniform_int(0, g.size() - 1);
-      const GridSearchResult a = astar.search(s, t), j = jps.search(s, t);
-      ASSERT_EQ(a.found, j.found) << "trial " << trial << " query " << q;
-      if (!a.found) continue;
-      ASSERT_NEAR(a.cost, j.cost, 1e-9) << "trial " << trial << " query " << q;
-      expect_legal_path(g, jps, j, s, t);
-    }
+    expect_same_cost_as_astar(g, r, 20, trial);
   }
 }
 

@@ -136,7 +136,7 @@ void LazyThetaStar::keep_pulled_if_shorter(std::int64_t start, std::int64_t goal
 
 GridSearchResult LazyThetaStar::search(std::int64_t start, std::int64_t goal, const StopCondition& stop) {
   const BitGrid& g = *grid_;
-  if (start < 0 || goal < 0 || start >= g.size() || goal >= g.size() || g.blocked(start) || g.blocked(goal)) return {};
+  if (!g.free(start) || !g.free(goal)) return {};
   const auto s0 = static_cast<std::uint32_t>(start), goal_c = static_cast<std::uint32_t>(goal);
   GridCell s, t;
   g.coords(start, s.i, s.j, s.k);
