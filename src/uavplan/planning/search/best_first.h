@@ -37,7 +37,8 @@ namespace uavplan {
 
 struct SearchCounts {
   std::uint64_t expanded = 0;
-  std::uint64_t generated = 0;
+  std::uint64_t generated = 0;  // entries pushed: a node again each time its g improves
+  std::uint64_t opened = 0;     // distinct nodes ever on the list, the start included
   std::uint64_t open_max = 0;
 };
 
@@ -61,6 +62,7 @@ class BestFirst {
     bool operator()(std::uint32_t child, double g, std::uint32_t parent, const Position& at) {
       SearchBuffers::Node& c = s_.nodes_.at(child);
       if (SearchBuffers::closed(c) || !(g < c.g)) return false;
+      if (c.g == std::numeric_limits<double>::infinity()) ++counts_.opened;  // first time on the list
       c.g = g;
       c.parent = parent;
       s_.open_.push(g + h_(at), g, child);
@@ -90,6 +92,7 @@ class BestFirst {
     s.g = 0.0;
     s.parent = start_parent;
     open_.push(h(start_at), 0.0, start);
+    ++counts.opened;
     counts.open_max = std::max<std::uint64_t>(counts.open_max, 1);
     Relax<Heuristic> relax(*this, h, counts);
     while (!open_.empty()) {

@@ -95,6 +95,11 @@ TEST(BestFirst, FindsDijkstrasDistanceWithEitherOpenListAndHeuristic) {
         EXPECT_NEAR(along, d[goal], 1e-9) << seed;
         EXPECT_GE(counts.generated, counts.expanded);
         EXPECT_GE(counts.open_max, 1u);
+        // Opened: every node that has a g, each once (a node again when its g improves is not).
+        std::uint64_t with_g = 0;
+        for (std::uint32_t v = 0; v < 400; ++v) with_g += std::isfinite(search.node(v).g) ? 1 : 0;
+        EXPECT_EQ(counts.opened, with_g) << seed;
+        EXPECT_LE(counts.opened, counts.generated + 1) << seed;
       }
   }
 }

@@ -551,6 +551,8 @@ struct DirectionalSearch::Run {
 
  private:
   void relax(std::uint32_t from, double g_from, std::uint32_t id, const Vec3& to, double length_m);
+  void note_opened(std::uint32_t point);
+  void begin_cell_count();
   void try_goal(std::uint32_t from, double g_from, const Vec3& p, const std::optional<Vec3>& heading);
   const DirectionalCones::Cone& cone_for(int dx, int dy, int dz);
   void expand_cone(std::uint32_t id, const SearchBuffers::Node& n, int i, int j, int k, const Vec3& p);
@@ -725,7 +727,22 @@ void DirectionalSearch::Run::relax(std::uint32_t from, double g_from, std::uint3
     beyond_bound = true;
     return;
   }
-  (*engine_relax)(id, ng, from, to);
+  if ((*engine_relax)(id, ng, from, to) && id < start_id) note_opened(id >> bin_bits);
+}
+
+void DirectionalSearch::Run::note_opened(std::uint32_t point) {
+  std::uint32_t& stamp = self.cell_opened_[point];
+  if (stamp != self.cell_query_) {
+    stamp = self.cell_query_;
+    ++out.cells_opened;
+  }
+}
+
+void DirectionalSearch::Run::begin_cell_count() {
+  if (++self.cell_query_ == 0 || self.cell_opened_.size() != static_cast<std::size_t>(lat.size())) {
+    self.cell_opened_.assign(static_cast<std::size_t>(lat.size()), 0);
+    self.cell_query_ = 1;
+  }
 }
 
 // A lattice node coming off the list: f with the relaxed distance (at least h: it is the length
@@ -848,10 +865,12 @@ DirectionalRoute DirectionalSearch::Run::search() {
   // f grows by a fraction of a step per expansion: buckets of half a cell hold a few hundred
   // entries each.
   self.search_.begin(lat.size() * (bin_bits ? 8 : 1) + 2, h0, 0.5 * q.cell_m);
+  begin_cell_count();
   SearchCounts counts;
   const SearchEnd end =
       self.search_.run(*this, Heuristic{this}, start_id, SearchBuffers::kNoParent, q.start, goal_id, counts);
   out.generated = counts.generated;
+  out.opened = counts.opened;
   out.open_max = counts.open_max;
   if (end == SearchEnd::stopped) return std::move(out);
   return finish();

@@ -64,6 +64,8 @@ struct DirectionalRoute {
   std::vector<Vec3> waypoints;
   double length_m = 0.0;
   std::uint64_t expanded = 0, generated = 0, dead_zones = 0;
+  std::uint64_t opened = 0;            // distinct states ever on the open list, the start included
+  std::uint64_t cells_opened = 0;      // distinct lattice points among them (P4's "OPEN grid cells")
   std::uint64_t open_max = 0;          // the most entries the open list held at once
   std::uint64_t relaxed_expanded = 0;  // points the relaxed heuristic's reverse search closed
   std::string message;
@@ -144,7 +146,8 @@ class DirectionalSearch {
   // Bytes held for reuse: search nodes, open list, clearance cache (cone tables not counted).
   std::size_t memory_bytes() const {
     return search_.memory_bytes() + relaxed_dist_.capacity() * sizeof(double) + relaxed_closed_.capacity() +
-           relaxed_open_.memory_bytes() + clearance_.capacity() * sizeof(float);
+           relaxed_open_.memory_bytes() + clearance_.capacity() * sizeof(float) +
+           cell_opened_.capacity() * sizeof(std::uint32_t);
   }
 
  private:
@@ -170,6 +173,9 @@ class DirectionalSearch {
   double clearance_cell_m_ = 0.0, clearance_cap_m_ = 0.0;
   double clearance_origin_z_ = 0.0;  // a one-level lattice lies at its query's start height
   std::vector<float> clearance_;
+  // Per lattice point, the query that last put it on the open list (cells_opened), by a stamp.
+  std::vector<std::uint32_t> cell_opened_;
+  std::uint32_t cell_query_ = 0;
 };
 
 class DirectionalAStarPlanner final : public Planner {

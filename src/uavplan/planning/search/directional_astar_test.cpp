@@ -214,6 +214,38 @@ TEST(DirectionalAStar, RelaxedHeuristicKeepsTheLengthsAndOpensFewer) {
   EXPECT_LT(2 * relaxed_expanded, plain_expanded);  // 2.7x fewer when written
 }
 
+// The counts the bench sets beside P4's "OPEN grid cells": with P4's one state per lattice point
+// every state opened but the start and the goal is a point of its own; with heading sectors a
+// point holds up to eight states.
+TEST(DirectionalAStar, CellsOpenedCountLatticePointsOnce) {
+  Rng r(91);
+  int solved = 0;
+  for (int trial = 0; trial < 4; ++trial) {
+    const World w = random_sphere_world(r);
+    const Vec3 start(4000, 5000, 2000), goal(27000, 26000, 7000);
+    if (w.point_collides(start, 10) || w.point_collides(goal, 10)) continue;
+    const DirectionalAStarPlanner planner(DirectionalAStarOptions::from_params({{"cell_m", "1000"}}));
+    DirectionalQuery q = planner.query_for(problem(start, goal, 0.5), w);
+    DirectionalSearch engine;
+    for (const bool sectors : {false, true}) {
+      q.heading_states = sectors;
+      const DirectionalRoute a = engine.run(w, q, {});
+      const DirectionalRoute b = engine.run(w, q, {});  // the same buffers again: the stamps start anew
+      EXPECT_EQ(a.cells_opened, b.cells_opened);
+      if (!a.found) continue;
+      EXPECT_LE(a.opened, a.generated + 1);
+      if (sectors) {
+        EXPECT_LT(a.cells_opened, a.opened - 2);  // some point is passed in two sectors
+        EXPECT_GE(8 * a.cells_opened, a.opened - 2);
+      } else {
+        EXPECT_EQ(a.cells_opened, a.opened - 2);  // less the start and the goal
+        ++solved;
+      }
+    }
+  }
+  EXPECT_GT(solved, 1);
+}
+
 // A goal caged in by six walls: no lattice point has a clear last segment to it, so the relaxed
 // distance is infinite everywhere and the search ends after the start's children; with the
 // Euclidean bound alone it searches every state it can reach first.

@@ -36,6 +36,7 @@ GridSearchResult grid_result(BestFirst<>& search, SearchEnd end, const SearchCou
   GridSearchResult out;
   out.expanded = counts.expanded;
   out.generated = counts.generated;
+  out.opened = counts.opened;
   out.open_max = counts.open_max;
   out.stopped = end == SearchEnd::stopped;
   if (end != SearchEnd::goal) return out;

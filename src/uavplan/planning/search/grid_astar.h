@@ -39,7 +39,8 @@ struct GridSearchResult {
   std::vector<std::int64_t> cells;  // start .. goal (for JPS: the jump points)
   double cost = 0.0;
   std::uint64_t expanded = 0;
-  std::uint64_t generated = 0;
+  std::uint64_t generated = 0;  // entries pushed (SearchCounts)
+  std::uint64_t opened = 0;     // distinct cells put on the list
   std::uint64_t open_max = 0;
 };
 
