@@ -26,25 +26,27 @@ World raised(const World& w, double by_m) {
 }
 
 // The sky more than `agl_m` above terrain `t` closed: a box over each of its cells and over the
-// floor beside the grid, from that height to above the bounds (without terrain: a ceiling).
+// floor beside the grid, from that height to above the bounds (without terrain: a ceiling). Where
+// the band's top is above the bounds there is nothing to close: no box.
 void close_sky(WorldSpec& s, const TerrainGrid& t, double agl_m) {
   const Aabb& b = s.bounds;
   const double top = b.max.z() + 1.0, floor = b.min.z() + agl_m;
   const std::size_t first = s.obstacles.size();
   const double c = t.cell_m(), x0 = t.origin().x(), y0 = t.origin().y();
   const double x1 = x0 + t.nx() * c, y1 = y0 + t.ny() * c;
+  const auto add = [&](const Box& box) {
+    if (box.max.x() > box.min.x() && box.max.y() > box.min.y() && box.max.z() > box.min.z()) s.obstacles.push_back(box);
+  };
   for (int j = 0; j < t.ny(); ++j)
     for (int i = 0; i < t.nx(); ++i)
-      s.obstacles.push_back(Box{Vec3(x0 + i * c, y0 + j * c, std::max(t.height(i, j), b.min.z()) + agl_m),
-                                Vec3(x0 + (i + 1) * c, y0 + (j + 1) * c, top)});
-  // Beside the grid: four strips over the floor (empty ones left out).
+      add(Box{Vec3(x0 + i * c, y0 + j * c, std::max(t.height(i, j), b.min.z()) + agl_m),
+              Vec3(x0 + (i + 1) * c, y0 + (j + 1) * c, top)});
+  // Beside the grid: four strips over the floor.
   const Vec3 lo(b.min.x() - 1, b.min.y() - 1, floor), hi(b.max.x() + 1, b.max.y() + 1, top);
-  const Box strips[] = {{lo, Vec3(x0, hi.y(), top)},
-                        {Vec3(x1, lo.y(), floor), hi},
-                        {Vec3(x0, lo.y(), floor), Vec3(x1, y0, top)},
-                        {Vec3(x0, y1, floor), Vec3(x1, hi.y(), top)}};
-  for (const Box& s_box : strips)
-    if (s_box.max.x() > s_box.min.x() && s_box.max.y() > s_box.min.y()) s.obstacles.push_back(s_box);
+  for (const Box& strip :
+       {Box{lo, Vec3(x0, hi.y(), top)}, Box{Vec3(x1, lo.y(), floor), hi},
+        Box{Vec3(x0, lo.y(), floor), Vec3(x1, y0, top)}, Box{Vec3(x0, y1, floor), Vec3(x1, hi.y(), top)}})
+    add(strip);
   s.obstacle_ids.resize(first);  // named for the planners' messages
   s.obstacle_ids.resize(s.obstacles.size(), "above max_agl");
 }

@@ -63,5 +63,26 @@ TEST(DefaultMinAgl, PlannersKeepIt) {
   EXPECT_DOUBLE_EQ(planning_min_agl_m(sc), 10.0);
 }
 
+// A max_agl band whose top rises above the world's bounds over high ground: the sky there is
+// outside the world already, so the planners' world closes only the rest (no empty box).
+TEST(PlanningView, BandTopAboveTheBoundsClosesNothingThere) {
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(200, 100, 100)};
+  ws.terrain = TerrainGrid(Vec2(0, 0), 100.0, 2, 1, {10.0, 90.0});  // a low and a high cell
+  Scenario sc;
+  sc.world = World(std::move(ws));
+  UavSpec u;
+  u.id = "u1";
+  u.start = Vec3(50, 50, 30);
+  u.goal = Vec3(150, 50, 95);
+  u.max_agl_m = 40.0;
+  sc.uavs.push_back(u);
+  const PlanningView v = planning_view(sc);
+  const World& w = v.scenario.world;
+  EXPECT_TRUE(w.point_collides(Vec3(50, 50, 60), 1.0));    // above the band over the low cell
+  EXPECT_FALSE(w.point_collides(Vec3(150, 50, 99), 1.0));  // the high cell's band reaches the top
+  EXPECT_FALSE(w.point_collides(Vec3(50, 50, 40), 1.0));
+}
+
 }  // namespace
 }  // namespace uavplan
