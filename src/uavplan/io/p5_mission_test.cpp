@@ -43,6 +43,36 @@ TEST(P5Mission, AllFivePhasesFlownAndVerified) {
   EXPECT_EQ(plan_to_json(plan), plan_to_json(again));
 }
 
+// The same mission with the world cut short behind the threshold (runway heading east): P5's
+// landing cylinder (3 km wide, 10 km before it) would leave the bounds, so it and the gate come
+// in; the plan flies inside the bounds and lands. Cut shorter, where P5's vehicles (70 m/s at
+// 2.2 deg/s: a 1.8 km turn) could not circle in what fits, the mission fails saying why.
+TEST(P5Mission, TheLandingApproachFitsAWorldCutShortBehindTheRunway) {
+  const Scenario full = load_scenario(kScenario);
+  const auto cut_at = [&](double behind_m) {
+    Scenario sc = full;
+    WorldSpec ws = sc.world.spec();
+    ws.bounds.min.x() = sc.mission.airfield->position.x() - behind_m;
+    sc.world = World(std::move(ws));
+    return sc;
+  };
+  const Scenario roomy = cut_at(12000.0);
+  Plan plan = plan_mission(roomy, MissionOptions{});
+  EXPECT_TRUE(finalize_plan(roomy, plan).empty());
+  ASSERT_EQ(plan.status, Status::solved) << plan.message;
+  EXPECT_TRUE(verify_plan(roomy, plan).empty());
+  double westmost = 1e300;
+  for (const UavPlan& u : plan.uavs)
+    for (const auto& row : u.trajectory) westmost = std::min(westmost, row.p.x());
+  EXPECT_LT(westmost, full.mission.airfield->position.x() - 6000.0);  // the approach from the west
+  const Scenario tight = cut_at(8000.0);
+  Plan failed = plan_mission(tight, MissionOptions{});
+  finalize_plan(tight, failed);
+  EXPECT_EQ(failed.status, Status::failed);
+  EXPECT_NE(failed.uavs.front().message.find("no room for the landing approach"), std::string::npos)
+      << failed.uavs.front().message;
+}
+
 // The verified plan exports whole, as fixed wing (landed UAVs are gone, not parked on one
 // another at the runway's stop point): the take-off from the threshold along the runway, the
 // flight as planned, PX4's landing pattern onto the planned touch-down within FW_LND_ANG; a

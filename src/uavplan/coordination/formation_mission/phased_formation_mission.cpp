@@ -163,6 +163,56 @@ Vec3 runway_direction(const Airfield& af) {
   return {std::cos(af.runway_heading_rad), std::sin(af.runway_heading_rad), 0.0};
 }
 
+// P5's airfield geometry (the landing cylinder 10 km before the threshold, the gate 6 km out,
+// the departure point 15 km past the runway) is sized for its 1,000 km world. Where the cylinder
+// would leave the bounds, it and the gate come in toward the threshold in proportion (radius,
+// distances and the gate's height: the glide keeps its slope), as far as every UAV can still
+// circle inside it at its least speed; the departure point comes in likewise. Empty when it
+// fits, else why not.
+std::string fit_airfield(const Scenario& sc, const std::vector<AutopilotModel>& models, const FormationBody& b,
+                         FormationMissionOptions& o) {
+  const Airfield& af = *sc.mission.airfield;
+  const Aabb& box = sc.world.bounds();
+  const Vec3 dir = runway_direction(af);
+  LandingOptions& l = o.landing;
+  // The cylinder's disc, kept the widest body inside the bounds: scale k of (before, radius).
+  double k = 1.0;
+  for (int a = 0; a < 2; ++a) {
+    const double thr = af.position[a], back = l.cylinder_before_threshold_m * dir[a], r = l.cylinder_radius_m;
+    if (back + r > 0.0) k = std::min(k, (thr - b.widest_m - box.min[a]) / (back + r));
+    if (r - back > 0.0) k = std::min(k, (box.max[a] - b.widest_m - thr) / (r - back));
+  }
+  double least_k = 0.0;  // every UAV circles inside it (plan_landing: a turn within 0.8 of the radius)
+  for (const AutopilotModel& m : models) {
+    const double omega =
+        std::isfinite(m.limits().max_turn_rate_rad_s) ? m.limits().max_turn_rate_rad_s : deg_to_rad(3.0);
+    least_k = std::max(least_k, m.limits().speed.min_mps / omega / (0.8 * l.cylinder_radius_m));
+  }
+  if (k < least_k)
+    return "no room for the landing approach: the landing cylinder (radius " +
+           std::to_string(static_cast<long>(least_k * l.cylinder_radius_m)) + " m at least, " +
+           std::to_string(static_cast<long>(least_k * l.cylinder_before_threshold_m)) +
+           " m before the threshold on the extended centreline) leaves the world's bounds; move the airfield "
+           "further from the edge behind its threshold, or turn its runway";
+  l.cylinder_before_threshold_m *= k;
+  l.cylinder_radius_m *= k;
+  l.gate_before_threshold_m *= k;
+  l.gate_height_m *= k;
+  // The departure point: on the runway's line, inside the bounds by the formation's width.
+  const double margin = o.enlargement * b.half_width_m + b.widest_m;
+  const Vec3 end = af.position + af.runway_length_m * dir;
+  for (int a = 0; a < 2; ++a) {
+    if (dir[a] > 1e-12)
+      o.departure_after_runway_m = std::min(o.departure_after_runway_m, (box.max[a] - margin - end[a]) / dir[a]);
+    if (dir[a] < -1e-12)
+      o.departure_after_runway_m = std::min(o.departure_after_runway_m, (box.min[a] + margin - end[a]) / dir[a]);
+  }
+  if (o.departure_after_runway_m < 0.0)
+    return "no room to depart: the runway's end lies within the formation's width (" +
+           std::to_string(static_cast<long>(margin)) + " m) of the world's bounds ahead of it";
+  return {};
+}
+
 // The coarse route's problem (pso_mpc): from the departure point after the runway through the
 // task points at their entry headings back to the landing cylinder, for a body as wide as the
 // enlarged shape plus the turn's overshoot.
@@ -459,7 +509,7 @@ FormationMissionOptions FormationMissionOptions::from_params(const Params& param
 }
 
 void PhasedFormationMission::plan(const Scenario& sc, const MissionContext& ctx, Plan& plan) const {
-  const FormationMissionOptions o = FormationMissionOptions::from_params(ctx.mission_params);
+  FormationMissionOptions o = FormationMissionOptions::from_params(ctx.mission_params);
   const std::size_t n = sc.uavs.size();
   if (!sc.mission.airfield || sc.mission.shape.size() != n || sc.mission.task_points.empty())
     throw std::invalid_argument("a formation_mission needs an airfield, a slot per UAV and a task point");
@@ -471,6 +521,10 @@ void PhasedFormationMission::plan(const Scenario& sc, const MissionContext& ctx,
     models.push_back(mission_model(sc.uavs[i], o));
   }
   const FormationBody body = formation_body(sc, models);
+  if (const std::string why = fit_airfield(sc, models, body, o); !why.empty()) {
+    fail_all(sc, why, plan);
+    return;
+  }
   const double z_form = af.position.z() + o.form_up_height_m;
   const UavSpec& lead = sc.uavs.front();
   const double ceiling =
