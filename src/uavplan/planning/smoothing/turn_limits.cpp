@@ -90,6 +90,21 @@ bool pursue(std::vector<Vec3>& out, Vec3 dir, const Vec3& target, const TurnLimi
   return false;
 }
 
+// Where pursuing `target` fails: the farthest point of the leg from out.back() to `target`, half
+// its length or less (halving), that a pursuit reaches (appended to `out`); `target` where none.
+Vec3 rejoin_point(std::vector<Vec3>& out, const Vec3& dir, const Vec3& target, const TurnLimits& lim,
+                  const SegmentPredicate& ok) {
+  const Vec3 corner = out.back();
+  const std::size_t kept = out.size();
+  for (double f = 0.5; f > 1.0 / 1024; f *= 0.5) {
+    const Vec3 q = corner + f * (target - corner);
+    if ((q - corner).norm() <= kTiny_m) break;
+    if (pursue(out, dir, q, lim, ok)) return q;
+    out.resize(kept);
+  }
+  return target;
+}
+
 }  // namespace
 
 TurnShaping enforce_turn_limits(std::span<const Vec3> pts, std::span<const char> pinned, std::optional<double> heading,
@@ -106,7 +121,7 @@ TurnShaping enforce_turn_limits(std::span<const Vec3> pts, std::span<const char>
     p.push_back(pts[i]);
     pin.push_back(pinned[i]);
   }
-  const std::size_t n = p.size();
+  std::size_t n = p.size();
   r.waypoints.push_back(p.front());
   std::optional<Vec3> dir;
   if (heading) dir = heading_vector(*heading);
@@ -134,10 +149,20 @@ TurnShaping enforce_turn_limits(std::span<const Vec3> pts, std::span<const char>
       }
     }
     if (done) continue;
+    const std::size_t kept = r.waypoints.size();
     if (!pursue(r.waypoints, *dir, p[i + 1], lim, ok)) {
-      r.message = "no room to turn within " + num_text(rad_to_deg(lim.max_turn_rad)) + " deg at the corner near " +
-                  point_text(p[i]) + " (directional_astar keeps the turn limit while it searches)";
-      return r;
+      // A turn toward a far point can swing wide into what the leg itself passes: rejoin the
+      // leg (clear as planned) nearer the corner, on a tighter turn, and fly on from there.
+      r.waypoints.resize(kept);
+      const Vec3 rejoin = rejoin_point(r.waypoints, *dir, p[i + 1], lim, ok);
+      if (rejoin == p[i + 1]) {
+        r.message = "no room to turn within " + num_text(rad_to_deg(lim.max_turn_rad)) + " deg at the corner near " +
+                    point_text(p[i]) + " (directional_astar keeps the turn limit while it searches)";
+        return r;
+      }
+      p.insert(p.begin() + static_cast<std::ptrdiff_t>(i + 1), rejoin);
+      pin.insert(pin.begin() + static_cast<std::ptrdiff_t>(i + 1), 0);
+      ++n;
     }
     dir = r.waypoints.back() - r.waypoints[r.waypoints.size() - 2];
   }

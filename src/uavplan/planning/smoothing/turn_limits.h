@@ -5,6 +5,8 @@
 //  - At the start (against the heading), at a pinned point (a via point the route must touch),
 //    or where no fillet fits, the route flies over the point and pursues the next one, turning
 //    at most the limit per chord, climbing at most the climb limit (a helix when it must).
+//    Where that pursuit swings wide into an obstacle, it pursues a point of the leg nearer the
+//    corner instead (half the leg, a quarter, ...: a tighter turn) and flies the leg on from it.
 // Every new segment is checked with `ok`; nothing unchecked is ever emitted.
 #pragma once
 

@@ -55,6 +55,28 @@ TEST(TurnLimits, ReversedStartHeadingTurnsAroundWithinTheLimit) {
   EXPECT_GT(s.waypoints.size(), 6u);
 }
 
+// Out to a via point at the end of a corridor 30 m wide and back (a sortie's goal before the way
+// home): a turn toward the far end of the way back swings into the corridor's walls; the route
+// turns around beyond the corridor on a tighter turn, rejoins the leg and flies it.
+TEST(TurnLimits, AReversalAtAViaPointRejoinsTheLegInsideACorridor) {
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(-100, -500, 0), Vec3(1000, 500, 100)};
+  ws.obstacles.push_back(Box{Vec3(200, 15, 0), Vec3(480, 300, 100)});
+  ws.obstacles.push_back(Box{Vec3(200, -300, 0), Vec3(480, -15, 100)});
+  const World w(std::move(ws));
+  UavSpec u;
+  u.max_turn_rad = deg_to_rad(60);
+  const std::vector<Vec3> pts{{0, 0, 50}, {500, 0, 50}, {0, 0, 50}};
+  const std::vector<char> pinned{1, 1, 1};
+  const SegmentRule rule(w, u);
+  const TurnShaping s = enforce_turn_limits(pts, pinned, std::nullopt, {u.max_turn_rad, u.max_climb_rad}, rule);
+  ASSERT_TRUE(s.ok) << s.message;
+  EXPECT_TRUE(check_route_limits(s.waypoints, u).empty());
+  EXPECT_NE(std::find(s.waypoints.begin(), s.waypoints.end(), pts[1]), s.waypoints.end());
+  EXPECT_EQ(s.waypoints.back(), pts.back());
+  for (std::size_t i = 1; i < s.waypoints.size(); ++i) EXPECT_TRUE(rule(s.waypoints[i - 1], s.waypoints[i])) << i;
+}
+
 TEST(Shortcut, RemovesRedundantPointsButKeepsPins) {
   WorldSpec ws;
   ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(100, 100, 10)};
