@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "uavplan/coordination/mission_planner.h"
+#include "uavplan/coordination/planning_view.h"
 #include "uavplan/core/rng.h"
 #include "uavplan/evaluation/verifier.h"
 
@@ -107,6 +108,39 @@ TEST(SensingFlight, AnObstacleFasterThanTheUavHeadOnInACorridorFailsItWithTheRea
   EXPECT_EQ(plan.uavs[0].status, Status::failed);
   EXPECT_NE(plan.uavs[0].message.find("could not avoid moving obstacle 'bullet'"), std::string::npos)
       << plan.uavs[0].message;
+}
+
+// A sortie from home (take-off, start, goal, back home) meets an obstacle it senses near its goal:
+// the local route rejoins the sortie at its goal, not past it on the way home, whenever the
+// obstacle comes (each passes the route 0-13 m beyond the goal, 50-66 s after t = 0).
+TEST(SensingFlight, ASortiesDetourRejoinsAtItsGoalNotOnTheWayHome) {
+  for (const double meet_s : {50.0, 58.0, 66.0})
+    for (const double x : {290.0, 296.0, 303.0}) {
+      WorldSpec ws;
+      ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(400, 200, 60)};
+      MovingObstacle kite;
+      kite.id = "kite";
+      kite.radius_m = 4;
+      kite.path = {{0.0, Vec3(x, 40, 20)}, {meet_s, Vec3(x, 100, 20)}, {2 * meet_s, Vec3(x, 160, 20)}};
+      ws.moving.push_back(kite);
+      Scenario sc;
+      sc.world = World(std::move(ws));
+      sc.mission.separation_m = 2;
+      UavSpec u;
+      u.id = "u";
+      u.home = Vec3(20, 100, 0);
+      u.start = Vec3(20, 100, 20);
+      u.goal = Vec3(300, 100, 20);
+      u.speed = {0, 5, 5};
+      u.sensor_range_m = 30;
+      sc.uavs.push_back(u);
+      sc.default_min_agl_m = default_min_agl_m(sc);
+      sc.planner.algorithm = "astar";
+      Plan plan = plan_mission(sc, {});
+      const auto violations = finalize_plan(sc, plan);
+      EXPECT_EQ(plan.status, Status::solved) << meet_s << " s, x " << x << ": " << plan.uavs[0].message;
+      EXPECT_TRUE(violations.empty()) << meet_s << " s, x " << x << ": " << describe(violations.front());
+    }
 }
 
 TEST(SensingFlight, UavsWithoutSensorsFlyAsTimedAndTheOthersSeeThem) {

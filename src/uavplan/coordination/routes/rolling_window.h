@@ -38,8 +38,9 @@ struct RollingWindowOptions {
   RrtOptions local = RrtOptions::improved();
   std::uint64_t seed = 1;
   StopCondition stop;
-  // Points every route passes in order (a route mission's via points): a local route rejoins
-  // the route before the next one ahead, or at it, never past it.
+  // Points a route passes in order (a route mission's via points, a sortie's start and goal on
+  // its way from and back to home): a local route rejoins the route before the next one ahead on
+  // it, or at it, never past it.
   std::vector<Vec3> via_points;
 };
 

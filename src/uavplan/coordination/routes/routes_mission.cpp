@@ -342,6 +342,8 @@ void fly_sensing(const Scenario& sc, const MissionContext& ctx, const LocalLayer
   rw.seed = opt.seed;
   rw.stop = opt.stop;
   rw.via_points = sc.mission.waypoints;
+  for (const auto& visit : ctx.ground.home_visits)  // a sortie from home passes its start and goal
+    if (visit) rw.via_points.insert(rw.via_points.end(), {visit->first, visit->second});
   std::vector<ScriptedUav> scripted;
   for (const auto& [spec, up] : committed)
     if (!senses(*spec)) scripted.push_back({spec, &up->trajectory});
