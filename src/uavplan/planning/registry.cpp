@@ -26,7 +26,7 @@ const std::vector<Entry>& entries() {
       {{"astar", "grid A* on a voxelised world, 26 neighbours, shortcut and turn shaping"},
        [](const Params& p) { return std::make_unique<AStarPlanner>(AStarOptions::from_params(p)); }},
       {{"directional_astar",
-        "P4 directional A*: a cone of M yaw x M pitch directions at step L, turn and climb limits held", true, false},
+        "P4 directional A*: a cone of M yaw x M pitch directions at step L, turn and climb limits held"},
        [](const Params& p) {
          return std::make_unique<DirectionalAStarPlanner>(DirectionalAStarOptions::from_params(p));
        }},

@@ -175,6 +175,12 @@ class ConeDirections {
   double cos_pitch_[kMaxPitches], sin_pitch_[kMaxPitches];
 };
 
+std::optional<Vec3> start_heading(const DirectionalQuery& q) {
+  if (q.start_direction) return q.start_direction;
+  if (q.heading_rad) return heading_vector(*q.heading_rad);
+  return std::nullopt;
+}
+
 std::uint32_t pack_offset(int dx, int dy, int dz) {
   return (static_cast<std::uint32_t>(dx + 512) << 20) | (static_cast<std::uint32_t>(dy + 512) << 10) |
          static_cast<std::uint32_t>(dz + 512);
@@ -340,7 +346,7 @@ bool DirectionalSearch::levels_reachable(const World& world, const DirectionalQu
   // the cone tables lead to from them.
   std::vector<std::uint32_t> headings;
   bool change = false;
-  const std::optional<Vec3> h0 = q.heading_rad ? std::optional<Vec3>(heading_vector(*q.heading_rad)) : std::nullopt;
+  const std::optional<Vec3> h0 = start_heading(q);
   general_children(lat, q, lim, flat, q.start, h0, [&](std::uint32_t, const Vec3& c) {
     if (change) return;
     general_children(lat, q, lim, flat, c, c - q.start, [&](std::uint32_t, const Vec3& g) {
@@ -615,7 +621,7 @@ void DirectionalSearch::Run::collect_relaxed_moves() {
                q.cell_m * Vec3(dx, dy, dz).norm()});
     }
   };
-  const std::optional<Vec3> h0 = q.heading_rad ? std::optional<Vec3>(heading_vector(*q.heading_rad)) : std::nullopt;
+  const std::optional<Vec3> h0 = start_heading(q);
   general_children(lat, q, lim, flat, q.start, h0, [&](std::uint32_t, const Vec3& c) {
     general_children(lat, q, lim, flat, c, c - q.start, [&](std::uint32_t, const Vec3& g) {
       const Vec3 d = (g - c) / q.cell_m;
@@ -820,7 +826,7 @@ void DirectionalSearch::Run::expand_cone(std::uint32_t id, const SearchBuffers::
 void DirectionalSearch::Run::expand_general(std::uint32_t id, const SearchBuffers::Node& n, const Vec3& p) {
   std::optional<Vec3> heading;
   if (id == start_id) {
-    if (q.heading_rad) heading = heading_vector(*q.heading_rad);
+    heading = start_heading(q);
   } else {
     heading = p - position(n.parent);
   }
@@ -922,33 +928,42 @@ void DirectionalAStarPlanner::require_lattice(const World& world, const Directio
   require_grid(points * 8.0, engines * ((4.0 + 9.0) / 8.0 + 16.0), stop, what);
 }
 
+// Through via points, one search per leg on the same lattice and engine: each leg starts with the
+// heading its previous leg arrived with, so the turn at a via point keeps the limit too.
 PlanResult DirectionalAStarPlanner::do_plan(const Problem& pb, const World& world, const StopCondition& stop) const {
   PlanResult res;
-  if (!pb.via.empty()) {
-    res.message = "directional_astar plans start to goal; via points are not supported";
-    return res;
-  }
+  std::vector<Vec3> stops{pb.uav.start};
+  stops.insert(stops.end(), pb.via.begin(), pb.via.end());
+  stops.push_back(pb.goal);
   const SegmentRule rule(world, pb.uav);
-  for (const auto& [name, p] : {std::pair{"start", pb.uav.start}, std::pair{"goal", pb.goal}})
-    if (!rule.point_ok(p)) {
-      res.message = std::string(name) + " is closer to an obstacle than the UAV radius, or above the ceiling";
+  for (std::size_t s = 0; s < stops.size(); ++s)
+    if (!rule.point_ok(stops[s])) {
+      res.message = stop_name(s, stops.size()) + " is closer to an obstacle than the UAV radius, or above the ceiling";
       return res;
     }
   DirectionalSearch search;
-  const DirectionalQuery q = query_for(pb, world);
-  require_lattice(world, q, 1, stop);
-  const DirectionalRoute r = search.run(world, q, stop);
-  res.stats.nodes_expanded = r.expanded;
-  res.stats.open_max = r.open_max;
-  res.stats.cell_m = q.cell_m;
-  if (!r.found) {
-    res.message = r.stopped ? r.message : leg_name(0, 2) + ": " + r.message;
-    res.reason = r.stopped                                                   ? Reason::stopped
-                 : r.expanded > static_cast<std::uint64_t>(q.max_expansions) ? Reason::budget
-                                                                             : Reason::no_route;
-    return res;
+  res.route.waypoints = {pb.uav.start};
+  for (std::size_t leg = 0; leg + 1 < stops.size(); ++leg) {
+    Problem part = pb;
+    part.uav.start = stops[leg];
+    part.goal = stops[leg + 1];
+    DirectionalQuery q = query_for(part, world);
+    if (leg > 0) q.start_direction = res.route.waypoints.back() - res.route.waypoints[res.route.waypoints.size() - 2];
+    if (leg == 0) require_lattice(world, q, 1, stop);
+    const DirectionalRoute r = search.run(world, q, stop);
+    res.stats.nodes_expanded += r.expanded;
+    res.stats.open_max = std::max(res.stats.open_max, r.open_max);
+    res.stats.cell_m = q.cell_m;
+    if (!r.found) {
+      res.message = r.stopped ? r.message : leg_name(leg, stops.size()) + ": " + r.message;
+      res.reason = r.stopped                                                   ? Reason::stopped
+                   : r.expanded > static_cast<std::uint64_t>(q.max_expansions) ? Reason::budget
+                                                                               : Reason::no_route;
+      res.route.waypoints.clear();
+      return res;
+    }
+    res.route.waypoints.insert(res.route.waypoints.end(), r.waypoints.begin() + 1, r.waypoints.end());
   }
-  res.route.waypoints = r.waypoints;
   res.status = Status::solved;
   return res;
 }

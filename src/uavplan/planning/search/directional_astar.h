@@ -76,6 +76,9 @@ struct DirectionalRoute {
 struct DirectionalQuery {
   Vec3 start, goal;
   std::optional<double> heading_rad;
+  // The start's heading in 3-D where it has one (the last segment of the leg before a via
+  // point); it wins over heading_rad.
+  std::optional<Vec3> start_direction;
   double cell_m;
   double step_cells;
   int directions;

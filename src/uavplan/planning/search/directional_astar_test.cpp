@@ -62,6 +62,37 @@ TEST(DirectionalAStar, RandomSphereWorldsKeepTurnAndClimbLimits) {
   EXPECT_GT(solved, 6);
 }
 
+// Through via points (a route mission, a sortie from home): one search per leg, each leaving with
+// the heading the last arrived with, so the route passes every via point exactly and keeps the
+// turn limit at them too, the way back from a via point behind the UAV included.
+TEST(DirectionalAStar, ViaPointsArePassedInOrderWithinTheTurnLimit) {
+  Rng r(61);
+  const DirectionalAStarPlanner planner(DirectionalAStarOptions::from_params({{"cell_m", "1000"}}));
+  int solved = 0;
+  for (int trial = 0; trial < 8; ++trial) {
+    const World w = random_sphere_world(r);
+    Problem p = problem(Vec3(5000, 5000, 2000), Vec3(26000, 6000, 3000), r.uniform(-kPi, kPi));
+    p.via = {Vec3(r.uniform(8000, 24000), r.uniform(18000, 27000), r.uniform(2000, 8000)), Vec3(6000, 24000, 5000)};
+    bool clear = !w.point_collides(p.uav.start, 10) && !w.point_collides(p.goal, 10);
+    for (const Vec3& v : p.via) clear = clear && !w.point_collides(v, 10);
+    if (!clear) continue;
+    const PlanResult res = planner.plan(p, w, {});
+    if (res.status != Status::solved) {
+      EXPECT_FALSE(res.message.empty());
+      continue;
+    }
+    expect_feasible(res, p, w);
+    const auto& pts = res.route.waypoints;
+    auto at = pts.begin();
+    for (const Vec3& v : p.via) {
+      at = std::find(at, pts.end(), v);
+      ASSERT_NE(at, pts.end()) << "trial " << trial << ": via point not passed in order";
+    }
+    ++solved;
+  }
+  EXPECT_GT(solved, 4);
+}
+
 // A concave trap in front of the start: the greedy direction leads into a dead zone; the
 // search must close it and go around.
 TEST(DirectionalAStar, EscapesAConcaveDeadZone) {
