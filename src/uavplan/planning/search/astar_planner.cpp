@@ -78,12 +78,13 @@ enum class Attempt { found, no_route, walled_off, stopped };
 constexpr std::int64_t kWallProofCells = 8'000'000;
 constexpr double kWallProofBytesPerCell = 4.25;
 
-// "the obstacles around its start's region: wall, tower (and 3 more)".
+// "... wall its start off from its goal (wall, tower and 3 more)": the obstacles that bound the
+// start's region, which is the outside where the goal is the one caged.
 std::string walls_text(const WalledOff& w) {
   constexpr std::size_t kNamed = 3;
   std::string out =
       "no way joins its ends at any cell size: the obstacles, inflated by the UAV's radius and clearance, "
-      "enclose its start's region";
+      "wall its start off from its goal";
   for (std::size_t i = 0; i < w.walls.size() && i < kNamed; ++i) out += (i ? ", " : " (") + w.walls[i];
   if (w.walls.size() > kNamed) out += " and " + std::to_string(w.walls.size() - kNamed) + " more";
   if (!w.walls.empty()) out += ")";
