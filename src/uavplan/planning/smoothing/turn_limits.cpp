@@ -97,7 +97,7 @@ Vec3 rejoin_point(std::vector<Vec3>& out, const Vec3& dir, const Vec3& target, c
   const Vec3 corner = out.back();
   const std::size_t kept = out.size();
   for (double f = 0.5; f > 1.0 / 1024; f *= 0.5) {
-    const Vec3 q = corner + f * (target - corner);
+    Vec3 q = corner + f * (target - corner);
     if ((q - corner).norm() <= kTiny_m) break;
     if (pursue(out, dir, q, lim, ok)) return q;
     out.resize(kept);
