@@ -69,7 +69,22 @@ std::string mission_algorithm(const Scenario& sc, const std::optional<std::strin
                                                ? std::optional<std::string>(sc.planner.algorithm)
                                                : std::nullopt;
   const std::string type(to_string(sc.mission.type));
-  if (!asked) return mission ? mission->default_algorithm() : std::string("astar");
+  const bool entries =
+      sc.mission.type == MissionType::route &&
+      std::any_of(sc.mission.waypoint_entry_heading_rad.begin(), sc.mission.waypoint_entry_heading_rad.end(),
+                  [](const auto& e) { return e.has_value(); });
+  if (!asked) return entries ? std::string("pso_mpc") : mission ? mission->default_algorithm() : std::string("astar");
+  if (entries)  // only planners that fly into a via point along its heading
+    for (const PlannerInfo& p : planner_catalog())
+      if (p.name == *asked && !p.entry_headings) {
+        std::string list;
+        for (const PlannerInfo& q : planner_catalog())
+          if (q.entry_headings) list += (list.empty() ? "" : ", ") + q.name;
+        throw std::invalid_argument("'" + *asked +
+                                    "' does not fly into a via point along its entry_heading_deg; a route with entry "
+                                    "headings plans with " +
+                                    list);
+      }
   if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), *asked) == allowed.end()) {
     std::string list;
     for (std::size_t i = 0; i < allowed.size(); ++i)

@@ -4,6 +4,7 @@
 
 #include <chrono>
 
+#include "uavplan/coordination/mission.h"
 #include "uavplan/io/input_error.h"
 #include "uavplan/io/tree_check.h"
 
@@ -348,6 +349,20 @@ TEST(ScenarioIo, EachMissionTypeReadsItsOwnKeys) {
   expect_error(replace(kGood, "type: route", "type: formation"), {"mission", "missing required key 'shape'"});
   expect_error(replace(kGood, "  waypoints: [[50, 10, 10]]\n", "  waypoint: [[50, 10, 10]]\n"),
                {"unknown key 'waypoint'", "airfield"});
+}
+
+// A route whose via points have entry headings plans with a planner that flies into them along
+// the heading: pso_mpc by default; naming one that does not is an error before any planning.
+TEST(ScenarioIo, EntryHeadingsNeedAPlannerThatKeepsThem) {
+  const std::string entered = replace(kGood, "  waypoints: [[50, 10, 10]]\n",
+                                      "  waypoints: [{position: [50, 10, 10], entry_heading_deg: 90}]\n");
+  expect_error(entered,
+               {"planner.algorithm", "'astar' does not fly into a via point along its entry_heading_deg", "pso_mpc"});
+  const Scenario by_default =
+      parse_scenario(replace(entered, "  algorithm: astar\n  params: {cell_m: 2}\n", ""), "s.yaml");
+  EXPECT_EQ(mission_algorithm(by_default, std::nullopt), "pso_mpc");
+  const Scenario plain = parse_scenario(replace(kGood, "  algorithm: astar\n  params: {cell_m: 2}\n", ""), "s.yaml");
+  EXPECT_EQ(mission_algorithm(plain, std::nullopt), "astar");  // no entry heading: as before
 }
 
 TEST(ScenarioIo, ProblemsPlanningWouldMeetAreLoadErrors) {

@@ -59,7 +59,7 @@ const std::vector<Entry>& entries() {
       {{"pso_mpc",
         "P5 multi-step PSO: one waypoint l on per step, (dphi, dh) within the limits, 11-step look-ahead, terminal and "
         "entry-heading terms",
-        false},
+        false, true, false, true},
        [](const Params& p) { return std::make_unique<PsoMpcPlanner>(PsoMpcOptions::from_params(p)); }},
       {{"pso_single",
         "P5's single-step PSO baseline: all waypoints in one swarm, the constraints relaxed into the cost", false, true,

@@ -24,6 +24,7 @@ struct PlannerInfo {
   // A baseline whose constraints are penalties in its cost (P5's single-step PSO): it may fail
   // any problem, saying why, and never calls a route that breaks them solved.
   bool relaxed = false;
+  bool entry_headings = false;  // honours a via point's entry heading (Problem::via_entry_heading_rad)
 };
 std::vector<PlannerInfo> planner_catalog();
 
