@@ -31,6 +31,20 @@ expect_bad() {  # expect_bad NAME FILE [PART]: exit 2, one stderr line naming th
 "$BIN" plan "$SRC/scenarios/demo.yaml" -o "$TMP/b" --time-limit 9.3e9 >/dev/null 2>&1; check time_limit.huge 0 $?
 cmp -s "$TMP/a/plan.json" "$TMP/b/plan.json"; check demo.deterministic 0 $?
 "$BIN" info "$SRC/scenarios/demo.yaml" >/dev/null 2>&1; check demo.info 0 $?
+# A route whose via point has an entry heading: pso_mpc plans it by default, info lists it alone,
+# and a planner that would not fly in along the heading is bad input.
+cat >"$TMP/entered.yaml" <<'EOF'
+version: 1
+name: entered
+world: {bounds: {min: [0, 0, 0], max: [2000, 2000, 200]}}
+uavs: [{id: u1, start: [100, 100, 50], goal: [1900, 1900, 50], radius: 1, speed: 10}]
+mission: {type: route, waypoints: [{position: [1000, 600, 60], entry_heading_deg: 90}]}
+EOF
+"$BIN" info "$TMP/entered.yaml" | grep -q "^planners for this mission: pso_mpc$" && pass=$((pass + 1)) ||
+  { echo "FAIL entered.info: $("$BIN" info "$TMP/entered.yaml" | tail -1)"; fails=$((fails + 1)); }
+"$BIN" plan "$TMP/entered.yaml" -o "$TMP/entered" >/dev/null 2>&1; check entered.plan 0 $?
+printf 'planner: {algorithm: astar}\n' | cat "$TMP/entered.yaml" - >"$TMP/entered_astar.yaml"
+expect_bad entered.astar "$TMP/entered_astar.yaml" "does not fly into a via point along its entry_heading_deg"
 "$BIN" --help >/dev/null 2>&1; check help 0 $?
 "$BIN" plan "$SRC/scenarios/demo.yaml" -o "$TMP/c" --set nonsense=1 >/dev/null 2>"$TMP/stderr"; check unknown.param 2 $?
 grep -q "planner.params.nonsense" "$TMP/stderr" || { echo "FAIL unknown.param message"; fails=$((fails + 1)); }

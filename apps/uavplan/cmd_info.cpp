@@ -92,17 +92,21 @@ void print_uav(const UavSpec& u) {
   std::printf(", %s\n", u.model ? "autopilot model" : "point mass");
 }
 
-// The planners that can plan this mission (a group plans only with the fields; a route only
-// with planners that pass via points).
+// The planner a plan would use, and the planners that can plan this mission (a group plans only
+// with the fields; a route only with planners that pass via points, and where its via points have
+// entry headings only with those that fly in along them).
 void print_planners(const Scenario& sc) {
-  std::printf("planner   %s", sc.planner.algorithm.c_str());
+  std::printf("planner   %s", mission_algorithm(sc, std::nullopt).c_str());
   for (const auto& [k, v] : sc.planner.params) std::printf(" %s=%s", k.c_str(), v.c_str());
   const Mission* mission = find_mission(sc.mission.type);
   const std::vector<std::string> allowed = mission ? mission->algorithms() : std::vector<std::string>{};
+  const auto& headings = sc.mission.waypoint_entry_heading_rad;
+  const bool entries =
+      std::any_of(headings.begin(), headings.end(), [](const std::optional<double>& h) { return h.has_value(); });
   std::printf("\nplanners for this mission:");
   for (const auto& p : planner_catalog()) {
     if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), p.name) == allowed.end()) continue;
-    if (sc.mission.type == MissionType::route && !p.via_points) continue;
+    if (sc.mission.type == MissionType::route && (!p.via_points || (entries && !p.entry_headings))) continue;
     std::printf(" %s", p.name.c_str());
   }
   std::printf("\n");
