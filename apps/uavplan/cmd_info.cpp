@@ -100,9 +100,7 @@ void print_planners(const Scenario& sc) {
   for (const auto& [k, v] : sc.planner.params) std::printf(" %s=%s", k.c_str(), v.c_str());
   const Mission* mission = find_mission(sc.mission.type);
   const std::vector<std::string> allowed = mission ? mission->algorithms() : std::vector<std::string>{};
-  const auto& headings = sc.mission.waypoint_entry_heading_rad;
-  const bool entries =
-      std::any_of(headings.begin(), headings.end(), [](const std::optional<double>& h) { return h.has_value(); });
+  const bool entries = route_with_entry_headings(sc);
   std::printf("\nplanners for this mission:");
   for (const auto& p : planner_catalog()) {
     if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), p.name) == allowed.end()) continue;

@@ -61,6 +61,28 @@ std::string mission_type_list() {
   return list;
 }
 
+bool route_with_entry_headings(const Scenario& sc) {
+  const auto& headings = sc.mission.waypoint_entry_heading_rad;
+  return sc.mission.type == MissionType::route &&
+         std::any_of(headings.begin(), headings.end(), [](const std::optional<double>& h) { return h.has_value(); });
+}
+
+namespace {
+
+// Refuses `asked` where the planner lacks a capability (`has`), naming those that have it.
+void require_planner(const std::string& asked, bool PlannerInfo::*has, const std::string& lacks,
+                     const std::string& who) {
+  for (const PlannerInfo& p : planner_catalog())
+    if (p.name == asked && !(p.*has)) {
+      std::string list;
+      for (const PlannerInfo& q : planner_catalog())
+        if (q.*has) list += (list.empty() ? "" : ", ") + q.name;
+      throw std::invalid_argument("'" + asked + "' " + lacks + "; " + who + " plans with " + list);
+    }
+}
+
+}  // namespace
+
 std::string mission_algorithm(const Scenario& sc, const std::optional<std::string>& asked_cli) {
   const Mission* mission = find_mission(sc.mission.type);
   const std::vector<std::string> allowed = mission ? mission->algorithms() : std::vector<std::string>{};
@@ -69,22 +91,11 @@ std::string mission_algorithm(const Scenario& sc, const std::optional<std::strin
                                                ? std::optional<std::string>(sc.planner.algorithm)
                                                : std::nullopt;
   const std::string type(to_string(sc.mission.type));
-  const bool entries =
-      sc.mission.type == MissionType::route &&
-      std::any_of(sc.mission.waypoint_entry_heading_rad.begin(), sc.mission.waypoint_entry_heading_rad.end(),
-                  [](const auto& e) { return e.has_value(); });
+  const bool entries = route_with_entry_headings(sc);
   if (!asked) return entries ? std::string("pso_mpc") : mission ? mission->default_algorithm() : std::string("astar");
   if (entries)  // only planners that fly into a via point along its heading
-    for (const PlannerInfo& p : planner_catalog())
-      if (p.name == *asked && !p.entry_headings) {
-        std::string list;
-        for (const PlannerInfo& q : planner_catalog())
-          if (q.entry_headings) list += (list.empty() ? "" : ", ") + q.name;
-        throw std::invalid_argument("'" + *asked +
-                                    "' does not fly into a via point along its entry_heading_deg; a route with entry "
-                                    "headings plans with " +
-                                    list);
-      }
+    require_planner(*asked, &PlannerInfo::entry_headings, "does not fly into a via point along its entry_heading_deg",
+                    "a route with entry headings");
   if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), *asked) == allowed.end()) {
     std::string list;
     for (std::size_t i = 0; i < allowed.size(); ++i)
@@ -92,14 +103,7 @@ std::string mission_algorithm(const Scenario& sc, const std::optional<std::strin
     throw std::invalid_argument("a " + type + " mission plans with " + list + ", not '" + *asked + "'");
   }
   if (sc.mission.type == MissionType::route)
-    for (const PlannerInfo& p : planner_catalog())
-      if (p.name == *asked && !p.via_points) {
-        std::string list;
-        for (const PlannerInfo& q : planner_catalog())
-          if (q.via_points) list += (list.empty() ? "" : ", ") + q.name;
-        throw std::invalid_argument("'" + *asked + "' does not plan through via points; a route mission plans with " +
-                                    list);
-      }
+    require_planner(*asked, &PlannerInfo::via_points, "does not plan through via points", "a route mission");
   return *asked;
 }
 

@@ -109,5 +109,7 @@ std::string mission_type_list();
 // names one), else the mission's default. Throws std::invalid_argument when the one asked for
 // cannot plan this mission, naming those that can.
 std::string mission_algorithm(const Scenario& scenario, const std::optional<std::string>& asked);
+// Whether the scenario is a route whose via points require entry headings (pso_mpc plans it).
+bool route_with_entry_headings(const Scenario& scenario);
 
 }  // namespace uavplan

@@ -265,7 +265,7 @@ struct Jps3d::Expansion {
       walked = ties->walked;
     }
     std::uint32_t todo = t.continuations(reached, mask) & ~walked;  // the moves not walked yet
-    if (ties) ties->walked |= todo;
+    if (ties) ties->walked |= todo;  // a later expansion at this g walks only what a new tie adds
     const double g0 = n.g;
     const auto offer = [&](const int c[3], int move) { arrive(c, move, id, at, g0, relax); };
     WalkLimit limit{{at[0], at[1], at[2]}, {self.goal_[0], self.goal_[1], self.goal_[2]}, g0, 0.0};
