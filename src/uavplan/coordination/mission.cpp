@@ -74,10 +74,15 @@ void require_planner(const std::string& asked, bool PlannerInfo::*has, const std
                      const std::string& who) {
   for (const PlannerInfo& p : planner_catalog())
     if (p.name == asked && !(p.*has)) {
-      std::string list;
+      std::string why = "'" + asked + "' ";
+      why += lacks;
+      why += "; ";
+      why += who;
+      why += " plans with ";
+      const std::size_t named = why.size();
       for (const PlannerInfo& q : planner_catalog())
-        if (q.*has) list += (list.empty() ? "" : ", ") + q.name;
-      throw std::invalid_argument("'" + asked + "' " + lacks + "; " + who + " plans with " + list);
+        if (q.*has) (why += why.size() > named ? ", " : "") += q.name;
+      throw std::invalid_argument(why);
     }
 }
 
