@@ -32,6 +32,7 @@ DirectionalAStarOptions DirectionalAStarOptions::from_params(const Params& param
   o.heuristic_weight = r.number("heuristic_weight", o.heuristic_weight, 1.0, 10.0);
   o.climb_bound = r.boolean("climb_bound", o.climb_bound);
   o.relaxed_heuristic = r.boolean("relaxed_heuristic", o.relaxed_heuristic);
+  o.incumbent_weight = r.number("incumbent_weight", o.incumbent_weight, 1.0, 10.0);
   r.finish();
   return o;
 }
@@ -94,7 +95,6 @@ struct Lattice {
           const Vec3 c = origin + cell * Vec3(lo[0] + dx, lo[1] + dy, lo[2] + dz);
           double dist = (c - p).squaredNorm();
           std::uint32_t id = index(lo[0] + dx, lo[1] + dy, lo[2] + dz);
-          Vec3 pt = c;
           int j = k++;
           for (; j > 0 && d2[j - 1] > dist; --j) {  // insertion, nearest first
             d2[j] = d2[j - 1];
@@ -103,7 +103,7 @@ struct Lattice {
           }
           d2[j] = dist;
           ids[j] = id;
-          pts[j] = pt;
+          pts[j] = c;
         }
     return k;
   }
@@ -400,6 +400,7 @@ DirectionalQuery DirectionalAStarPlanner::query_for(const Problem& pb, const Wor
   q.heuristic_weight = options_.heuristic_weight;
   q.climb_bound = options_.climb_bound;
   q.relaxed_heuristic = options_.relaxed_heuristic;
+  q.incumbent_weight = options_.incumbent_weight;
   return q;
 }
 
@@ -409,7 +410,44 @@ DirectionalRoute DirectionalSearch::run(const World& world, const DirectionalQue
     r.message = "directions: at most " + std::to_string(ConeDirections::kMaxPitches);
     return r;
   }
+  if (q.incumbent_weight > 1.0 && q.heuristic_weight == 1.0 && !std::isfinite(q.max_length_m))
+    return run_bounded_by_incumbent(world, q, stop);
   return run_with_bins(world, q, stop, q.heading_states ? 8 : 1);
+}
+
+// The incumbent search, then the exact one bounded by its route (DirectionalQuery::
+// incumbent_weight): counts are the two searches' together, lattice points opened by both once.
+// Where the first finds no route the exact search runs unbounded (the state's cone depends on the
+// arrival that closed it, so the two orders need not reach the same points); where the exact one
+// finds none within the bound, or is stopped, the incumbent is the answer: no shorter route was
+// left to find, or the caller asked for one now.
+DirectionalRoute DirectionalSearch::run_bounded_by_incumbent(const World& world, const DirectionalQuery& q,
+                                                             const StopCondition& stop) {
+  const std::uint32_t bins = q.heading_states ? 8 : 1;
+  DirectionalQuery first = q;
+  first.heuristic_weight = q.incumbent_weight;
+  DirectionalRoute incumbent = run_with_bins(world, first, stop, bins);
+  if (incumbent.stopped) return incumbent;
+  DirectionalQuery exact = q;
+  // The bound admits the incumbent's own length whatever the order of the sums.
+  if (incumbent.found) exact.max_length_m = incumbent.length_m * (1.0 + 1e-9) + 1e-9 * q.cell_m;
+  DirectionalRoute r = run_with_bins(world, exact, stop, bins, false);
+  r.expanded += incumbent.expanded;
+  r.generated += incumbent.generated;
+  r.opened += incumbent.opened;
+  r.cells_opened += incumbent.cells_opened;
+  r.dead_zones += incumbent.dead_zones;
+  r.relaxed_expanded += incumbent.relaxed_expanded;
+  r.open_max = std::max(r.open_max, incumbent.open_max);
+  if (r.found || !incumbent.found) return r;
+  incumbent.expanded = r.expanded;
+  incumbent.generated = r.generated;
+  incumbent.opened = r.opened;
+  incumbent.cells_opened = r.cells_opened;
+  incumbent.dead_zones = r.dead_zones;
+  incumbent.relaxed_expanded = r.relaxed_expanded;
+  incumbent.open_max = r.open_max;
+  return incumbent;
 }
 
 // One search (P4 sec. 2) on an engine's buffers: what it keeps besides them, each part of an
@@ -418,7 +456,7 @@ DirectionalRoute DirectionalSearch::run(const World& world, const DirectionalQue
 // facing a wall can still be passed facing along it.
 struct DirectionalSearch::Run {
   Run(DirectionalSearch& engine, const World& w, const DirectionalQuery& query, const StopCondition& st,
-      std::uint32_t bins)
+      std::uint32_t bins, bool afresh)
       : self(engine),
         world(w),
         q(query),
@@ -441,7 +479,8 @@ struct DirectionalSearch::Run {
         inv_sin_pitch(query.climb_bound ? 1.0 / std::sin(std::min(query.max_pitch_rad + kAngleTolerance_rad, kPi / 2))
                                         : 0.0),
         inv_move_climb(inv_sin_pitch),
-        bounded(query.heuristic_weight == 1.0 && std::isfinite(query.max_length_m)) {
+        bounded(query.heuristic_weight == 1.0 && std::isfinite(query.max_length_m)),
+        count_afresh(afresh) {
     // With a short step no lattice move may keep the climb limit and change level (at 30 deg a
     // level takes sqrt(3) cells across): then a node on a level from which the goal hop cannot
     // reach the goal is a dead end, and a search that must climb ends at once.
@@ -589,6 +628,7 @@ struct DirectionalSearch::Run {
   const double start_hop_m = (q.step_cells + std::sqrt(3.0)) * q.cell_m;
   // With f = g + h a lower bound on the length through a node, the length bound prunes.
   const bool bounded;
+  const bool count_afresh;  // false: the query's first search counted its points (note_opened)
   bool beyond_bound = false;
   int children = 0;               // of the node being expanded
   Relax* engine_relax = nullptr;  // of the node being expanded
@@ -600,6 +640,10 @@ struct DirectionalSearch::Run {
 
 void DirectionalSearch::Run::start_relaxed() {
   relaxed_started = true;
+  // The reverse search depends on the goal, not on the forward search's order: the query's second
+  // search resumes the first's.
+  if (!count_afresh && self.relaxed_resumable_) return;
+  self.relaxed_resumable_ = true;
   self.relaxed_dist_.assign(static_cast<std::size_t>(lat.size()), kInfinity);
   self.relaxed_closed_.assign(static_cast<std::size_t>(lat.size()), 0);
   // f of the reverse search starts near the start-goal bound and grows by a fraction of a step
@@ -779,7 +823,10 @@ void DirectionalSearch::Run::try_goal(std::uint32_t from, double g_from, const V
 const DirectionalCones::Cone& DirectionalSearch::Run::cone_for(int dx, int dy, int dz) {
   if (std::abs(dx) > reach || std::abs(dy) > reach || std::abs(dz) > reach)
     return self.cones_->cone(cone_table, dx, dy, dz);
-  const auto offset = [this](int d) { return static_cast<std::size_t>(d + reach); };
+  const auto offset = [this](int d) {
+    const int from_corner = d + reach;  // in [0, side)
+    return static_cast<std::size_t>(from_corner);
+  };
   const auto width = static_cast<std::size_t>(side);
   const DirectionalCones::Cone*& slot = cone_index[(offset(dz) * width + offset(dy)) * width + offset(dx)];
   if (!slot) slot = &self.cones_->cone(cone_table, dx, dy, dz);
@@ -871,7 +918,10 @@ DirectionalRoute DirectionalSearch::Run::search() {
   // f grows by a fraction of a step per expansion: buckets of half a cell hold a few hundred
   // entries each.
   self.search_.begin(lat.size() * (bin_bits ? 8 : 1) + 2, h0, 0.5 * q.cell_m);
-  begin_cell_count();
+  if (count_afresh) {
+    begin_cell_count();
+    self.relaxed_resumable_ = false;
+  }
   SearchCounts counts;
   const SearchEnd end =
       self.search_.run(*this, Heuristic{this}, start_id, SearchBuffers::kNoParent, q.start, goal_id, counts);
@@ -906,14 +956,14 @@ DirectionalRoute DirectionalSearch::Run::finish() {
 }
 
 DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const DirectionalQuery& q,
-                                                  const StopCondition& stop, std::uint32_t bins) {
+                                                  const StopCondition& stop, std::uint32_t bins, bool count_afresh) {
   const std::int64_t states = make_lattice(world, q).size() * bins;
   if (states + 2 >= static_cast<std::int64_t>(SearchBuffers::kNoParent)) {
     DirectionalRoute out;
     out.message = "lattice too large; give a larger cell_m";
     return out;
   }
-  return Run(*this, world, q, stop, bins).search();
+  return Run(*this, world, q, stop, bins, count_afresh).search();
 }
 
 void DirectionalAStarPlanner::require_lattice(const World& world, const DirectionalQuery& q, int engines,

@@ -54,6 +54,9 @@ struct DirectionalAStarOptions {
   // Off by default: its reverse search closes more points than it spares the search (P4's Table 3:
   // 5,700 against 700-1,500 expansions spared, twice the time).
   bool relaxed_heuristic = false;
+  // w of a first search with f = g + w h whose route bounds the exact one (DirectionalQuery::
+  // incumbent_weight); 1 = none.
+  double incumbent_weight = 1.2;
 
   static DirectionalAStarOptions from_params(const Params& params);
 };
@@ -97,6 +100,12 @@ struct DirectionalQuery {
   // length through a node when heuristic_weight is 1): the rendezvous' multi-step search
   // need not finish a route that cannot beat its best.
   double max_length_m = std::numeric_limits<double>::infinity();
+  // Where the search is exact (heuristic_weight 1, no length bound): a first search with
+  // f = g + w h (w = incumbent_weight > 1) finds a route in few expansions, and its length bounds
+  // the exact search, which then never puts on the list a node that cannot beat it (f above the
+  // bound). The route is the exact search's (or the first's where none is shorter): the same
+  // lengths, a fraction of the open nodes. 1: the exact search alone.
+  double incumbent_weight = 1.2;
 };
 
 // The cones of P4's expansion as lattice offsets, one table per (step, directions, limits,
@@ -155,8 +164,11 @@ class DirectionalSearch {
 
  private:
   struct Run;  // one search on these buffers (directional_astar.cpp)
+  // One search; `count_afresh` false: lattice points opened by the previous search of this
+  // query are not counted again (its first, incumbent search).
   DirectionalRoute run_with_bins(const World& world, const DirectionalQuery& q, const StopCondition& stop,
-                                 std::uint32_t heading_bins);
+                                 std::uint32_t heading_bins, bool count_afresh = true);
+  DirectionalRoute run_bounded_by_incumbent(const World& world, const DirectionalQuery& q, const StopCondition& stop);
   // Whether the search can ever change level: some move from the start, its children, or a cone
   // they lead to climbs or descends.
   bool levels_reachable(const World& world, const DirectionalQuery& q, DirectionalCones::Table& table);
@@ -169,6 +181,7 @@ class DirectionalSearch {
   std::vector<double> relaxed_dist_;
   std::vector<std::uint8_t> relaxed_closed_;
   OpenList relaxed_open_;
+  bool relaxed_resumable_ = false;  // the buffers above hold this query's reverse search
   std::shared_ptr<DirectionalCones> cones_;
   // Clearance of lattice points (capped at clearance_cap_m_), for one world and lattice; NaN
   // where not yet computed.

@@ -134,6 +134,7 @@ TEST(DirectionalAStar, ShortStepsThatCannotClimbAndTheLengthBoundEndEarly) {
   const DirectionalAStarPlanner planner(DirectionalAStarOptions::from_params({{"cell_m", "1000"}}));
   DirectionalQuery q = planner.query_for(p, w);
   q.heading_states = false;
+  q.incumbent_weight = 1.0;  // the exact search's own length bound
   DirectionalSearch search;
   q.step_cells = 1.2;
   const DirectionalRoute flat = search.run(w, q, {});
@@ -257,6 +258,7 @@ TEST(DirectionalAStar, CellsOpenedCountLatticePointsOnce) {
     if (w.point_collides(start, 10) || w.point_collides(goal, 10)) continue;
     const DirectionalAStarPlanner planner(DirectionalAStarOptions::from_params({{"cell_m", "1000"}}));
     DirectionalQuery q = planner.query_for(problem(start, goal, 0.5), w);
+    q.incumbent_weight = 1.0;  // one search: opened counts its states once each
     DirectionalSearch engine;
     for (const bool sectors : {false, true}) {
       q.heading_states = sectors;
@@ -275,6 +277,76 @@ TEST(DirectionalAStar, CellsOpenedCountLatticePointsOnce) {
     }
   }
   EXPECT_GT(solved, 1);
+}
+
+// The exact search bounded by a first route found with f = g + 1.2 h (the default): never a longer
+// route than the exact search's alone, and fewer lattice points opened, since no node whose f is
+// above the bound goes on the list. With the relaxed heuristic, the second search resumes the
+// first's reverse search rather than starting it again.
+TEST(DirectionalAStar, AFirstRoutesBoundKeepsTheLengthsAndOpensFewerCells) {
+  Rng r(83);
+  const DirectionalAStarPlanner planner(DirectionalAStarOptions::from_params({{"cell_m", "1000"}}));
+  ASSERT_EQ(planner.options().incumbent_weight, 1.2);
+  std::uint64_t cells_alone = 0, cells_bounded = 0, reverse_alone = 0, reverse_bounded = 0;
+  int solved = 0;
+  DirectionalSearch engine;
+  for (int trial = 0; trial < 10; ++trial) {
+    const World w = random_sphere_world(r);
+    const Problem p = problem(Vec3(4000, 5000, 2000), Vec3(27000, 26000, 7000), r.uniform(-kPi, kPi));
+    if (w.point_collides(p.uav.start, 10) || w.point_collides(p.goal, 10)) continue;
+    DirectionalQuery q = planner.query_for(p, w);
+    for (const bool relaxed : {false, true}) {
+      q.relaxed_heuristic = relaxed;
+      q.incumbent_weight = 1.0;
+      const DirectionalRoute alone = engine.run(w, q, {});
+      q.incumbent_weight = 1.2;
+      const DirectionalRoute bounded = engine.run(w, q, {});
+      ASSERT_EQ(alone.found, bounded.found) << trial << ": " << alone.message << " | " << bounded.message;
+      if (!alone.found) continue;
+      EXPECT_LE(bounded.length_m, alone.length_m + 1e-6) << trial;
+      EXPECT_EQ(bounded.waypoints.front(), p.uav.start);
+      EXPECT_EQ(bounded.waypoints.back(), p.goal);
+      EXPECT_TRUE(check_route_limits(bounded.waypoints, p.uav).empty());
+      (relaxed ? reverse_alone : cells_alone) += relaxed ? alone.relaxed_expanded : alone.cells_opened;
+      (relaxed ? reverse_bounded : cells_bounded) += relaxed ? bounded.relaxed_expanded : bounded.cells_opened;
+      solved += relaxed ? 0 : 1;
+    }
+  }
+  EXPECT_GT(solved, 5);
+  EXPECT_LT(3 * cells_bounded, 2 * cells_alone);
+  // Started again, the reverse search would close nearly twice the points.
+  EXPECT_LT(4 * reverse_bounded, 5 * reverse_alone);
+}
+
+// Where the exact search runs out of expansions after the first search found a route, that route
+// (at most 1.2 times the optimum) is the answer, not a failure.
+TEST(DirectionalAStar, TheFirstRouteStandsWhenTheExactSearchRunsOut) {
+  Rng r(83);
+  const DirectionalAStarPlanner planner(DirectionalAStarOptions::from_params({{"cell_m", "1000"}}));
+  int checked = 0;
+  DirectionalSearch engine;
+  for (int trial = 0; trial < 10 && checked < 3; ++trial) {
+    const World w = random_sphere_world(r);
+    const Problem p = problem(Vec3(4000, 5000, 2000), Vec3(27000, 26000, 7000), r.uniform(-kPi, kPi));
+    if (w.point_collides(p.uav.start, 10) || w.point_collides(p.goal, 10)) continue;
+    DirectionalQuery q = planner.query_for(p, w);
+    q.incumbent_weight = 1.0;
+    const DirectionalRoute exact = engine.run(w, q, {});
+    q.heuristic_weight = 1.2;
+    const DirectionalRoute first = engine.run(w, q, {});
+    if (!exact.found || first.expanded * 2 >= exact.expanded) continue;
+    q.heuristic_weight = 1.0;
+    q.max_expansions = static_cast<std::int64_t>(first.expanded + 1);
+    const DirectionalRoute short_exact = engine.run(w, q, {});
+    EXPECT_FALSE(short_exact.found);
+    q.incumbent_weight = 1.2;
+    const DirectionalRoute bounded = engine.run(w, q, {});
+    ASSERT_TRUE(bounded.found) << bounded.message;
+    EXPECT_NEAR(bounded.length_m, first.length_m, 1e-6);
+    EXPECT_LE(bounded.length_m, 1.2 * exact.length_m + 1e-6);
+    ++checked;
+  }
+  EXPECT_GT(checked, 0);
 }
 
 // A goal caged in by six walls: no lattice point has a clear last segment to it, so the relaxed
@@ -303,7 +375,7 @@ TEST(DirectionalAStar, RelaxedHeuristicEndsAtOnceWhenTheGoalIsCaged) {
   EXPECT_NE(a.status, Status::solved);
   EXPECT_NE(b.status, Status::solved);
   EXPECT_NE(a.message.find("even without the turn limits"), std::string::npos) << a.message;
-  EXPECT_LE(a.stats.nodes_expanded, 1u);
+  EXPECT_LE(a.stats.nodes_expanded, 2u);  // the start, in the first search and the exact one
   EXPECT_GT(b.stats.nodes_expanded, 1000u);
 }
 
@@ -330,6 +402,7 @@ TEST(DirectionalAStar, AOneLevelLatticeLiesAtTheStartsHeight) {
 TEST(DirectionalAStar, ParametersAreChecked) {
   EXPECT_THROW(DirectionalAStarOptions::from_params({{"directions", "0"}}), std::invalid_argument);
   EXPECT_THROW(DirectionalAStarOptions::from_params({{"step", "2"}}), std::invalid_argument);
+  EXPECT_THROW(DirectionalAStarOptions::from_params({{"incumbent_weight", "0.9"}}), std::invalid_argument);
 }
 
 }  // namespace
