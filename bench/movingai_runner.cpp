@@ -117,7 +117,7 @@ MovingAiReport run_movingai(const std::string& map_path, const std::string& scen
   }
   if (opt.algorithm == "jps+") {
     t0 = Clock::now();
-    jps->precompute();
+    rep.table_built = jps->precompute();
     rep.preprocess_ms = ms_since(t0);
     rep.table_mb = static_cast<double>(jps->table_bytes()) / (1024.0 * 1024.0);
   }
@@ -165,7 +165,11 @@ std::string format_movingai(const MovingAiReport& rep) {
                 rep.map.c_str(), rep.cells[0], rep.cells[1], rep.cells[2], rep.algorithm.c_str(), rep.problems.size(),
                 rep.load_ms, rep.grid_mb);
   out += buf;
-  if (rep.algorithm == "jps+") {
+  if (rep.algorithm == "jps+" && !rep.table_built) {
+    std::snprintf(buf, sizeof buf, "jump table: none (the grid is more than %d cells a side): jumps scanned\n",
+                  JumpTable::kMaxSide);
+    out += buf;
+  } else if (rep.algorithm == "jps+") {
     std::snprintf(buf, sizeof buf, "jump table: built once in %.1f ms (not in the query times), %.2f MB\n",
                   rep.preprocess_ms, rep.table_mb);
     out += buf;

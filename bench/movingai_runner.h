@@ -29,6 +29,7 @@ struct MovingAiReport {
   int cells[3] = {0, 0, 0};
   double load_ms = 0.0;
   double preprocess_ms = 0.0, table_mb = 0.0;  // jps+: the jump table, 3-D jps: the bit lines, built once
+  bool table_built = false;                    // jps+: false where the grid is too wide for one
   bool reference = true;                       // the textbook A* ran beside ours
   double grid_mb = 0.0, peak_rss_mb = 0.0;
   std::vector<MovingAiProblemResult> problems;

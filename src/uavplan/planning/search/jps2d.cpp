@@ -18,7 +18,10 @@ Jps2d::Jps2d(const BitGrid& grid) : grid_(&grid) {
   cols_ = BitLines(grid, 1);
 }
 
-void Jps2d::precompute() { table_.emplace(*grid_, rows_, cols_); }
+bool Jps2d::precompute() {
+  if (JumpTable::fits(*grid_)) table_.emplace(*grid_, rows_, cols_);
+  return table_.has_value();
+}
 
 // Straight jump from (x, y) along (dx, dy) (one of them 0), from the table or on the rows or
 // columns; on success (x, y) is the jump point.

@@ -24,8 +24,9 @@ class Jps2d {
   explicit Jps2d(const BitGrid& grid);
 
   // Computes every cell's jumps once (JPS+): later searches read them instead of scanning. The
-  // same jump points, so the same results; costs 32 bytes per cell.
-  void precompute();
+  // same jump points, so the same results; costs 16 bytes per cell. A grid more than
+  // JumpTable::kMaxSide cells wide or high gets none (false) and is searched by scanning.
+  bool precompute();
   bool precomputed() const { return table_.has_value(); }
   std::size_t table_bytes() const { return table_ ? table_->memory_bytes() : 0; }
 

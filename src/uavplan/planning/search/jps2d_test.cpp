@@ -76,6 +76,32 @@ TEST(Jps2d, TheTableGivesTheSameSearchesAsScanning) {
   }
 }
 
+// The table's 16-bit steps reach across the widest grid it is built for, in every direction,
+// with pillars making jump points along the way and gaps in a wall making diagonals stop; a grid
+// one cell wider gets no table and is searched by scanning, with the same result.
+TEST(Jps2d, TheTableSpansTheWidestGridItIsBuiltFor) {
+  for (const int width : {JumpTable::kMaxSide, JumpTable::kMaxSide + 1}) {
+    BitGrid g(width, 5, 1);
+    for (int x = 1000; x < width - 1000; x += 9000) g.set_blocked(g.index(x, 0, 0));  // pillars below row 1
+    for (int x = 0; x < width; ++x)
+      if (x % 7000 != 3) g.set_blocked(g.index(x, 3, 0));  // a wall with gaps between rows 2 and 4
+    Jps2d scan(g), table(g);
+    EXPECT_EQ(table.precompute(), width <= JumpTable::kMaxSide);
+    EXPECT_EQ(table.precomputed(), width <= JumpTable::kMaxSide);
+    const std::int64_t pairs[3][2] = {{g.index(0, 1, 0), g.index(width - 1, 1, 0)},
+                                      {g.index(width - 1, 2, 0), g.index(0, 4, 0)},
+                                      {g.index(0, 4, 0), g.index(width - 2, 0, 0)}};
+    for (const auto& p : pairs) {
+      const GridSearchResult a = scan.search(p[0], p[1]), b = table.search(p[0], p[1]);
+      ASSERT_TRUE(a.found);
+      EXPECT_EQ(a.cells, b.cells);
+      EXPECT_EQ(a.expanded, b.expanded);
+      EXPECT_NEAR(a.cost, b.cost, 1e-9);
+    }
+    EXPECT_NEAR(scan.search(pairs[0][0], pairs[0][1]).cost, width - 1, 1e-6);
+  }
+}
+
 TEST(Jps2d, RejectsThreeDimensionalGrids) { EXPECT_THROW(Jps2d(BitGrid(4, 4, 2)), std::invalid_argument); }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "uavplan/planning/search/jump_table.h"
 
 #include <bit>
+#include <stdexcept>
 
 namespace uavplan {
 
@@ -42,10 +43,11 @@ LineStop scan_line(const BitLines& lines, int line, std::int64_t p, int step, st
   return step > 0 ? scan_up(lines, line, p, goal) : scan_down(lines, line, p, goal);
 }
 
-JumpTable::JumpTable(const BitGrid& g, const BitLines& rows, const BitLines& cols)
-    : steps_(static_cast<std::size_t>(g.size()) * 8, 0) {
+JumpTable::JumpTable(const BitGrid& g, const BitLines& rows, const BitLines& cols) {
+  if (!fits(g)) throw std::invalid_argument("jump table: the grid is wider or higher than 32,767 cells");
+  steps_.assign(static_cast<std::size_t>(g.size()) * 8, 0);
   const int nx = g.nx(), ny = g.ny();
-  auto at = [&](int x, int y, int dir) -> std::int32_t& {
+  auto at = [&](int x, int y, int dir) -> std::int16_t& {
     return steps_[static_cast<std::size_t>(g.index(x, y, 0)) * 8 + static_cast<std::size_t>(dir)];
   };
   for (int y = 0; y < ny; ++y)
@@ -54,8 +56,8 @@ JumpTable::JumpTable(const BitGrid& g, const BitLines& rows, const BitLines& col
       for (int step = -1; step <= 1; step += 2) {
         const LineStop h = scan_line(rows, y, x, step, -1), v = scan_line(cols, x, y, step, -1);
         const auto dh = static_cast<std::int32_t>((h.at - x) * step), dv = static_cast<std::int32_t>((v.at - y) * step);
-        at(x, y, direction(step, 0)) = h.jump_point ? dh : -(dh - 1);
-        at(x, y, direction(0, step)) = v.jump_point ? dv : -(dv - 1);
+        at(x, y, direction(step, 0)) = static_cast<std::int16_t>(h.jump_point ? dh : -(dh - 1));
+        at(x, y, direction(0, step)) = static_cast<std::int16_t>(v.jump_point ? dv : -(dv - 1));
       }
     }
   // A diagonal from the cell after it: sweep from the side it moves towards.
@@ -72,7 +74,7 @@ JumpTable::JumpTable(const BitGrid& g, const BitLines& rows, const BitLines& col
             at(x, y, dir) = 1;
           } else {
             const std::int32_t after = at(nxt_x, nxt_y, dir);
-            at(x, y, dir) = after > 0 ? after + 1 : after - 1;
+            at(x, y, dir) = static_cast<std::int16_t>(after > 0 ? after + 1 : after - 1);
           }
         }
     }
