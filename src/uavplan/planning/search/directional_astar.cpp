@@ -175,6 +175,18 @@ class ConeDirections {
   double cos_pitch_[kMaxPitches], sin_pitch_[kMaxPitches];
 };
 
+// The work of two searches of one query in `to`'s counts (a lattice point opened by both is
+// counted once by the second: see count_afresh).
+void add_counts(DirectionalRoute& to, const DirectionalRoute& from) {
+  to.expanded += from.expanded;
+  to.generated += from.generated;
+  to.opened += from.opened;
+  to.cells_opened += from.cells_opened;
+  to.dead_zones += from.dead_zones;
+  to.relaxed_expanded += from.relaxed_expanded;
+  to.open_max = std::max(to.open_max, from.open_max);
+}
+
 std::optional<Vec3> start_heading(const DirectionalQuery& q) {
   if (q.start_direction) return q.start_direction;
   if (q.heading_rad) return heading_vector(*q.heading_rad);
@@ -432,22 +444,14 @@ DirectionalRoute DirectionalSearch::run_bounded_by_incumbent(const World& world,
   // The bound admits the incumbent's own length whatever the order of the sums.
   if (incumbent.found) exact.max_length_m = incumbent.length_m * (1.0 + 1e-9) + 1e-9 * q.cell_m;
   DirectionalRoute r = run_with_bins(world, exact, stop, bins, false);
-  r.expanded += incumbent.expanded;
-  r.generated += incumbent.generated;
-  r.opened += incumbent.opened;
-  r.cells_opened += incumbent.cells_opened;
-  r.dead_zones += incumbent.dead_zones;
-  r.relaxed_expanded += incumbent.relaxed_expanded;
-  r.open_max = std::max(r.open_max, incumbent.open_max);
+  add_counts(r, incumbent);
   if (r.found || !incumbent.found) return r;
-  incumbent.expanded = r.expanded;
-  incumbent.generated = r.generated;
-  incumbent.opened = r.opened;
-  incumbent.cells_opened = r.cells_opened;
-  incumbent.dead_zones = r.dead_zones;
-  incumbent.relaxed_expanded = r.relaxed_expanded;
-  incumbent.open_max = r.open_max;
-  return incumbent;
+  r.found = true;
+  r.stopped = false;
+  r.waypoints = std::move(incumbent.waypoints);
+  r.length_m = incumbent.length_m;
+  r.message.clear();
+  return r;
 }
 
 // One search (P4 sec. 2) on an engine's buffers: what it keeps besides them, each part of an
