@@ -261,6 +261,12 @@ TEST(ScenarioIo, SizesAreCheckedBeforeTheyAreBuilt) {
     laughs += "]\n";
   }
   expect_error(laughs, {"expands", "values"});
+  // An alias inside its own anchor's node: a cycle, refused before anything walks it (the
+  // scenario fuzzer's find: it overflowed the stack).
+  expect_error(
+      "version: 1\nworld:\n  bounds: {min: [0, 0, 0], max: [1, 1, 1]}\n  terrain: {heights: [&r [0, *r]]}\n"
+      "uavs: [{id: a, start: [1, 1, 1]}]\n",
+      {"s.yaml:4", "world.terrain.heights[0][1]", "contains itself"});
   // A speed that would need ten million trajectory rows.
   expect_error(replace(kGood, "speed: {min: 1, cruise: 4, max: 6}", "speed: 1e-6"),
                {"uavs[0].speed", "at most 1e+06 s"});

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <map>
+#include <set>
 
 #include "uavplan/io/input_error.h"
 
@@ -17,6 +18,10 @@ class TreeCheck {
     if (!n.IsMap() && !n.IsSequence()) return 1;
     const auto key = std::make_pair(n.Mark().line, n.Mark().column);
     if (const auto it = memo_.find(key); it != memo_.end()) return it->second;
+    // An alias inside the node its anchor names makes the tree a cycle: no reader could walk it.
+    if (!open_.insert(key).second)
+      throw InputError(file_, key.first + 1, path,
+                       "a YAML alias inside the node it refers to (the value contains itself)");
     std::size_t total = 1;
     const auto add = [&](std::size_t k) { total = total > max_ ? total : total + k; };
     if (n.IsSequence()) {
@@ -35,6 +40,7 @@ class TreeCheck {
         add(values(kv.second, at));
       }
     }
+    open_.erase(key);
     memo_[key] = total;
     return total;
   }
@@ -43,6 +49,7 @@ class TreeCheck {
   const std::string& file_;
   std::size_t max_;
   std::map<std::pair<int, int>, std::size_t> memo_;
+  std::set<std::pair<int, int>> open_;  // the collections being walked, outermost first
 };
 
 }  // namespace
