@@ -7,10 +7,13 @@
 // comes. A search whose f rarely falls (A* with a consistent heuristic: a child's f is at least
 // its parent's) pushes most entries in O(1) into a later bucket, and its pops sift through a
 // small heap that stays in cache instead of one holding the whole frontier. An entry below the
-// current bucket joins the current heap, so every pop still returns the least entry of all.
+// current bucket joins the current heap, so every pop still returns the least entry of all. A
+// bit per bucket says which hold entries: a search whose f jumps far (a maze's detours) passes
+// thousands of empty buckets a word at a time, and a reset clears only those it used.
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -28,12 +31,20 @@ class OpenList {
 
   // Empties the list (keeping its storage). An infinite width makes it one binary heap.
   void reset(double f0 = 0.0, double bucket_width = std::numeric_limits<double>::infinity()) {
-    for (std::size_t k = 0; k <= last_used_ && k < buckets_.size(); ++k) buckets_[k].clear();
+    for (std::size_t w = 0; w < used_.size(); ++w) {
+      for (std::uint64_t bits = used_[w]; bits != 0; bits &= bits - 1)
+        buckets_[w * 64 + static_cast<std::size_t>(std::countr_zero(bits))].clear();
+      used_[w] = 0;
+    }
+    if (!buckets_.empty()) buckets_[current_].clear();
     f0_ = f0;
     inv_width_ = bucket_width > 0.0 && std::isfinite(bucket_width) ? 1.0 / bucket_width : 0.0;
-    current_ = last_used_ = 0;
+    current_ = 0;
     size_ = 0;
-    if (buckets_.empty()) buckets_.resize(1);
+    if (buckets_.empty()) {
+      buckets_.resize(64);
+      used_.assign(1, 0);
+    }
   }
   bool empty() const { return size_ == 0; }
   std::size_t size() const { return size_; }
@@ -53,15 +64,19 @@ class OpenList {
       sift_up(heap, heap.size() - 1, e);
       return;
     }
-    if (k >= buckets_.size()) buckets_.resize(std::max(k + 1, 2 * buckets_.size()));
+    if (k >= buckets_.size()) {
+      buckets_.resize(std::max((k / 64 + 1) * 64, 2 * buckets_.size()));
+      used_.resize(buckets_.size() / 64, 0);
+    }
     buckets_[k].push_back(e);
-    last_used_ = std::max(last_used_, k);
+    used_[k / 64] |= std::uint64_t{1} << (k % 64);
   }
 
   // The least entry; the list must not be empty.
   Entry pop() {
-    while (buckets_[current_].empty()) {
-      std::vector<Entry>& next = buckets_[++current_];
+    if (buckets_[current_].empty()) {
+      current_ = next_used();
+      std::vector<Entry>& next = buckets_[current_];
       for (std::size_t i = next.size() / 2; i-- > 0;) sift_down(next, i);
     }
     --size_;
@@ -91,6 +106,16 @@ class OpenList {
  private:
   static constexpr std::size_t kMaxBuckets = std::size_t{1} << 20;  // beyond: the last one
 
+  // The first bucket after the current one that holds entries (there is one: the list is not
+  // empty and the current bucket is); its bit is cleared, as it becomes the current bucket.
+  std::size_t next_used() {
+    std::size_t w = (current_ + 1) / 64;
+    std::uint64_t bits = used_[w] & (~std::uint64_t{0} << ((current_ + 1) % 64));
+    while (bits == 0) bits = used_[++w];
+    const std::size_t k = w * 64 + static_cast<std::size_t>(std::countr_zero(bits));
+    used_[w] &= ~(std::uint64_t{1} << (k % 64));
+    return k;
+  }
   std::size_t bucket_of(double f) const {
     const double d = (f - f0_) * inv_width_;
     if (!(d > 0.0)) return 0;
@@ -117,8 +142,9 @@ class OpenList {
     heap[hole] = e;
   }
 
-  std::vector<std::vector<Entry>> buckets_;
-  std::size_t current_ = 0, last_used_ = 0, size_ = 0;
+  std::vector<std::vector<Entry>> buckets_;  // a multiple of 64 of them
+  std::vector<std::uint64_t> used_;          // bit k: bucket k, after the current one, holds entries
+  std::size_t current_ = 0, size_ = 0;
   double f0_ = 0.0, inv_width_ = 0.0;
 };
 

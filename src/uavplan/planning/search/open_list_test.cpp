@@ -75,5 +75,32 @@ TEST(OpenList, EachPopIsTheLeastEntryLeft) {
   EXPECT_EQ(open.pop().id, 42u);
 }
 
+// Entries thousands of buckets apart (a maze's detours: f jumps far between pops) come out in
+// order across the words of the used-bucket bits, and a reset with entries still in far buckets
+// leaves none behind for the next query.
+TEST(OpenList, FarApartBucketsAndAResetWithEntriesLeft) {
+  Rng rng(11);
+  OpenList open;
+  for (int query = 0; query < 3; ++query) {
+    open.reset(0.0, 0.01);
+    std::vector<OpenList::Entry> oracle;
+    for (std::uint32_t i = 0; i < 300; ++i) {
+      const double f = std::round(rng.uniform(0.0, 2000.0));  // every 100 buckets at least
+      open.push(f, 0.0, i + 1000 * static_cast<std::uint32_t>(query));
+      oracle.push_back({f, 0.0f, i + 1000 * static_cast<std::uint32_t>(query)});
+    }
+    std::sort(oracle.begin(), oracle.end(), OpenList::before);
+    for (std::size_t k = 0; k < 200; ++k) ASSERT_EQ(open.pop().id, oracle[k].id) << "query " << query << ", pop " << k;
+    EXPECT_EQ(open.size(), 100u);  // left in far buckets for the reset to clear
+  }
+  open.reset(0.0, 0.01);
+  EXPECT_TRUE(open.empty());
+  open.push(7.0, 0.0, 5);
+  open.push(3.0, 0.0, 6);
+  EXPECT_EQ(open.pop().id, 6u);
+  EXPECT_EQ(open.pop().id, 5u);
+  EXPECT_TRUE(open.empty());
+}
+
 }  // namespace
 }  // namespace uavplan
