@@ -178,7 +178,7 @@ GridSearchResult Jps2d::search(std::int64_t start, std::int64_t goal, const Stop
   gy_ = t.j;
   // f never falls from a node to its successors (the octile distance is consistent along jumps),
   // so the open list keeps entries in buckets one cell of f wide and heaps only the one it pops:
-  // a heap of tens of entries, not of the whole frontier (10 % off the median query on the
+  // a heap of tens of entries, not of the whole frontier (10-15 % off the median query on the
   // MovingAI city maps; the same pops, so the same search).
   search_.begin(g.size(), octile_distance(t.i - s.i, t.j - s.j, 0), 1.0);
   Expansion expansion{*this, stop};
