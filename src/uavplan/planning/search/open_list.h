@@ -49,7 +49,7 @@ class OpenList {
   bool empty() const { return size_ == 0; }
   std::size_t size() const { return size_; }
   std::size_t memory_bytes() const {
-    std::size_t b = buckets_.capacity() * sizeof(std::vector<Entry>);
+    std::size_t b = buckets_.capacity() * sizeof(std::vector<Entry>) + used_.capacity() * sizeof(std::uint64_t);
     for (const auto& v : buckets_) b += v.capacity() * sizeof(Entry);
     return b;
   }
