@@ -81,6 +81,7 @@ class BestFirst {
   void begin(std::int64_t ids, double f0 = 0.0, double bucket_width = std::numeric_limits<double>::infinity()) {
     nodes_.begin(ids);
     open_.reset(f0, bucket_width);
+    pending_ = SearchBuffers::kNoParent;
   }
 
   // Searches from `start` (whose parent is `start_parent`: kNoParent, or itself for Theta*) until
@@ -88,13 +89,31 @@ class BestFirst {
   template <class Expansion, class Heuristic, class Position>
   SearchEnd run(Expansion& expansion, const Heuristic& h, std::uint32_t start, std::uint32_t start_parent,
                 const Position& start_at, std::uint32_t goal, SearchCounts& counts) {
+    seed(h, start, start_parent, start_at, counts);
+    return resume(expansion, h, goal, counts);
+  }
+
+  // run() in two parts: the start on the list, then the loop. A search the policy stopped goes on
+  // where it was with resume() (the node closed as it stopped is expanded first), so two searches
+  // can take turns (3-D JPS runs one from each end).
+  template <class Heuristic, class Position>
+  void seed(const Heuristic& h, std::uint32_t start, std::uint32_t start_parent, const Position& start_at,
+            SearchCounts& counts) {
     SearchBuffers::Node& s = nodes_.at(start);
     s.g = 0.0;
     s.parent = start_parent;
     open_.push(h(start_at), 0.0, start);
     ++counts.opened;
     counts.open_max = std::max<std::uint64_t>(counts.open_max, 1);
+  }
+  template <class Expansion, class Heuristic>
+  SearchEnd resume(Expansion& expansion, const Heuristic& h, std::uint32_t goal, SearchCounts& counts) {
     Relax<Heuristic> relax(*this, h, counts);
+    if (pending_ != SearchBuffers::kNoParent) {
+      const std::uint32_t id = pending_;
+      pending_ = SearchBuffers::kNoParent;
+      expansion.expand(id, nodes_.at(id), relax);
+    }
     while (!open_.empty()) {
       const typename Open::Entry e = open_.pop();
       SearchBuffers::Node& n = nodes_.at(e.id);
@@ -110,7 +129,10 @@ class BestFirst {
       if constexpr (requires { expansion.settle(e.id); }) expansion.settle(e.id);
       SearchBuffers::close(n);
       if (e.id == goal) return SearchEnd::goal;
-      if (expansion.stop_now(++counts.expanded)) return SearchEnd::stopped;
+      if (expansion.stop_now(++counts.expanded)) {
+        pending_ = e.id;
+        return SearchEnd::stopped;
+      }
       expansion.expand(e.id, n, relax);
     }
     return SearchEnd::exhausted;
@@ -130,6 +152,7 @@ class BestFirst {
  private:
   SearchBuffers nodes_;
   Open open_;
+  std::uint32_t pending_ = SearchBuffers::kNoParent;  // closed as the policy stopped, not expanded yet
 };
 
 }  // namespace uavplan

@@ -179,5 +179,48 @@ TEST(BestFirst, EndsWhenThePolicyStopsOrTheListRunsDry) {
   }
 }
 
+// A policy that writes down the order of its expansions and stops every `every` of them.
+struct RecordingExpansion {
+  const Graph& g;
+  std::vector<std::uint32_t>& order;
+  std::uint64_t every = 0;  // 0: never stops
+  bool stop_now(std::uint64_t expanded) const { return every != 0 && expanded % every == 0; }
+  template <class Relax>
+  void expand(std::uint32_t id, const SearchBuffers::Node& n, Relax& relax) const {
+    order.push_back(id);
+    for (const Graph::Edge& e : g.out[id]) relax(e.to, n.g + e.cost, id, e.to);
+  }
+};
+
+// A search stopped every few expansions and resumed each time expands what the search run
+// through expands, in the same order (the node closed as it stopped is expanded on resuming), and
+// counts the same.
+TEST(BestFirst, AStoppedSearchResumesWhereItStopped) {
+  const Graph g = random_graph(600, 11);
+  const auto h = [&](std::uint32_t v) { return (g.at[v] - g.at[599]).norm(); };
+  BestFirst<> search;
+  search.begin(600);
+  std::vector<std::uint32_t> through, sliced;
+  RecordingExpansion once{g, through};
+  SearchCounts c1;
+  ASSERT_EQ(search.run(once, h, 0u, SearchBuffers::kNoParent, 0u, 599u, c1), SearchEnd::goal);
+  const double g1 = search.node(599).g;
+  ASSERT_GT(through.size(), 20u);
+
+  search.begin(600);
+  RecordingExpansion turns{g, sliced, 3};
+  SearchCounts c2;
+  search.seed(h, 0u, SearchBuffers::kNoParent, 0u, c2);
+  int stops = 0;
+  SearchEnd end = SearchEnd::stopped;
+  while ((end = search.resume(turns, h, 599u, c2)) == SearchEnd::stopped) ++stops;
+  EXPECT_EQ(end, SearchEnd::goal);
+  EXPECT_GT(stops, 5);
+  EXPECT_EQ(sliced, through);
+  EXPECT_EQ(c2.expanded, c1.expanded);
+  EXPECT_EQ(c2.generated, c1.generated);
+  EXPECT_EQ(search.node(599).g, g1);
+}
+
 }  // namespace
 }  // namespace uavplan
