@@ -1,5 +1,5 @@
 // MovingAI benchmark: ours against the textbook A* on a map and its scenario file.
-// Usage: movingai MAP SCEN [astar|jps|jps+|theta] [LIMIT] [--no-reference]
+// Usage: movingai MAP SCEN [astar|jps|jps+|jps-forward|theta] [LIMIT] [--no-reference]
 // (--no-reference: our search alone, without the textbook A* beside it)
 #include <cstdio>
 #include <cstdlib>
@@ -10,7 +10,7 @@
 
 int main(int argc, char** argv) {
   if (argc < 3 || (argc > 5 && std::string(argv[5]) != "--no-reference")) {
-    std::fprintf(stderr, "usage: %s MAP SCEN [astar|jps|jps+|theta] [LIMIT] [--no-reference]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s MAP SCEN [astar|jps|jps+|jps-forward|theta] [LIMIT] [--no-reference]\n", argv[0]);
     return 2;
   }
   uavplan::bench::MovingAiOptions opt;

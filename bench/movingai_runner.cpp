@@ -66,6 +66,17 @@ Summary summarise(const std::vector<const MovingAiProblemResult*>& rs, bool any_
   return s;
 }
 
+void check_algorithm(const std::string& algorithm, bool three_d) {
+  if (algorithm != "astar" && algorithm != "jps" && algorithm != "jps+" && algorithm != "jps-forward" &&
+      algorithm != "theta")
+    throw std::invalid_argument("unknown grid search '" + algorithm +
+                                "' (expected astar, jps, jps-forward, jps+ or theta)");
+  if (three_d && algorithm == "jps+")
+    throw std::invalid_argument("jps+ (a jump table) is 2-D only here; use jps, astar or theta");
+  if (!three_d && algorithm == "jps-forward")
+    throw std::invalid_argument("jps-forward (3-D JPS from the start alone) is for a .3dmap; 2-D jps is one-way");
+}
+
 }  // namespace
 
 double peak_rss_mb() {
@@ -79,16 +90,14 @@ bool MovingAiReport::passed() const {
 }
 
 MovingAiReport run_movingai(const std::string& map_path, const std::string& scen_path, const MovingAiOptions& opt) {
-  const bool jump = opt.algorithm == "jps" || opt.algorithm == "jps+";
-  if (opt.algorithm != "astar" && !jump && opt.algorithm != "theta")
-    throw std::invalid_argument("unknown grid search '" + opt.algorithm + "' (expected astar, jps, jps+ or theta)");
+  const bool one_way = opt.algorithm == "jps-forward";
+  const bool jump = opt.algorithm == "jps" || opt.algorithm == "jps+" || one_way;
   MovingAiReport rep;
   rep.map = map_path;
   rep.algorithm = opt.algorithm;
   rep.reference = opt.reference;
   rep.three_d = is_movingai_3d(map_path);
-  if (rep.three_d && opt.algorithm == "jps+")
-    throw std::invalid_argument("jps+ (a jump table) is 2-D only here; use jps, astar or theta");
+  check_algorithm(opt.algorithm, rep.three_d);
   auto t0 = Clock::now();
   const BitGrid grid = rep.three_d ? read_movingai_3dmap(map_path) : read_movingai_map(map_path);
   rep.load_ms = ms_since(t0);
@@ -111,7 +120,9 @@ MovingAiReport run_movingai(const std::string& map_path, const std::string& scen
   std::unique_ptr<Jps3d> jps3;
   if (jump && rep.three_d) {
     t0 = Clock::now();
-    jps3 = std::make_unique<Jps3d>(grid);
+    Jps3dOptions o;
+    o.both_directions = !one_way;
+    jps3 = std::make_unique<Jps3d>(grid, o);
     rep.preprocess_ms = ms_since(t0);
     rep.table_mb = static_cast<double>(jps3->line_bytes()) / (1024.0 * 1024.0);
   }
@@ -174,7 +185,7 @@ std::string format_movingai(const MovingAiReport& rep) {
                   rep.preprocess_ms, rep.table_mb);
     out += buf;
   }
-  if (rep.algorithm == "jps" && rep.three_d) {
+  if ((rep.algorithm == "jps" || rep.algorithm == "jps-forward") && rep.three_d) {
     std::snprintf(buf, sizeof buf,
                   "bit lines along x, y and z: built once in %.1f ms (not in the query times), %.2f MB\n",
                   rep.preprocess_ms, rep.table_mb);

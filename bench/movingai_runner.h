@@ -10,9 +10,10 @@
 namespace uavplan::bench {
 
 struct MovingAiOptions {
-  std::string algorithm = "astar";  // astar | jps | jps+ (2-D; jps+ with its jump table) | theta
-  int limit = 0;                    // 0: every problem; else this many, spread evenly
-  bool reference = true;            // also run the textbook A*
+  // astar | jps | jps+ (2-D, with its jump table) | jps-forward (3-D, from the start alone) | theta
+  std::string algorithm = "astar";
+  int limit = 0;          // 0: every problem; else this many, spread evenly
+  bool reference = true;  // also run the textbook A*
 };
 
 struct MovingAiProblemResult {

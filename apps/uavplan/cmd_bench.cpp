@@ -51,8 +51,8 @@ void add_movingai(CLI::App* cmd, std::function<int()>& run) {
   m->add_option("map", a->map, "MovingAI .map (2-D) or .3dmap (3-D)")->required();
   m->add_option("scen", a->scen, "Its .scen or .3dscen")->required();
   m->add_option("--algorithm", a->options.algorithm,
-                "astar (default), jps (2-D or 3-D), jps+ (2-D, jump table built once, its time printed apart) or theta "
-                "(Lazy Theta*, any-angle)");
+                "astar (default), jps (2-D or 3-D; in 3-D from both ends in turns), jps-forward (3-D, from the start "
+                "alone), jps+ (2-D, jump table built once, its time printed apart) or theta (Lazy Theta*, any-angle)");
   m->add_option("--limit", a->options.limit, "Run this many problems, spread evenly over the file (default all)");
   m->add_flag("--json", a->json, "Print JSON instead of the table");
   m->add_flag("!--no-reference", a->options.reference, "Skip the textbook A*");

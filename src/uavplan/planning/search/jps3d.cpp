@@ -157,7 +157,8 @@ const Tables& tables() {
 
 }  // namespace jps3d_rules
 
-Jps3d::Jps3d(const BitGrid& grid) : grid_(&grid) {
+Jps3d::Jps3d(const BitGrid& grid, Jps3dOptions options) : grid_(&grid), options_(options) {
+  options_.slice_expansions = std::max<std::uint32_t>(options_.slice_expansions, 1);
   if (grid.size() >= std::int64_t{std::numeric_limits<std::uint32_t>::max()})
     throw std::invalid_argument("Jump Point Search in 3-D: the grid has too many cells (under 2^32 - 1)");
   for (int a = 0; a < 3; ++a) lines_[a] = BitLines(grid, a);
@@ -198,7 +199,8 @@ bool Jps3d::jump_straight(int c[3], int axis, int step, const WalkLimit& limit) 
   const BitLines& lines = lines_[axis];
   int near[9];
   for (int q = 0; q < 9; ++q) near[q] = lines.line(c[ua] + q % 3 - 1, c[wa] + q / 3 - 1);
-  const bool goal_line = goal_[ua] == c[ua] && goal_[wa] == c[wa];
+  const int* goal = limit.goal;
+  const bool goal_line = goal[ua] == c[ua] && goal[wa] == c[wa];
   const int move = kAny + step * (axis == 0 ? 1 : axis == 1 ? 3 : 9);
   constexpr std::uint64_t kCells = ((std::uint64_t{1} << 62) - 1) << 1;  // bits 1..62
   int cur = c[axis] + step;
@@ -215,12 +217,12 @@ bool Jps3d::jump_straight(int c[3], int axis, int step, const WalkLimit& limit) 
     std::uint64_t test = (differ | differ << 1) & kCells;
     const auto ahead_of = [&](int p) { return step > 0 ? p - 1 : 62 - p; };
     const int cut = limit.first_over(c, axis, cur, step);  // cells ahead of cur within the limit
-    const int goal_ahead = goal_line ? (goal_[axis] - cur) * step : -1;
+    const int goal_ahead = goal_line ? (goal[axis] - cur) * step : -1;
     for (;;) {
       const int p = test ? (step > 0 ? std::countr_zero(test) : 63 - std::countl_zero(test)) : -1;
       const int t = p < 0 ? 62 : ahead_of(p);
       if (goal_ahead >= 0 && goal_ahead <= std::min(t, cut) && goal_ahead < 62) {
-        c[axis] = goal_[axis];
+        c[axis] = goal[axis];
         return true;
       }
       if (t <= cut && t < 62) {
@@ -245,9 +247,15 @@ bool Jps3d::jump_straight(int c[3], int axis, int step, const WalkLimit& limit) 
 // leads to (see the header).
 struct Jps3d::Expansion {
   Jps3d& self;
+  Side& side;
   const StopCondition& stop;
-  std::uint32_t goal_cell;
-  bool stop_now(std::uint64_t expanded) const { return stop_due(stop, expanded, 1024); }
+  std::uint64_t slice_end = std::numeric_limits<std::uint64_t>::max();  // this turn ends here
+  std::uint64_t other = 0;  // the other direction's expansions, for the stop condition
+  bool stopped = false;     // by the stop condition, not the turn's end
+  bool stop_now(std::uint64_t expanded) {
+    stopped = stop_due(stop, expanded + other, 1024);
+    return stopped || expanded >= slice_end;
+  }
 
   template <class Relax>
   void expand(std::uint32_t id, const SearchBuffers::Node& n, Relax& relax) const {
@@ -258,7 +266,7 @@ struct Jps3d::Expansion {
     g.coords(id, at[0], at[1], at[2]);
     const std::uint32_t mask = g.free_mask(at[0], at[1], at[2]);
     std::uint32_t reached = 1u << arrival(id, n.parent), walked = 0;
-    MoveSets::Entry* ties = self.moves_.find(id);
+    MoveSets::Entry* ties = side.moves.find(id);
     if (ties && ties->g != n.g) ties = nullptr;  // a worse g's set
     if (ties) {
       reached = ties->reached;
@@ -268,8 +276,9 @@ struct Jps3d::Expansion {
     if (ties) ties->walked |= todo;  // a later expansion at this g walks only what a new tie adds
     const double g0 = n.g;
     const auto offer = [&](const int c[3], int move) { arrive(c, move, id, at, g0, relax); };
-    WalkLimit limit{{at[0], at[1], at[2]}, {self.goal_[0], self.goal_[1], self.goal_[2]}, g0, 0.0};
-    limit.f_max = g0 + octile_distance(self.goal_[0] - at[0], self.goal_[1] - at[1], self.goal_[2] - at[2]) + 1e-9;
+    const int* goal = side.goal;
+    WalkLimit limit{{at[0], at[1], at[2]}, {goal[0], goal[1], goal[2]}, g0, 0.0};
+    limit.f_max = g0 + octile_distance(goal[0] - at[0], goal[1] - at[1], goal[2] - at[2]) + 1e-9;
     for (; todo; todo &= todo - 1) {
       const int move = std::countr_zero(todo);
       if (t.legal(mask, move)) walk_move(at, move, mask, limit, offer);
@@ -298,15 +307,15 @@ struct Jps3d::Expansion {
     constexpr double kTie = 1e-9;
     const auto cell = static_cast<std::uint32_t>(self.grid_->index(c[0], c[1], c[2]));
     const double cost = g0 + octile_distance(c[0] - from[0], c[1] - from[1], c[2] - from[2]);
-    SearchBuffers::Node& node = self.search_.node(cell);
+    SearchBuffers::Node& node = side.search.node(cell);
     if (cost < node.g - kTie) {
       relax(cell, cost, parent, GridCell{c[0], c[1], c[2]});
       return;
     }
-    if (cost > node.g + kTie || cell == goal_cell) return;
+    if (cost > node.g + kTie || cell == side.to) return;
     const int first = arrival(cell, node.parent);
     if (move == first) return;
-    MoveSets::Entry& e = self.moves_.at(cell);
+    MoveSets::Entry& e = side.moves.at(cell);
     const bool closed = SearchBuffers::closed(node);
     if (e.g != node.g) {  // the first tie at this g: the set starts with the parent's move
       e.g = node.g;
@@ -317,8 +326,8 @@ struct Jps3d::Expansion {
     e.reached |= 1u << move;
     if (!closed) return;  // still on the list: it takes the move with it
     SearchBuffers::reopen(node);
-    const double h = octile_distance(self.goal_[0] - c[0], self.goal_[1] - c[1], self.goal_[2] - c[2]);
-    self.search_.open().push(node.g + h, node.g, cell);
+    const double h = octile_distance(side.goal[0] - c[0], side.goal[1] - c[1], side.goal[2] - c[2]);
+    side.search.open().push(node.g + h, node.g, cell);
   }
 
   // Walks a legal move from `from` and offers the nodes it finds.
@@ -344,7 +353,7 @@ struct Jps3d::Expansion {
     int c[3] = {from[0], from[1], from[2]};
     while (t.legal(mask, move)) {
       for (int a = 0; a < 3; ++a) c[a] += m.v[a];
-      const bool goal = c[0] == self.goal_[0] && c[1] == self.goal_[1] && c[2] == self.goal_[2];
+      const bool goal = c[0] == side.goal[0] && c[1] == side.goal[1] && c[2] == side.goal[2];
       if (goal || limit.over(c)) return offer(c, move);
       mask = self.grid_->free_mask(c[0], c[1], c[2]);
       if (t.jump_point(mask, move)) return offer(c, move);
@@ -356,22 +365,78 @@ struct Jps3d::Expansion {
   }
 };
 
-GridSearchResult Jps3d::search(std::int64_t start, std::int64_t goal, const StopCondition& stop) {
+void Jps3d::prepare(Side& side, std::int64_t from, std::int64_t to) {
   const BitGrid& g = *grid_;
-  if (!g.free(start) || !g.free(goal)) return {};
-  GridCell s, t;
-  g.coords(start, s.i, s.j, s.k);
-  g.coords(goal, t.i, t.j, t.k);
-  goal_[0] = t.i;
-  goal_[1] = t.j;
-  goal_[2] = t.k;
-  search_.begin(g.size());
-  moves_.begin();
-  const auto from = static_cast<std::uint32_t>(start), to = static_cast<std::uint32_t>(goal);
-  Expansion expansion{*this, stop, to};
-  SearchCounts counts;
-  const SearchEnd end = search_.run(expansion, OctileToGoal{t, 1.0}, from, SearchBuffers::kNoParent, s, to, counts);
-  return grid_result(search_, end, counts, from, to);
+  side.from = static_cast<std::uint32_t>(from);
+  side.to = static_cast<std::uint32_t>(to);
+  g.coords(to, side.goal[0], side.goal[1], side.goal[2]);
+  side.search.begin(g.size());
+  side.moves.begin();
+  side.counts = {};
+  GridCell s;
+  g.coords(from, s.i, s.j, s.k);
+  side.search.seed(OctileToGoal{GridCell{side.goal[0], side.goal[1], side.goal[2]}, 1.0}, side.from,
+                   SearchBuffers::kNoParent, s, side.counts);
+}
+
+GridSearchResult Jps3d::search(std::int64_t start, std::int64_t goal, const StopCondition& stop) {
+  if (!grid_->free(start) || !grid_->free(goal)) return {};
+  prepare(sides_[0], start, goal);
+  if (options_.both_directions) {
+    prepare(sides_[1], goal, start);
+    return race(stop);
+  }
+  Side& side = sides_[0];
+  Expansion expansion{*this, side, stop};
+  const OctileToGoal h{GridCell{side.goal[0], side.goal[1], side.goal[2]}, 1.0};
+  const SearchEnd end = side.search.resume(expansion, h, side.to, side.counts);
+  return grid_result(side.search, end, side.counts, side.from, side.to);
+}
+
+namespace {
+
+// A route found from the goal, turned round: its cells from the start, kept where the move
+// changes, so that each step of expand_path() between two of them is one move repeated (the
+// backward walks took their moves in the other order).
+std::vector<std::int64_t> turned_round(const BitGrid& g, std::vector<std::int64_t> cells) {
+  std::reverse(cells.begin(), cells.end());
+  std::vector<std::int64_t> out{cells.front()};
+  int last[3] = {0, 0, 0};
+  for (std::size_t i = 1; i < cells.size(); ++i) {
+    int a[3], b[3];
+    g.coords(cells[i - 1], a[0], a[1], a[2]);
+    g.coords(cells[i], b[0], b[1], b[2]);
+    const int d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    if (i > 1 && (d[0] != last[0] || d[1] != last[1] || d[2] != last[2])) out.push_back(cells[i - 1]);
+    std::copy(d, d + 3, last);
+  }
+  if (cells.size() > 1) out.push_back(cells.back());
+  return out;
+}
+
+}  // namespace
+
+// Each direction expands a slice in turn until one closes its goal, runs dry (then so would the
+// other: the moves are the same both ways) or the stop condition holds.
+GridSearchResult Jps3d::race(const StopCondition& stop) {
+  for (int turn = 0;; turn ^= 1) {
+    Side& side = sides_[turn];
+    Expansion expansion{*this, side, stop};
+    expansion.slice_end = side.counts.expanded + options_.slice_expansions;
+    expansion.other = sides_[turn ^ 1].counts.expanded;
+    const OctileToGoal h{GridCell{side.goal[0], side.goal[1], side.goal[2]}, 1.0};
+    const SearchEnd end = side.search.resume(expansion, h, side.to, side.counts);
+    if (end == SearchEnd::stopped && !expansion.stopped) continue;
+    SearchCounts both = side.counts;
+    const SearchCounts& o = sides_[turn ^ 1].counts;
+    both.expanded += o.expanded;
+    both.generated += o.generated;
+    both.opened += o.opened;
+    both.open_max += o.open_max;
+    GridSearchResult r = grid_result(side.search, end, both, side.from, side.to);
+    if (turn == 1 && r.found) r.cells = turned_round(*grid_, expand_path(r.cells));
+    return r;
+  }
 }
 
 void Jps3d::MoveSets::begin() {

@@ -30,17 +30,20 @@ void expect_legal_path(const BitGrid& g, const Jps3d& jps, const GridSearchResul
 }
 
 // Between `queries` random cells of g: JPS finds A*'s cost (or none where A* finds none), on a
-// legal path.
+// legal path; from both ends in turns (the default) and from the start alone.
 void expect_same_cost_as_astar(const BitGrid& g, Rng& r, int queries, int trial) {
   GridAStar astar(g, bounding_box_moves(g), GridHeuristic::octile);
-  Jps3d jps(g);
+  Jps3d both(g), forward(g, Jps3dOptions{false});
   for (int q = 0; q < queries; ++q) {
     const std::int64_t s = r.uniform_int(0, g.size() - 1), t = r.uniform_int(0, g.size() - 1);
-    const GridSearchResult a = astar.search(s, t), j = jps.search(s, t);
-    ASSERT_EQ(a.found, j.found) << "trial " << trial << " query " << q;
-    if (!a.found) continue;
-    ASSERT_NEAR(a.cost, j.cost, 1e-9) << "trial " << trial << " query " << q;
-    expect_legal_path(g, jps, j, s, t);
+    const GridSearchResult a = astar.search(s, t);
+    for (Jps3d* jps : {&both, &forward}) {
+      const GridSearchResult j = jps->search(s, t);
+      ASSERT_EQ(a.found, j.found) << "trial " << trial << " query " << q;
+      if (!a.found) continue;
+      ASSERT_NEAR(a.cost, j.cost, 1e-9) << "trial " << trial << " query " << q;
+      expect_legal_path(g, *jps, j, s, t);
+    }
   }
 }
 
@@ -96,6 +99,52 @@ TEST(Jps3d, ThroughAHoleAndAcrossEmptySpace) {
   ASSERT_TRUE(e.found);
   EXPECT_NEAR(e.cost, octile_distance(37, 18, 6), 1e-9);
   EXPECT_LE(e.expanded, 10u);
+}
+
+// A cage round one end, open on the side away from the other end: the search toward the cage
+// closes the whole volume of shortest obstacle-free paths before its f reaches the way round,
+// the search out of it turns at once. Either end caged, the race costs a small part of the search
+// from the start alone and finds its cost, on a legal path (turned round when the search from
+// the goal wins); a stop condition still ends it.
+// A shell two cells round c, open on the side +x (open = 1) or -x (-1).
+void cage(BitGrid& g, const int c[3], int open) {
+  for (int z = c[2] - 2; z <= c[2] + 2; ++z)
+    for (int y = c[1] - 2; y <= c[1] + 2; ++y)
+      for (int x = c[0] - 2; x <= c[0] + 2; ++x) {
+        const bool shell = std::abs(x - c[0]) == 2 || std::abs(y - c[1]) == 2 || std::abs(z - c[2]) == 2;
+        if (shell && x != c[0] + 2 * open) g.set_blocked(g.index(x, y, z));
+      }
+}
+
+TEST(Jps3d, BothEndsInTurnsTakeTheCheaperWay) {
+  BitGrid g(64, 56, 48);
+  const int c[3] = {50, 42, 34};
+  cage(g, c, 1);  // open away from the other end
+  const std::int64_t caged = g.index(c[0], c[1], c[2]), far = g.index(3, 4, 5);
+  Jps3d both(g), forward(g, Jps3dOptions{false});
+  GridAStar astar(g, bounding_box_moves(g), GridHeuristic::octile);
+  for (const auto& [s, t] : {std::pair{far, caged}, std::pair{caged, far}}) {
+    const GridSearchResult a = astar.search(s, t), one = forward.search(s, t), two = both.search(s, t);
+    ASSERT_TRUE(two.found);
+    EXPECT_NEAR(two.cost, a.cost, 1e-9);
+    EXPECT_NEAR(one.cost, a.cost, 1e-9);
+    expect_legal_path(g, both, two, s, t);
+    if (s == far) EXPECT_LT(10 * two.expanded, one.expanded) << one.expanded << " " << two.expanded;
+    EXPECT_LE(two.expanded, 2 * std::min(one.expanded, forward.search(t, s).expanded) + 128);
+  }
+  // Both ends caged, each open away from the other: the stop condition (asked every 1,024
+  // expansions of the two together) ends the race.
+  const int d[3] = {6, 7, 8};
+  cage(g, d, -1);
+  const std::int64_t also_caged = g.index(d[0], d[1], d[2]);
+  Jps3d again(g);
+  const GridSearchResult whole = again.search(also_caged, caged);
+  ASSERT_TRUE(whole.found);
+  ASSERT_GT(whole.expanded, 2048u);
+  const GridSearchResult cut = again.search(also_caged, caged, StopCondition::iterations(1024));
+  EXPECT_TRUE(cut.stopped);
+  EXPECT_FALSE(cut.found);
+  EXPECT_EQ(cut.expanded, 1024u);
 }
 
 // The argument behind the pruning (jps3d.h): two moves d then e that leave the canonical order
