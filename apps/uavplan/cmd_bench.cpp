@@ -256,6 +256,9 @@ void add_soak(CLI::App* cmd, std::function<int()>& run) {
       cmd->add_subcommand("soak", "Random worlds per planner and mission: every claimed solution must verify");
   s->add_option("--worlds", opt->worlds, "Random worlds per row (default 1000)")->check(CLI::PositiveNumber);
   s->add_option("--seed", opt->seed, "Seed of the worlds (default 1)");
+  s->add_option("--stop-s", opt->stop_s,
+                "Each plan's time limit in seconds (default 2); a plan must end within it + 0.2 s")
+      ->check(CLI::Range(0.001, 3600.0));
   s->callback([opt, &run] {
     run = [opt] {
       bool held = false;
