@@ -129,7 +129,9 @@ TEST(Jps3d, BothEndsInTurnsTakeTheCheaperWay) {
     EXPECT_NEAR(two.cost, a.cost, 1e-9);
     EXPECT_NEAR(one.cost, a.cost, 1e-9);
     expect_legal_path(g, both, two, s, t);
-    if (s == far) EXPECT_LT(10 * two.expanded, one.expanded) << one.expanded << " " << two.expanded;
+    if (s == far) {
+      EXPECT_LT(10 * two.expanded, one.expanded) << one.expanded << " " << two.expanded;
+    }
     EXPECT_LE(two.expanded, 2 * std::min(one.expanded, forward.search(t, s).expanded) + 128);
   }
   // Both ends caged, each open away from the other: the stop condition (asked every 1,024
