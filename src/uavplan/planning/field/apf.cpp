@@ -285,17 +285,19 @@ PlanResult ApfPlanner::do_plan(const Problem& pb, const World& world, const Stop
   }
   // Repeated points (holds) carry no direction; then P3's smoothing (a move that would touch an
   // obstacle is refused), then the turn limits, as for every planner.
+  // The via points are pinned before the smoothing, which moves no pinned point (a sharp turn at
+  // a via point would otherwise pull the route off it).
   auto& pts = res.route.waypoints;
   pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
-  if (o.smooth) {
-    smooth_triples(pts, deg_to_rad(o.smoothing_threshold_deg), [&](std::size_t i, const Vec3& c) {
-      return field.step_safe(pts[i - 1], c, {}) && field.step_safe(c, pts[i + 1], {});
-    });
-  }
   std::vector<char> pinned(pts.size(), 0);
   pinned.front() = pinned.back() = 1;
   for (std::size_t i = 0, v = 0; i < pts.size() && v < pb.via.size(); ++i)
     if (pts[i] == pb.via[v]) pinned[i] = 1, ++v;
+  if (o.smooth) {
+    smooth_triples(pts, deg_to_rad(o.smoothing_threshold_deg), [&](std::size_t i, const Vec3& c) {
+      return !pinned[i] && field.step_safe(pts[i - 1], c, {}) && field.step_safe(c, pts[i + 1], {});
+    });
+  }
   const SegmentRule rule(world, pb.uav);
   const TurnShaping shaped =
       enforce_turn_limits(pts, pinned, pb.uav.heading_rad, {pb.uav.max_turn_rad, pb.uav.max_climb_rad}, rule);

@@ -159,5 +159,20 @@ TEST(Apf, TripleSmoothingStraightensAndRespectsRefusals) {
   EXPECT_EQ(kept, zig);
 }
 
+// A via point where the route turns back sharply stays on the route: the smoothing moves no via
+// point (it once pulled the route off one, and the verifier failed the plan).
+TEST(Apf, ViaPointsAtSharpTurnsStayOnTheRoute) {
+  const World w = flat_world({});
+  for (const bool improved : {true, false}) {
+    ApfPlanner planner(opts(improved));
+    Problem pb{field_uav(), Vec3(2, 1, 0), {Vec3(30, 10, 0), Vec3(-10, 30, 0)}};
+    pb.uav.start = Vec3(0, 0, 0);
+    const PlanResult r = planner.plan(pb, w, {});
+    ASSERT_EQ(r.status, Status::solved) << r.message;
+    const auto& pts = r.route.waypoints;
+    for (const Vec3& via : pb.via) EXPECT_NE(std::find(pts.begin(), pts.end(), via), pts.end()) << via.transpose();
+  }
+}
+
 }  // namespace
 }  // namespace uavplan
