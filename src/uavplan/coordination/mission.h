@@ -40,8 +40,12 @@ inline constexpr const char* kStoppedMessage = "stopped (time limit or interrupt
 struct GroundPoints {
   std::vector<std::optional<Vec3>> start, goal;
   // Per UAV with a home (its start and goal are the ground there): the UAV's own start and goal,
-  // visited on the way (before and after the mission's via points).
-  std::vector<std::optional<std::pair<Vec3, Vec3>>> home_visits;
+  // visited on the way (before and after the mission's via points); either is left out when it
+  // lies straight above home, where the climb from home ends or the descent to it begins.
+  struct HomeVisits {
+    std::optional<Vec3> start, goal;
+  };
+  std::vector<std::optional<HomeVisits>> home_visits;
 };
 
 // What a mission plans with: the options, the planner chosen for it with its parameters, the

@@ -93,6 +93,19 @@ std::string column_problem(const Scenario& sc, const UavSpec& u, const Vec3& p, 
          " m of an obstacle or the terrain beside it (radius plus clearance " + num_text(keep) + " m)";
 }
 
+// Whether a UAV with a home at `home` climbs from it straight to `p` (or descends from p straight
+// to it): p is on home's vertical column (within a millimetre, the verifier's column), above the
+// lift-off height, and the column up to p is clear of obstacles. Then the take-off ends at p, not
+// at the lift-off height below it: a leg straight up or down is not one a planner with turn and
+// climb limits can fly.
+bool climbs_straight_to(const Scenario& sc, const UavSpec& u, const Vec3& home, const Vec3& p, double lift_m) {
+  constexpr double kColumn_m = 1e-3;
+  if ((p.head<2>() - home.head<2>()).norm() > kColumn_m || p.z() < home.z() + lift_m) return false;
+  const double keep = keep_off_m(u);
+  const Vec3 top(home.x(), home.y(), p.z());
+  return sc.world.in_bounds(top) && sc.world.ground_leg_clearance(home, top, keep, home.z()) >= keep - 1e-6;
+}
+
 // The points of the scenario on the ground (take-offs and landings) and in the air (to stay
 // above min_agl), with the UAV whose they are.
 struct Placed {
@@ -214,10 +227,17 @@ PlanningView planning_view(const Scenario& sc, GroundLegTiming timing, BandTop b
     const UavSpec& u = sc.uavs[i];
     const double lift = lift_height_m(sc, u);
     if (u.home && goal[i]) {  // up from home, its start and goal on the way, down at home
-      v.lift_off[i] = v.touch_down[i] = *u.home + Vec3(0, 0, lift);
+      const bool up_to_start = climbs_straight_to(sc, u, *u.home, u.start, lift);
+      const bool down_from_goal = climbs_straight_to(sc, u, *u.home, *goal[i], lift);
+      v.lift_off[i] = up_to_start ? u.start : *u.home + Vec3(0, 0, lift);
+      v.touch_down[i] = down_from_goal ? *goal[i] : *u.home + Vec3(0, 0, lift);
       v.ground.start[i] = v.ground.goal[i] = *u.home;
-      v.ground.home_visits[i] = std::pair{u.start, *goal[i]};
-      if (timing == GroundLegTiming::shifted) v.takeoff_s = std::max(v.takeoff_s, lift / u.speed.cruise_mps);
+      GroundPoints::HomeVisits visit;
+      if (!up_to_start) visit.start = u.start;
+      if (!down_from_goal) visit.goal = *goal[i];
+      v.ground.home_visits[i] = visit;
+      if (timing == GroundLegTiming::shifted)
+        v.takeoff_s = std::max(v.takeoff_s, (v.lift_off[i]->z() - u.home->z()) / u.speed.cruise_mps);
       continue;
     }
     if (w.on_ground(u.start)) {

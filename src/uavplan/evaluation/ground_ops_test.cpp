@@ -98,5 +98,47 @@ TEST(GroundOps, AHomeIsWhereTheFlightBeginsAndEnds) {
   EXPECT_TRUE(start);
 }
 
+// A start straight above home ends the climb from home, and a goal straight above home begins the
+// descent to it: no leg straight up or down is left to a planner with turn and climb limits (P5's
+// PSO failed such a leg, and the field planner passed its start off the column). Each planner
+// plans, the plan verifies, and the take-off (landing) column reaches the start (leaves the goal).
+TEST(GroundOps, AStartOrGoalStraightAboveHomeIsWhereTheClimbEnds) {
+  for (const char* algorithm : {"astar", "pso_mpc", "apf"})
+    for (const bool start_above : {true, false}) {
+      Scenario sc;
+      sc.world = hills_world();
+      UavSpec u;
+      u.id = "u1";
+      u.home = Vec3(20, 20, sc.world.ground_z(20, 20));
+      u.start = start_above ? Vec3(20, 20, 30) : Vec3(40, 100, 20);
+      u.goal = start_above ? Vec3(170, 100, 25) : Vec3(20, 20, 40);
+      u.speed = {0, 5, 5};
+      u.max_climb_rad = deg_to_rad(30);
+      sc.uavs.push_back(u);
+      MissionOptions opt;
+      opt.algorithm = algorithm;
+      opt.params = {{"cell_m", "4"}};
+      const Plan p = plan_mission(sc, opt);
+      const std::string what = std::string(algorithm) + (start_above ? ", start above home" : ", goal above home");
+      ASSERT_EQ(p.status, Status::solved) << what << ": " << p.message;
+      const std::vector<Violation> bad = verify_plan(sc, p);
+      EXPECT_TRUE(bad.empty()) << what << ": " << describe(bad.front());
+      const Trajectory& tr = p.uavs[0].trajectory;
+      const auto in_column = [&](const TrajectorySample& r) {
+        return (r.p.head<2>() - u.home->head<2>()).norm() < 1e-9;
+      };
+      const Vec3 end = start_above ? u.start : *u.goal;  // where the column's climb ends or descent begins
+      if (start_above) {
+        std::size_t k = 0;
+        while (k + 1 < tr.size() && in_column(tr[k + 1])) ++k;
+        EXPECT_LT((tr[k].p - end).norm(), 1e-9) << what;
+      } else {
+        std::size_t k = tr.size() - 1;
+        while (k > 0 && in_column(tr[k - 1])) --k;
+        EXPECT_LT((tr[k].p - end).norm(), 1e-9) << what;
+      }
+    }
+}
+
 }  // namespace
 }  // namespace uavplan

@@ -343,7 +343,9 @@ void fly_sensing(const Scenario& sc, const MissionContext& ctx, const LocalLayer
   rw.stop = opt.stop;
   rw.via_points = sc.mission.waypoints;
   for (const auto& visit : ctx.ground.home_visits)  // a sortie from home passes its start and goal
-    if (visit) rw.via_points.insert(rw.via_points.end(), {visit->first, visit->second});
+    if (visit)
+      for (const auto& p : {visit->start, visit->goal})
+        if (p) rw.via_points.push_back(*p);
   std::vector<ScriptedUav> scripted;
   for (const auto& [spec, up] : committed)
     if (!senses(*spec)) scripted.push_back({spec, &up->trajectory});
