@@ -31,7 +31,9 @@ class TreeCheck {
       std::map<std::string, int> seen;
       for (const auto& kv : n) {
         const std::string k = kv.first.IsScalar() ? kv.first.Scalar() : std::string("?");
-        const std::string at = path.empty() ? k : path + "." + k;
+        std::string at = path;
+        if (!at.empty()) at += '.';
+        at += k;
         const int line = kv.first.Mark().line + 1;
         if (const auto [it, fresh] = seen.emplace(k, line); !fresh)
           throw InputError(file_, line, at,
