@@ -55,7 +55,8 @@ std::string run_soak(const SoakOptions& opt, bool* all_held) {
                   ms.empty() ? 0.0 : ms[ms.size() / 2], ms.empty() ? 0.0 : ms.back(), static_cast<int>(late));
     out += buf;
   }
-  out += "(late: plans that ended more than 0.2 s after their stop)\n";
+  std::snprintf(buf, sizeof buf, "(late: plans that ended more than %g s after their stop)\n", kSoakGraceS);
+  out += buf;
   if (all_held) *all_held = held;
   return out;
 }

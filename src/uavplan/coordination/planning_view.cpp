@@ -94,16 +94,13 @@ std::string column_problem(const Scenario& sc, const UavSpec& u, const Vec3& p, 
 }
 
 // Whether a UAV with a home at `home` climbs from it straight to `p` (or descends from p straight
-// to it): p is on home's vertical column (within a millimetre, the verifier's column), above the
+// to it): p is on home's vertical column (World::same_column, as the verifier), above the
 // lift-off height, and the column up to p is clear of obstacles. Then the take-off ends at p, not
 // at the lift-off height below it: a leg straight up or down is not one a planner with turn and
 // climb limits can fly.
 bool climbs_straight_to(const Scenario& sc, const UavSpec& u, const Vec3& home, const Vec3& p, double lift_m) {
-  constexpr double kColumn_m = 1e-3;
-  if ((p.head<2>() - home.head<2>()).norm() > kColumn_m || p.z() < home.z() + lift_m) return false;
-  const double keep = keep_off_m(u);
-  const Vec3 top(home.x(), home.y(), p.z());
-  return sc.world.in_bounds(top) && sc.world.ground_leg_clearance(home, top, keep, home.z()) >= keep - 1e-6;
+  if (!World::same_column(p, home) || p.z() < home.z() + lift_m) return false;
+  return column_problem(sc, u, home, p.z() - sc.world.ground_z(home.x(), home.y())).empty();
 }
 
 // The points of the scenario on the ground (take-offs and landings) and in the air (to stay

@@ -1,13 +1,6 @@
 #include "uavplan/evaluation/ground_legs.h"
 
 namespace uavplan {
-namespace {
-
-constexpr double kColumn_m = 1e-3;  // rows this close horizontally are on one vertical column
-
-bool same_column(const Vec3& a, const Vec3& b) { return (a.head<2>() - b.head<2>()).norm() <= kColumn_m; }
-
-}  // namespace
 
 GroundLegs ground_legs(const World& w, const Trajectory& tr) {
   GroundLegs g;
@@ -23,13 +16,13 @@ GroundLegs ground_legs(const World& w, const Trajectory& tr) {
   g.takeoff = w.on_ground(tr.front().p);
   if (g.takeoff) {
     g.takeoff_end = first_air;
-    while (g.takeoff_end + 1 < n && same_column(tr[g.takeoff_end + 1].p, tr.front().p)) ++g.takeoff_end;
+    while (g.takeoff_end + 1 < n && World::same_column(tr[g.takeoff_end + 1].p, tr.front().p)) ++g.takeoff_end;
   }
   g.landing = w.on_ground(tr.back().p);
   g.landing_begin = n - 1;
   if (g.landing) {
     g.landing_begin = last_air;
-    while (g.landing_begin > 0 && same_column(tr[g.landing_begin - 1].p, tr.back().p)) --g.landing_begin;
+    while (g.landing_begin > 0 && World::same_column(tr[g.landing_begin - 1].p, tr.back().p)) --g.landing_begin;
   }
   if (g.takeoff && g.landing && g.takeoff_end > g.landing_begin) g.landing_begin = g.takeoff_end;
   return g;

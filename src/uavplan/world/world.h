@@ -60,6 +60,8 @@ class World {
   bool on_ground(const Vec3& p) const {
     return spec_.bounds.max.z() > spec_.bounds.min.z() && std::abs(p.z() - ground_z(p.x(), p.y())) <= 1e-3;
   }
+  // On one vertical column: at most 1 mm apart horizontally (a take-off's or a landing's rows).
+  static bool same_column(const Vec3& a, const Vec3& b) { return (a.head<2>() - b.head<2>()).norm() <= 1e-3; }
   // A piece of a leg to or from the ground at height ground_z: its distance to obstacles all
   // along, and to the terrain where it is more than `keep_m` above ground_z, capped at keep_m.
   double ground_leg_clearance(const Vec3& a, const Vec3& b, double keep_m, double ground_z) const;
