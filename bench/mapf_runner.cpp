@@ -18,11 +18,24 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Loaded {
+// An instance file and its agent count; the instance itself is read when it is run, so that a
+// folder of many instances never sits in memory at once.
+struct Listed {
   std::string file;
-  MapfInstance instance;
-  MapfProblem problem;  // instance.problem(), checked when loaded
+  std::size_t agents = 0;
 };
+
+struct Loaded {
+  MapfInstance instance;
+  MapfProblem problem;  // instance.problem(), checked
+};
+
+Loaded load_instance(const std::string& path) {
+  Loaded l{read_mapf_instance(path), {}};
+  l.problem = l.instance.problem();
+  if (const std::string m = mapf_problem_mistake(l.problem); !m.empty()) throw InputError(path, 0, "", m);
+  return l;
+}
 
 // Names with their numbers compared as numbers: ex2 before ex10.
 bool natural_less(const std::string& a, const std::string& b) {
@@ -48,30 +61,24 @@ bool natural_less(const std::string& a, const std::string& b) {
 
 // Instance files sorted by agent count, then by name (natural_less), each count thinned to
 // `limit` spread evenly.
-std::vector<Loaded> load_instances(const std::string& dir, int limit) {
+std::vector<Listed> list_instances(const std::string& dir, int limit) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw InputError(dir, 0, "", "not a folder of instance files");
   std::vector<std::string> files;
   for (const fs::directory_entry& e : fs::directory_iterator(dir, ec))
     if (e.path().extension() == ".yaml" && e.is_regular_file(ec)) files.push_back(e.path().filename().string());
   if (files.empty()) throw InputError(dir, 0, "", "no .yaml instance files");
-  std::vector<Loaded> all;
-  for (const std::string& f : files) {
-    const std::string path = (fs::path(dir) / f).string();
-    MapfInstance instance = read_mapf_instance(path);
-    MapfProblem problem = instance.problem();
-    if (const std::string m = mapf_problem_mistake(problem); !m.empty()) throw InputError(path, 0, "", m);
-    all.push_back({f, std::move(instance), std::move(problem)});
-  }
-  std::sort(all.begin(), all.end(), [&](const Loaded& a, const Loaded& b) {
-    return a.instance.names.size() != b.instance.names.size() ? a.instance.names.size() < b.instance.names.size()
-                                                              : natural_less(a.file, b.file);
+  std::vector<Listed> all;
+  for (const std::string& f : files)  // every file checked before any is run
+    all.push_back({f, load_instance((fs::path(dir) / f).string()).instance.names.size()});
+  std::sort(all.begin(), all.end(), [&](const Listed& a, const Listed& b) {
+    return a.agents != b.agents ? a.agents < b.agents : natural_less(a.file, b.file);
   });
   if (limit <= 0) return all;
-  std::vector<Loaded> kept;
+  std::vector<Listed> kept;
   for (std::size_t first = 0; first < all.size();) {
     std::size_t end = first;
-    while (end < all.size() && all[end].instance.names.size() == all[first].instance.names.size()) ++end;
+    while (end < all.size() && all[end].agents == all[first].agents) ++end;
     const std::size_t n = end - first, take = std::min(n, static_cast<std::size_t>(limit));
     for (std::size_t k = 0; k < take; ++k) kept.push_back(std::move(all[first + k * n / take]));
     first = end;
@@ -125,13 +132,15 @@ MapfBenchReport run_mapf_bench(const std::string& dir, const MapfBenchOptions& o
     if (fs::equivalent(o.out_dir, dir, ec))  // a solution is named after its instance
       throw InputError(o.out_dir, 0, "--out", "the instance folder itself: the solutions would replace the instances");
   }
-  const std::vector<Loaded> instances = load_instances(dir, o.limit);
+  const std::vector<Listed> instances = list_instances(dir, o.limit);
   MapfBenchReport report;
   report.options = o;
   std::vector<std::pair<std::string, std::string>> files;
   for (std::size_t k = 0; k < instances.size(); ++k) {
-    const MapfInstance& in = instances[k].instance;
-    const MapfProblem& problem = instances[k].problem;
+    if (o.solver.stop.should_stop()) break;
+    const Loaded loaded = load_instance((fs::path(dir) / instances[k].file).string());
+    const MapfInstance& in = loaded.instance;
+    const MapfProblem& problem = loaded.problem;
     MapfOptions solver = o.solver;
     solver.stop = solver.stop | StopCondition::time_limit(o.time_limit_s);
     const auto t0 = std::chrono::steady_clock::now();

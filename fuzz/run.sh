@@ -9,7 +9,7 @@ set -u
 BUILD=$1
 SECONDS_EACH=$2
 SRC=$(cd "$(dirname "$0")" && pwd)
-TARGETS=(fuzz_scenario fuzz_plan fuzz_geojson fuzz_movingai)
+TARGETS=(fuzz_scenario fuzz_plan fuzz_geojson fuzz_movingai fuzz_gdal)
 JOBS=$(nproc 2>/dev/null || echo 1)
 
 fuzz_one() {  # fuzz_one TARGET: runs it; its exit status in BUILD/TARGET.rc

@@ -114,10 +114,14 @@ int run_plan(const PlanArgs& a) {
   if (!a.algorithm.empty()) overrides->emplace_back("planner.algorithm", a.algorithm);
   Scenario sc;
   try {
-    sc = load_scenario(a.scenario, *overrides);
+    sc = load_scenario(a.scenario, *overrides, stop);
   } catch (const InputError& e) {
     std::cerr << e.what() << "\n";
     return kExitBadInput;
+  } catch (const Stopped&) {  // reading an elevation model took the time left
+    if (interrupted_nothing_written()) return kExitInterrupted;
+    std::cerr << a.scenario << ": stopped: the time limit ran out while the scenario was loaded; nothing written\n";
+    return kExitNotSolved;
   }
   // An export that cannot be made is bad input now, before planning writes anything.
   if (const auto problem = export_request_problem(sc, a.exp)) {

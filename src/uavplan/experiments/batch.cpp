@@ -87,14 +87,15 @@ struct ScenarioCache::Impl {
 ScenarioCache::ScenarioCache() : impl_(std::make_unique<Impl>()) {}
 ScenarioCache::~ScenarioCache() = default;
 
-std::shared_ptr<const Scenario> ScenarioCache::get(const std::string& path, const ParamSetting& overrides) const {
+std::shared_ptr<const Scenario> ScenarioCache::get(const std::string& path, const ParamSetting& overrides,
+                                                   const StopCondition& stop) const {
   const std::string key = path + '\n' + params_text(overrides);
   {
     std::lock_guard lock(impl_->mutex);
     if (const auto it = impl_->loaded.find(key); it != impl_->loaded.end()) return it->second;
   }
   // Loaded outside the lock (two threads may both load the first time; one copy is kept).
-  auto sc = std::make_shared<const Scenario>(load_scenario(path, Overrides(overrides.begin(), overrides.end())));
+  auto sc = std::make_shared<const Scenario>(load_scenario(path, Overrides(overrides.begin(), overrides.end()), stop));
   std::lock_guard lock(impl_->mutex);
   return impl_->loaded.emplace(key, std::move(sc)).first->second;
 }
@@ -120,7 +121,7 @@ RunOutcome run_in_process(const RunSpec& run, const ScenarioCache& cache, const 
   if (options.stop) opt.stop = opt.stop | StopCondition::cancel_flag(options.stop);  // an interrupt stops the run
   opt.stop = opt.stop.with_threads(1).with_memory_cap(options.max_memory_bytes);  // the batch is parallel; a run is not
   try {
-    const auto sc = cache.get(run.scenario, overrides);
+    const auto sc = cache.get(run.scenario, overrides, opt.stop);
     const auto p0 = Clock::now();
     Plan plan = plan_mission(*sc, opt);
     const double plan_ms = ms_since(p0);
@@ -132,6 +133,10 @@ RunOutcome run_in_process(const RunSpec& run, const ScenarioCache& cache, const 
     o = RunOutcome{};
     o.status = "error";
     o.message = first_line(e.what());
+  } catch (const Stopped&) {  // while the scenario was loaded (an elevation model read)
+    o = RunOutcome{};
+    o.status = "stopped";
+    o.message = "stopped while the scenario was loaded";
   }
   o.wall_ms = ms_since(t0);
   return o;

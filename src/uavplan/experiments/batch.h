@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "uavplan/coordination/contract/scenario.h"
+#include "uavplan/core/stop.h"
 #include "uavplan/experiments/sweep.h"
 
 namespace uavplan {
@@ -45,7 +46,9 @@ class ScenarioCache {
   ScenarioCache();
   ~ScenarioCache();
   // Throws InputError when the scenario does not load with these overrides.
-  std::shared_ptr<const Scenario> get(const std::string& path, const ParamSetting& scenario_overrides) const;
+  // `stop` bounds the load (an elevation model read); a load it stops throws Stopped.
+  std::shared_ptr<const Scenario> get(const std::string& path, const ParamSetting& scenario_overrides,
+                                      const StopCondition& stop = {}) const;
 
  private:
   struct Impl;

@@ -14,6 +14,7 @@
 #include "uavplan/core/units.h"
 #include "uavplan/io/gdal_session.h"
 #include "uavplan/io/input_error.h"
+#include "uavplan/io/scenario_io.h"
 #include "uavplan/io/text_input.h"
 
 namespace uavplan {
@@ -54,6 +55,13 @@ struct ZoneReader {
       fail(place, "the zone's boundary crosses itself (edges " + std::to_string(x->first) + " and " +
                       std::to_string(x->second) + ")");
     return pts;
+  }
+
+  // A zone's floor or ceiling: metres above mean sea level within the contract's 1e9 m.
+  double checked_height(double m, const std::string& place) const {
+    if (!(std::abs(m) <= kMaxCoordinate_m))
+      fail(place, "a height of " + std::to_string(m) + " m: floors and ceilings lie within +-1e9 m");
+    return m;
   }
 
   void exclusion(Obstacle o, FenceZone as_read) {
@@ -103,26 +111,28 @@ struct ZoneReader {
 
   // GeoJSON: Polygons and MultiPolygons of features, floor_m / ceiling_m from properties.
   void geojson(const json& doc) {
-    const auto features = [&]() -> std::vector<std::pair<json, std::string>> {
+    // Pointers into the document: nothing read is copied (a deep tree copies recursively).
+    const auto features = [&]() -> std::vector<std::pair<const json*, std::string>> {
       if (doc.value("type", "") == "FeatureCollection" && doc.contains("features") && doc["features"].is_array()) {
-        std::vector<std::pair<json, std::string>> fs;
+        std::vector<std::pair<const json*, std::string>> fs;
         for (std::size_t i = 0; i < doc["features"].size(); ++i)
-          fs.emplace_back(doc["features"][i], "features[" + std::to_string(i) + "]");
+          fs.emplace_back(&doc["features"][i], "features[" + std::to_string(i) + "]");
         return fs;
       }
-      if (doc.value("type", "") == "Feature") return {{doc, ""}};
+      if (doc.value("type", "") == "Feature") return {{&doc, ""}};
       fail("type", "expected a GeoJSON FeatureCollection or Feature");
     }();
+    static const json kNoProperties = json::object();
     for (const auto& feature : features) {
-      const json& f = feature.first;
+      const json& f = *feature.first;
       const std::string& place = feature.second;  // named: clang 14 captures no structured binding
       if (!f.is_object() || !f.contains("geometry") || !f["geometry"].is_object()) continue;
       const json& g = f["geometry"];
-      const json props = f.contains("properties") && f["properties"].is_object() ? f["properties"] : json::object();
+      const json& props = f.contains("properties") && f["properties"].is_object() ? f["properties"] : kNoProperties;
       const auto height = [&](const char* key) -> std::optional<double> {
         if (!props.contains(key) || props[key].is_null()) return std::nullopt;
         if (!props[key].is_number()) fail(place + ".properties." + key, "expected metres above mean sea level");
-        return props[key].get<double>();
+        return checked_height(props[key].get<double>(), place + ".properties." + key);
       };
       const std::optional<double> floor = height("floor_m"), ceiling = height("ceiling_m");
       const std::string type = g.value("type", "");
@@ -148,11 +158,25 @@ struct ZoneReader {
     }
   }
 
+  // A zone's `inclusion` flag (QGC's default: true).
+  bool is_inclusion(const json& z, const std::string& at) const {
+    if (!z.contains("inclusion")) return true;
+    if (!z["inclusion"].is_boolean()) fail(at + ".inclusion", "expected true or false");
+    return z["inclusion"].get<bool>();
+  }
+
   // A QGC plan's geoFence: polygons [[lat, lon], ...] and circles {center: [lat, lon], radius}.
   void qgc_fence(const json& doc) {
     if (!doc.contains("geoFence") || !doc["geoFence"].is_object()) fail("geoFence", "a .plan without a geoFence");
     const json& fence = doc["geoFence"];
-    const json polygons = fence.value("polygons", json::array()), circles = fence.value("circles", json::array());
+    static const json kNone = json::array();
+    const auto list = [&](const char* key) -> const json& {
+      if (!fence.contains(key) || fence[key].is_null()) return kNone;
+      if (!fence[key].is_array()) fail(std::string("geoFence.") + key, "expected a list of zones");
+      return fence[key];
+    };
+    const json& polygons = list("polygons");
+    const json& circles = list("circles");
     for (std::size_t k = 0; k < polygons.size(); ++k) {
       const std::string at = "geoFence.polygons[" + std::to_string(k) + "]";
       const json& z = polygons[k];
@@ -168,7 +192,7 @@ struct ZoneReader {
         as_read.polygon_latlon.emplace_back(p[0].get<double>(), p[1].get<double>());
       }
       std::vector<Vec2> r = ring(std::move(pts), at, as_read.polygon_latlon);
-      if (z.value("inclusion", true))
+      if (is_inclusion(z, at))
         inclusion(r, at, std::move(as_read));
       else
         exclusion(Prism{std::move(r), bounds.min.z() - 1.0, bounds.max.z() + 1.0}, std::move(as_read));
@@ -176,18 +200,20 @@ struct ZoneReader {
     for (std::size_t k = 0; k < circles.size(); ++k) {
       const std::string at = "geoFence.circles[" + std::to_string(k) + "]";
       const json& z = circles[k];
-      const json c = z.is_object() ? z.value("circle", json()) : json();
+      static const json kNoCircle;
+      const json& c = z.is_object() && z.contains("circle") ? z["circle"] : kNoCircle;
       if (!c.is_object() || !c.contains("center") || !c["center"].is_array() || c["center"].size() < 2 ||
           !c["center"][0].is_number() || !c["center"][1].is_number() || !c.contains("radius") ||
           !c["radius"].is_number())
         fail(at, "expected {circle: {center: [lat, lon], radius: metres}}");
       const double radius = c["radius"].get<double>();
-      if (!(radius > 0.0 && std::isfinite(radius))) fail(at + ".circle.radius", "must be a positive number of metres");
+      if (!(radius > 0.0 && radius <= kMaxCoordinate_m))
+        fail(at + ".circle.radius", "must be a positive number of metres, at most 1e9");
       const Vec2 centre = local(c["center"][0].get<double>(), c["center"][1].get<double>(), at + ".circle.center");
       FenceZone as_read;
       as_read.center_latlon = Vec2(c["center"][0].get<double>(), c["center"][1].get<double>());
       as_read.radius_m = radius;
-      if (!z.value("inclusion", true)) {
+      if (!is_inclusion(z, at)) {
         exclusion(Cylinder{centre, radius, bounds.min.z() - 1.0, bounds.max.z() + 1.0}, std::move(as_read));
         continue;
       }
@@ -202,7 +228,6 @@ struct ZoneReader {
 
   // KML through GDAL's vector drivers: the polygons of every Placemark, in layer and file order.
   void kml(const std::string& text) {
-    register_gdal_drivers();
     static std::atomic<unsigned> serial{0};
     const std::string mem = "/vsimem/uavplan_airspace_" + std::to_string(serial++) + ".kml";
     VSILFILE* f =
@@ -214,7 +239,7 @@ struct ZoneReader {
       ~Unlink() { VSIUnlink(p.c_str()); }
     } unlink{mem};
     const QuietGdal quiet;
-    GDALDatasetUniquePtr ds(GDALDataset::Open(mem.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+    GDALDatasetUniquePtr ds = open_gdal(mem, GdalInput::kml_zones);
     if (!ds) {
       std::string said = gdal_said();
       for (std::size_t at; (at = said.find(mem)) != std::string::npos;) said.replace(at, mem.size(), name);
@@ -235,7 +260,7 @@ struct ZoneReader {
           const double x = std::strtod(v.c_str(), &end);
           if (v.empty() || *end != '\0' || !std::isfinite(x))
             fail(place + "." + key, "expected metres above mean sea level");
-          return x;
+          return checked_height(x, place + "." + key);
         };
         const std::optional<double> floor = height("floor_m"), ceiling = height("ceiling_m");
         const OGRGeometry* g = feature->GetGeometryRef();
@@ -272,12 +297,7 @@ Airspace read_airspace(const std::string& text, const std::string& file, const G
     r.kml(text);
     return out;
   }
-  json doc;
-  try {
-    doc = json::parse(text);
-  } catch (const json::exception& e) {
-    throw_json_error(e, text, file);
-  }
+  const json doc = parse_json_file(text, file);
   if (!doc.is_object()) throw InputError(file, 0, "", "expected a JSON object");
   if (ext == ".plan")
     r.qgc_fence(doc);

@@ -109,3 +109,59 @@ TEST(Airspace, KmlPolygonsWithFloorAndCeiling) {
 
 }  // namespace
 }  // namespace uavplan
+
+namespace uavplan {
+namespace {
+
+std::string airspace_error(const std::string& text, const std::string& file) {
+  const GeoFrame frame(GeoOrigin{46.8, 9.8, 0.0});
+  const Aabb bounds{Vec3(-1000, -1000, 0), Vec3(1000, 1000, 500)};
+  try {
+    read_airspace(text, file, frame, bounds);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Values no fence or zone can hold are refused naming the file and the place, never a library's
+// message without either; nesting past the JSON cap is refused before anything copies it.
+TEST(Airspace, ValuesOutOfTheContractNameTheFileAndPlace) {
+  EXPECT_NE(airspace_error(R"({"geoFence": {"circles": [{"inclusion": false,
+      "circle": {"center": [46.8, 9.8], "radius": 1e300}}]}})",
+                           "f.plan")
+                .find("f.plan: geoFence.circles[0].circle.radius: must be a positive number of metres, at most 1e9"),
+            std::string::npos);
+  EXPECT_NE(airspace_error(R"({"geoFence": {"polygons": {"a": 1}}})", "f.plan")
+                .find("f.plan: geoFence.polygons: expected a list"),
+            std::string::npos);
+  EXPECT_NE(airspace_error(R"({"geoFence": {"circles": [{"inclusion": "no",
+      "circle": {"center": [46.8, 9.8], "radius": 10}}]}})",
+                           "f.plan")
+                .find("f.plan: geoFence.circles[0].inclusion: expected true or false"),
+            std::string::npos);
+  EXPECT_NE(airspace_error(R"({"type": "Feature", "properties": {"floor_m": -1e300}, "geometry": {"type": "Polygon",
+      "coordinates": [[[9.8, 46.8], [9.801, 46.8], [9.801, 46.801], [9.8, 46.8]]]}})",
+                           "z.geojson")
+                .find("z.geojson: .properties.floor_m: a height of"),
+            std::string::npos);
+  std::string deep = R"({"type": "Feature", "geometry": null, "properties": )";
+  for (int k = 0; k < 100000; ++k) deep += "{\"a\":";
+  deep += "1" + std::string(100000, '}') + "}";
+  EXPECT_NE(airspace_error(deep, "deep.geojson").find("deep.geojson: arrays and objects nest more than 128 deep"),
+            std::string::npos);
+}
+
+// A .kml that GDAL's KML drivers do not read is an error, not a file of no zones.
+TEST(Airspace, AKmlFileThatIsNotKmlIsRefused) {
+  EXPECT_NE(airspace_error(R"({"type": "FeatureCollection", "features": []})", "zones.kml").find("zones.kml"),
+            std::string::npos);
+  EXPECT_NE(airspace_error("<OGRVRTDataSource><OGRVRTLayer name=\"z\"><SrcDataSource>/vsicurl/http://127.0.0.1:9/"
+                           "z.csv</SrcDataSource></OGRVRTLayer></OGRVRTDataSource>",
+                           "zones.kml")
+                .find("cannot read it as KML"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace uavplan

@@ -11,6 +11,7 @@
 #include "uavplan/core/text.h"
 #include "uavplan/io/gdal_session.h"
 #include "uavplan/io/input_error.h"
+#include "uavplan/io/scenario_io.h"
 
 namespace uavplan {
 namespace {
@@ -39,9 +40,10 @@ struct Raster {
   [[noreturn]] void fail(const std::string& what) const { throw InputError(file, 0, "terrain", what); }
 
   Raster(const std::string& path, const std::string& f) : file(f) {
-    register_gdal_drivers();
-    ds.reset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY | GDAL_OF_VERBOSE_ERROR));
-    if (!ds) fail("GDAL cannot read it as a raster" + gdal_said());
+    ds = open_gdal(path, GdalInput::elevation_model);
+    if (!ds)
+      fail("GDAL cannot read it as a raster of the formats read here (" +
+           gdal_drivers_text(GdalInput::elevation_model) + ")" + gdal_said());
     if (ds->GetRasterCount() < 1) fail("the file has no raster band");
     band = ds->GetRasterBand(1);
     const OGRSpatialReference* s = ds->GetSpatialRef();
@@ -49,6 +51,9 @@ struct Raster {
       fail("the raster has no coordinate system (give it one, e.g. gdal_edit.py -a_srs EPSG:... or a .prj file)");
     srs = *s;
     if (ds->GetGeoTransform(to_crs.data()) != CE_None) fail("the raster has no georeferencing (geotransform)");
+    for (const double g : to_crs)
+      if (!(std::abs(g) <= kMaxCoordinate_m))
+        fail("the raster's geotransform holds " + num_text(g) + ": every term must be a finite number within 1e9");
     if (!GDALInvGeoTransform(to_crs.data(), to_pixel.data())) fail("the raster's geotransform cannot be inverted");
     wgs84.SetWellKnownGeogCS("WGS84");
     for (OGRSpatialReference* r : {&srs, &wgs84}) r->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
@@ -171,27 +176,33 @@ std::size_t fill_gaps(std::vector<double>& h, int nx, int ny) {
   return filled;
 }
 
-// The raster's heights (metres) over the pixel window [x0, x0 + w) x [y0, y0 + h); NaN without data.
-std::vector<double> read_window(const Raster& r, int x0, int y0, int w, int h) {
-  std::vector<double> v(static_cast<std::size_t>(w) * h);
-  if (r.band->RasterIO(GF_Read, x0, y0, w, h, v.data(), w, h, GDT_Float64, 0, 0) != CE_None)
-    r.fail("GDAL cannot read the raster's heights" + gdal_said());
-  int has_nodata = 0, has_scale = 0, has_offset = 0;
-  const double nodata = r.band->GetNoDataValue(&has_nodata);
-  const double scale = r.band->GetScale(&has_scale), offset = r.band->GetOffset(&has_offset);
-  const auto unit = metres_per_unit(r.band->GetUnitType());
-  if (!unit) r.fail("the heights' unit '" + printable(r.band->GetUnitType()) + "' is not metres or feet");
-  const float nodata_f = static_cast<float>(nodata);  // Float32 rasters keep it as a float
-  for (double& z : v) {
-    if (has_nodata && (z == nodata || static_cast<float>(z) == nodata_f)) z = std::nan("");
-    if (!std::isfinite(z)) {
-      z = std::nan("");
-      continue;
-    }
-    z = (z * (has_scale ? scale : 1.0) + (has_offset ? offset : 0.0)) * *unit;
+// Turns the band's values into metres above mean sea level (NaN without data); a value that is
+// a height but beyond +-1e9 m (an undeclared NoData such as -3.4e38) is refused.
+struct HeightScale {
+  double nodata = 0.0, scale = 1.0, offset = 0.0, unit = 1.0;
+  float nodata_f = 0.0f;  // Float32 rasters keep it as a float
+  bool has_nodata = false;
+
+  explicit HeightScale(const Raster& r) {
+    int has = 0, has_scale = 0, has_offset = 0;
+    nodata = r.band->GetNoDataValue(&has);
+    has_nodata = has != 0;
+    nodata_f = static_cast<float>(nodata);
+    scale = r.band->GetScale(&has_scale);
+    offset = r.band->GetOffset(&has_offset);
+    if (!has_scale) scale = 1.0;
+    if (!has_offset) offset = 0.0;
+    const auto u = metres_per_unit(r.band->GetUnitType());
+    if (!u) r.fail("the heights' unit '" + printable(r.band->GetUnitType()) + "' is not metres or feet");
+    unit = *u;
   }
-  return v;
-}
+
+  double metres(double z) const {
+    if (has_nodata && (z == nodata || static_cast<float>(z) == nodata_f)) return std::nan("");
+    if (!std::isfinite(z)) return std::nan("");
+    return (z * scale + offset) * unit;
+  }
+};
 
 // The world's terrain cells: `c` metres over the bounds' x, y, larger where more than max_cells.
 struct Cells {
@@ -217,11 +228,9 @@ Cells world_cells(const Aabb& bounds, double c, std::size_t max_cells) {
 
 constexpr double kEdge_px = 1e-6;  // a corner on a pixel edge touches only one side
 
-// The raster's pixels under the cells' corners (px, py), read at once; bounds that reach beyond
-// the raster are an error giving its extent here.
+// The raster's pixels under the cells' corners (px, py): known before any is read.
 struct Window {
   int x0 = 0, y0 = 0, w = 1, h = 1;
-  std::vector<double> pixels;  // metres, NaN without data
 };
 
 Window window_under(const Raster& r, const std::vector<double>& px, const std::vector<double>& py, const Cells& cells,
@@ -239,36 +248,108 @@ Window window_under(const Raster& r, const std::vector<double>& px, const std::v
   w.y0 = std::max(0, static_cast<int>(std::floor(*py_lo + kEdge_px)));
   w.w = std::max(1, std::min(r.nx(), static_cast<int>(std::ceil(*px_hi - kEdge_px))) - w.x0);
   w.h = std::max(1, std::min(r.ny(), static_cast<int>(std::ceil(*py_hi - kEdge_px))) - w.y0);
-  w.pixels = read_window(r, w.x0, w.y0, w.w, w.h);
   return w;
 }
 
-// Each cell's height: the highest pixel its corners' pixel box touches (NaN where all are NoData).
-std::vector<double> highest_pixels(const Cells& cells, const std::vector<double>& px, const std::vector<double>& py,
-                                   const Window& win) {
+// A cell's pixel box within the window: columns [a0, a1), rows [b0, b1).
+struct PixelBox {
+  int a0, a1, b0, b1;
+};
+
+PixelBox cell_box(const Cells& cells, const std::vector<double>& px, const std::vector<double>& py, const Window& win,
+                  int i, int j) {
+  const auto corner = [&](int a, int b) { return static_cast<std::size_t>(b) * (cells.nx + 1) + a; };
+  double x_lo = World::kInf, x_hi = -World::kInf, y_lo = World::kInf, y_hi = -World::kInf;
+  for (const std::size_t k : {corner(i, j), corner(i + 1, j), corner(i, j + 1), corner(i + 1, j + 1)}) {
+    x_lo = std::min(x_lo, px[k]);
+    x_hi = std::max(x_hi, px[k]);
+    y_lo = std::min(y_lo, py[k]);
+    y_hi = std::max(y_hi, py[k]);
+  }
+  PixelBox b{};
+  b.a0 = std::clamp(static_cast<int>(std::floor(x_lo + kEdge_px)) - win.x0, 0, win.w - 1);
+  b.a1 = std::clamp(static_cast<int>(std::ceil(x_hi - kEdge_px)) - win.x0, b.a0 + 1, win.w);
+  b.b0 = std::clamp(static_cast<int>(std::floor(y_lo + kEdge_px)) - win.y0, 0, win.h - 1);
+  b.b1 = std::clamp(static_cast<int>(std::ceil(y_hi - kEdge_px)) - win.y0, b.b0 + 1, win.h);
+  return b;
+}
+
+// The window is read in strips of whole rows, at most strip_bytes each: memory stays bounded
+// whatever the window, and the stop is checked between strips. Rows per strip: whole blocks of
+// the raster where they fit, so each block is decoded once.
+std::size_t strip_rows(const Raster& r, const Window& win, std::size_t strip_bytes) {
+  int block_w = 0, block_h = 0;
+  r.band->GetBlockSize(&block_w, &block_h);
+  const std::size_t fit = std::max<std::size_t>(1, strip_bytes / (sizeof(double) * static_cast<std::size_t>(win.w)));
+  const std::size_t block = static_cast<std::size_t>(std::max(1, block_h));
+  return std::min<std::size_t>(fit >= block ? fit / block * block : fit, static_cast<std::size_t>(win.h));
+}
+
+// Refuses a window past the pixel cap or the memory cap before a pixel is read.
+void check_window(const Raster& r, const Window& win, const Cells& cells, const ElevationReadOptions& o) {
+  const double pixels = static_cast<double>(win.w) * win.h;
+  if (pixels > static_cast<double>(kMaxElevationPixels) || win.w > kMaxElevationRowPixels)
+    r.fail("the world's bounds need a window of " + std::to_string(win.w) + " x " + std::to_string(win.h) +
+           " pixels of the elevation model; at most " + std::to_string(kMaxElevationPixels) +
+           " pixels (rows of at most " + std::to_string(kMaxElevationRowPixels) +
+           ") are read for one world: crop the model to the world (gdal_translate -projwin) or coarsen it "
+           "(gdalwarp -r max -tr)");
+  const std::uint64_t corners = static_cast<std::uint64_t>(cells.nx + 1) * (cells.ny + 1);
+  constexpr std::uint64_t kGdalCacheBytes = 64u << 20;  // gdal_session.cpp's GDAL_CACHEMAX
+  const std::uint64_t bytes =
+      kGdalCacheBytes + strip_rows(r, win, o.strip_bytes) * static_cast<std::uint64_t>(win.w) * sizeof(double) +
+      corners * 2 * sizeof(double) + static_cast<std::uint64_t>(cells.nx) * cells.ny * (sizeof(double) + 1);
+  try {
+    o.stop.require_memory(bytes, "reading the elevation model (" + std::to_string(cells.nx) + " x " +
+                                     std::to_string(cells.ny) + " cells from " + std::to_string(win.w) + " x " +
+                                     std::to_string(win.h) + " pixels)");
+  } catch (const std::invalid_argument& e) {
+    r.fail(e.what());
+  }
+}
+
+// Each cell's height: the highest pixel its corners' pixel box touches (NaN where all are NoData),
+// the window read a strip at a time.
+std::vector<double> highest_pixels(const Raster& r, const Cells& cells, const std::vector<double>& px,
+                                   const std::vector<double>& py, const Window& win, const ElevationReadOptions& o) {
   std::vector<double> h(static_cast<std::size_t>(cells.nx) * cells.ny, std::nan(""));
-  const auto corner = [&](int i, int j) { return static_cast<std::size_t>(j) * (cells.nx + 1) + i; };
-  for (int j = 0; j < cells.ny; ++j)
+  std::vector<std::pair<int, int>> row_span(cells.ny, {win.h, 0});  // pixel rows a row of cells touches
+  for (int j = 0; j < cells.ny; ++j) {
+    if (j % 256 == 0) o.stop.throw_if_stopped();
     for (int i = 0; i < cells.nx; ++i) {
-      double x_lo = World::kInf, x_hi = -World::kInf, y_lo = World::kInf, y_hi = -World::kInf;
-      for (const std::size_t k : {corner(i, j), corner(i + 1, j), corner(i, j + 1), corner(i + 1, j + 1)}) {
-        x_lo = std::min(x_lo, px[k]);
-        x_hi = std::max(x_hi, px[k]);
-        y_lo = std::min(y_lo, py[k]);
-        y_hi = std::max(y_hi, py[k]);
-      }
-      const int a0 = std::clamp(static_cast<int>(std::floor(x_lo + kEdge_px)) - win.x0, 0, win.w - 1);
-      const int a1 = std::clamp(static_cast<int>(std::ceil(x_hi - kEdge_px)) - win.x0, a0 + 1, win.w);
-      const int b0 = std::clamp(static_cast<int>(std::floor(y_lo + kEdge_px)) - win.y0, 0, win.h - 1);
-      const int b1 = std::clamp(static_cast<int>(std::ceil(y_hi - kEdge_px)) - win.y0, b0 + 1, win.h);
-      double top = std::nan("");
-      for (int b = b0; b < b1; ++b)
-        for (int a = a0; a < a1; ++a) {
-          const double z = win.pixels[static_cast<std::size_t>(b) * win.w + a];
-          if (!std::isnan(z) && !(z <= top)) top = z;
-        }
-      h[static_cast<std::size_t>(j) * cells.nx + i] = top;
+      const PixelBox b = cell_box(cells, px, py, win, i, j);
+      row_span[j] = {std::min(row_span[j].first, b.b0), std::max(row_span[j].second, b.b1)};
     }
+  }
+  const HeightScale scale(r);
+  const std::size_t rows = strip_rows(r, win, o.strip_bytes);
+  std::vector<double> strip(rows * static_cast<std::size_t>(win.w));
+  for (int s0 = 0; s0 < win.h; s0 += static_cast<int>(rows)) {
+    o.stop.throw_if_stopped();
+    const int s1 = std::min(win.h, s0 + static_cast<int>(rows));
+    if (r.band->RasterIO(GF_Read, win.x0, win.y0 + s0, win.w, s1 - s0, strip.data(), win.w, s1 - s0, GDT_Float64, 0,
+                         0) != CE_None)
+      r.fail("GDAL cannot read the raster's heights" + gdal_said());
+    for (std::size_t k = 0; k < static_cast<std::size_t>(s1 - s0) * win.w; ++k) {
+      strip[k] = scale.metres(strip[k]);
+      if (std::abs(strip[k]) > kMaxCoordinate_m)
+        r.fail("a height of " + num_text(strip[k]) + " m at pixel (" + std::to_string(win.x0 + k % win.w) + ", " +
+               std::to_string(win.y0 + s0 + k / win.w) +
+               ") is beyond +-1e9 m: declare the raster's NoData value (gdal_edit.py -a_nodata VALUE)");
+    }
+    for (int j = 0; j < cells.ny; ++j) {
+      if (row_span[j].second <= s0 || row_span[j].first >= s1) continue;
+      for (int i = 0; i < cells.nx; ++i) {
+        const PixelBox b = cell_box(cells, px, py, win, i, j);
+        double& top = h[static_cast<std::size_t>(j) * cells.nx + i];
+        for (int y = std::max(b.b0, s0); y < std::min(b.b1, s1); ++y)
+          for (int x = b.a0; x < b.a1; ++x) {
+            const double z = strip[static_cast<std::size_t>(y - s0) * win.w + x];
+            if (!std::isnan(z) && !(z <= top)) top = z;
+          }
+      }
+    }
+  }
   return h;
 }
 
@@ -320,7 +401,7 @@ void corners_to_pixels(const Raster& r, const GeoFrame& frame, const Vec2& lo, c
 }  // namespace
 
 ElevationModel read_elevation_model(const std::string& path, const std::string& file, const GeoFrame& frame,
-                                    const Aabb& bounds, std::optional<double> cell_m, std::size_t max_cells) {
+                                    const Aabb& bounds, std::optional<double> cell_m, const ElevationReadOptions& o) {
   const QuietGdal quiet;
   const Raster r(path, file);
   ElevationSource src;
@@ -331,12 +412,13 @@ ElevationModel read_elevation_model(const std::string& path, const std::string& 
   src.raster_ny = r.ny();
   place_footprint(r, frame, src);
   const Cells cells =
-      world_cells(bounds, cell_m.value_or(std::max(0.01, std::round(src.raster_cell_m * 100.0) / 100.0)), max_cells);
+      world_cells(bounds, cell_m.value_or(std::max(0.01, std::round(src.raster_cell_m * 100.0) / 100.0)), o.max_cells);
   src.cell_m = cells.c;
   std::vector<double> px, py;  // the cells' corners in pixels
   corners_to_pixels(r, frame, cells.lo, cells.hi, cells.c, cells.nx, cells.ny, px, py);
   const Window win = window_under(r, px, py, cells, src);
-  std::vector<double> h = highest_pixels(cells, px, py, win);
+  check_window(r, win, cells, o);
+  std::vector<double> h = highest_pixels(r, cells, px, py, win, o);
   if (std::all_of(h.begin(), h.end(), [](double z) { return std::isnan(z); }))
     r.fail("the elevation model has no height within the world's bounds (every pixel there is NoData)");
   src.nodata_filled = fill_gaps(h, cells.nx, cells.ny);

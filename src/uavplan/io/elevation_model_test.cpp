@@ -64,7 +64,7 @@ TEST(ElevationModel, PlacesARasterInAnotherCrsThroughTheOrigin) {
   const std::string asc = write_grid(d.path, kUtm32nPrj);
   const GeoFrame frame(kOrigin);
   const Aabb bounds{Vec3(-400, -400, 0), Vec3(400, 400, 500)};
-  const ElevationModel m = read_elevation_model(asc, "dem.asc", frame, bounds, std::nullopt, 1u << 24);
+  const ElevationModel m = read_elevation_model(asc, "dem.asc", frame, bounds, std::nullopt, {1u << 24});
   EXPECT_NE(m.source.crs.find("UTM zone 32N"), std::string::npos) << m.source.crs;
   EXPECT_EQ(m.source.driver, "AAIGrid");
   EXPECT_EQ(m.source.raster_nx, 200);
@@ -105,11 +105,11 @@ TEST(ElevationModel, ACellIsTheHighestPixelItTouches) {
   const std::string asc = write_grid(d.path, kUtm32nPrj);
   const GeoFrame frame(kOrigin);
   const Aabb bounds{Vec3(-400, -400, 0), Vec3(400, 400, 500)};
-  const ElevationModel m = read_elevation_model(asc, "dem.asc", frame, bounds, 40.0, 1u << 24);
+  const ElevationModel m = read_elevation_model(asc, "dem.asc", frame, bounds, 40.0, {1u << 24});
   EXPECT_EQ(m.grid.nx(), 20);
   EXPECT_NEAR(m.grid.max_height(), 300.0, 1e-9);  // the mast survives coarser cells: never lowered
   // A cap on the cells coarsens them rather than fail.
-  const ElevationModel capped = read_elevation_model(asc, "dem.asc", frame, bounds, std::nullopt, 400);
+  const ElevationModel capped = read_elevation_model(asc, "dem.asc", frame, bounds, std::nullopt, {400});
   EXPECT_LE(static_cast<std::size_t>(capped.grid.nx()) * capped.grid.ny(), 400u);
   EXPECT_NEAR(capped.grid.max_height(), 300.0, 1e-9);
 }
@@ -129,19 +129,19 @@ TEST(ElevationModel, BadFilesAreClearErrors) {
   const Aabb bounds{Vec3(-400, -400, 0), Vec3(400, 400, 500)};
   const std::string asc = write_grid(d.path, "");
   EXPECT_NE(error_of([&] {
-              read_elevation_model(asc, "dem.asc", frame, bounds, std::nullopt, 1u << 24);
+              read_elevation_model(asc, "dem.asc", frame, bounds, std::nullopt, {1u << 24});
             }).find("dem.asc: terrain: the raster has no coordinate system"),
             std::string::npos);
   write_grid(d.path, kUtm32nPrj);
   const Aabb wide{Vec3(-600, -400, 0), Vec3(400, 400, 500)};
   EXPECT_NE(error_of([&] {
-              read_elevation_model(asc, "dem.asc", frame, wide, std::nullopt, 1u << 24);
+              read_elevation_model(asc, "dem.asc", frame, wide, std::nullopt, {1u << 24});
             }).find("reach beyond the elevation model"),
             std::string::npos);
   const fs::path junk = d.path / "junk.tif";
   std::ofstream(junk) << "not a raster\n";
   EXPECT_NE(error_of([&] {
-              read_elevation_model(junk.string(), "junk.tif", frame, bounds, std::nullopt, 1u << 24);
+              read_elevation_model(junk.string(), "junk.tif", frame, bounds, std::nullopt, {1u << 24});
             }).find("junk.tif: terrain: GDAL cannot read it as a raster"),
             std::string::npos);
 }
@@ -178,6 +178,78 @@ uavs:
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("needs the scenario's 'origin'"), std::string::npos) << e.what();
   }
+}
+
+}  // namespace
+}  // namespace uavplan
+
+namespace uavplan {
+namespace {
+
+// Read a strip of a few rows at a time, the cells are those of one read: every strip boundary
+// falls inside cells, and the mast and the hole land where they do in one read.
+TEST(ElevationModel, StripsGiveTheCellsOfOneRead) {
+  const test::TempDir d("dem_strips");
+  const std::string asc = write_grid(d.path, kUtm32nPrj);
+  const GeoFrame frame(kOrigin);
+  const Aabb bounds{Vec3(-400, -400, 0), Vec3(400, 400, 500)};
+  const ElevationModel whole = read_elevation_model(asc, "dem.asc", frame, bounds, 13.0, {});
+  for (const std::size_t strip_bytes : {1u, 200u * 8u * 3u, 200u * 8u * 7u}) {
+    ElevationReadOptions o;
+    o.strip_bytes = strip_bytes;
+    const ElevationModel m = read_elevation_model(asc, "dem.asc", frame, bounds, 13.0, o);
+    ASSERT_EQ(m.grid.nx(), whole.grid.nx());
+    ASSERT_EQ(m.grid.ny(), whole.grid.ny());
+    for (int j = 0; j < m.grid.ny(); ++j)
+      for (int i = 0; i < m.grid.nx(); ++i) ASSERT_EQ(m.grid.height(i, j), whole.grid.height(i, j)) << i << "," << j;
+  }
+  EXPECT_NEAR(whole.grid.max_height(), 300.0, 1e-9);
+}
+
+// A window past the memory cap is refused before a pixel is read, naming --max-memory; a stop
+// that holds ends the read between strips.
+TEST(ElevationModel, TheReadStaysWithinTheRunsLimits) {
+  const test::TempDir d("dem_limits");
+  const std::string asc = write_grid(d.path, kUtm32nPrj);
+  const GeoFrame frame(kOrigin);
+  const Aabb bounds{Vec3(-400, -400, 0), Vec3(400, 400, 500)};
+  ElevationReadOptions o;
+  o.stop = StopCondition().with_memory_cap(1u << 20);
+  EXPECT_NE(
+      error_of([&] { read_elevation_model(asc, "dem.asc", frame, bounds, std::nullopt, o); }).find("--max-memory"),
+      std::string::npos);
+  ElevationReadOptions stopped;
+  stopped.stop = StopCondition::time_limit(0.0);
+  EXPECT_THROW(read_elevation_model(asc, "dem.asc", frame, bounds, std::nullopt, stopped), Stopped);
+}
+
+// What is not a place or a height is refused: a geotransform that is not finite, heights past
+// 1e9 m (an undeclared NoData such as -3.4e38).
+TEST(ElevationModel, NonFiniteGeotransformsAndHugeHeightsAreRefused) {
+  const test::TempDir d("dem_values");
+  const GeoFrame frame(kOrigin);
+  const Aabb bounds{Vec3(-400, -400, 0), Vec3(400, 400, 500)};
+  const std::string asc = write_grid(d.path, kUtm32nPrj);
+  std::ifstream in(asc);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const fs::path low = d.path / "low.asc";
+  std::string low_text = text;
+  low_text.replace(low_text.find("NODATA_value -9999\n"), 19, "");
+  for (std::size_t at; (at = low_text.find("-9999")) != std::string::npos;) low_text.replace(at, 5, "-3.4e38");
+  std::ofstream(low) << low_text;
+  std::ofstream(d.path / "low.prj") << kUtm32nPrj;
+  EXPECT_NE(error_of([&] {
+              read_elevation_model(low.string(), "low.asc", frame, bounds, std::nullopt, {});
+            }).find("beyond +-1e9 m: declare the raster's NoData value"),
+            std::string::npos);
+  const fs::path nan = d.path / "nan.asc";
+  std::string nan_text = text;
+  nan_text.replace(nan_text.find("cellsize 5"), 10, "cellsize nan");
+  std::ofstream(nan) << nan_text;
+  std::ofstream(d.path / "nan.prj") << kUtm32nPrj;
+  const std::string e =
+      error_of([&] { read_elevation_model(nan.string(), "nan.asc", frame, bounds, std::nullopt, {}); });
+  EXPECT_TRUE(e.find("geotransform") != std::string::npos || e.find("GDAL cannot read it") != std::string::npos) << e;
 }
 
 }  // namespace

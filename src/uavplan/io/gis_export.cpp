@@ -42,9 +42,20 @@ ojson lonlatalt(const GeoFrame& f, const Vec3& p) {
   return ojson::array({g.lon_deg, g.lat_deg, g.alt_m});
 }
 
+// Whether s[i..] begins U+FFFE or U+FFFF (EF BF BE, EF BF BF), which XML 1.0 excludes from Char.
+bool xml_nonchar_at(std::string_view s, std::size_t i) {
+  return s.size() - i >= 3 && s[i] == '\xEF' && s[i + 1] == '\xBF' && (s[i + 2] == '\xBE' || s[i + 2] == '\xBF');
+}
+
 std::string xml_escape(std::string_view s) {
   std::string out;
-  for (char c : s) {
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const char c = s[i];
+    if (xml_nonchar_at(s, i)) {  // no way to write it in XML 1.0, not even as a reference
+      out += "\xEF\xBF\xBD";
+      i += 2;
+      continue;
+    }
     switch (c) {
       case '&':
         out += "&amp;";

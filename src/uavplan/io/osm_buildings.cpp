@@ -172,12 +172,7 @@ std::optional<double> parse_osm_length_m(std::string_view text) {
 
 std::vector<Prism> buildings_from_geojson(const std::string& text, const std::string& file, const GeoFrame& frame,
                                           const BuildingOptions& options, BuildingCounts* counts) {
-  json doc;
-  try {
-    doc = json::parse(text);
-  } catch (const json::exception& e) {
-    throw_json_error(e, text, file);
-  }
+  const json doc = parse_json_file(text, file);
   BuildingCounts local_counts;
   std::vector<Prism> out;
   const OsmReader r{file, frame, options, counts ? *counts : local_counts, out};

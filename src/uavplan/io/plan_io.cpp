@@ -253,9 +253,9 @@ namespace {
 // nlohmann's tree builder, noting a key met twice in one object (the builder keeps the last).
 // sax_parse calls these members statically: no callback per value, as parse(text, callback)
 // would make.
-class DuplicateKeySax : public nlohmann::detail::json_sax_dom_parser<JsonIn> {
+class DuplicateKeySax : public DepthLimitedSax {
  public:
-  using Base = nlohmann::detail::json_sax_dom_parser<JsonIn>;
+  using Base = DepthLimitedSax;
   explicit DuplicateKeySax(JsonIn& tree) : Base(tree) {}
   bool start_object(std::size_t n) {
     keys_.emplace_back();
@@ -281,14 +281,18 @@ class DuplicateKeySax : public nlohmann::detail::json_sax_dom_parser<JsonIn> {
 // The JSON tree of a plan file: valid JSON, no key twice in one object.
 JsonIn parse_plan_json(const std::string& text, const std::string& file) {
   JsonIn j;
-  bool duplicate = false;
+  bool duplicate = false, too_deep = false;
   try {
     DuplicateKeySax sax(j);
     JsonIn::sax_parse(text, &sax);
     duplicate = sax.duplicate();
+    too_deep = sax.too_deep();
   } catch (const JsonIn::exception& e) {
     throw_json_error(e, text, file);
   }
+  if (too_deep)
+    throw InputError(file, 0, "",
+                     "arrays and objects nest more than " + std::to_string(kMaxJsonDepth) + " deep; not read");
   if (duplicate) {  // nlohmann kept the last of them: name it with its line
     try {
       check_tree(YAML::Load(text), file, static_cast<std::size_t>(-1));

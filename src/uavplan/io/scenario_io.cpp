@@ -22,6 +22,7 @@
 #include "uavplan/io/geo.h"
 #include "uavplan/io/input_error.h"
 #include "uavplan/io/osm_buildings.h"
+#include "uavplan/io/raster_files.h"
 #include "uavplan/io/text_input.h"
 #include "uavplan/io/tree_check.h"
 #include "uavplan/planning/registry.h"
@@ -518,12 +519,17 @@ YAML::Node parse_yaml(const std::string& raw, const std::string& file) {
   const bool json = file.size() >= 5 && file.compare(file.size() - 5, 5, ".json") == 0;
   if (json) {
     try {
-      const auto parsed = nlohmann::json::parse(text);
+      const auto parsed = nlohmann::json::parse(text, [](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
+        if (depth > static_cast<int>(kMaxJsonDepth)) throw std::length_error("deep");
+        return false;  // keeps nothing: the check is for JSON's syntax
+      });
       (void)parsed;
     } catch (const nlohmann::json::exception& e) {
       int line = 0;
       const std::string what = json_error_text(e, text, line);
       throw InputError(file, line, "", "JSON " + what);
+    } catch (const std::length_error&) {
+      throw InputError(file, 0, "", "arrays and objects nest more than " + std::to_string(kMaxJsonDepth) + " deep");
     }
   }
   check_single_document(text, file);
@@ -643,7 +649,7 @@ void read_moving(const At& list, WorldSpec& ws) {
 
 // world.terrain {file, cell}: an elevation model placed through the origin (io/elevation_model.h).
 TerrainGrid read_terrain_file(const At& t, const std::optional<GeoOrigin>& origin, const Aabb& bounds,
-                              std::optional<ElevationSource>& source) {
+                              std::optional<ElevationSource>& source, const StopCondition& stop) {
   t.keys({"file", "cell"});
   if (!origin) t.fail("placing an elevation model needs the scenario's 'origin' (lat, lon, alt)");
   const std::string name = t.req("file").text();
@@ -651,15 +657,18 @@ TerrainGrid read_terrain_file(const At& t, const std::optional<GeoOrigin>& origi
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     t["file"].fail("cannot read the elevation model '" + path.string() + "'");
+  check_elevation_files(path, std::filesystem::path(*t.file).parent_path(), path.string());
   const std::optional<double> cell = t.has("cell") ? std::optional<double>(t["cell"].positive()) : std::nullopt;
-  ElevationModel m =
-      read_elevation_model(path.string(), path.string(), GeoFrame(*origin), bounds, cell, kMaxTerrainCells);
+  ElevationReadOptions read;
+  read.max_cells = kMaxTerrainCells;
+  read.stop = stop;
+  ElevationModel m = read_elevation_model(path.string(), path.string(), GeoFrame(*origin), bounds, cell, read);
   source = std::move(m.source);
   source->file = name;
   return std::move(m.grid);
 }
 
-World read_world(const At& w, Scenario& sc) {
+World read_world(const At& w, Scenario& sc, const StopCondition& stop) {
   const std::optional<GeoOrigin>& origin = sc.origin;
   w.keys({"bounds", "obstacles", "buildings", "airspace", "threats", "terrain", "moving_obstacles"});
   WorldSpec ws;
@@ -676,7 +685,7 @@ World read_world(const At& w, Scenario& sc) {
   if (w.has("airspace")) read_airspace_files(w["airspace"], origin, ws, sc.airspace);
   if (w.has("threats")) read_threats(w["threats"], ws);
   if (w.has("terrain"))
-    ws.terrain = w["terrain"].has("file") ? read_terrain_file(w["terrain"], origin, ws.bounds, sc.elevation)
+    ws.terrain = w["terrain"].has("file") ? read_terrain_file(w["terrain"], origin, ws.bounds, sc.elevation, stop)
                                           : read_terrain(w["terrain"]);
   if (w.has("moving_obstacles")) read_moving(w["moving_obstacles"], ws);
   try {
@@ -724,21 +733,33 @@ void read_mission(const At& m, const At& uavs, Scenario& sc) {
   mission.read_section(AtSection(m), AtSection(uavs), sc);
 }
 
-// Every plan's trajectory has a row at least every second: a route that would take longer than
-// kMaxFlight_s at its cruise speed is refused here, not after writing millions of rows.
+// Every plan's trajectory has a row at least every second: a flight that would take longer than
+// kMaxFlight_s at its cruise speed (its home's legs included), or a fleet whose flights add up to
+// more than kMaxFleetFlight_s, is refused here, not after writing millions of rows.
 void check_flight_lengths(const At& uavs, const Scenario& sc) {
+  double fleet_s = 0.0;
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
     const UavSpec& u = sc.uavs[i];
-    if (!u.goal) continue;
-    std::vector<Vec3> route{u.start};
-    route.insert(route.end(), sc.mission.waypoints.begin(), sc.mission.waypoints.end());
-    route.push_back(*u.goal);
-    const double length = polyline_length_m(route);
-    if (length / u.speed.cruise_mps <= kMaxFlight_s) continue;
+    std::vector<Vec3> route;
+    if (u.home) route.push_back(*u.home);
+    route.push_back(u.start);
+    if (u.goal) {
+      route.insert(route.end(), sc.mission.waypoints.begin(), sc.mission.waypoints.end());
+      route.push_back(*u.goal);
+    }
+    if (u.home) route.push_back(*u.home);
+    const double length = polyline_length_m(route), flight_s = length / u.speed.cruise_mps;
+    fleet_s += flight_s;
     const At ui = uavs.item(i);
-    (ui.has("speed") ? ui["speed"] : ui)
-        .fail("at " + At::fmt(u.speed.cruise_mps) + " m/s its " + At::fmt(length) + " m straight route would take " +
-              At::fmt(length / u.speed.cruise_mps) + " s; a plan may last at most " + At::fmt(kMaxFlight_s) + " s");
+    if (flight_s > kMaxFlight_s)
+      (ui.has("speed") ? ui["speed"] : ui)
+          .fail("at " + At::fmt(u.speed.cruise_mps) + " m/s its " + At::fmt(length) + " m straight route" +
+                (u.home ? " (from its home and back)" : "") + " would take " + At::fmt(flight_s) +
+                " s; a plan may last at most " + At::fmt(kMaxFlight_s) + " s");
+    if (fleet_s > kMaxFleetFlight_s)
+      ui.fail("the UAVs' straight routes up to this one add up to " + At::fmt(fleet_s) +
+              " s of flight; a plan holds at most " + At::fmt(kMaxFleetFlight_s) +
+              " s of flight over all its UAVs (a row a second each)");
   }
 }
 
@@ -767,7 +788,8 @@ void read_planner(const At& p, Scenario& sc) {
 
 }  // namespace
 
-Scenario parse_scenario(const std::string& text, const std::string& file, const Overrides& overrides) {
+Scenario parse_scenario(const std::string& text, const std::string& file, const Overrides& overrides,
+                        const StopCondition& stop) {
   YAML::Node root = parse_yaml(text, file);
   if (!root.IsMap()) throw InputError(file, 0, "", "the top level must be a mapping of scenario keys");
   Applied applied;
@@ -778,7 +800,7 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
   Scenario sc;
   read_header(top, sc);
   const At w = top.req("world");
-  sc.world = read_world(w, sc);
+  sc.world = read_world(w, sc, stop);
   const At uavs = top.req("uavs");
   read_uavs(uavs, sc);
   if (top.has("mission")) read_mission(top["mission"], uavs, sc);
@@ -789,8 +811,8 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
   return sc;
 }
 
-Scenario load_scenario(const std::string& path, const Overrides& overrides) {
-  return parse_scenario(read_text_file(path), path, overrides);
+Scenario load_scenario(const std::string& path, const Overrides& overrides, const StopCondition& stop) {
+  return parse_scenario(read_text_file(path), path, overrides, stop);
 }
 
 }  // namespace uavplan

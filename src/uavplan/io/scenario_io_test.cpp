@@ -271,6 +271,17 @@ TEST(ScenarioIo, SizesAreCheckedBeforeTheyAreBuilt) {
   expect_error(replace(kGood, "speed: {min: 1, cruise: 4, max: 6}", "speed: 1e-6"),
                {"uavs[0].speed", "at most 1e+06 s"});
   expect_error(replace(kGood, "speed: {min: 1, cruise: 4, max: 6}", "speed: 1e-300"), {"uavs[0].speed"});
+  // A home 1e6 s of flight away: its legs count (plan.json would hold millions of rows).
+  const std::string far_home =
+      "version: 1\nworld: {bounds: {min: [-1e7, -1e7, 0], max: [1e7, 1e7, 100]}}\n"
+      "uavs: [{id: a, start: [0, 0, 50], goal: [100, 0, 50], home: [-6e6, 0, 0], speed: 10}]\n";
+  expect_error(far_home, {"uavs[0].speed", "from its home and back", "at most 1e+06 s"});
+  // Flights each within the limit that add up past the fleet's.
+  std::string fleet = "version: 1\nworld: {bounds: {min: [-1e7, -1e7, 0], max: [1e7, 1e7, 100]}}\nuavs:\n";
+  for (int k = 0; k < 3; ++k)
+    fleet += "  - {id: u" + std::to_string(k) + ", start: [0, " + std::to_string(k * 10) + ", 50], goal: [9e6, " +
+             std::to_string(k * 10) + ", 50], speed: 10}\n";
+  expect_error(fleet, {"uavs[2]", "add up to", "over all its UAVs"});
 }
 
 TEST(ScenarioIo, SetErrorsNameTheArgument) {

@@ -49,3 +49,23 @@ void throw_json_error(const std::exception& e, std::string_view text, const std:
 }
 
 }  // namespace uavplan
+
+namespace uavplan {
+
+nlohmann::json parse_json_file(std::string_view text, const std::string& file) {
+  nlohmann::json tree;
+  bool too_deep = false;
+  try {
+    DepthLimitedSax sax(tree);
+    nlohmann::json::sax_parse(text, &sax);
+    too_deep = sax.too_deep();
+  } catch (const nlohmann::json::exception& e) {
+    throw_json_error(e, text, file);
+  }
+  if (too_deep)
+    throw InputError(file, 0, "",
+                     "arrays and objects nest more than " + std::to_string(kMaxJsonDepth) + " deep; not read");
+  return tree;
+}
+
+}  // namespace uavplan

@@ -11,7 +11,10 @@
 #include "uavplan/coordination/routes/rolling_window.h"
 #include "uavplan/coordination/routes/route_problem.h"
 #include "uavplan/coordination/routes/space_time_routes.h"
+#include "uavplan/coordination/spacetime/space_time_table.h"
+#include "uavplan/coordination/spacetime/uav_lattice.h"
 #include "uavplan/coordination/timing.h"
+#include "uavplan/core/text.h"
 #include "uavplan/planning/registry.h"
 #include "uavplan/simulation/vehicle_flight.h"
 
@@ -415,6 +418,12 @@ void deconflict(const Scenario& sc, const MissionContext& ctx, const RoutesOptio
 
 void RoutesMission::plan(const Scenario& sc, const MissionContext& ctx, Plan& plan) const {
   const RoutesOptions o = routes_options(ctx);
+  // A spacing the lattice cannot hold is the parameter's fault, said before anything is planned.
+  if (o.space_time.cell_m > 0.0 && lattice_cell_count(sc.world.bounds(), o.space_time.cell_m) >
+                                       static_cast<std::uint64_t>(SpaceTimeTable::kMostVertices))
+    throw std::invalid_argument("planner.params.space_time_cell_m: " + num_text(o.space_time.cell_m) +
+                                " m makes a space-time lattice of more than " +
+                                std::to_string(SpaceTimeTable::kMostVertices) + " cells over the world's bounds");
   const auto planner = make_planner(ctx.algorithm, ctx.params);
   deconflict(sc, ctx, o, *planner, plan);
   Committed committed;

@@ -95,6 +95,12 @@ MapfResult solve_mapf(const MapfProblem& problem, const MapfOptions& o) {
   std::vector<std::vector<int>> h;
   int lone_sum = 0;
   for (std::size_t i = 0; i < problem.starts.size(); ++i) {
+    if (o.stop.should_stop()) {  // a table is a search of the whole graph: large maps take a while
+      MapfResult r;
+      r.why = "stopped (" + std::to_string(i) + " of " + std::to_string(problem.starts.size()) +
+              " agents' distance tables built)";
+      return r;
+    }
     h.push_back(distances_to(problem.graph, problem.goals[i]));
     const int d = h.back()[problem.starts[i]];
     if (d < 0) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -11,6 +12,14 @@
 #include "uavplan/core/geometry.h"
 
 namespace uavplan {
+
+std::uint64_t lattice_cell_count(const Aabb& bounds, double cell_m) {
+  const Vec3 size = bounds.max - bounds.min;
+  const auto count = [&](double s) { return std::max(1.0, std::floor(s / cell_m) + 1.0); };
+  const double n = count(size.x()) * count(size.y()) * count(size.z());
+  return n >= 1.8e19 ? std::numeric_limits<std::uint64_t>::max() : static_cast<std::uint64_t>(n);
+}
+
 namespace {
 
 constexpr int kWait = 13;  // direction index of (0, 0, 0)

@@ -40,6 +40,8 @@ struct UavLatticeOptions {
 // the world's bounds hold at most about kLatticeCells cells.
 inline constexpr int kLatticeCells = 1 << 17;
 double lattice_cell_m(const Aabb& bounds, double need_m);
+// The cells of a lattice of spacing `cell_m` over `bounds` (place_cells' count).
+std::uint64_t lattice_cell_count(const Aabb& bounds, double cell_m);
 
 struct UavLattice {
   Vec3 origin = Vec3::Zero();  // the cell (0, 0, 0)
