@@ -234,3 +234,26 @@ def test_ctrl_c_inside_plan_raises_keyboard_interrupt_at_once(root):
     proc.wait(timeout=30)
     assert line == "interrupted"
     assert took < 0.5, f"KeyboardInterrupt after {took:.2f} s"
+
+
+def test_hostile_elevation_models_are_input_errors(tmp_path):
+    # The module reads through the same locked-down GDAL: a VRT source pointing into the process
+    # (MEM:::, once a SIGSEGV) or a raw band on /proc/self/environ is a clear error, not a crash.
+    (tmp_path / "src.asc").write_text("ncols 1\nnrows 1\nxllcorner 0\nyllcorner 0\ncellsize 1\n5\n")
+    sources = {
+        "mem": '<SimpleSource><SourceFilename relativeToVRT="1">MEM:::DATAPOINTER=0x1000,PIXELS=4,LINES=4'
+               '</SourceFilename></SimpleSource>',
+        "raw": '</VRTRasterBand><VRTRasterBand dataType="Byte" band="2" subClass="VRTRawRasterBand">'
+               '<SourceFilename relativetoVRT="0">/proc/self/environ</SourceFilename>',
+    }
+    for name, inside in sources.items():
+        (tmp_path / f"{name}.vrt").write_text(
+            '<VRTDataset rasterXSize="4" rasterYSize="4"><SRS>EPSG:21781</SRS>'
+            '<GeoTransform>780000, 100, 0, 186400, 0, -100</GeoTransform>'
+            f'<VRTRasterBand dataType="Float32" band="1">{inside}</VRTRasterBand></VRTDataset>')
+        (tmp_path / f"{name}.yaml").write_text(
+            "version: 1\norigin: {lat: 46.80256, lon: 9.79959, alt: 0}\n"
+            f"world:\n  bounds: {{min: [-100, -100, 0], max: [100, 100, 300]}}\n  terrain: {{file: {name}.vrt}}\n"
+            "uavs:\n  - {id: a, start: [-50, -50, 200], goal: [50, 50, 200]}\n")
+        with pytest.raises(uavplan.InputError, match=f"{name}.vrt"):
+            uavplan.Scenario.load(str(tmp_path / f"{name}.yaml"))
