@@ -7,7 +7,7 @@
 #include <numeric>
 
 #include "uavplan/coordination/contract/separation.h"
-#include "uavplan/coordination/planning_view.h"
+#include "uavplan/coordination/ground_heights.h"
 #include "uavplan/core/text.h"
 
 namespace uavplan {

@@ -1,0 +1,101 @@
+#include "uavplan/coordination/ground_heights.h"
+
+#include <algorithm>
+#include <utility>
+#include <vector>
+
+#include "uavplan/core/text.h"
+
+namespace uavplan {
+namespace {
+
+constexpr double kLiftMargin_m = 0.05;  // above the body and min_agl, where a take-off ends
+
+std::string column_problem(const Scenario& sc, const UavSpec& u, const Vec3& p, double lift_m) {
+  const double keep = keep_off_m(u), ground = sc.world.ground_z(p.x(), p.y());
+  const Vec3 foot(p.x(), p.y(), ground), top(p.x(), p.y(), ground + lift_m);
+  if (!sc.world.in_bounds(top))
+    return "the world is not high enough to lift off there (" + num_text(top.z() - ground) + " m needed)";
+  const double c = sc.world.ground_leg_clearance(foot, top, keep, ground);
+  if (c >= keep - 1e-6) return {};  // touching the ground it stands on at exactly keep_m above it
+  return "its vertical column up to " + num_text(top.z() - ground) + " m above the ground comes within " + num_text(c) +
+         " m of an obstacle or the terrain beside it (radius plus clearance " + num_text(keep) + " m)";
+}
+
+// The points of the scenario on the ground (take-offs and landings) and in the air (to stay
+// above min_agl), with the UAV whose they are.
+struct Placed {
+  std::vector<std::pair<const UavSpec*, Vec3>> ground, air;
+  bool defaulted = false;  // a UAV without min_agl touches the ground
+};
+
+Placed placed_points(const Scenario& sc) {
+  const World& w = sc.world;
+  Placed out;
+  const UavSpec* widest = nullptr;
+  for (const UavSpec& u : sc.uavs) {
+    std::vector<Vec3> pts{u.start};
+    if (u.goal) pts.push_back(*u.goal);
+    if (u.home) pts.push_back(*u.home);
+    for (const Vec3& p : pts) {
+      const bool ground = w.on_ground(p);
+      (ground ? out.ground : out.air).emplace_back(&u, p);
+      out.defaulted = out.defaulted || (ground && !u.min_agl_given);
+    }
+    if (!widest || keep_off_m(u) > keep_off_m(*widest)) widest = &u;
+  }
+  for (const Vec3& p : sc.mission.waypoints)
+    if (widest) out.air.emplace_back(widest, p);
+  return out;
+}
+
+}  // namespace
+
+double planning_min_agl_m(const Scenario& sc) {
+  double agl = sc.default_min_agl_m;
+  for (const UavSpec& u : sc.uavs) agl = std::max(agl, u.min_agl_m);
+  return agl;
+}
+
+std::optional<double> planning_max_agl_m(const Scenario& sc) {
+  std::optional<double> agl;
+  for (const UavSpec& u : sc.uavs)
+    if (u.max_agl_m) agl = std::min(agl.value_or(*u.max_agl_m), *u.max_agl_m);
+  return agl;
+}
+
+double default_min_agl_m(const Scenario& sc) {
+  const World& w = sc.world;
+  if (w.bounds().extent().z() <= 0.0 || sc.mission.type == MissionType::formation_mission) return 0.0;
+  const Placed placed = placed_points(sc);
+  if (!placed.defaulted) return 0.0;
+  double agl = kDefaultMinAgl_m;
+  for (const auto& [u, p] : placed.air)
+    agl = std::min(agl, w.lowest_height_above_ground(p, p) - keep_off_m(*u) - kLiftMargin_m);
+  for (const auto& [u, p] : placed.ground) {
+    const double roof = std::min(w.bounds().max.z(), u->ceiling_m.value_or(w.bounds().max.z()));
+    agl = std::min(agl, roof - w.ground_z(p.x(), p.y()) - keep_off_m(*u) - 2 * kLiftMargin_m);
+  }
+  if (const auto top = planning_max_agl_m(sc))  // room for the body in the band
+    for (const UavSpec& u : sc.uavs) agl = std::min(agl, *top - 2 * keep_off_m(u) - 2 * kLiftMargin_m);
+  if (agl <= 0.0) return 0.0;
+  for (const auto& [u, p] : placed.ground)  // a column clear to the old height but not the new: none
+    if (column_problem(sc, *u, p, agl + keep_off_m(*u) + kLiftMargin_m).empty() !=
+        column_problem(sc, *u, p, planning_min_agl_m(sc) + keep_off_m(*u) + kLiftMargin_m).empty())
+      return 0.0;
+  return agl;
+}
+
+double lift_height_m(const Scenario& sc, const UavSpec& u) {
+  return planning_min_agl_m(sc) + keep_off_m(u) + kLiftMargin_m;
+}
+
+std::string ground_column_problem(const Scenario& sc, const UavSpec& u, const Vec3& p) {
+  return column_problem(sc, u, p, lift_height_m(sc, u));
+}
+
+std::string vertical_column_problem(const Scenario& sc, const UavSpec& u, const Vec3& p, double lift_m) {
+  return column_problem(sc, u, p, lift_m);
+}
+
+}  // namespace uavplan
