@@ -3,10 +3,12 @@
 #include <new>
 
 #include "commands.h"
+#include "companion.h"
 #include "uavplan/io/files.h"
 
 int main(int argc, char** argv) {
   using namespace uavplan::cli;
+  remember_command_line(argc, argv);
   install_terminal_filter();
   die_with_batch();
   CLI::App app{"uavplan: route planning for UAVs, UAV groups and formations, with verification"};
