@@ -3,7 +3,7 @@ BUILD ?= build
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps build demo test bench asan-build asan tsan fuzz clean
+.PHONY: all deps build demo test test-fast bench asan-build asan tsan fuzz clean
 
 all: build
 
@@ -21,6 +21,11 @@ demo: build
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# The tests labelled fast (unit tests but the random-world sweeps, the quick CLI checks): a
+# developer's loop, about a minute on two cores.
+test-fast: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) -L fast
 
 bench: build
 	./$(BUILD)/bench/world_queries
@@ -60,7 +65,7 @@ TSAN_TESTS ?= Rendezvous|DirectionalAStar|Cellular|Cells|RoutesOnManyThreads
 # file (no unity batches): the layers up to evaluation are built as a user's compiler sees them,
 # so a file that does not include what it uses fails here. Their unit tests are batched on
 # precompiled headers (UAVPLAN_BATCH_TESTS): a test file is not what a user's program compiles.
-TSAN_TARGETS ?= uavplan_coordination_test uavplan_evaluation_test uavplan_planning_test
+TSAN_TARGETS ?= uavplan_coordination_test uavplan_evaluation_test uavplan_evaluation_property_test uavplan_planning_test
 tsan: deps
 	@cmake -S . -B build-tsan $(SAN_FLAGS) -DUAVPLAN_TSAN=ON -DUAVPLAN_PCH=OFF -DUAVPLAN_UNITY=OFF \
 	  -DUAVPLAN_BATCH_TESTS=ON $(CMAKE_FLAGS) >/dev/null
