@@ -4,6 +4,7 @@
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
@@ -276,6 +277,7 @@ struct ZoneReader {
       const OGRLinearRing* outer = g.toPolygon()->getExteriorRing();
       if (!outer) return;
       std::vector<Vec2> lonlat;
+      lonlat.reserve(static_cast<std::size_t>(std::max(0, outer->getNumPoints())));
       for (int i = 0; i < outer->getNumPoints(); ++i) lonlat.emplace_back(outer->getX(i), outer->getY(i));
       polygon_zone(lonlat, floor, ceiling, place);
     } else if (t == wkbMultiPolygon || t == wkbGeometryCollection) {

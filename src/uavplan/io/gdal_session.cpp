@@ -11,6 +11,7 @@
 #include <array>
 #include <cerrno>
 #include <mutex>
+#include <set>
 #include <string_view>
 
 namespace uavplan {
@@ -41,11 +42,21 @@ class NoFileSystem final : public VSIFilesystemHandler {
   }
 };
 
+// Each prefix gets a handler of its own (GDAL deletes those it holds when it is cleaned up); the
+// handlers replaced are deleted here, once each (one may serve several prefixes), nothing having
+// been opened through them yet.
 void close_virtual_file_systems() {
   char** prefixes = VSIFileManager::GetPrefixes();
-  for (char** p = prefixes; p && *p; ++p)
-    if (std::string_view(*p) != "/vsimem/") VSIFileManager::InstallHandler(*p, new NoFileSystem);
+  VSIFilesystemHandler* const kept = VSIFileManager::GetHandler("/vsimem/");
+  std::set<VSIFilesystemHandler*> replaced;
+  for (char** p = prefixes; p && *p; ++p) {
+    if (std::string_view(*p) == "/vsimem/") continue;
+    VSIFilesystemHandler* old = VSIFileManager::GetHandler(*p);
+    VSIFileManager::InstallHandler(*p, new NoFileSystem);
+    if (old != kept) replaced.insert(old);
+  }
   CSLDestroy(prefixes);
+  for (VSIFilesystemHandler* h : replaced) delete h;
 }
 
 void keep_allowed_drivers() {
