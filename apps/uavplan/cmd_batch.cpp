@@ -18,6 +18,7 @@
 
 #include "batch_mpi.h"
 #include "commands.h"
+#include "uavplan/core/text.h"
 #include "uavplan/experiments/batch.h"
 #include "uavplan/experiments/journal.h"
 #include "uavplan/experiments/ompl_log.h"
@@ -176,10 +177,9 @@ std::vector<RunRecord> run_pending(const BatchArgs& a, const std::vector<RunSpec
     mine.push_back(std::move(rec));
     const double s = std::chrono::duration<double>(Clock::now() - t0).count();
     const double rate = double(mine.size()) / std::max(s, 1e-9);
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "batch: %zu/%zu runs (%.0f %%), %.1f runs/s, ETA %s", mine.size(), total,
-                  100.0 * double(mine.size()) / double(std::max<std::size_t>(total, 1)), rate,
-                  format_eta(double(total - mine.size()) / std::max(rate, 1e-9)).c_str());
+    const std::string buf = strf("batch: %zu/%zu runs (%.0f %%), %.1f runs/s, ETA %s", mine.size(), total,
+                                 100.0 * double(mine.size()) / double(std::max<std::size_t>(total, 1)), rate,
+                                 format_eta(double(total - mine.size()) / std::max(rate, 1e-9)).c_str());
     progress.update(buf);
   });
   return mine;

@@ -1,4 +1,5 @@
 #include "uavplan/coordination/timing.h"
+#include "uavplan/core/text.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -10,9 +11,7 @@ namespace uavplan {
 namespace {
 
 std::string at(const Encounter& e) {
-  char buf[128];
-  std::snprintf(buf, sizeof buf, "t=%.2f s at (%.1f, %.1f, %.1f)", e.t_s, e.where.x(), e.where.y(), e.where.z());
-  return buf;
+  return strf("t=%.2f s at (%.1f, %.1f, %.1f)", e.t_s, e.where.x(), e.where.y(), e.where.z());
 }
 
 }  // namespace

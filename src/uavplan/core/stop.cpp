@@ -1,4 +1,5 @@
 #include "uavplan/core/stop.h"
+#include "uavplan/core/text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -69,9 +70,8 @@ int StopCondition::threads(int most) const {
 
 void StopCondition::require_memory(std::uint64_t bytes, const std::string& what) const {
   if (memory_cap_bytes_ == 0 || bytes <= memory_cap_bytes_) return;
-  char buf[160];
-  std::snprintf(buf, sizeof buf, " needs %.4g MiB, above the memory cap of %.4g MiB (--max-memory)", bytes / 1048576.0,
-                memory_cap_bytes_ / 1048576.0);
+  const std::string buf = strf(" needs %.4g MiB, above the memory cap of %.4g MiB (--max-memory)", bytes / 1048576.0,
+                               memory_cap_bytes_ / 1048576.0);
   throw std::invalid_argument(what + buf);
 }
 

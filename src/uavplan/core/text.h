@@ -8,6 +8,9 @@
 
 namespace uavplan {
 
+// printf into a string as long as it needs: a message that quotes an id or a name is never cut.
+[[gnu::format(printf, 1, 2)]] std::string strf(const char* format, ...);
+
 inline std::string num_text(double x) {
   char buf[48];
   std::snprintf(buf, sizeof buf, "%.6g", x);

@@ -1,4 +1,5 @@
 #include "uavplan/evaluation/world_bench.h"
+#include "uavplan/core/text.h"
 
 #include <chrono>
 #include <cmath>
@@ -95,16 +96,12 @@ std::vector<WorldBenchRow> run_world_bench(const std::vector<int>& counts, int q
 
 std::string format_world_bench(const std::vector<WorldBenchRow>& rows) {
   std::string out;
-  char buf[256];
-  std::snprintf(buf, sizeof buf, "%10s %8s %12s %14s %9s %12s %11s %10s\n", "obstacles", "queries", "segment_us",
-                "brute_force_us", "speedup", "clearance_us", "collisions", "mismatch");
-  out += buf;
-  for (const auto& r : rows) {
-    std::snprintf(buf, sizeof buf, "%10d %8d %12.2f %14.2f %8.1fx %12.2f %11d %10d\n", r.obstacles, r.queries,
-                  r.segment_us, r.segment_brute_us, r.segment_brute_us / std::max(r.segment_us, 1e-9), r.point_us,
-                  r.collisions, r.mismatches);
-    out += buf;
-  }
+  out += strf("%10s %8s %12s %14s %9s %12s %11s %10s\n", "obstacles", "queries", "segment_us", "brute_force_us",
+              "speedup", "clearance_us", "collisions", "mismatch");
+  for (const auto& r : rows)
+    out += strf("%10d %8d %12.2f %14.2f %8.1fx %12.2f %11d %10d\n", r.obstacles, r.queries, r.segment_us,
+                r.segment_brute_us, r.segment_brute_us / std::max(r.segment_us, 1e-9), r.point_us, r.collisions,
+                r.mismatches);
   return out;
 }
 

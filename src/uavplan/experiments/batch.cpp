@@ -1,4 +1,5 @@
 #include "uavplan/experiments/batch.h"
+#include "uavplan/core/text.h"
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -100,11 +101,7 @@ std::shared_ptr<const Scenario> ScenarioCache::get(const std::string& path, cons
   return impl_->loaded.emplace(key, std::move(sc)).first->second;
 }
 
-std::string run_plan_file(std::size_t index) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "runs/%06zu.plan.json", index);
-  return buf;
-}
+std::string run_plan_file(std::size_t index) { return strf("runs/%06zu.plan.json", index); }
 
 RunOutcome run_in_process(const RunSpec& run, const ScenarioCache& cache, const BatchOptions& options,
                           std::string& plan_json) {
@@ -151,10 +148,9 @@ std::vector<std::string> isolated_args(const RunSpec& run, const BatchOptions& o
       options.uavplan_exe,      "plan",      run.scenario, "-o",      dir.string(), "--seed",
       std::to_string(run.seed), "--threads", "1",          "--timing"};
   if (!run.planner.empty()) args.insert(args.end(), {"--algorithm", run.planner});
-  for (const auto& [k, v] : run.params) args.insert(args.end(), {"--set", k + "=" + v});
+  for (const auto& [k, v] : run.params) args.insert(args.end(), {"--set", std::string(k).append("=").append(v)});
   if (options.time_limit_s > 0.0) {
-    char limit[32];
-    std::snprintf(limit, sizeof limit, "%.17g", options.time_limit_s);  // exactly the sweep's (1e-7 is not "0.000000")
+    const std::string limit = strf("%.17g", options.time_limit_s);  // exactly the sweep's (1e-7 is not "0.000000")
     args.insert(args.end(), {"--time-limit", limit});
   }
   args.insert(args.end(), {"--max-memory", std::to_string(options.max_memory_bytes)});
@@ -167,6 +163,7 @@ std::vector<std::string> isolated_args(const RunSpec& run, const BatchOptions& o
 // --resume). -1 when it cannot start.
 pid_t spawn_run(std::vector<std::string> args, const std::string& err_path) {
   std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   posix_spawn_file_actions_t actions;
@@ -184,6 +181,7 @@ pid_t spawn_run(std::vector<std::string> args, const std::string& err_path) {
     if (std::strncmp(*e, kParentPidVariable, std::strlen(kParentPidVariable)) != 0) env_text.emplace_back(*e);
   env_text.push_back(std::string(kParentPidVariable) + "=" + std::to_string(::getpid()));
   std::vector<char*> envp;
+  envp.reserve(env_text.size() + 1);
   for (auto& e : env_text) envp.push_back(e.data());
   envp.push_back(nullptr);
   pid_t pid = -1;

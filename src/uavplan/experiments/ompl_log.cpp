@@ -1,4 +1,5 @@
 #include "uavplan/experiments/ompl_log.h"
+#include "uavplan/core/text.h"
 
 #include <cmath>
 #include <cstdio>
@@ -15,9 +16,7 @@ std::string no_spaces(std::string s) {
 
 std::string real(double x) {
   if (!std::isfinite(x)) return "";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.9g", x);
-  return buf;
+  return strf("%.9g", x);
 }
 
 const char* kRunProperties[] = {

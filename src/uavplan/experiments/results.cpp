@@ -1,4 +1,5 @@
 #include "uavplan/experiments/results.h"
+#include "uavplan/core/text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -23,9 +24,7 @@ std::string csv_field(const std::string& s) {
 
 std::string number(double x, int decimals) {
   if (!std::isfinite(x)) return "";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, x);
-  return buf;
+  return strf("%.*f", decimals, x);
 }
 
 std::vector<const RunRecord*> by_run(const std::vector<RunRecord>& records) {
@@ -182,17 +181,14 @@ std::string summary_table(const std::vector<RunRecord>& records) {
   std::size_t params_w = 6;
   for (const auto& [key, g] : groups) params_w = std::max(params_w, std::get<1>(key).size());
   std::string out;
-  char buf[512];
   const int pw = static_cast<int>(std::min<std::size_t>(params_w, 200));
-  std::snprintf(buf, sizeof buf, "%-16s %-*s %-28s %6s %7s %8s %10s %10s %14s\n", "planner", pw, "params", "scenario",
-                "runs", "solved", "verified", "median_ms", "p95_ms", "mean_length_m");
-  out += buf;
+  out += strf("%-16s %-*s %-28s %6s %7s %8s %10s %10s %14s\n", "planner", pw, "params", "scenario", "runs", "solved",
+              "verified", "median_ms", "p95_ms", "mean_length_m");
   for (const auto& [key, g] : groups) {
     const auto& [planner, params, scenario] = key;
-    std::snprintf(buf, sizeof buf, "%-16s %-*s %-28s %6zu %7zu %8zu %10.2f %10.2f %14s\n", planner.c_str(), pw,
-                  params.c_str(), scenario.c_str(), g.runs, g.solved, g.verified, quantile(g.ms, 0.5),
-                  quantile(g.ms, 0.95), g.lengths ? number(g.length_sum / double(g.lengths), 1).c_str() : "-");
-    out += buf;
+    out += strf("%-16s %-*s %-28s %6zu %7zu %8zu %10.2f %10.2f %14s\n", planner.c_str(), pw, params.c_str(),
+                scenario.c_str(), g.runs, g.solved, g.verified, quantile(g.ms, 0.5), quantile(g.ms, 0.95),
+                g.lengths ? number(g.length_sum / double(g.lengths), 1).c_str() : "-");
   }
   return out;
 }

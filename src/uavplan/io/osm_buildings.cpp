@@ -1,4 +1,5 @@
 #include "uavplan/io/osm_buildings.h"
+#include "uavplan/core/text.h"
 
 #include <cctype>
 #include <charconv>
@@ -134,10 +135,8 @@ struct OsmReader {
       bottom = *ml * opt.level_height_m;
     }
     if (!(top > bottom)) {  // a part that starts at or above its own top is a tagging error: say so
-      char buf[160];
-      std::snprintf(buf, sizeof buf,
-                    "the building's bottom (min_height or building:min_level: %g m) is not below its top (%g m)",
-                    bottom, top);
+      const std::string buf = strf(
+          "the building's bottom (min_height or building:min_level: %g m) is not below its top (%g m)", bottom, top);
       fail(place, buf);
     }
     const json& c = g["coordinates"];

@@ -166,7 +166,7 @@ struct PlanReader {
       if (x.is_null())
         out[k] = std::numeric_limits<double>::infinity();
       else
-        out[k] = number(x, place + "." + k);
+        out[k] = number(x, std::string(place).append(".").append(k));
     }
     return out;
   }

@@ -1,4 +1,5 @@
 #include "uavplan/planning/grid_budget.h"
+#include "uavplan/core/text.h"
 
 #include <cstdio>
 #include <stdexcept>
@@ -6,8 +7,7 @@
 namespace uavplan {
 
 void require_grid(double cells, double bytes_per_cell, const StopCondition& stop, const std::string& what) {
-  char buf[96];
-  std::snprintf(buf, sizeof buf, ": a %.3g-cell grid", cells);
+  const std::string buf = strf(": a %.3g-cell grid", cells);
   if (!(cells <= kMaxGridCells))
     throw std::invalid_argument(what + buf + " is more than a grid can index (2^31 cells); use larger cells");
   stop.require_memory(static_cast<std::uint64_t>(cells * bytes_per_cell), what + buf);

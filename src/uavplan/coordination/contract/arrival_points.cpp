@@ -81,7 +81,8 @@ std::vector<Vec3> ring(const Scenario& sc, const std::vector<std::size_t>& membe
   }
   const std::vector<double> angle = spread(wish, 2.0 * std::asin(std::min(1.0, chord_m / (2.0 * r))));
   for (int t = 0; t < kRingTurns; ++t) {
-    const double turn = (t % 2 ? -1.0 : 1.0) * ((t + 1) / 2) * 2.0 * std::numbers::pi / kRingTurns;
+    const int step = (t + 1) / 2;  // 0, 1, -1, 2, -2, ... turns of the ring
+    const double turn = (t % 2 ? -1.0 : 1.0) * step * 2.0 * std::numbers::pi / kRingTurns;
     std::vector<Vec3> pts(k);
     bool ok = true;
     for (std::size_t m = 0; m < k && ok; ++m) {

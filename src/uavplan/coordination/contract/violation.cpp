@@ -1,4 +1,5 @@
 #include "uavplan/coordination/contract/violation.h"
+#include "uavplan/core/text.h"
 
 #include <cstdio>
 
@@ -52,15 +53,8 @@ std::string describe(const Violation& v) {
   std::string s = v.uav.empty() ? std::string("mission") : v.uav;
   s += " ";
   s += to_string(v.kind);
-  char buf[160];
-  if (v.t_s) {
-    std::snprintf(buf, sizeof buf, " t=%.2f s", *v.t_s);
-    s += buf;
-  }
-  if (v.where) {
-    std::snprintf(buf, sizeof buf, " at (%.2f, %.2f, %.2f)", v.where->x(), v.where->y(), v.where->z());
-    s += buf;
-  }
+  if (v.t_s) s += strf(" t=%.2f s", *v.t_s);
+  if (v.where) s += strf(" at (%.2f, %.2f, %.2f)", v.where->x(), v.where->y(), v.where->z());
   return s + ": " + v.message;
 }
 

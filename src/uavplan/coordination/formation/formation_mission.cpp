@@ -1,4 +1,5 @@
 #include "uavplan/coordination/formation/formation_mission.h"
+#include "uavplan/core/text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -104,12 +105,11 @@ void check_flown(const Scenario& sc, const ArrivalSpread& spread, Plan& plan) {
     }
   }
   if (spread.s() <= sc.mission.arrival_tolerance_s + 1e-9) return;
-  char buf[300];
-  std::snprintf(buf, sizeof buf,
-                "arrivals %.1f s apart ('%s' at its goal at %.1f s, '%s' at %.1f s), more than "
-                "arrival_tolerance_s = %g s: '%s' could not re-form before the goals",
-                spread.s(), spread.first->id.c_str(), spread.first->arrival_s, spread.last->id.c_str(),
-                spread.last->arrival_s, sc.mission.arrival_tolerance_s, spread.last->id.c_str());
+  const std::string buf = strf(
+      "arrivals %.1f s apart ('%s' at its goal at %.1f s, '%s' at %.1f s), more than "
+      "arrival_tolerance_s = %g s: '%s' could not re-form before the goals",
+      spread.s(), spread.first->id.c_str(), spread.first->arrival_s, spread.last->id.c_str(), spread.last->arrival_s,
+      sc.mission.arrival_tolerance_s, spread.last->id.c_str());
   for (UavPlan& up : plan.uavs)
     if (up.status == Status::solved) up.status = Status::failed, up.message = buf;
 }
@@ -174,9 +174,8 @@ void FormationMission::plan(const Scenario& sc, const MissionContext& ctx, Plan&
     up.arrival_s = arrival_s(sc.uavs[i], arrivals[i], f.flown);
     up.stats = i == 0 ? ref.stats : PlanStats{};
     up.stats.plan_ms += log.local_ms;
-    char buf[200];
-    std::snprintf(buf, sizeof buf, "in formation (T = %g s): %d local replans, %d holds, %d escapes", sc.mission.step_s,
-                  log.replans, log.holds, log.escapes);
+    const std::string buf = strf("in formation (T = %g s): %d local replans, %d holds, %d escapes", sc.mission.step_s,
+                                 log.replans, log.holds, log.escapes);
     const std::string by = " by t=" + std::to_string(static_cast<int>(lo.horizon_s)) + " s";
     up.message = arrived  ? std::string(buf)
                  : f.done ? "waited for the formation to re-form" + by

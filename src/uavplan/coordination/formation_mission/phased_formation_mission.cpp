@@ -1,4 +1,5 @@
 #include "uavplan/coordination/formation_mission/phased_formation_mission.h"
+#include "uavplan/core/text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -372,10 +373,9 @@ class PhasedFlight {
 
 bool PhasedFlight::phase(const char* name, bool ok) {
   if (!ok && failed_.empty()) {
-    char buf[160];
-    std::snprintf(buf, sizeof buf,
-                  "the %s phase did not complete (at t = %.0f s the shape was %.1f m off, tolerance %.1f m)", name,
-                  group_.time_s(), group_.shape_error_m(order_now_), o_.shape_tolerance_m);
+    const std::string buf =
+        strf("the %s phase did not complete (at t = %.0f s the shape was %.1f m off, tolerance %.1f m)", name,
+             group_.time_s(), group_.shape_error_m(order_now_), o_.shape_tolerance_m);
     failed_ = buf;
   }
   log_.phases.push_back({name, group_.time_s()});
@@ -478,13 +478,10 @@ void check_airfield_rules(const Scenario& sc, Plan& plan) {
       const AirfieldEncounter e = airfield_encounter(sc, sc.uavs[i], ti, sc.uavs[j], tj);
       const auto runway = runway_overlap(runway_occupancy(af, ti), runway_occupancy(af, tj));
       if (!e.conflict && !runway) continue;
-      char buf[160];
-      if (e.conflict)
-        std::snprintf(buf, sizeof buf, "%.1f m from %s at t = %.1f s, below %.1f m", e.distance_m,
-                      sc.uavs[j].id.c_str(), e.t_s, e.need_m);
-      else
-        std::snprintf(buf, sizeof buf, "on the runway with %s from t = %.1f to %.1f s", sc.uavs[j].id.c_str(),
-                      runway->from_s, runway->to_s);
+      const std::string buf = e.conflict ? strf("%.1f m from %s at t = %.1f s, below %.1f m", e.distance_m,
+                                                sc.uavs[j].id.c_str(), e.t_s, e.need_m)
+                                         : strf("on the runway with %s from t = %.1f to %.1f s", sc.uavs[j].id.c_str(),
+                                                runway->from_s, runway->to_s);
       for (const std::size_t k : {i, j}) {
         plan.uavs[k].status = Status::failed;
         if (plan.uavs[k].message.empty())

@@ -1,4 +1,5 @@
 #include "uavplan/coordination/group/group_mission.h"
+#include "uavplan/core/text.h"
 
 #include <cstdio>
 
@@ -14,8 +15,7 @@ std::string limits_broken(const std::vector<Vec3>& path, const UavSpec& u) {
   const LimitViolation& v = broken.front();
   const Vec3& p = path[v.index];
   const bool turn = v.kind == LimitViolation::Kind::turn;
-  char where[96];
-  std::snprintf(where, sizeof where, " at (%.2f, %.2f, %.2f)", p.x(), p.y(), p.z());
+  const std::string where = strf(" at (%.2f, %.2f, %.2f)", p.x(), p.y(), p.z());
   return std::string(turn ? "the field's path turns " : "the field's path climbs ") +
          std::to_string(rad_to_deg(v.value_rad)) + " deg" + where + ", above the limit " +
          std::to_string(rad_to_deg(turn ? u.max_turn_rad : u.max_climb_rad)) +

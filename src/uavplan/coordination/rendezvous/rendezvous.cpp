@@ -1,4 +1,5 @@
 #include "uavplan/coordination/rendezvous/rendezvous.h"
+#include "uavplan/core/text.h"
 
 #include <algorithm>
 #include <atomic>
@@ -53,11 +54,7 @@ constexpr int kMoveCentreSteps = 15;
 
 double length(const std::vector<Vec3>& pts) { return polyline_length_m(pts); }
 
-std::string fmt(const char* f, double a, double b = 0.0, double c = 0.0) {
-  char buf[160];
-  std::snprintf(buf, sizeof buf, f, a, b, c);
-  return buf;
-}
+std::string fmt(const char* f, double a, double b = 0.0, double c = 0.0) { return strf(f, a, b, c); }
 
 // The loiter of P4 eq. 9-11 as a regular polygon, x0 at the middle of its first side and that
 // side along the heading, so the UAV leaves and rejoins its route with its own heading: [x0,

@@ -1,4 +1,5 @@
 #include "uavplan/coordination/rendezvous/rendezvous_mission.h"
+#include "uavplan/core/text.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -26,9 +27,9 @@ void RendezvousMission::plan(const Scenario& sc, const MissionContext& ctx, Plan
   std::vector<std::size_t> order;
   for (std::size_t i = 0; i < n; ++i) {
     const RendezvousUav& r = rr.uavs[i];
-    char buf[200];
-    std::snprintf(buf, sizeof buf, "rendezvous: %s, pre-planned %.1f m, final %.1f m (target %.1f m, epsilon %.1f m)",
-                  std::string(to_string(r.step)).c_str(), r.preplanned_m, r.final_m, rr.target_m, rr.epsilon_m);
+    const std::string buf =
+        strf("rendezvous: %s, pre-planned %.1f m, final %.1f m (target %.1f m, epsilon %.1f m)",
+             std::string(to_string(r.step)).c_str(), r.preplanned_m, r.final_m, rr.target_m, rr.epsilon_m);
     messages[i] = std::string(buf) + (r.detail.empty() ? "" : "; " + r.detail);
     if (r.ok) {
       order.push_back(i);
@@ -48,22 +49,20 @@ void RendezvousMission::plan(const Scenario& sc, const MissionContext& ctx, Plan
     const UavSpec& u = sc.uavs[i];
     Departure d =
         earliest_departure(sc, u, r.waypoints, slack_s[i], committed, opt.delay_step_s, opt.max_sample_dt_s, opt.stop);
-    char buf[200];
     if (d.stopped) {
       planned[i] = flown_plan(r.id, false, messages[i] + "; " + kStoppedMessage, {}, {});
       planned[i].reason = Reason::stopped;
       continue;
     }
     if (!d.placed) {
-      std::snprintf(buf, sizeof buf, " for every departure delay up to %.1f s (its arrival slack)", slack_s[i]);
-      planned[i] = flown_plan(r.id, false, messages[i] + "; conflicts with " + d.first.what + buf, {}, {});
+      planned[i] = flown_plan(r.id, false,
+                              messages[i] + "; conflicts with " + d.first.what +
+                                  strf(" for every departure delay up to %.1f s (its arrival slack)", slack_s[i]),
+                              {}, {});
       planned[i].reason = Reason::conflict;
       continue;
     }
-    if (d.delay_s > 0.0) {
-      std::snprintf(buf, sizeof buf, "; departs %.1f s late to keep the separation", d.delay_s);
-      messages[i] += buf;
-    }
+    if (d.delay_s > 0.0) messages[i] += strf("; departs %.1f s late to keep the separation", d.delay_s);
     planned[i] = flown_plan(r.id, true, messages[i], r.waypoints, std::move(d.trajectory));
     committed.emplace_back(&u, &planned[i]);
   }

@@ -1,4 +1,5 @@
 #include "uavplan/coordination/routes/rolling_window.h"
+#include "uavplan/core/text.h"
 
 #include <algorithm>
 #include <chrono>
@@ -111,20 +112,12 @@ std::optional<Vec3> heading_of(const FlightState& s) {
   return s.moved || s.spec->heading_rad ? std::optional<Vec3>(s.direction) : std::nullopt;
 }
 
-std::string num(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.1f", x);
-  return buf;
-}
+std::string num(double x) { return strf("%.1f", x); }
 
 std::string describe(const Track& k, double t_s) {
-  char buf[160];
   const double v = k.velocity_mps ? k.velocity_mps->norm() : -1.0;
-  if (v >= 0.0)
-    std::snprintf(buf, sizeof buf, "'%s' (%.1f m/s) at t=%.1f s", k.id.c_str(), v, t_s);
-  else
-    std::snprintf(buf, sizeof buf, "'%s' (first seen) at t=%.1f s", k.id.c_str(), t_s);
-  return buf;
+  if (v >= 0.0) return strf("'%s' (%.1f m/s) at t=%.1f s", k.id.c_str(), v, t_s);
+  return strf("'%s' (first seen) at t=%.1f s", k.id.c_str(), t_s);
 }
 
 }  // namespace

@@ -291,9 +291,8 @@ void record_flights(const Scenario& sc, const MissionContext& ctx, const Sensing
     UavPlan& up = plan.uavs[s.index[k]];
     const FlightState& f = flight.uavs[k];
     const RollingWindowLog& log = controller.log(k);
-    char buf[200];
-    std::snprintf(buf, sizeof buf, "flown in the loop (T = %g s): %d local replans, %d holds, %d escapes",
-                  sc.mission.step_s, log.replans, log.holds, log.escapes);
+    const std::string buf = strf("flown in the loop (T = %g s): %d local replans, %d holds, %d escapes",
+                                 sc.mission.step_s, log.replans, log.holds, log.escapes);
     up.stats.plan_ms += log.local_ms;  // wall time stays out of the plan's text (same bytes every run)
     up.trajectory = f.flown;
     if (!f.done) {

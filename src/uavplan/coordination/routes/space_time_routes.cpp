@@ -229,8 +229,7 @@ Layer make_layer(const Scenario& sc, const MissionContext& ctx, const std::vecto
     layer.problem = stop.should_stop() ? kStoppedMessage : std::string("space-time deconfliction: ") + e.what();
     return layer;
   }
-  char cell[64];
-  std::snprintf(cell, sizeof cell, "%.3g m", layer.lattice->cell_m);
+  const std::string cell = strf("%.3g m", layer.lattice->cell_m);
   for (std::size_t k = 0; k < which.size() && layer.problem.empty(); ++k)
     if (!layer.agents->reachable(static_cast<int>(k))) {
       layer.why = Reason::no_route;
@@ -278,9 +277,8 @@ void plan_space_time(const Scenario& sc, const MissionContext& ctx, const std::v
     return fail_all(Reason::conflict, "space-time deconfliction found no conflict-free plan (" + r.why +
                                           "); try --set space_time_method=cbs or another space_time_cell_m");
   }
-  char how[160];
-  std::snprintf(how, sizeof how, "space-time deconfliction: %s; lattice %.3g m, tick %.3g s", r.method.c_str(),
-                layer.lattice->cell_m, layer.clock.tick_s);
+  const std::string how = strf("space-time deconfliction: %s; lattice %.3g m, tick %.3g s", r.method.c_str(),
+                               layer.lattice->cell_m, layer.clock.tick_s);
   for (std::size_t k = 0; k < which.size(); ++k) {
     UavPlan& up = plan.uavs[which[k]];
     up.status = Status::solved;

@@ -1,4 +1,5 @@
 #include "uavplan/coordination/spacetime/cbs.h"
+#include "uavplan/core/text.h"
 
 #include <climits>
 #include <cmath>
@@ -184,8 +185,7 @@ MapfResult ConflictSearch::run() {
 MapfResult solve_cbs(const SpaceTimeModel& model, double w, const StopCondition& stop, std::uint64_t most_nodes) {
   ConflictSearch search(model, w, stop, most_nodes);
   MapfResult r = search.run();
-  char name[32];
-  std::snprintf(name, sizeof name, "ecbs w=%g", w);
+  const std::string name = strf("ecbs w=%g", w);
   r.method = w > 1.0 ? name : "cbs";
   return r;
 }

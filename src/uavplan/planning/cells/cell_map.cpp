@@ -1,4 +1,5 @@
 #include "uavplan/planning/cells/cell_map.h"
+#include "uavplan/core/text.h"
 
 #include <cstdio>
 
@@ -75,8 +76,7 @@ CellMap::CellMap(const World& world, const CellMapOptions& opt, const StopCondit
     const double ny = std::max(1.0, std::ceil((b.max.y() - b.min.y()) / cell_m_ - 1e-9));
     const double nz = std::max(
         1.0, std::floor((opt.ceiling_m - opt.inflation_m - b.min.z() - opt.inflation_m) / level_m_ + 1e-9) + 1);
-    char what[120];
-    std::snprintf(what, sizeof what, "planner.params.cell_m = %g m, level_m = %g m", cell_m_, level_m_);
+    const std::string what = strf("planner.params.cell_m = %g m, level_m = %g m", cell_m_, level_m_);
     // Heights per column, and per node the graph's costs, pheromone and search state.
     require_grid(nx * ny * nz, 48.0, stop, what);
     if (nx * ny * nz > 50'000'000)

@@ -78,21 +78,17 @@ std::string overhang_hint(const World& world, double inflation_m) {
 
 std::string cells_hint(const CellMap& map, double max_climb_rad, const World& world, double inflation_m) {
   if (std::string overhang = overhang_hint(world, inflation_m); !overhang.empty()) return overhang;
-  char buf[320];
   const double least_climb = std::atan2(map.level_m(), std::sqrt(2.0) * map.cell_m());
   if (map.levels() > 1 && least_climb > max_climb_rad + 1e-12) {
     const double most = std::sqrt(2.0) * map.cell_m() * std::tan(max_climb_rad);
     const double unit = std::pow(10.0, std::floor(std::log10(most)) - 2);  // three digits, rounded down
-    std::snprintf(
-        buf, sizeof buf,
+    return strf(
         "the cell map's least climb (one level of %g m over a diagonal cell of %g m) is %.1f deg, steeper than the "
         "climb limit of %.1f deg, so it cannot change height: give planner.params.level_m <= %g",
         map.level_m(), map.cell_m(), rad_to_deg(least_climb), rad_to_deg(max_climb_rad),
         std::floor(most / unit) * unit);
-    return buf;
   }
-  std::snprintf(buf, sizeof buf, "a smaller planner.params.cell_m (now %g m) finds narrower streets", map.cell_m());
-  return buf;
+  return strf("a smaller planner.params.cell_m (now %g m) finds narrower streets", map.cell_m());
 }
 
 }  // namespace
@@ -142,8 +138,7 @@ void merge_collinear(const std::vector<Vec3>& route, const std::vector<char>& pi
 // The cell map is conservative; every segment is still checked exactly. Empty, or why not.
 std::string exact_check(const std::vector<Vec3>& wp, const SegmentRule& rule) {
   const auto f = [](const Vec3& v) {
-    char b[96];
-    std::snprintf(b, sizeof b, "(%.2f, %.2f, %.2f)", v.x(), v.y(), v.z());
+    const std::string b = strf("(%.2f, %.2f, %.2f)", v.x(), v.y(), v.z());
     return std::string(b);
   };
   for (std::size_t i = 1; i < wp.size(); ++i)

@@ -1,4 +1,5 @@
 #include "uavplan/planning/pso/pso_mpc.h"
+#include "uavplan/core/text.h"
 
 #include <algorithm>
 #include <array>
@@ -302,9 +303,7 @@ LegOutcome LegFlight::fly(std::vector<Vec3>& route_io, std::optional<Vec3>& in_i
       continue;
     }
     if (!back_up()) {
-      char buf[160];
-      std::snprintf(buf, sizeof buf, ": no feasible waypoint %g m on from (%.1f, %.1f, %.1f)", l, p_.x(), p_.y(),
-                    p_.z());
+      const std::string buf = strf(": no feasible waypoint %g m on from (%.1f, %.1f, %.1f)", l, p_.x(), p_.y(), p_.z());
       return {Reason::no_route, buf};
     }
   }

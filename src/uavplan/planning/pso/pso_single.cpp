@@ -1,4 +1,5 @@
 #include "uavplan/planning/pso/pso_single.h"
+#include "uavplan/core/text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -140,10 +141,9 @@ PlanResult PsoSinglePlanner::do_plan(const Problem& pb, const World& world, cons
   const auto broken = check_route_limits(r.waypoints, pb.uav);
   const double limit = std::min(deg_to_rad(options_.steps.max_turn_deg), pb.uav.max_turn_rad);
   if (!broken.empty() || r.worst_turn_rad > limit + kAngleTolerance_rad) {
-    char buf[160];
-    std::snprintf(buf, sizeof buf,
-                  "the swarm's best route (relaxed constraints) turns %.1f deg at waypoint %zu, above %.1f deg",
-                  rad_to_deg(r.worst_turn_rad), r.worst_turn_at, rad_to_deg(limit));
+    const std::string buf =
+        strf("the swarm's best route (relaxed constraints) turns %.1f deg at waypoint %zu, above %.1f deg",
+             rad_to_deg(r.worst_turn_rad), r.worst_turn_at, rad_to_deg(limit));
     res.message = buf;
     return res;
   }

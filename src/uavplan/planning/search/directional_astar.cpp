@@ -1,4 +1,5 @@
 #include "uavplan/planning/search/directional_astar.h"
+#include "uavplan/core/text.h"
 
 #include <cstdio>
 
@@ -276,23 +277,18 @@ DirectionalCones::Cone build_cone(const DirectionalCones::Key& key, int dx, int 
 // What to change when the lattice finds no route within the limits. A move L cells away climbs
 // at least one cell: atan(1 / L) above the climb limit means it cannot climb or descend at all.
 std::string limits_hint(const DirectionalQuery& q, bool flat) {
-  char buf[320];
   const double least_climb = std::atan(1.0 / q.step_cells);
   if (!flat && least_climb > q.max_pitch_rad + 1e-12) {
-    std::snprintf(
-        buf, sizeof buf,
+    return strf(
         "the lattice's least climb, atan(1 / step_cells) = %.1f deg, is steeper than the climb limit of %.1f deg, "
         "so it cannot change height: give planner.params.step_cells >= %.1f (and a smaller cell_m to keep "
         "its turns tight)",
         rad_to_deg(least_climb), rad_to_deg(q.max_pitch_rad), std::ceil(10.0 / std::tan(q.max_pitch_rad)) / 10.0);
-    return buf;
   }
-  std::snprintf(
-      buf, sizeof buf,
+  return strf(
       "a longer planner.params.step_cells (now %.2f) gives finer turns and climbs, a smaller cell_m (now %g m) "
       "more room to turn",
       q.step_cells, q.cell_m);
-  return buf;
 }
 
 }  // namespace
@@ -975,8 +971,7 @@ void DirectionalAStarPlanner::require_lattice(const World& world, const Directio
   const Vec3 ext = world.bounds().extent();
   double points = 1.0;
   for (int a = 0; a < 3; ++a) points *= 1.0 + std::floor(ext[a] / q.cell_m + 1e-9);
-  char what[80];
-  std::snprintf(what, sizeof what, "planner.params.cell_m = %g m", q.cell_m);
+  const std::string what = strf("planner.params.cell_m = %g m", q.cell_m);
   // Per lattice point: a cached clearance (4 bytes), search nodes (16 bytes) for up to 8
   // heading sectors and the relaxed heuristic's distance and flag (9 bytes), per engine.
   require_grid(points * 8.0, engines * ((4.0 + 9.0) / 8.0 + 16.0), stop, what);

@@ -1,0 +1,18 @@
+#include "uavplan/core/text.h"
+
+#include <gtest/gtest.h>
+
+namespace uavplan {
+namespace {
+
+TEST(Text, StrfIsNeverCut) {
+  const std::string id(5000, 'x');
+  const std::string s = strf("'%s' at %.1f s", id.c_str(), 2.25);
+  EXPECT_EQ(s.size(), id.size() + 11);
+  EXPECT_EQ(s.substr(s.size() - 10), "' at 2.2 s");
+  EXPECT_EQ(strf("%s", ""), "");
+  EXPECT_EQ(num_text(2.5), "2.5");
+}
+
+}  // namespace
+}  // namespace uavplan
