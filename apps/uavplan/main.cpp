@@ -1,4 +1,5 @@
 // uavplan: plans routes for UAVs, groups and formations, verifies them, benchmarks planners.
+#include <cstdio>
 #include <iostream>
 #include <new>
 
@@ -6,7 +7,9 @@
 #include "companion.h"
 #include "uavplan/io/files.h"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run_command_line(int argc, char** argv) {
   using namespace uavplan::cli;
   remember_command_line(argc, argv);
   install_terminal_filter();
@@ -56,5 +59,16 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     std::cerr << "uavplan: " << e.what() << "\n";
     return kExitBadInput;
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run_command_line(argc, argv);
+  } catch (...) {  // not a std::exception: nothing the commands throw on purpose
+    std::fputs("uavplan: internal error: an unexpected exception\n", stderr);
+    return uavplan::cli::kExitBadInput;
   }
 }
