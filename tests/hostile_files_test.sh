@@ -53,13 +53,15 @@ NODATA_value -9999
 13 14 15 16
 EOF
 gdalsrsinfo -o wkt1 --single-line EPSG:21781 >"$D/src.prj" 2>/dev/null
-# scenario NAME TERRAIN_OR_AIRSPACE_LINE: a scenario over the grid naming one file.
+# scenario NAME TERRAIN_OR_AIRSPACE_LINE [HALF_WIDTH]: a scenario over the grid (bounds +-100 m
+# or +-HALF_WIDTH) naming one file.
 scenario() {
+  local h=${3:-100}
   cat >"$D/$1.yaml" <<EOF
 version: 1
 origin: {lat: 46.80256, lon: 9.79959, alt: 0}
 world:
-  bounds: {min: [-100, -100, 0], max: [100, 100, 300]}
+  bounds: {min: [-$h, -$h, 0], max: [$h, $h, 300]}
 $2
 uavs:
   - {id: a, start: [-50, -50, 200], goal: [50, 50, 200]}
@@ -166,27 +168,11 @@ refused json.deep_properties "$D/deep.yaml" "nest more than"
 # 6. Rasters within the limits: a sparse 100,000 x 100,000 GeoTIFF, a VRT of the same size.
 gdal_create -of GTiff -outsize 100000 100000 -ot Float32 -co SPARSE_OK=YES -co TILED=YES -co COMPRESS=DEFLATE \
   -a_srs EPSG:21781 -a_ullr 730000 236000 830000 136000 "$D/sparse.tif" >/dev/null 2>&1
-cat >"$D/sparse.yaml" <<'EOF'
-version: 1
-origin: {lat: 46.80256, lon: 9.79959, alt: 0}
-world:
-  bounds: {min: [-40000, -40000, 0], max: [40000, 40000, 3000]}
-  terrain: {file: sparse.tif}
-uavs:
-  - {id: a, start: [-500, -500, 2000], goal: [500, 500, 2000]}
-EOF
+scenario sparse "  terrain: {file: sparse.tif}" 40000
 refused raster.sparse_huge "$D/sparse.yaml" "window of" 1.5
 vrt "$D/huge.vrt" "" "$(simple src.asc 1)" 100000
 sed -i 's|780000, 100, 0, 186400, 0, -100|779000, 0.02, 0, 187000, 0, -0.02|' "$D/huge.vrt"
-cat >"$D/huge.yaml" <<'EOF'
-version: 1
-origin: {lat: 46.80256, lon: 9.79959, alt: 0}
-world:
-  bounds: {min: [-700, -700, 0], max: [700, 700, 3000]}
-  terrain: {file: huge.vrt}
-uavs:
-  - {id: a, start: [-500, -500, 2000], goal: [500, 500, 2000]}
-EOF
+scenario huge "  terrain: {file: huge.vrt}" 700
 refused raster.huge_vrt "$D/huge.yaml" "window of" 1.5
 
 # 7. Values that are no heights or places: a NaN geotransform, -3.4e38 heights, a floor of -1e300
@@ -231,10 +217,13 @@ uavs:
 EOF
 # The file itself takes yaml-cpp about a second to parse (`info` measures the load alone); past
 # the load nothing may run more than 0.5 s past the limit.
-t0=$(date +%s.%N)
-timeout 30 "$BIN" info "$D/prism.yaml" >/dev/null 2>&1
-t1=$(date +%s.%N)
-load_s=$(python3 -c "print(max(1.0, $t1 - $t0))")
+load_s=1.0
+for _ in 1 2; do  # the longer of two loads: one is noisy on a busy machine
+  t0=$(date +%s.%N)
+  timeout 30 "$BIN" info "$D/prism.yaml" >/dev/null 2>&1
+  t1=$(date +%s.%N)
+  load_s=$(python3 -c "print(max($load_s, $t1 - $t0))")
+done
 t0=$(date +%s.%N)
 timeout 30 "$BIN" plan "$D/prism.yaml" -o "$TMP/prism" --time-limit 1 >/dev/null 2>&1
 rc=$?
@@ -293,15 +282,7 @@ python3 -c "import sys; sys.exit(0 if $t1 - $t0 <= 8 * $SCALE else 1)" && ok || 
 
 # 13. Ctrl-C while a large window is read: the read stops between strips (exit 130, within 2 s;
 # it took 20 s when the window was read whole).
-cat >"$D/big.yaml" <<'EOF'
-version: 1
-origin: {lat: 46.80256, lon: 9.79959, alt: 0}
-world:
-  bounds: {min: [-19000, -19000, 0], max: [19000, 19000, 3000]}
-  terrain: {file: sparse.tif}
-uavs:
-  - {id: a, start: [-500, -500, 2000], goal: [500, 500, 2000]}
-EOF
+scenario big "  terrain: {file: sparse.tif}" 19000
 "$BIN" plan "$D/big.yaml" -o "$TMP/big" >/dev/null 2>&1 &
 pid=$!
 sleep 1
