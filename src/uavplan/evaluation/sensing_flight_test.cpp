@@ -106,6 +106,7 @@ TEST(SensingFlight, AnObstacleFasterThanTheUavHeadOnInACorridorFailsItWithTheRea
   Plan plan = plan_mission(sc, {});
   finalize_plan(sc, plan);
   EXPECT_EQ(plan.uavs[0].status, Status::failed);
+  EXPECT_EQ(plan.uavs[0].reason, Reason::conflict);  // not no_route: the route was there, the obstacle in it
   EXPECT_NE(plan.uavs[0].message.find("could not avoid moving obstacle 'bullet'"), std::string::npos)
       << plan.uavs[0].message;
 }

@@ -101,6 +101,7 @@ void check_flown(const Scenario& sc, const ArrivalSpread& spread, Plan& plan) {
     const Conflict c = find_conflict(sc, sc.uavs[i], up.trajectory, others);
     if (c.any) {
       up.status = Status::failed;
+      up.reason = Reason::conflict;
       up.message = "could not avoid " + c.what;
     }
   }
@@ -111,7 +112,11 @@ void check_flown(const Scenario& sc, const ArrivalSpread& spread, Plan& plan) {
       spread.s(), spread.first->id.c_str(), spread.first->arrival_s, spread.last->id.c_str(), spread.last->arrival_s,
       sc.mission.arrival_tolerance_s, spread.last->id.c_str());
   for (UavPlan& up : plan.uavs)
-    if (up.status == Status::solved) up.status = Status::failed, up.message = buf;
+    if (up.status == Status::solved) {  // the common arrival time: a mission's rule, not a route's
+      up.status = Status::failed;
+      up.reason = Reason::conflict;
+      up.message = buf;
+    }
 }
 
 }  // namespace

@@ -484,6 +484,7 @@ void check_airfield_rules(const Scenario& sc, Plan& plan) {
                                                 runway->from_s, runway->to_s);
       for (const std::size_t k : {i, j}) {
         plan.uavs[k].status = Status::failed;
+        plan.uavs[k].reason = Reason::conflict;
         if (plan.uavs[k].message.empty())
           plan.uavs[k].message = k == i ? buf : (e.conflict ? "too close to " : "on the runway with ") + sc.uavs[i].id;
       }

@@ -327,6 +327,7 @@ void check_flown(const Scenario& sc, const Committed& committed, const SensingUa
     if (!c.any) continue;
     const std::string& trouble = controller.log(k).trouble;
     up.status = Status::failed;
+    up.reason = Reason::conflict;
     up.message = "could not avoid " + c.what + (trouble.empty() ? "" : "; " + trouble);
   }
 }
