@@ -529,6 +529,11 @@ fs.writeFileSync(process.argv[2], JSON.stringify(p));' "$TMP/a/plan.json" "$TMP/
 grep -q "export refused: 1 of 3 UAVs does not hold; nothing written" "$TMP/stderr" && grep -q "u2: does not hold" "$TMP/stderr" ||
   { echo "FAIL export.tampered message: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
 [ -e "$TMP/tx" ] && { echo "FAIL export.tampered wrote files"; fails=$((fails + 1)); }
+# plan --export is all or nothing too: a plan whose export is refused (here, stopped before any
+# UAV was planned) writes no plan.json either, and says so.
+"$BIN" plan "$good" -o "$TMP/px" --export qgc --time-limit 0.001 >"$TMP/stdout" 2>"$TMP/stderr"; check plan.export.refused 1 $?
+[ ! -e "$TMP/px" ] && grep -q "export refused" "$TMP/stderr" && grep -q "nothing written (the export was refused)" "$TMP/stdout" ||
+  { echo "FAIL plan.export.refused: $(ls "$TMP/px" 2>&1) $(cat "$TMP/stderr" "$TMP/stdout")"; fails=$((fails + 1)); }
 "$BIN" export "$good" "$TMP/tampered.json" --format qgc --force -o "$TMP/tx" >/dev/null 2>"$TMP/stderr"; check export.force 0 $?
 [ -e "$TMP/tx/u1.plan" ] && [ -e "$TMP/tx/u3.plan" ] && [ ! -e "$TMP/tx/u2.plan" ] && grep -q "left out of the export: u2" "$TMP/stderr" ||
   { echo "FAIL export.force files: $(ls "$TMP/tx") $(cat "$TMP/stderr")"; fails=$((fails + 1)); }

@@ -71,9 +71,9 @@ void print_summary(const Plan& plan, const std::string& path) {
     std::printf("in shape %.1f s (all UAVs together), %d breaks, %d reversals, backing up %.1f m\n",
                 metric("time_in_shape_s"), static_cast<int>(metric("breaks")), static_cast<int>(metric("reversals")),
                 metric("backing_up_m"));
-  std::printf("status: %s, algorithm %s, seed %llu, %.1f ms; plan written to %s\n",
-              std::string(to_string(plan.status)).c_str(), plan.algorithm.c_str(),
-              static_cast<unsigned long long>(plan.seed), plan.plan_ms, path.c_str());
+  std::printf("status: %s, algorithm %s, seed %llu, %.1f ms; %s\n", std::string(to_string(plan.status)).c_str(),
+              plan.algorithm.c_str(), static_cast<unsigned long long>(plan.seed), plan.plan_ms,
+              path.empty() ? "nothing written (the export was refused)" : ("plan written to " + path).c_str());
 }
 
 bool interrupted_nothing_written() {
@@ -82,15 +82,21 @@ bool interrupted_nothing_written() {
   return true;
 }
 
-// plan.json and the exports asked for, all or nothing. An export refused (a UAV that does not
-// hold) leaves plan.json written and no export; the last export in the folder is stale either way.
+// plan.json and the exports asked for, all or nothing: an export refused (a UAV that does not
+// hold, an export that cannot be made) writes nothing, plan.json neither (the summary says why;
+// `plan` without --export keeps the plan). Without --export the last export in the folder is
+// stale and goes.
 int write_outputs(const PlanArgs& a, const Scenario& sc, const Plan& plan) {
   const ExportFile plan_file{"plan.json", plan_to_json(plan, {a.timing}), ""};
   const std::string path = a.out_dir + "/plan.json";
   PreparedExport prepared;
   const int export_rc = a.exp.formats.empty() ? kExitOk : prepare_exports(a.scenario, sc, plan, a.exp, prepared);
   if (interrupted_nothing_written()) return kExitInterrupted;
-  if (!a.exp.formats.empty() && export_rc == kExitOk) {
+  if (export_rc != kExitOk) {
+    print_summary(plan, "");
+    return export_rc;
+  }
+  if (!a.exp.formats.empty()) {
     write_export(a.out_dir, prepared.files, {plan_file});
   } else {
     StagedFiles staged(a.out_dir);
@@ -99,8 +105,8 @@ int write_outputs(const PlanArgs& a, const Scenario& sc, const Plan& plan) {
     clear_export(a.out_dir);
   }
   print_summary(plan, path);
-  if (!a.exp.formats.empty() && export_rc == kExitOk) report_exports(a.out_dir, prepared);
-  return export_rc;
+  if (!a.exp.formats.empty()) report_exports(a.out_dir, prepared);
+  return kExitOk;
 }
 
 int run_plan(const PlanArgs& a) {
