@@ -541,6 +541,15 @@ echo keep >"$TMP/tx/notes.txt"
 "$BIN" export "$good" "$TMP/a/plan.json" --format csv -o "$TMP/tx" >/dev/null 2>&1; check export.again 0 $?
 [ ! -e "$TMP/tx/u1.plan" ] && [ -e "$TMP/tx/u2.csv" ] && [ -e "$TMP/tx/notes.txt" ] ||
   { echo "FAIL export.stale: $(ls "$TMP/tx")"; fails=$((fails + 1)); }
+# Formats exported one at a time from the same plan add up; another plan's export removes them
+# and says so.
+"$BIN" export "$good" "$TMP/a/plan.json" --format qgc -o "$TMP/ty" >/dev/null 2>&1; check export.one.qgc 0 $?
+"$BIN" export "$good" "$TMP/a/plan.json" --format csv -o "$TMP/ty" >"$TMP/stdout" 2>&1; check export.one.csv 0 $?
+[ -e "$TMP/ty/u1.plan" ] && [ -e "$TMP/ty/u1.csv" ] && grep -q "kept $TMP/ty/u1.plan (the same plan's)" "$TMP/stdout" ||
+  { echo "FAIL export.formats.add.up: $(ls "$TMP/ty") $(cat "$TMP/stdout")"; fails=$((fails + 1)); }
+"$BIN" export "$good" "$TMP/tampered.json" --format csv --force -o "$TMP/ty" >/dev/null 2>"$TMP/stderr"; check export.other.plan 0 $?
+[ ! -e "$TMP/ty/u1.plan" ] && grep -q "note: removed $TMP/ty/u1.plan" "$TMP/stderr" ||
+  { echo "FAIL export.other.plan: $(ls "$TMP/ty") $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
 "$BIN" plan "$good" -o "$TMP/tx" >/dev/null 2>&1; check export.replan 0 $?
 [ ! -e "$TMP/tx/u2.csv" ] && [ -e "$TMP/tx/notes.txt" ] || { echo "FAIL export.replan stale: $(ls "$TMP/tx")"; fails=$((fails + 1)); }
 for end in land loiter none; do

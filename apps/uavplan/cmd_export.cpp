@@ -8,6 +8,7 @@
 #include "uavplan/io/export.h"
 #include "uavplan/io/files.h"
 #include "uavplan/io/mission_items.h"
+#include "uavplan/io/plan_io.h"
 
 namespace uavplan::cli {
 namespace {
@@ -92,9 +93,28 @@ void add_export_options(CLI::App& cmd, ExportArgs& a, bool formats_required) {
       ->each(given);
 }
 
+namespace {
+
+// What an export is made from, as a fingerprint: the scenario's bytes, the plan's and the options
+// (but the formats), so that formats exported one at a time from the same plan add up.
+std::string export_source(const std::string& scenario_path, const Plan& plan, const ExportArgs& a) {
+  std::string text;
+  try {
+    text = read_text_file(scenario_path);
+  } catch (const std::exception&) {
+    text = scenario_path;
+  }
+  text += '\n' + plan_to_json(plan) + '\n' + a.firmware + ' ' + a.vehicle + ' ' + a.end + ' ' + a.fence + ' ' +
+          a.altitude + ' ' + num_text(a.flat_altitude_m) + (a.force ? " force" : "");
+  return content_fingerprint(text);
+}
+
+}  // namespace
+
 int prepare_exports(const std::string& scenario_path, const Scenario& sc, const Plan& plan, const ExportArgs& a,
                     PreparedExport& out) {
   const ExportOptions opt = options_of(sc, a);
+  out.source = export_source(scenario_path, plan, a);
   try {
     const VerifiedExport flights = verified_export(sc, plan, opt);
     out.left_out = flights.left_out;
@@ -125,12 +145,15 @@ int prepare_exports(const std::string& scenario_path, const Scenario& sc, const 
   return kExitOk;
 }
 
-void report_exports(const std::string& dir, const PreparedExport& done) {
+void report_exports(const std::string& dir, const PreparedExport& done, const ExportReplaced& replaced) {
   for (const ExportFile& f : done.files) {
     std::cout << "wrote " << dir << "/" << f.name;
     if (!f.uav.empty() && f.name.rfind(f.uav + ".", 0) != 0) std::cout << " (UAV '" << f.uav << "')";
     std::cout << "\n";
   }
+  for (const std::string& k : replaced.kept) std::cout << "kept " << dir << "/" << k << " (the same plan's)\n";
+  for (const std::string& r : replaced.removed)
+    std::cerr << "note: removed " << dir << "/" << r << " (the last export's, not written again)\n";
   for (const std::string& n : done.notes) std::cerr << "note: " << n << "\n";
   for (const std::string& why : done.left_out) std::cerr << "left out of the export: " << why << "\n";
 }
@@ -155,8 +178,8 @@ int run_export(const ExportCommandArgs& a) {
   // refusal or an error leaves the folder as it was.
   PreparedExport prepared;
   if (const int rc = prepare_exports(a.scenario, sc, plan, a.exp, prepared); rc != kExitOk) return rc;
-  write_export(a.out_dir, prepared.files);
-  report_exports(a.out_dir, prepared);
+  const ExportReplaced replaced = write_export(a.out_dir, prepared.files, {}, prepared.source);
+  report_exports(a.out_dir, prepared, replaced);
   return kExitOk;
 }
 

@@ -96,8 +96,9 @@ int write_outputs(const PlanArgs& a, const Scenario& sc, const Plan& plan) {
     print_summary(plan, "");
     return export_rc;
   }
+  ExportReplaced replaced;
   if (!a.exp.formats.empty()) {
-    write_export(a.out_dir, prepared.files, {plan_file});
+    replaced = write_export(a.out_dir, prepared.files, {plan_file}, prepared.source);
   } else {
     StagedFiles staged(a.out_dir);
     staged.add(plan_file.name, plan_file.content);
@@ -105,7 +106,7 @@ int write_outputs(const PlanArgs& a, const Scenario& sc, const Plan& plan) {
     clear_export(a.out_dir);
   }
   print_summary(plan, path);
-  if (!a.exp.formats.empty()) report_exports(a.out_dir, prepared);
+  if (!a.exp.formats.empty()) report_exports(a.out_dir, prepared, replaced);
   return kExitOk;
 }
 

@@ -58,11 +58,13 @@ std::optional<std::string> export_request_problem(const Scenario& sc, const Expo
 struct PreparedExport {
   std::vector<ExportFile> files;
   std::vector<std::string> notes, left_out;
+  std::string source;  // the fingerprint of the scenario, the plan and the options (export.h)
 };
 int prepare_exports(const std::string& scenario_path, const Scenario& sc, const Plan& plan, const ExportArgs& a,
                     PreparedExport& out);
-// Prints what was written (and for which UAV, where the file name does not say) and the notes.
-void report_exports(const std::string& dir, const PreparedExport& done);
+// Prints what was written (and for which UAV, where the file name does not say), what the folder
+// kept of an earlier export of the same plan and removed of the last one, and the notes.
+void report_exports(const std::string& dir, const PreparedExport& done, const ExportReplaced& replaced);
 
 // Limits every planning command takes: --time-limit, --threads, --max-memory.
 struct RunArgs {

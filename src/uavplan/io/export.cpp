@@ -22,42 +22,71 @@ namespace {
 // there: plain names only, so nothing outside the folder is touched. A line without a
 // fingerprint (a hand-written manifest) names nothing this tool may remove.
 struct Listed {
-  std::string name, fingerprint;
+  std::string name, fingerprint, uav;
 };
-std::vector<Listed> manifest(const std::string& dir) {
+struct Manifest {
+  std::string source;  // the fingerprint of what the files were made from ("" in older manifests)
+  std::vector<Listed> files;
+};
+constexpr std::string_view kSourceLine = "#source\t";
+
+Manifest manifest(const std::string& dir) {
   std::ifstream in(std::filesystem::path(dir) / kExportManifest);
-  std::vector<Listed> listed;
+  Manifest m;
+  std::vector<Listed>& listed = m.files;
   std::string line;
   while (std::getline(in, line)) {
+    if (line.rfind(kSourceLine, 0) == 0) m.source = line.substr(kSourceLine.size(), 16);
     if (line.empty() || line[0] == '#') continue;
     const auto tab = line.find('\t');
     if (tab == std::string::npos) continue;
-    Listed l{line.substr(0, tab), line.substr(tab + 1, 16)};
+    const auto tab2 = line.find('\t', tab + 1);
+    Listed l{line.substr(0, tab), line.substr(tab + 1, 16), tab2 == std::string::npos ? "" : line.substr(tab2 + 1)};
     if (l.name.empty() || l.name == "." || l.name == ".." || l.name.find('/') != std::string::npos ||
         l.name.find('\\') != std::string::npos || l.name.find('\0') != std::string::npos || l.fingerprint.size() != 16)
       continue;
     listed.push_back(std::move(l));
   }
-  return listed;
+  return m;
 }
 
-// Removes the listed files not in `keep` that still hold exactly what this tool wrote: a file
-// edited or replaced since, or one the manifest was made to name, stays.
-void remove_listed(const std::string& dir, const std::vector<Listed>& listed, const std::set<std::string>& keep) {
+// Whether the listed file still holds exactly what this tool wrote (not edited or replaced since,
+// not a name the manifest was made to name).
+bool holds_what_was_written(const std::string& dir, const Listed& l) {
   namespace fs = std::filesystem;
-  for (const Listed& l : listed) {
-    if (keep.count(l.name) || l.name == kExportManifest) continue;
-    const fs::path p = fs::path(dir) / l.name;
-    std::error_code ec;
-    if (!fs::is_regular_file(fs::symlink_status(p, ec))) continue;
-    std::string now;
-    try {
-      now = read_text_file(p.string());
-    } catch (const std::exception&) {
-      continue;
-    }
-    if (content_fingerprint(now) == l.fingerprint) fs::remove(p, ec);
+  const fs::path p = fs::path(dir) / l.name;
+  std::error_code ec;
+  if (l.name == kExportManifest || !fs::is_regular_file(fs::symlink_status(p, ec))) return false;
+  try {
+    return content_fingerprint(read_text_file(p.string())) == l.fingerprint;
+  } catch (const std::exception&) {
+    return false;
   }
+}
+
+// Removes the listed files not in `keep` that still hold what this tool wrote; returns them.
+std::vector<std::string> remove_listed(const std::string& dir, const std::vector<Listed>& listed,
+                                       const std::set<std::string>& keep) {
+  std::vector<std::string> removed;
+  for (const Listed& l : listed) {
+    if (keep.count(l.name) || !holds_what_was_written(dir, l)) continue;
+    std::error_code ec;
+    if (std::filesystem::remove(std::filesystem::path(dir) / l.name, ec)) removed.push_back(l.name);
+  }
+  return removed;
+}
+
+// The format a file of an export is in, by its name (export_files names them).
+std::string_view format_of(std::string_view name) {
+  const auto ends = [&](std::string_view e) {
+    return name.size() >= e.size() && name.substr(name.size() - e.size()) == e;
+  };
+  if (ends(".plan")) return "qgc";
+  if (ends(".waypoints")) return "wpl";
+  if (ends(".geojson")) return "geojson";
+  if (ends(".kml")) return "kml";
+  if (ends(".csv")) return "csv";
+  return "";
 }
 
 // A file name no other UAV's has: the id made safe, cut to a length every file system takes,
@@ -187,26 +216,39 @@ std::vector<std::string> frame_notes(const Scenario& sc, const VerifiedExport& f
           " % shorter than planned (azimuthal equidistant frame; distances from the origin are exact)"};
 }
 
-void write_export(const std::string& dir, const std::vector<ExportFile>& files, const std::vector<ExportFile>& with) {
-  std::set<std::string> names;
+ExportReplaced write_export(const std::string& dir, const std::vector<ExportFile>& files,
+                            const std::vector<ExportFile>& with, const std::string& source) {
+  std::set<std::string> names, formats;
   std::string list =
-      "# files of the last uavplan export in this folder: name, fingerprint, UAV (the next export\n"
-      "# removes those that still hold what was written)\n";
+      "# files of the uavplan exports in this folder: name, fingerprint, UAV (the next export of\n"
+      "# another source, or of their format, removes those that still hold what was written)\n";
+  if (!source.empty()) list += std::string(kSourceLine) + source + "\n";
   StagedFiles staged(dir);
   for (const ExportFile& f : files) {
     if (!names.insert(f.name).second) throw std::logic_error("export file " + f.name + " written twice");
+    formats.insert(std::string(format_of(f.name)));
     staged.add(f.name, f.content);
     list += f.name + "\t" + content_fingerprint(f.content) + "\t" + printable(f.uav) + "\n";
   }
+  const Manifest old = manifest(dir);  // read before the new one replaces it
+  ExportReplaced out;
+  std::set<std::string> keep = names;
+  if (!source.empty() && old.source == source)  // the same source: the other formats stay
+    for (const Listed& l : old.files)
+      if (!keep.count(l.name) && !formats.count(std::string(format_of(l.name))) && holds_what_was_written(dir, l)) {
+        keep.insert(l.name);
+        out.kept.push_back(l.name);
+        list += l.name + "\t" + l.fingerprint + "\t" + l.uav + "\n";
+      }
   for (const ExportFile& f : with) staged.add(f.name, f.content);
   staged.add(kExportManifest, list);
-  const std::vector<Listed> old = manifest(dir);  // read before the new one replaces it
   staged.commit();
-  remove_listed(dir, old, names);
+  out.removed = remove_listed(dir, old.files, keep);
+  return out;
 }
 
 void clear_export(const std::string& dir) {
-  const std::vector<Listed> old = manifest(dir);
+  const std::vector<Listed> old = manifest(dir).files;
   if (old.empty()) return;
   remove_listed(dir, old, {});
   std::error_code ec;

@@ -54,17 +54,23 @@ std::optional<std::string> altitude_note(const Scenario& scenario, const ExportO
 // A UAV id made safe as a file name ([A-Za-z0-9_.-], others become '_'; at most 100 characters).
 std::string file_stem(std::string_view id);
 
-// The export folder keeps a manifest (.uavplan-export) of the files the last export wrote, each
-// with the fingerprint of its content and its UAV: writing a new export removes those of the
-// last one it does not write again (a UAV left out this time, a format not asked for) and that
-// still hold what was written, so a folder never mixes two plans and no file this tool did not
-// write is removed. The export is all or nothing (files.h: StagedFiles): every file, `with`
-// (plan.json of `plan --export`) and the manifest go to temporaries first; a failure leaves the
-// folder as it was. Throws OutputError. clear_export() removes the last export's files (a new
-// plan makes them stale).
+// The export folder keeps a manifest (.uavplan-export) of the files the exports wrote, each with
+// the fingerprint of its content and its UAV, and the fingerprint of what they were made from
+// (`source`: the scenario, the plan and the export options). A new export of the same source
+// keeps the files of the formats it does not write (formats exported one at a time add up); of
+// another source, or for the formats it writes, it removes those it does not write again (a UAV
+// left out this time) that still hold what was written: a folder never mixes two plans and no
+// file this tool did not write is removed. The export is all or nothing (files.h: StagedFiles):
+// every file, `with` (plan.json of `plan --export`) and the manifest go to temporaries first; a
+// failure leaves the folder as it was. Throws OutputError. clear_export() removes the last
+// export's files (a new plan makes them stale).
 inline constexpr const char* kExportManifest = ".uavplan-export";
-void write_export(const std::string& dir, const std::vector<ExportFile>& files,
-                  const std::vector<ExportFile>& with = {});
+struct ExportReplaced {
+  std::vector<std::string> kept;     // files of an earlier export of the same source, other formats
+  std::vector<std::string> removed;  // files of the last export this one does not write again
+};
+ExportReplaced write_export(const std::string& dir, const std::vector<ExportFile>& files,
+                            const std::vector<ExportFile>& with = {}, const std::string& source = "");
 void clear_export(const std::string& dir);
 
 }  // namespace uavplan
