@@ -193,7 +193,7 @@ std::vector<ExportFile> export_files(const Scenario& sc, const VerifiedExport& f
           std::vector<std::string> mine;
           files.push_back({stem + ".plan", qgc_plan_json(sc, e, opt, &mine), id});
           if (notes)
-            for (const std::string& n : mine) notes->push_back(stem + ".plan: " + n);
+            for (const std::string& n : mine) notes->push_back(std::string(stem).append(".plan: ").append(n));
         }
         if (format == ExportFormat::wpl) files.push_back({stem + ".waypoints", qgc_wpl(sc, e, opt), id});
         if (format == ExportFormat::csv) files.push_back({stem + ".csv", trajectory_csv(sc, e), id});
