@@ -353,12 +353,21 @@ std::vector<double> highest_pixels(const Raster& r, const Cells& cells, const st
   return h;
 }
 
-// The corners of an nx x ny grid of cells `c` from `lo` (clipped to `hi`) in the raster's pixels:
-// every kStride-th corner transformed exactly, those between interpolated bilinearly (the
-// mapping is smooth: over kStride cells of a few metres its second-order term is micrometres,
-// where each transformed point costs a projection and a datum shift).
-void corners_to_pixels(const Raster& r, const GeoFrame& frame, const Vec2& lo, const Vec2& hi, double c, int nx, int ny,
-                       std::vector<double>& px, std::vector<double>& py) {
+// The corners of the world's cells in the raster's pixels, every kStride-th corner (a knot)
+// transformed exactly, those between interpolated bilinearly (the mapping is smooth: over
+// kStride cells of a few metres its second-order term is micrometres, where each transformed
+// point costs a projection and a datum shift). The knots alone bound every corner (a bilinear
+// mix stays within its four knots): the window is known from them before the corners are made.
+struct Knots {
+  std::vector<int> ki, kj;     // the knots' cell indices along x and y
+  std::vector<double> kx, ky;  // their pixel coordinates, row by row
+};
+
+Vec2 corner_at(const Cells& cells, int i, int j) {
+  return {std::min(cells.lo.x() + i * cells.c, cells.hi.x()), std::min(cells.lo.y() + j * cells.c, cells.hi.y())};
+}
+
+Knots knots_to_pixels(const Raster& r, const GeoFrame& frame, const Cells& cells) {
   constexpr int kStride = 8;
   const auto knots = [](int n) {
     std::vector<int> k;
@@ -366,34 +375,35 @@ void corners_to_pixels(const Raster& r, const GeoFrame& frame, const Vec2& lo, c
     k.push_back(n);
     return k;
   };
-  const std::vector<int> ki = knots(nx), kj = knots(ny);
-  const auto at = [&](int i, int j) {
-    return Vec2(std::min(lo.x() + i * c, hi.x()), std::min(lo.y() + j * c, hi.y()));
-  };
-  std::vector<double> kx, ky;
-  for (const int j : kj)
-    for (const int i : ki) {
-      kx.push_back(at(i, j).x());
-      ky.push_back(at(i, j).y());
+  Knots k{knots(cells.nx), knots(cells.ny), {}, {}};
+  for (const int j : k.kj)
+    for (const int i : k.ki) {
+      k.kx.push_back(corner_at(cells, i, j).x());
+      k.ky.push_back(corner_at(cells, i, j).y());
     }
-  r.local_to_pixel(frame, kx, ky);
-  px.assign(static_cast<std::size_t>(nx + 1) * (ny + 1), 0.0);
+  r.local_to_pixel(frame, k.kx, k.ky);
+  return k;
+}
+
+void corners_to_pixels(const Knots& k, const Cells& cells, std::vector<double>& px, std::vector<double>& py) {
+  const int nx = cells.nx;
+  px.assign(static_cast<std::size_t>(nx + 1) * (cells.ny + 1), 0.0);
   py.assign(px.size(), 0.0);
-  for (std::size_t b = 0; b + 1 < kj.size(); ++b)
-    for (std::size_t a = 0; a + 1 < ki.size(); ++a) {
-      const std::size_t k00 = b * ki.size() + a, k10 = k00 + 1, k01 = k00 + ki.size(), k11 = k01 + 1;
-      const Vec2 p00 = at(ki[a], kj[b]), p11 = at(ki[a + 1], kj[b + 1]);
-      for (int j = kj[b]; j <= kj[b + 1]; ++j)
-        for (int i = ki[a]; i <= ki[a + 1]; ++i) {
-          const Vec2 q = at(i, j);
+  for (std::size_t b = 0; b + 1 < k.kj.size(); ++b)
+    for (std::size_t a = 0; a + 1 < k.ki.size(); ++a) {
+      const std::size_t k00 = b * k.ki.size() + a, k10 = k00 + 1, k01 = k00 + k.ki.size(), k11 = k01 + 1;
+      const Vec2 p00 = corner_at(cells, k.ki[a], k.kj[b]), p11 = corner_at(cells, k.ki[a + 1], k.kj[b + 1]);
+      for (int j = k.kj[b]; j <= k.kj[b + 1]; ++j)
+        for (int i = k.ki[a]; i <= k.ki[a + 1]; ++i) {
+          const Vec2 q = corner_at(cells, i, j);
           const double u = p11.x() > p00.x() ? (q.x() - p00.x()) / (p11.x() - p00.x()) : 0.0;
           const double v = p11.y() > p00.y() ? (q.y() - p00.y()) / (p11.y() - p00.y()) : 0.0;
           const auto mix = [&](const std::vector<double>& f) {
             return (1 - u) * (1 - v) * f[k00] + u * (1 - v) * f[k10] + (1 - u) * v * f[k01] + u * v * f[k11];
           };
-          const std::size_t k = static_cast<std::size_t>(j) * (nx + 1) + i;
-          px[k] = mix(kx);
-          py[k] = mix(ky);
+          const std::size_t c = static_cast<std::size_t>(j) * (nx + 1) + i;
+          px[c] = mix(k.kx);
+          py[c] = mix(k.ky);
         }
     }
 }
@@ -414,10 +424,11 @@ ElevationModel read_elevation_model(const std::string& path, const std::string& 
   const Cells cells =
       world_cells(bounds, cell_m.value_or(std::max(0.01, std::round(src.raster_cell_m * 100.0) / 100.0)), o.max_cells);
   src.cell_m = cells.c;
-  std::vector<double> px, py;  // the cells' corners in pixels
-  corners_to_pixels(r, frame, cells.lo, cells.hi, cells.c, cells.nx, cells.ny, px, py);
-  const Window win = window_under(r, px, py, cells, src);
-  check_window(r, win, cells, o);
+  const Knots knots = knots_to_pixels(r, frame, cells);
+  const Window win = window_under(r, knots.kx, knots.ky, cells, src);
+  check_window(r, win, cells, o);  // before the corners, the strip and the cells are allocated
+  std::vector<double> px, py;      // the cells' corners in pixels
+  corners_to_pixels(knots, cells, px, py);
   std::vector<double> h = highest_pixels(r, cells, px, py, win, o);
   if (std::all_of(h.begin(), h.end(), [](double z) { return std::isnan(z); }))
     r.fail("the elevation model has no height within the world's bounds (every pixel there is NoData)");
