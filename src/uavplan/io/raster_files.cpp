@@ -79,7 +79,9 @@ void Checker::check(const fs::path& p, const std::string& named, int depth) {
   if (ec) fail(named + "'" + p.string() + "' cannot be resolved: " + ec.message());
   if (!inside(real, root))
     fail(named + "'" + p.string() + "' leads out of '" + root.string() + "' (to '" + real.string() +
-         "'): a file the scenario reaches through a link or a VRT must lie inside the folder it is named from");
+         "'): a file the scenario reaches through a link or a VRT must lie inside the folder it is named from" +
+         (depth == 0 ? " (name the file itself in the scenario, by its path: " + real.string() + ")" : std::string()));
+  if (!checked.insert(real.string()).second) return;  // named again: checked once
   sidecars(p);
   if (is_vrt(p)) check_vrt(p, depth);
 }
