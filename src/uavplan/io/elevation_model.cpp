@@ -295,10 +295,10 @@ void check_window(const Raster& r, const Window& win, const Cells& cells, const 
            ") are read for one world: crop the model to the world (gdal_translate -projwin) or coarsen it "
            "(gdalwarp -r max -tr)");
   const std::uint64_t corners = static_cast<std::uint64_t>(cells.nx + 1) * (cells.ny + 1);
-  constexpr std::uint64_t kGdalCacheBytes = 64u << 20;  // gdal_session.cpp's GDAL_CACHEMAX
-  const std::uint64_t bytes =
-      kGdalCacheBytes + strip_rows(r, win, o.strip_bytes) * static_cast<std::uint64_t>(win.w) * sizeof(double) +
-      corners * 2 * sizeof(double) + static_cast<std::uint64_t>(cells.nx) * cells.ny * (sizeof(double) + 1);
+  const std::uint64_t bytes = (std::uint64_t{kGdalCacheMiB} << 20) +
+                              strip_rows(r, win, o.strip_bytes) * static_cast<std::uint64_t>(win.w) * sizeof(double) +
+                              corners * 2 * sizeof(double) +
+                              static_cast<std::uint64_t>(cells.nx) * cells.ny * (sizeof(double) + 1);
   try {
     o.stop.require_memory(bytes, "reading the elevation model (" + std::to_string(cells.nx) + " x " +
                                      std::to_string(cells.ny) + " cells from " + std::to_string(win.w) + " x " +

@@ -12,6 +12,7 @@
 #include <cerrno>
 #include <mutex>
 #include <set>
+#include <string>
 #include <string_view>
 
 namespace uavplan {
@@ -72,18 +73,16 @@ void keep_allowed_drivers() {
 
 void set_policy() {
   // Options that make GDAL read outside the file it opens, off whatever the environment says.
-  for (const auto& [key, value] : std::array<std::pair<const char*, const char*>, 7>{{
+  for (const auto& [key, value] : std::array<std::pair<const char*, const char*>, 6>{{
            {"GDAL_VRT_ENABLE_RAWRASTERBAND", "NO"},
            {"GDAL_VRT_ENABLE_PYTHON", "NO"},
            {"GDAL_VRT_PYTHON_TRUSTED_MODULES", ""},
            {"LIBKML_RESOLVE_STYLE", "NO"},
            {"LIBKML_EXTERNAL_STYLE", "NO"},
            {"GDAL_HTTP_MAX_RETRY", "0"},
-           // A window is read once, a strip at a time: a large block cache only holds memory
-           // past --max-memory (GDAL's default is 5 % of the machine's).
-           {"GDAL_CACHEMAX", "64"},
        }})
     CPLSetConfigOption(key, value);
+  CPLSetConfigOption("GDAL_CACHEMAX", std::to_string(kGdalCacheMiB).c_str());
   OSRSetPROJEnableNetwork(FALSE);
   GDALAllRegister();
   keep_allowed_drivers();

@@ -15,6 +15,10 @@
 
 namespace uavplan {
 
+// GDAL's block cache (GDAL_CACHEMAX): a window is read once, a strip at a time, so a larger cache
+// only holds memory past --max-memory (GDAL's default is 5 % of the machine's).
+inline constexpr int kGdalCacheMiB = 64;
+
 // What a file is opened as; each has its own drivers.
 enum class GdalInput { elevation_model, kml_zones };
 
