@@ -149,11 +149,11 @@ MapfBenchReport run_mapf_bench(const std::string& dir, const MapfBenchOptions& o
     run.ms = ms_since(t0);
     run.file = instances[k].file;
     run.agents = static_cast<int>(in.names.size());
-    run.solved = r.solved;
-    run.method = r.solved ? r.method : r.why;
+    run.solved = r.solved();
+    run.method = r.solved() ? r.method : r.message;
     run.sum_of_costs = r.sum_of_costs;
     run.lower_bound = r.lower_bound;
-    if (r.solved) {
+    if (r.solved()) {
       if (const auto why = mapf_solution_problem(problem.graph, problem.starts, problem.goals, r.paths))
         run.invalid = *why;
       files.emplace_back(run.file, mapf_solution_yaml(in, r, run.ms / 1000.0));
@@ -163,7 +163,7 @@ MapfBenchReport run_mapf_bench(const std::string& dir, const MapfBenchOptions& o
       optimal.method = MapfMethod::cbs;
       optimal.stop = o.solver.stop | StopCondition::time_limit(o.optimal_limit_s);
       const MapfResult best = solve_mapf(problem, optimal);
-      if (best.solved) run.optimum = best.sum_of_costs;
+      if (best.solved()) run.optimum = best.sum_of_costs;
       run.lower_bound = std::max(run.lower_bound, best.lower_bound);
     }
     report.runs.push_back(std::move(run));

@@ -150,7 +150,7 @@ MovingAiReport run_movingai(const std::string& map_path, const std::string& scen
                                    : any_angle ? theta.search(s, g)
                                                : astar.search(s, g);
       r.ms = ms_since(t0);
-      r.solved = res.found;
+      r.solved = res.solved();
       r.cost = res.cost;
       r.expanded = res.expanded;
       if (opt.reference) {

@@ -190,9 +190,9 @@ Outcome run_ours(const RrtOptions& options, const SegmentRule& rule, const Probl
   q.seed = seed;
   const RrtResult r = rrt_search(rule, kPi, q, options, {});
   o.ms = ms_since(t0);
-  o.ok = r.ok;
+  o.ok = r.solved();
   o.nodes = r.nodes;
-  if (r.ok) o.cost = Route{r.path}.length_m();
+  if (r.solved()) o.cost = Route{r.path}.length_m();
   return o;
 }
 

@@ -46,7 +46,7 @@ RouteStats directional(const World& world, const DirectionalQuery& q, std::optio
   DirectionalSearch search;
   const auto t0 = Clock::now();
   const DirectionalRoute r = search.run(world, q, {});
-  RouteStats d = stats_of(r.found ? r.waypoints : std::vector<Vec3>{}, heading);
+  RouteStats d = stats_of(r.solved() ? r.waypoints : std::vector<Vec3>{}, heading);
   d.ms = ms_since(t0);
   d.open = r.generated + 1;
   d.cells = r.cells_opened;
@@ -71,7 +71,7 @@ RouteStats grid_baseline(const Scenario& sc, const UavSpec& u, double cell) {
   std::vector<Vec3> pts{u.start};
   for (const auto c : r.cells) pts.push_back(g.center(c));
   pts.push_back(*u.goal);
-  RouteStats st = stats_of(r.found ? pts : std::vector<Vec3>{}, std::nullopt);
+  RouteStats st = stats_of(r.solved() ? pts : std::vector<Vec3>{}, std::nullopt);
   st.ms = ms_since(t0);
   st.open = r.generated + 1;
   st.cells = r.opened;
@@ -196,9 +196,9 @@ std::string incumbent_rows(int worlds, bool& ok) {
         sums[a].ms += ms_since(t0);
         sums[a].cells += r.cells_opened;
         sums[a].expanded += r.expanded;
-        sums[a].found += r.found ? 1 : 0;
-        if (a == 0) alone_m = r.found ? r.length_m : 0.0;
-        if (a > 0 && r.found && alone_m > 0.0) {
+        sums[a].found += r.solved() ? 1 : 0;
+        if (a == 0) alone_m = r.solved() ? r.length_m : 0.0;
+        if (a > 0 && r.solved() && alone_m > 0.0) {
           sums[a].longer += r.length_m > alone_m * (1 + 1e-9) + 1e-6 ? 1 : 0;
           sums[a].shorter += r.length_m < alone_m * (1 - 1e-9) - 1e-6 ? 1 : 0;
         }
@@ -269,7 +269,7 @@ std::string run_p4(const std::string& dir, bool* all_ok) {
                     i < 4 ? paper_pre[i] : 0.0, std::string(to_string(r.step)).c_str(), r.final_m / 1000,
                     i < 4 ? paper_final[i] : 0.0, i < 4 ? paper_step[i] : "");
       out += buf;
-      ok &= r.ok;
+      ok &= r.solved();
       lo = std::min(lo, r.final_m);
       hi = std::max(hi, r.final_m);
     }
@@ -299,7 +299,7 @@ std::string run_p4(const std::string& dir, bool* all_ok) {
       for (int m = 3; m <= 6; ++m) {
         q.directions = m;
         const DirectionalRoute r = search.run(sc.world, q, {});
-        if (r.found)
+        if (r.solved())
           std::snprintf(buf, sizeof buf, " %6.1f|%5.1f", r.length_m / 1000, paper5[li][m - 3]);
         else
           std::snprintf(buf, sizeof buf, " %6s|%5.1f", "-", paper5[li][m - 3]);

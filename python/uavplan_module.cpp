@@ -262,6 +262,9 @@ PYBIND11_MODULE(uavplan, m) {
           py::arg("path"), "Write plan.json (the same bytes `uavplan plan` writes)")
       .def("to_json", [](const Plan& p) { return plan_to_json(p); })
       .def_property_readonly("status", [](const Plan& p) { return std::string(to_string(p.status)); })
+      .def_property_readonly(
+          "reason", [](const Plan& p) { return std::string(to_string(p.reason)); },
+          "Why it is not solved: its first unsolved UAV's reason (rejected for a rule of the whole mission)")
       .def_property_readonly("message", [](const Plan& p) { return p.message; })
       .def_property_readonly("algorithm", [](const Plan& p) { return p.algorithm; })
       .def_property_readonly("seed", [](const Plan& p) { return p.seed; })

@@ -192,7 +192,7 @@ int write_results(const BatchArgs& a, const Loaded& l, const std::vector<RunReco
   write_file_atomic((fs::path(a.out_dir) / "timings.csv").string(), timings_csv(all));
   std::cout << summary_table(all);
   std::size_t solved = 0;
-  for (const RunRecord& r : all) solved += r.outcome.status == "solved";
+  for (const RunRecord& r : all) solved += r.outcome.status == RunStatus::solved;
   std::printf(
       "%zu of %zu runs done (%zu this time, %.1f s, %d rank%s x %d jobs), %zu solved; results in %s/results.csv\n",
       all.size(), l.runs.size(), all.size() - before, total_s, mpi.size(), mpi.size() > 1 ? "s" : "",

@@ -91,6 +91,16 @@ def test_from_dict_plans_a_scenario_written_in_python():
     assert t[:, 2].max() > 150  # around the wall's end (it stands to the ceiling)
     assert sc.obstacles == [{"type": "box", "min": [80.0, 0.0, 0.0], "max": [120.0, 150.0, 50.0]}]
     assert sc.bounds == [[0, 0, 0], [200, 200, 50]]
+    assert p.reason == "none" and p.uavs[0].reason == "none"
+    # Walled in on every side: failed, and the plan says why as the UAV does.
+    walled = uavplan.Scenario.from_dict({
+        "version": 1, "name": "walled",
+        "world": {"bounds": {"min": [0, 0, 0], "max": [200, 200, 50]},
+                  "obstacles": [{"type": "box", "min": [80, 0, 0], "max": [120, 200, 50]}]},
+        "uavs": [{"id": "a", "start": [20, 20, 10], "goal": [180, 20, 10], "speed": 5}],
+        "planner": {"algorithm": "astar"}})
+    f = uavplan.plan(walled, seed=3)
+    assert f.status == "failed" and f.reason == f.uavs[0].reason == "no_route", (f.reason, f.message)
     # A dict's error names the key path, not a line of text the user never wrote.
     with pytest.raises(uavplan.InputError) as e:
         uavplan.Scenario.from_dict({"version": 1, "world": {"bounds": {"min": [0, 0, 0], "max": [9, 9, 9]}},

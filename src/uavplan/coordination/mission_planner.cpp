@@ -89,9 +89,7 @@ Plan plan_mission(const Scenario& sc, const MissionOptions& opt) {
   for (UavPlan& u : plan.uavs)
     if (u.status != Status::solved && u.reason == Reason::none)
       u.reason = opt.stop.should_stop() ? Reason::stopped : Reason::no_route;
-  plan.status = combined_status(plan.uavs);
-  for (const auto& u : plan.uavs)
-    if (u.status != Status::solved && plan.message.empty()) plan.message = u.id + ": " + u.message;
+  combine_outcomes(plan);
   plan.plan_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return plan;
 }

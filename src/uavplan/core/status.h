@@ -2,7 +2,9 @@
 #pragma once
 
 #include <optional>
+#include <string>
 #include <string_view>
+#include <utility>
 
 namespace uavplan {
 
@@ -66,5 +68,25 @@ inline std::optional<Status> status_from_string(std::string_view s) {
   if (s == "failed") return Status::failed;
   return std::nullopt;
 }
+
+// How a result ended, the one shape every result type has (planners, searches, MAPF, RRT,
+// landings, the batch's runs): a result type derives from it and adds its own data. `message`
+// says it in words for people; callers branch on `status` and `reason`.
+struct Outcome {
+  Status status = Status::failed;
+  Reason reason = Reason::none;
+  std::string message;
+
+  bool solved() const { return status == Status::solved; }
+  void succeed() {
+    status = Status::solved;
+    reason = Reason::none;
+  }
+  void fail(Reason why, std::string words = {}) {
+    status = Status::failed;
+    reason = why;
+    message = std::move(words);
+  }
+};
 
 }  // namespace uavplan

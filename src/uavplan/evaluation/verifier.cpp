@@ -248,19 +248,15 @@ std::vector<Violation> finalize_plan(const Scenario& sc, Plan& plan) {
       up.message = "verification: " + describe(v);
     }
   }
-  plan.status = combined_status(plan.uavs);
   // A mission-level violation (length spread) fails the whole plan.
+  for (const auto& v : violations)
+    if (v.uav.empty()) plan.message = "verification: " + describe(v);
+  combine_outcomes(plan);
   for (const auto& v : violations)
     if (v.uav.empty()) {
       plan.status = Status::failed;
-      plan.message = "verification: " + describe(v);
+      plan.reason = Reason::rejected;
     }
-  if (plan.message.empty())
-    for (const auto& up : plan.uavs)
-      if (up.status != Status::solved) {
-        plan.message = up.id + ": " + up.message;
-        break;
-      }
   compute_metrics(sc, plan);
   return violations;
 }

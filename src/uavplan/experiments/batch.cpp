@@ -29,6 +29,45 @@
 extern char** environ;
 
 namespace uavplan {
+
+std::string_view to_string(RunStatus s) {
+  switch (s) {
+    case RunStatus::solved:
+      return "solved";
+    case RunStatus::partial:
+      return "partial";
+    case RunStatus::failed:
+      return "failed";
+    case RunStatus::timeout:
+      return "timeout";
+    case RunStatus::stopped:
+      return "stopped";
+    case RunStatus::error:
+      return "error";
+    case RunStatus::crashed:
+      return "crashed";
+  }
+  return "error";
+}
+
+std::optional<RunStatus> run_status_from_string(std::string_view s) {
+  for (const RunStatus r : kRunStatuses)
+    if (to_string(r) == s) return r;
+  return std::nullopt;
+}
+
+RunStatus run_status(Status s) {
+  switch (s) {
+    case Status::solved:
+      return RunStatus::solved;
+    case Status::partial:
+      return RunStatus::partial;
+    case Status::failed:
+      return RunStatus::failed;
+  }
+  return RunStatus::failed;
+}
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -50,7 +89,8 @@ void split_params(const ParamSetting& all, ParamSetting& scenario_overrides, Par
 // The row's numbers from a finalized plan and its violations.
 RunOutcome outcome_of(const Plan& plan, std::size_t violations, bool time_limited) {
   RunOutcome o;
-  o.status = std::string(to_string(plan.status));
+  o.status = run_status(plan.status);
+  o.reason = plan.reason;
   o.algorithm = plan.algorithm;
   o.violations = violations;
   o.verified = violations == 0;
@@ -60,7 +100,7 @@ RunOutcome outcome_of(const Plan& plan, std::size_t violations, bool time_limite
     o.uavs_solved += u.status == Status::solved;
     o.expansions += u.stats.nodes_expanded;
     if (!u.trajectory.empty()) last = std::max(last, u.trajectory.back().t_s);
-    if (time_limited && u.reason == Reason::stopped) o.status = "timeout";
+    if (time_limited && u.reason == Reason::stopped) o.status = RunStatus::timeout;
   }
   if (last >= 0.0) o.flight_time_s = last;
   if (const auto it = plan.metrics.find("total_length_m"); it != plan.metrics.end()) o.length_m = it->second;
@@ -128,11 +168,13 @@ RunOutcome run_in_process(const RunSpec& run, const ScenarioCache& cache, const 
     plan_json = plan_to_json(plan);
   } catch (const std::exception& e) {
     o = RunOutcome{};
-    o.status = "error";
+    o.status = RunStatus::error;
+    o.reason = Reason::invalid;
     o.message = first_line(e.what());
   } catch (const Stopped&) {  // while the scenario was loaded (an elevation model read)
     o = RunOutcome{};
-    o.status = "stopped";
+    o.status = RunStatus::stopped;
+    o.reason = Reason::stopped;
     o.message = "stopped while the scenario was loaded";
   }
   o.wall_ms = ms_since(t0);
@@ -230,7 +272,8 @@ RunOutcome read_isolated_plan(const RunSpec& run, const ScenarioCache& cache, co
     o.plan_ms = plan.plan_ms;
     plan_json = plan_to_json(plan);  // without the timing the process wrote
   } catch (const std::exception& e) {
-    o.status = "error";
+    o.status = RunStatus::error;
+    o.reason = Reason::invalid;
     o.message = first_line(e.what());
   }
   return o;
@@ -260,16 +303,18 @@ RunOutcome run_isolated(const RunSpec& run, const ScenarioCache& cache, const Ba
   }
   const fs::path plan_path = dir / "plan.json";
   if (w.killed) {
-    o.status = "timeout";
+    o.status = RunStatus::timeout;
+    o.reason = Reason::stopped;
     o.message = "killed at twice the time limit plus 5 s";
   } else if (WIFSIGNALED(w.wstatus)) {
-    o.status = "crashed";
+    o.status = RunStatus::crashed;
     o.message = "the run's process died of signal " + std::to_string(WTERMSIG(w.wstatus));
   } else if (WIFEXITED(w.wstatus) && (WEXITSTATUS(w.wstatus) == 0 || WEXITSTATUS(w.wstatus) == 1) &&
              fs::exists(plan_path)) {
     o = read_isolated_plan(run, cache, options, plan_path, plan_json);
   } else {
-    o.status = "error";
+    o.status = RunStatus::error;
+    o.reason = Reason::invalid;
     o.message =
         first_line(err.empty() ? "the run's process ended with exit " + std::to_string(WEXITSTATUS(w.wstatus)) : err);
   }

@@ -8,19 +8,34 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "uavplan/coordination/contract/scenario.h"
+#include "uavplan/core/status.h"
 #include "uavplan/core/stop.h"
 #include "uavplan/experiments/sweep.h"
 
 namespace uavplan {
 
+// A run's status: its plan's (solved, partial, failed), or what kept it from ending in one:
+// timeout (stopped at the time limit), stopped (an interrupt, or the limit while the scenario
+// was loaded), error (bad parameters, a malformed problem), crashed (isolated: the process died).
+enum class RunStatus { solved, partial, failed, timeout, stopped, error, crashed };
+inline constexpr RunStatus kRunStatuses[] = {RunStatus::solved,  RunStatus::partial, RunStatus::failed,
+                                             RunStatus::timeout, RunStatus::stopped, RunStatus::error,
+                                             RunStatus::crashed};
+std::string_view to_string(RunStatus s);
+std::optional<RunStatus> run_status_from_string(std::string_view s);
+RunStatus run_status(Status s);
+
+// A run's outcome: its status, the plan's reason (the first unsolved UAV's; stopped for a
+// timeout) and message, and the row's numbers.
 struct RunOutcome {
-  // solved, partial, failed (the plan's status); timeout (stopped at the time limit); error
-  // (bad parameters, a malformed problem); crashed (isolated: the process died).
-  std::string status = "error";
+  RunStatus status = RunStatus::error;
+  Reason reason = Reason::none;
   std::string algorithm;  // the planner that planned (the scenario's own when the run names none)
   bool verified = false;  // the plan holds under the verifier (every planned UAV)
   std::size_t violations = 0;

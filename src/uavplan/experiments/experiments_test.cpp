@@ -57,7 +57,7 @@ TEST(Sweep, ErrorsNameTheLineAndKey) {
   EXPECT_NO_THROW(check_sweep(sweep_of("planners: [astar]\nparams: {cell_m: [4]}\n")));
 }
 
-RunRecord record(std::size_t index, const std::string& status, double length) {
+RunRecord record(std::size_t index, RunStatus status, double length) {
   RunRecord r;
   r.spec.index = index;
   r.spec.scenario = "a.yaml";
@@ -65,7 +65,8 @@ RunRecord record(std::size_t index, const std::string& status, double length) {
   r.spec.seed = index + 1;
   r.spec.params = {{"cell_m", "5"}};
   r.outcome.status = status;
-  r.outcome.verified = status == "solved";
+  r.outcome.verified = status == RunStatus::solved;
+  if (status != RunStatus::solved) r.outcome.reason = Reason::no_route;
   r.outcome.length_m = length;
   r.outcome.uavs = 2;
   r.outcome.message = "a, \"quoted\" message";
@@ -76,19 +77,21 @@ RunRecord record(std::size_t index, const std::string& status, double length) {
 }
 
 TEST(Results, RowsByRunNumberWithQuotedFieldsAndEmptyMissingNumbers) {
-  const std::string csv = results_csv({record(1, "failed", std::nan("")), record(0, "solved", 100.0)});
+  const std::string csv =
+      results_csv({record(1, RunStatus::failed, std::nan("")), record(0, RunStatus::solved, 100.0)});
   const auto second_line = csv.substr(csv.find('\n') + 1);
   EXPECT_EQ(second_line.substr(0, 2), "0,");
-  EXPECT_NE(csv.find(",solved,1,0,2,0,100.000,,0,,runs/000000.plan.json,\"a, \"\"quoted\"\" message\"\n"),
+  EXPECT_NE(csv.find(",solved,1,0,2,0,100.000,,0,,runs/000000.plan.json,none,\"a, \"\"quoted\"\" message\"\n"),
             std::string::npos)
       << csv;
   EXPECT_NE(csv.find("\n1,a.yaml,astar,2,cell_m=5,failed,0,"), std::string::npos) << csv;
-  EXPECT_EQ(csv.find("12.5"), std::string::npos);  // timing stays out
-  EXPECT_NE(timings_csv({record(0, "solved", 1.0)}).find("0,12.500,"), std::string::npos);
+  EXPECT_NE(csv.find(",no_route,\"a, "), std::string::npos) << csv;  // the failed row's reason
+  EXPECT_EQ(csv.find("12.5"), std::string::npos);                    // timing stays out
+  EXPECT_NE(timings_csv({record(0, RunStatus::solved, 1.0)}).find("0,12.500,"), std::string::npos);
 }
 
 TEST(Results, JournalLinesRoundTripAndACutLineIsDropped) {
-  const RunRecord r = record(7, "solved", 1234.5);
+  const RunRecord r = record(7, RunStatus::solved, 1234.5);
   const std::string line = journal_line(r);
   EXPECT_EQ(line.find('\n'), std::string::npos);
   const auto back = parse_journal_line(line);
@@ -96,14 +99,22 @@ TEST(Results, JournalLinesRoundTripAndACutLineIsDropped) {
   EXPECT_TRUE(same_run(back->spec, r.spec));
   EXPECT_EQ(journal_line(*back), line);
   EXPECT_FALSE(parse_journal_line(line.substr(0, line.size() - 5)));
+  const RunRecord failed = record(8, RunStatus::failed, 0.0);
+  const auto failed_back = parse_journal_line(journal_line(failed));
+  ASSERT_TRUE(failed_back);
+  EXPECT_EQ(failed_back->outcome.status, RunStatus::failed);
+  EXPECT_EQ(failed_back->outcome.reason, Reason::no_route);
+  std::string unknown = journal_line(failed);
+  unknown.replace(unknown.find("\"failed\""), 8, "\"brokn\"");
+  EXPECT_FALSE(parse_journal_line(unknown));  // a status no run has
   RunSpec other = r.spec;
   other.seed = 99;
   EXPECT_FALSE(same_run(other, r.spec));
 }
 
 TEST(OmplLog, FollowsTheGrammar) {
-  std::vector<RunRecord> runs = {record(0, "solved", 10.0), record(1, "failed", std::nan("")),
-                                 record(2, "solved", 12.0)};
+  std::vector<RunRecord> runs = {record(0, RunStatus::solved, 10.0), record(1, RunStatus::failed, std::nan("")),
+                                 record(2, RunStatus::solved, 12.0)};
   runs[2].spec.planner = "rrt";
   OmplLogHeader h;
   h.experiment = "my sweep";
@@ -147,7 +158,7 @@ TEST(Batch, ARunItsLimitStoppedIsATimeoutForEveryMission) {
     run.scenario = dir + name + ".yaml";
     std::string json;
     const RunOutcome o = run_in_process(run, cache, opt, json);
-    EXPECT_EQ(o.status, "timeout") << name << ": " << o.message;
+    EXPECT_EQ(o.status, RunStatus::timeout) << name << ": " << o.message;
   }
 }
 

@@ -25,7 +25,7 @@ const char* kRunProperties[] = {
 
 std::string measurement(const RunRecord& r) {
   const RunOutcome& o = r.outcome;
-  const bool solved = o.status == "solved";
+  const bool solved = o.status == RunStatus::solved;
   const std::string values[] = {real(o.plan_ms / 1000.0),
                                 solved ? "1" : "0",
                                 solved ? (o.verified ? "1" : "0") : "",

@@ -56,7 +56,7 @@ std::string planner_name(const RunRecord& r) {
 std::string results_csv(const std::vector<RunRecord>& records) {
   std::string out =
       "run,scenario,planner,seed,params,status,verified,violations,uavs,uavs_solved,length_m,flight_time_s,expansions,"
-      "min_separation_m,plan_file,message\n";
+      "min_separation_m,plan_file,reason,message\n";
   for (const RunRecord* r : by_run(records)) {
     const RunOutcome& o = r->outcome;
     const std::vector<std::string> f = {std::to_string(r->spec.index),
@@ -64,7 +64,7 @@ std::string results_csv(const std::vector<RunRecord>& records) {
                                         planner_name(*r),
                                         std::to_string(r->spec.seed),
                                         params_text(r->spec.params),
-                                        o.status,
+                                        std::string(to_string(o.status)),
                                         o.verified ? "1" : "0",
                                         std::to_string(o.violations),
                                         std::to_string(o.uavs),
@@ -74,6 +74,7 @@ std::string results_csv(const std::vector<RunRecord>& records) {
                                         std::to_string(o.expansions),
                                         number(o.min_separation_m, 3),
                                         r->plan_file,
+                                        std::string(to_string(o.reason)),
                                         o.message};
     for (std::size_t i = 0; i < f.size(); ++i) out += (i ? "," : "") + csv_field(f[i]);
     out += '\n';
@@ -99,7 +100,8 @@ std::string journal_line(const RunRecord& r) {
                             {"planner", r.spec.planner},
                             {"seed", r.spec.seed},
                             {"params", params},
-                            {"status", o.status},
+                            {"status", to_string(o.status)},
+                            {"reason", to_string(o.reason)},
                             {"algorithm", o.algorithm},
                             {"verified", o.verified},
                             {"violations", o.violations},
@@ -130,7 +132,11 @@ std::optional<RunRecord> parse_journal_line(const std::string& line) {
     for (const auto& p : j.at("params"))
       r.spec.params.emplace_back(p.at(0).get<std::string>(), p.at(1).get<std::string>());
     RunOutcome& o = r.outcome;
-    o.status = j.at("status").get<std::string>();
+    const auto status = run_status_from_string(j.at("status").get<std::string>());
+    const auto reason = reason_from_string(j.value("reason", std::string("none")));
+    if (!status || !reason) return std::nullopt;
+    o.status = *status;
+    o.reason = *reason;
     o.algorithm = j.at("algorithm").get<std::string>();
     o.verified = j.at("verified").get<bool>();
     o.violations = j.at("violations").get<std::size_t>();
@@ -170,10 +176,10 @@ std::string summary_table(const std::vector<RunRecord>& records) {
     const std::string params = r.spec.params.empty() ? "-" : params_text(r.spec.params);
     Group& g = groups[{planner_name(r), params, std::filesystem::path(r.spec.scenario).filename().string()}];
     ++g.runs;
-    g.solved += r.outcome.status == "solved";
-    g.verified += r.outcome.status == "solved" && r.outcome.verified;
+    g.solved += r.outcome.status == RunStatus::solved;
+    g.verified += r.outcome.status == RunStatus::solved && r.outcome.verified;
     g.ms.push_back(r.outcome.plan_ms);
-    if (r.outcome.status == "solved" && std::isfinite(r.outcome.length_m)) {
+    if (r.outcome.status == RunStatus::solved && std::isfinite(r.outcome.length_m)) {
       g.length_sum += r.outcome.length_m;
       ++g.lengths;
     }

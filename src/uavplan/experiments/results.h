@@ -14,7 +14,7 @@ namespace uavplan {
 std::string planner_name(const RunRecord& r);
 
 // results.csv: run,scenario,planner,seed,params,status,verified,violations,uavs,uavs_solved,
-// length_m,flight_time_s,expansions,min_separation_m,plan_file,message. Rows by run number.
+// length_m,flight_time_s,expansions,min_separation_m,plan_file,reason,message. Rows by run number.
 std::string results_csv(const std::vector<RunRecord>& records);
 // timings.csv: run,plan_ms,wall_ms.
 std::string timings_csv(const std::vector<RunRecord>& records);

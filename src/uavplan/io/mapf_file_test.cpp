@@ -44,7 +44,7 @@ TEST(MapfFile, ReadsAnInstanceAndWritesASolutionACheckerCanRead) {
   EXPECT_EQ(in.width, 5);
   const MapfProblem p = in.problem();
   const MapfResult r = solve_mapf(p, {});
-  ASSERT_TRUE(r.solved);
+  ASSERT_TRUE(r.solved());
   // Read the file back as a checker would: every agent's cells at their times.
   const YAML::Node out = YAML::Load(mapf_solution_yaml(in, r, 0.001));
   EXPECT_EQ(out["statistics"]["cost"].as<int>(), r.sum_of_costs);

@@ -450,6 +450,16 @@ Plan parse_plan(const std::string& raw, const std::string& file) {
   }
   if (j.contains("metrics")) p.metrics = r.metrics(j["metrics"], "metrics");
   if (j.contains("formation")) p.formation = read_formation_log(r, j["formation"]);
+  // The plan's reason is its first unsolved UAV's; a plan failed with every UAV solved was
+  // failed by a rule of the whole mission (finalize_plan).
+  if (p.status != Status::solved) {
+    p.reason = Reason::rejected;
+    for (const UavPlan& u : p.uavs)
+      if (!u.solved()) {
+        p.reason = u.reason;
+        break;
+      }
+  }
   return p;
 }
 

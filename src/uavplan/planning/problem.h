@@ -40,12 +40,10 @@ struct PlanStats {
   double plan_ms = 0.0;
 };
 
-struct PlanResult {
-  Status status = Status::failed;
-  Reason reason = Reason::none;  // why it is not solved
+// A planner's outcome (message: why it failed, or a note) and its route.
+struct PlanResult : Outcome {
   Route route;
   PlanStats stats;
-  std::string message;  // why it failed, or a note
 };
 
 }  // namespace uavplan

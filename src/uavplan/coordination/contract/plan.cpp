@@ -9,4 +9,15 @@ Status combined_status(const std::vector<UavPlan>& uavs) {
   return solved == 0 ? Status::failed : Status::partial;
 }
 
+void combine_outcomes(Plan& plan) {
+  plan.status = combined_status(plan.uavs);
+  plan.reason = Reason::none;
+  for (const UavPlan& u : plan.uavs)
+    if (u.status != Status::solved) {
+      plan.reason = u.reason;
+      if (plan.message.empty()) plan.message = u.id + ": " + u.message;
+      break;
+    }
+}
+
 }  // namespace uavplan

@@ -13,11 +13,9 @@
 
 namespace uavplan {
 
-struct UavPlan {
+// One UAV's outcome (reason: why it is not solved; the message says it in words) and flight.
+struct UavPlan : Outcome {
   std::string id;
-  Status status = Status::failed;
-  Reason reason = Reason::none;  // why it is not solved (the message says it in words)
-  std::string message;
   std::vector<Vec3> waypoints;
   Trajectory trajectory;
   // Two lengths: the distance flown (the trajectory's polyline, as metrics.length_m, the CLI
@@ -51,12 +49,11 @@ struct FormationLog {
   std::vector<Break> breaks;
 };
 
-struct Plan {
+// The whole plan's outcome: combined_status of its UAVs, the first unsolved UAV's reason.
+struct Plan : Outcome {
   std::string scenario;
   std::string algorithm;
   std::uint64_t seed = 0;
-  Status status = Status::failed;
-  std::string message;
   std::vector<UavPlan> uavs;
   std::map<std::string, double> metrics;  // filled by evaluation
   double plan_ms = 0.0;                   // wall time; kept out of the plan file by default
@@ -72,5 +69,8 @@ struct Plan {
 
 // solved when every UAV is, failed when none is, partial otherwise.
 Status combined_status(const std::vector<UavPlan>& uavs);
+// The plan's outcome from its UAVs': combined_status, the first unsolved UAV's reason, and its
+// message (prefixed with its id) where the plan has none yet.
+void combine_outcomes(Plan& plan);
 
 }  // namespace uavplan

@@ -29,6 +29,7 @@ LandingResult plan_landing(const Airfield& af, const AutopilotModel& model, cons
   const Vec3 gate = thr - o.gate_before_threshold_m * dir + Vec3(0, 0, o.gate_height_m);
   const double final_m = 0.4 * o.gate_before_threshold_m;
   const Vec3 final_fix = thr - final_m * dir + Vec3(0, 0, o.gate_height_m * final_m / o.gate_before_threshold_m);
+  best.reason = Reason::conflict;
   best.message = "no conflict-free landing at any speed in [" + std::to_string(static_cast<int>(lim.min_mps)) + ", " +
                  std::to_string(static_cast<int>(lim.max_mps)) + "] m/s within " + std::to_string(o.max_holds) +
                  " holds";
@@ -67,7 +68,7 @@ LandingResult plan_landing(const Airfield& af, const AutopilotModel& model, cons
       append_straight_run(flight, touch, v, v, o.sample_s);
       append_straight_run(flight, stop, v, 0.0, o.sample_s);
       if (conflicts(flight)) continue;
-      best.landed = true;
+      best.succeed();
       best.message.clear();
       best.flight = std::move(flight);
       best.speed_mps = v;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "uavplan/coordination/contract/scenario.h"
+#include "uavplan/core/status.h"
 #include "uavplan/simulation/trajectory.h"
 #include "uavplan/vehicle/autopilot.h"
 
@@ -29,9 +30,8 @@ struct LandingOptions {
   double sample_s = 1.0;
 };
 
-struct LandingResult {
-  bool landed = false;
-  std::string message;
+// solved, or failed for conflict (no landing at any speed within the holds keeps clear).
+struct LandingResult : Outcome {
   Trajectory flight;       // from the state it starts in until it stops on the runway
   double speed_mps = 0.0;  // the speed eq. 2 chose
   int holds = 0;

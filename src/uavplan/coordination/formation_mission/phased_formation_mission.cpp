@@ -451,7 +451,7 @@ bool PhasedFlight::land() {
       return false;
     };
     LandingResult r = plan_landing(af_, models_[i], group_.state(i), t_d, o_.landing, conflicts);
-    if (!r.landed) {
+    if (!r.solved()) {
       failed_ = sc_.uavs[i].id + "'s landing: " + r.message;
       return false;
     }

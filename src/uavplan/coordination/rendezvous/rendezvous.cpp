@@ -232,7 +232,7 @@ std::vector<std::optional<DirectionalRoute>> preplan(const Scenario& sc, const s
   std::vector<DirectionalQuery> again;
   std::vector<std::size_t> again_of;
   for (std::size_t k = 0; k < preplans.size(); ++k)
-    if (preplans[k] && !preplans[k]->found && !preplans[k]->stopped) {
+    if (preplans[k] && !preplans[k]->solved() && preplans[k]->reason != Reason::stopped) {
       again.push_back(with_goal[k]);
       again.back().heading_states = true;
       again_of.push_back(k);
@@ -260,13 +260,13 @@ std::vector<RendezvousUav> preplanned_uavs(const Scenario& sc,
       ++k;
     } else {
       const DirectionalRoute& route = *preplans[k++];
-      r.ok = route.found;
+      r.status = route.status;
       r.waypoints = route.waypoints;
       r.preplanned_m = r.final_m = route.length_m;
-      r.step = route.found ? RendezvousStep::preplanned : RendezvousStep::none;
-      if (!route.found) {
+      r.step = route.solved() ? RendezvousStep::preplanned : RendezvousStep::none;
+      if (!route.solved()) {
         r.detail = route.message;
-        r.reason = route.stopped ? Reason::stopped : Reason::no_route;
+        r.reason = route.reason;
       }
     }
     uavs.push_back(std::move(r));
@@ -305,7 +305,7 @@ class Lengthener {
 
   void run() {
     candidates_ = {r_.waypoints};
-    r_.ok = false;
+    r_.status = Status::failed;
     if (multi_point()) return;
     if (loiter_at_start()) return;
     if (virtual_threat()) return;
@@ -338,7 +338,7 @@ class Lengthener {
     r_.final_m = length(route);
     r_.step = step;
     r_.detail = std::move(detail);
-    r_.ok = true;
+    r_.succeed();
   }
 
   bool multi_point();
@@ -408,12 +408,12 @@ bool Lengthener::multi_point() {
         // so far (any finished subset of the routes gives a safe bound).
         double off = std::abs(best0_m - aim);
         for (const auto& d : done)
-          if (d && d->found) off = std::min(off, std::abs(d->length_m - aim));
+          if (d && d->solved()) off = std::min(off, std::abs(d->length_m - aim));
         qi.max_length_m = aim + std::max(off, 0.5 * window_.epsilon);
       },
-      [&](std::size_t, const DirectionalRoute& route) { return route.found && window_.within(route.length_m); });
-  for (std::size_t c = 0; c < routes.size() && !r_.ok; ++c) {
-    if (!routes[c] || !routes[c]->found) continue;
+      [&](std::size_t, const DirectionalRoute& route) { return route.solved() && window_.within(route.length_m); });
+  for (std::size_t c = 0; c < routes.size() && !r_.solved(); ++c) {
+    if (!routes[c] || !routes[c]->solved()) continue;
     const DirectionalRoute& route = *routes[c];
     candidates_.push_back(route.waypoints);
     if (window_.within(route.length_m))
@@ -422,7 +422,7 @@ bool Lengthener::multi_point() {
     else if (std::abs(route.length_m - aim) < std::abs(length(best_) - aim))
       best_ = route.waypoints;
   }
-  if (r_.ok) return true;
+  if (r_.solved()) return true;
   r_.waypoints = best_;
   r_.final_m = length(best_);
   return false;
@@ -518,8 +518,8 @@ double Lengthener::radius_limit(const Vec3& h) const {
 bool Lengthener::virtual_threat() {
   const Vec3 h0 = centre_on(best_);
   const double rx_used = adjust_radius(h0, radius_limit(h0));
-  if (!r_.ok) move_centre(rx_used);
-  return r_.ok;
+  if (!r_.solved()) move_centre(rx_used);
+  return r_.solved();
 }
 
 // adjust-R: the length grows with R_x (by steps, the lattice being discrete), so R_x doubles from
@@ -529,7 +529,7 @@ bool Lengthener::virtual_threat() {
 double Lengthener::adjust_radius(const Vec3& h0, double rx_max) {
   double rx_used = 0.0;
   auto take_radius = [&](double rx, const DirectionalRoute& route) -> double {  // its length, or -1 without a route
-    if (!route.found) return -1.0;
+    if (!route.solved()) return -1.0;
     candidates_.push_back(route.waypoints);
     if (route.length_m < window_.lo) rx_used = std::max(rx_used, rx);
     if (window_.within(route.length_m))
@@ -544,8 +544,8 @@ double Lengthener::adjust_radius(const Vec3& h0, double rx_max) {
   for (std::size_t k = 0; k < radii.size(); ++k) qs[k].virtual_threats = {Sphere{h0, radii[k]}};
   const auto routes = searches_.ordered(
       std::move(qs), Searches::keep_query,
-      [&](std::size_t, const DirectionalRoute& route) { return route.found && route.length_m >= window_.lo; });
-  for (std::size_t k = 0; k < routes.size() && routes[k] && !r_.ok; ++k) {
+      [&](std::size_t, const DirectionalRoute& route) { return route.solved() && route.length_m >= window_.lo; });
+  for (std::size_t k = 0; k < routes.size() && routes[k] && !r_.solved(); ++k) {
     const double len = take_radius(radii[k], *routes[k]);
     if (len >= 0.0 && len < window_.lo) short_rx = radii[k];
     if (len > window_.hi) {
@@ -553,9 +553,9 @@ double Lengthener::adjust_radius(const Vec3& h0, double rx_max) {
       break;
     }
   }
-  if (long_rx < 0.0 && !r_.ok && rx_max > short_rx) long_rx = rx_max;
+  if (long_rx < 0.0 && !r_.solved() && rx_max > short_rx) long_rx = rx_max;
   DirectionalQuery q = q_;
-  while (!r_.ok && long_rx > 0.0 && long_rx - short_rx > 0.25 * cell_ && !searches_.stop().should_stop()) {
+  while (!r_.solved() && long_rx > 0.0 && long_rx - short_rx > 0.25 * cell_ && !searches_.stop().should_stop()) {
     const double rx = 0.5 * (short_rx + long_rx);
     q.virtual_threats = {Sphere{h0, rx}};
     const double len = take_radius(rx, searches_.run(q));
@@ -571,13 +571,13 @@ double Lengthener::adjust_radius(const Vec3& h0, double rx_max) {
 void Lengthener::move_centre(double rx_used) {
   std::vector<Vec3> current = best_;
   DirectionalQuery q = q_;
-  for (int it = 0; it < kMoveCentreSteps && !r_.ok && rx_used > 0.0 && !searches_.stop().should_stop(); ++it) {
+  for (int it = 0; it < kMoveCentreSteps && !r_.solved() && rx_used > 0.0 && !searches_.stop().should_stop(); ++it) {
     const Vec3 h = centre_on(current);
     const double rx = std::min(rx_used, radius_limit(h));
     if (rx <= 0.0) break;
     q.virtual_threats = {Sphere{h, rx}};
     const DirectionalRoute route = searches_.run(q);
-    if (!route.found || route.waypoints == current) break;
+    if (!route.solved() || route.waypoints == current) break;
     current = route.waypoints;
     candidates_.push_back(route.waypoints);
     if (window_.within(route.length_m))
@@ -597,13 +597,13 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
   if (!queries.empty()) DirectionalAStarPlanner::require_lattice(sc.world, queries.front(), searches.threads(), stop);
   res.uavs = preplanned_uavs(sc, preplan(sc, queries, searches));
   for (const auto& r : res.uavs)
-    if (r.ok) res.target_m = std::max(res.target_m, r.final_m);
+    if (r.solved()) res.target_m = std::max(res.target_m, r.final_m);
   const double cell = queries.empty() ? 1.0 : queries.front().cell_m;
   res.epsilon_m = sc.mission.arrival_tolerance_m.value_or(cell);
   const LengthWindow window{res.target_m - res.epsilon_m, res.target_m, res.target_m - 0.5 * res.epsilon_m,
                             res.epsilon_m};
   for (std::size_t s = 0; s < res.uavs.size(); ++s) {
-    if (!res.uavs[s].ok || window.within(res.uavs[s].final_m)) continue;
+    if (!res.uavs[s].solved() || window.within(res.uavs[s].final_m)) continue;
     Lengthener(sc, s, queries[s], planner.options(), window, searches, res).run();
   }
   return res;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "uavplan/coordination/contract/scenario.h"
+#include "uavplan/core/status.h"
 #include "uavplan/core/stop.h"
 #include "uavplan/planning/search/directional_astar.h"
 
@@ -21,14 +22,13 @@ namespace uavplan {
 enum class RendezvousStep { none, preplanned, multi_point, loiter, virtual_adjust_r, virtual_move_h, detour };
 std::string_view to_string(RendezvousStep s);
 
-struct RendezvousUav {
+// One UAV's outcome (solved, or failed with the reason) and its route.
+struct RendezvousUav : Outcome {
   std::string id;
-  bool ok = false;
   std::vector<Vec3> waypoints;
   double preplanned_m = 0.0, final_m = 0.0;
   RendezvousStep step = RendezvousStep::none;
-  std::string detail;            // L and M, loiter radius, virtual threat radius and centre, or why it failed
-  Reason reason = Reason::none;  // why it failed
+  std::string detail;  // L and M, loiter radius, virtual threat radius and centre, or why it failed
 };
 
 struct RendezvousResult {

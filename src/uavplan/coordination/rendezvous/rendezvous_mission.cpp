@@ -31,7 +31,7 @@ void RendezvousMission::plan(const Scenario& sc, const MissionContext& ctx, Plan
         strf("rendezvous: %s, pre-planned %.1f m, final %.1f m (target %.1f m, epsilon %.1f m)",
              std::string(to_string(r.step)).c_str(), r.preplanned_m, r.final_m, rr.target_m, rr.epsilon_m);
     messages[i] = std::string(buf) + (r.detail.empty() ? "" : "; " + r.detail);
-    if (r.ok) {
+    if (r.solved()) {
       order.push_back(i);
       continue;
     }

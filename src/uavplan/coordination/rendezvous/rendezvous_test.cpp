@@ -65,7 +65,7 @@ TEST(Rendezvous, LengthsEndWithinEpsilonAndEachStepIsReported) {
   const RendezvousResult r = plan_rendezvous(sc, planner, {});
   double lo = 1e300, hi = 0;
   for (const auto& u : r.uavs) {
-    ASSERT_TRUE(u.ok) << u.id << ": " << u.detail;
+    ASSERT_TRUE(u.solved()) << u.id << ": " << u.detail;
     EXPECT_NE(u.step, RendezvousStep::none);
     EXPECT_LE(u.final_m, r.target_m + 1e-6);
     EXPECT_GE(u.final_m, r.target_m - r.epsilon_m - 1e-6);
@@ -137,7 +137,7 @@ TEST(Rendezvous, PrePlansFallBackToHeadingSectors) {
   const DirectionalAStarPlanner planner(DirectionalAStarOptions::from_params(sc.planner.params));
   DirectionalQuery q = planner.query_for(Problem{sc.uavs[0], *sc.uavs[0].goal, {}}, sc.world);
   q.heading_states = false;
-  ASSERT_FALSE(DirectionalSearch().run(sc.world, q, {}).found);  // P4's search alone: none
+  ASSERT_FALSE(DirectionalSearch().run(sc.world, q, {}).solved());  // P4's search alone: none
   const RendezvousResult res = plan_rendezvous(sc, planner, {});
   EXPECT_GT(res.uavs[0].preplanned_m, 0.0) << res.uavs[0].detail;
   EXPECT_TRUE(check_route_limits(res.uavs[0].waypoints, sc.uavs[0]).empty());
@@ -156,7 +156,7 @@ TEST(Rendezvous, LoiterGoesWhereItFitsWhenThePapersCircleDoesNot) {
                  500, {{"cell_m", "500"}, {"min_turn_radius_m", "500"}});
   const DirectionalAStarPlanner planner(DirectionalAStarOptions::from_params(sc.planner.params));
   const RendezvousResult r = plan_rendezvous(sc, planner, {});
-  ASSERT_TRUE(r.uavs[0].ok && r.uavs[1].ok) << r.uavs[1].detail;
+  ASSERT_TRUE(r.uavs[0].solved() && r.uavs[1].solved()) << r.uavs[1].detail;
   const RendezvousUav& near = r.uavs[1];
   EXPECT_EQ(near.step, RendezvousStep::loiter);
   EXPECT_NE(near.detail.find("on the right"), std::string::npos) << near.detail;
@@ -175,7 +175,7 @@ TEST(Rendezvous, DetourWaypointMakesUpALengthTooShortToLoiter) {
       {{"cell_m", "500"}, {"min_turn_radius_m", "1000"}});
   const DirectionalAStarPlanner planner(DirectionalAStarOptions::from_params(sc.planner.params));
   const RendezvousResult r = plan_rendezvous(sc, planner, {});
-  ASSERT_TRUE(r.uavs[0].ok && r.uavs[1].ok) << r.uavs[1].detail;
+  ASSERT_TRUE(r.uavs[0].solved() && r.uavs[1].solved()) << r.uavs[1].detail;
   const RendezvousUav& u2 = r.uavs[1];
   EXPECT_EQ(u2.step, RendezvousStep::detour) << u2.detail;
   EXPECT_LT(r.target_m - u2.preplanned_m, 2 * kPi * 1000.0);

@@ -265,7 +265,7 @@ bool RollingWindow::replan(double t, std::size_t i, FlightState& s, const std::v
     const auto t0 = std::chrono::steady_clock::now();
     const RrtResult r = rrt_search(rule, u.max_turn_rad, q, opt_.local, opt_.stop);
     logs_[i].local_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    if (!r.ok) {
+    if (!r.solved()) {
       why = r.message;
       continue;
     }

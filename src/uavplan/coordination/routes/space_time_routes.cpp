@@ -134,10 +134,10 @@ MapfResult solve(const LatticeAgents& agents, MapfMethod method, const StopCondi
       break;
   }
   MapfResult quick = solve_prioritized(agents, kOrders, stop);
-  if (quick.solved || stop.should_stop()) return quick;
+  if (quick.solved() || stop.should_stop()) return quick;
   MapfResult bounded = solve_cbs(agents, kEcbsW, stop, kEcbsNodes);
   bounded.low_level_expansions += quick.low_level_expansions;
-  if (!bounded.solved) bounded.why = quick.why + "; then ECBS: " + bounded.why;
+  if (!bounded.solved()) bounded.message = quick.message + "; then ECBS: " + bounded.message;
   return bounded;
 }
 
@@ -272,9 +272,9 @@ void plan_space_time(const Scenario& sc, const MissionContext& ctx, const std::v
   if (!layer.problem.empty()) return fail_all(layer.why, layer.problem);
   const StopCondition& stop = ctx.options.stop;
   const MapfResult r = solve(*layer.agents, o.method, stop);
-  if (!r.solved) {
+  if (!r.solved()) {
     if (stop.should_stop()) return fail_all(Reason::stopped, kStoppedMessage);
-    return fail_all(Reason::conflict, "space-time deconfliction found no conflict-free plan (" + r.why +
+    return fail_all(Reason::conflict, "space-time deconfliction found no conflict-free plan (" + r.message +
                                           "); try --set space_time_method=cbs or another space_time_cell_m");
   }
   const std::string how = strf("space-time deconfliction: %s; lattice %.3g m, tick %.3g s", r.method.c_str(),

@@ -164,7 +164,7 @@ MapfResult ConflictSearch::run() {
     paths_of(id, paths, bounds);
     const std::optional<PathConflict> c = m_.first_conflict(paths);
     if (!c) {
-      r.solved = true;
+      r.succeed();
       r.paths = std::move(paths);
       break;
     }
@@ -172,11 +172,16 @@ MapfResult ConflictSearch::run() {
     add_child(id, paths, bounds, c->b);
   }
   r.low_level_expansions = expanded_;
-  if (!r.solved)
-    r.why = stop_.should_stop() ? "stopped"
-            : !rooted           ? "an agent cannot reach its goal"
-            : by_bound_.empty() ? "no solution: every branch of constraints is closed"
-                                : "no solution within " + std::to_string(most_nodes_) + " high-level nodes";
+  if (!r.solved()) {
+    if (stop_.should_stop())
+      r.fail(Reason::stopped, "stopped");
+    else if (!rooted)
+      r.fail(Reason::no_route, "an agent cannot reach its goal");
+    else if (by_bound_.empty())
+      r.fail(Reason::conflict, "no solution: every branch of constraints is closed");
+    else
+      r.fail(Reason::budget, "no solution within " + std::to_string(most_nodes_) + " high-level nodes");
+  }
   return r;
 }
 

@@ -64,7 +64,7 @@ class GridModel final : public SpaceTimeModel {
 };
 
 void finish(MapfResult& r) {
-  if (!r.solved) return;
+  if (!r.solved()) return;
   r.sum_of_costs = sum_of_costs(r.paths);
   r.makespan = makespan(r.paths);
 }
@@ -77,12 +77,12 @@ MapfResult solve_automatic(const SpaceTimeModel& model, const MapfOptions& o) {
   const StopCondition first =
       o.stop.has_time_limit() ? o.stop | StopCondition::time_limit(kBoundedShare * o.stop.seconds_left()) : o.stop;
   MapfResult bounded = solve_cbs(model, o.w, first);
-  if (bounded.solved || o.stop.should_stop()) return bounded;
+  if (bounded.solved() || o.stop.should_stop()) return bounded;
   MapfResult quick = solve_prioritized(model, o.orders, o.stop);
   quick.low_level_expansions += bounded.low_level_expansions;
   quick.high_level_nodes = bounded.high_level_nodes;
   quick.lower_bound = bounded.lower_bound;
-  if (quick.solved) quick.method += " after ECBS " + bounded.why + " (no bound proven)";
+  if (quick.solved()) quick.method += " after ECBS " + bounded.message + " (no bound proven)";
   return quick;
 }
 
@@ -97,15 +97,15 @@ MapfResult solve_mapf(const MapfProblem& problem, const MapfOptions& o) {
   for (std::size_t i = 0; i < problem.starts.size(); ++i) {
     if (o.stop.should_stop()) {  // a table is a search of the whole graph: large maps take a while
       MapfResult r;
-      r.why = "stopped (" + std::to_string(i) + " of " + std::to_string(problem.starts.size()) +
-              " agents' distance tables built)";
+      r.fail(Reason::stopped, "stopped (" + std::to_string(i) + " of " + std::to_string(problem.starts.size()) +
+                                  " agents' distance tables built)");
       return r;
     }
     h.push_back(distances_to(problem.graph, problem.goals[i]));
     const int d = h.back()[problem.starts[i]];
     if (d < 0) {
       MapfResult r;
-      r.why = "agent " + std::to_string(i) + " cannot reach its goal";
+      r.fail(Reason::no_route, "agent " + std::to_string(i) + " cannot reach its goal");
       return r;
     }
     lone_sum += d;

@@ -9,6 +9,7 @@
 
 #include "uavplan/coordination/spacetime/space_time_graph.h"
 #include "uavplan/coordination/spacetime/space_time_table.h"
+#include "uavplan/core/status.h"
 #include "uavplan/core/stop.h"
 
 namespace uavplan {
@@ -32,15 +33,15 @@ struct MapfOptions {
   StopCondition stop;
 };
 
-struct MapfResult {
-  bool solved = false;
+// solved, or failed for stopped, no_route (an agent cannot reach its goal), budget (the
+// high-level nodes) or conflict (no conflict-free solution found).
+struct MapfResult : Outcome {
   std::vector<SpaceTimePath> paths;  // one per agent when solved
   int sum_of_costs = 0, makespan = 0;
   // No solution's sum of costs is lower: the lone shortest paths' sum, or a conflict-based
   // search's bound where it ran.
   int lower_bound = 0;
   std::string method;  // what found it ("prioritized (order 2)", "ecbs w=1.3", "cbs")
-  std::string why;     // why not solved
   std::uint64_t high_level_nodes = 0, low_level_expansions = 0;
 };
 

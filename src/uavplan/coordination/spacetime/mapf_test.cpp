@@ -225,7 +225,7 @@ TEST_P(CompleteMethod, SwapsTwoAgentsThroughACorridorWithOneNiche) {
   MapfOptions o;
   o.method = GetParam();
   const MapfResult r = solve_mapf(p, o);
-  ASSERT_TRUE(r.solved) << r.why;
+  ASSERT_TRUE(r.solved()) << r.message;
   EXPECT_FALSE(mapf_solution_problem(p.graph, p.starts, p.goals, r.paths).has_value());
   // One steps into the niche and out again (2) and the other waits once: 4 + 4 + 3.
   if (GetParam() == MapfMethod::cbs) {
@@ -240,8 +240,9 @@ TEST(Prioritized, CannotYieldInACorridor) {
   MapfOptions o;
   o.method = MapfMethod::prioritized;
   const MapfResult r = solve_mapf(corridor_swap(), o);
-  EXPECT_FALSE(r.solved);
-  EXPECT_NE(r.why.find("no order"), std::string::npos);
+  EXPECT_FALSE(r.solved());
+  EXPECT_EQ(r.reason, Reason::conflict);
+  EXPECT_NE(r.message.find("no order"), std::string::npos);
 }
 
 TEST_P(EveryMethod, ACorridorWithoutANicheHasNoSolution) {
@@ -251,8 +252,8 @@ TEST_P(EveryMethod, ACorridorWithoutANicheHasNoSolution) {
   o.method = GetParam();
   o.stop = StopCondition::time_limit(0.2);  // a conflict-based search cannot prove it: it stops
   const MapfResult r = solve_mapf(p, o);
-  EXPECT_FALSE(r.solved);
-  EXPECT_FALSE(r.why.empty());
+  EXPECT_FALSE(r.solved());
+  EXPECT_FALSE(r.message.empty());
 }
 
 INSTANTIATE_TEST_SUITE_P(Mapf, CompleteMethod,
@@ -280,14 +281,14 @@ TEST(Mapf, CbsIsTheLeastAndEcbsWithinItsBoundOnRandomWorlds) {
     o.stop = StopCondition::time_limit(5.0);
     o.method = MapfMethod::cbs;
     const MapfResult best = solve_mapf(p, o);
-    if (!best.solved) continue;  // walled-off goals
+    if (!best.solved()) continue;  // walled-off goals
     ++compared;
     EXPECT_FALSE(any_conflict_brute(best.paths));
     EXPECT_GE(best.sum_of_costs, best.lower_bound);
     for (const MapfMethod m : {MapfMethod::ecbs, MapfMethod::prioritized, MapfMethod::automatic}) {
       o.method = m;
       const MapfResult r = solve_mapf(p, o);
-      if (!r.solved) continue;
+      if (!r.solved()) continue;
       EXPECT_FALSE(mapf_solution_problem(p.graph, p.starts, p.goals, r.paths).has_value()) << to_string(m);
       EXPECT_FALSE(any_conflict_brute(r.paths)) << to_string(m);
       EXPECT_GE(r.sum_of_costs, best.sum_of_costs) << to_string(m) << " world " << world;

@@ -31,7 +31,7 @@ MapfResult solve_prioritized(const SpaceTimeModel& model, int orders, const Stop
       paths[i] = std::move(a.path);
     }
     if (failed < 0) {
-      r.solved = true;
+      r.succeed();
       r.paths = std::move(paths);
       r.method = "prioritized (order " + std::to_string(k + 1) + ")";
       return r;
@@ -39,8 +39,10 @@ MapfResult solve_prioritized(const SpaceTimeModel& model, int orders, const Stop
     std::rotate(order.begin(), std::find(order.begin(), order.end(), failed),
                 std::find(order.begin(), order.end(), failed) + 1);  // it goes first next time
   }
-  r.why =
-      stop.should_stop() ? "stopped" : "no order of the " + std::to_string(orders) + " tried lets every agent through";
+  if (stop.should_stop())
+    r.fail(Reason::stopped, "stopped");
+  else
+    r.fail(Reason::conflict, "no order of the " + std::to_string(orders) + " tried lets every agent through");
   return r;
 }
 

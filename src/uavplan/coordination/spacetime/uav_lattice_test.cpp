@@ -191,7 +191,7 @@ TEST(UavLattice, SixUavSwapIsSolvedByEveryMethod) {
     MapfOptions mo;
     mo.method = m;
     const MapfResult r = solve_space_time(agents, mo);
-    ASSERT_TRUE(r.solved) << to_string(m) << ": " << r.why;
+    ASSERT_TRUE(r.solved()) << to_string(m) << ": " << r.message;
     for (int i = 0; i < 6; ++i) {
       EXPECT_EQ(r.paths[i].front(), l.point_vertex(i));
       EXPECT_EQ(r.paths[i].back(), l.point_vertex((i + 3) % 6));

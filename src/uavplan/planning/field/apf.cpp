@@ -301,8 +301,8 @@ PlanResult ApfPlanner::do_plan(const Problem& pb, const World& world, const Stop
   const SegmentRule rule(world, pb.uav);
   const TurnShaping shaped =
       enforce_turn_limits(pts, pinned, pb.uav.heading_rad, {pb.uav.max_turn_rad, pb.uav.max_climb_rad}, rule);
-  if (!shaped.ok) {
-    res.message = "turn limits: " + shaped.message;
+  if (!shaped.solved()) {
+    res.fail(shaped.reason, "turn limits: " + shaped.message);
     pts.clear();
     return res;
   }

@@ -107,7 +107,7 @@ std::vector<Vec3> FieldGuide::route_on(Level& level, const Vec3& from, const Vec
   const std::int64_t a = attach(g, from), b = attach(g, goal);
   if (a >= 0 && b >= 0) {
     const GridSearchResult r = level.search.search(a, b, stop_);
-    if (r.found) {
+    if (r.solved()) {
       for (const std::int64_t c : r.cells) out.push_back(g.center(c));
       out.push_back(goal);
     }

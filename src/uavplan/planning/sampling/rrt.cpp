@@ -241,15 +241,15 @@ class RrtGrowth {
 // search (a failure, or the goal at the start).
 bool settled_before_search(const SegmentRule& rule, const RrtQuery& q, RrtResult& res) {
   if (!rule.point_ok(q.start)) {
-    res.message = "start " + point_text(q.start) + " is outside the free space";
+    res.fail(Reason::invalid, "start " + point_text(q.start) + " is outside the free space");
     return true;
   }
   if (!rule.point_ok(q.goal)) {
-    res.message = "goal " + point_text(q.goal) + " is outside the free space";
+    res.fail(Reason::invalid, "goal " + point_text(q.goal) + " is outside the free space");
     return true;
   }
   if ((q.goal - q.start).norm() == 0.0) {
-    res.ok = true;
+    res.succeed();
     res.path = res.raw = {q.start};
     return true;
   }
@@ -285,16 +285,16 @@ RrtResult rrt_search(const SegmentRule& rule, double max_turn, const RrtQuery& q
   while (reached < 0) {
     const int nodes = growth.tree().size();
     if (stop.should_stop(res.iterations)) {
-      res.message = "stopped after " + std::to_string(nodes) + " nodes";
-      res.stopped = true;
+      res.fail(Reason::stopped, "stopped after " + std::to_string(nodes) + " nodes");
       break;
     }
     // A start every move from which is refused (boxed in by keep-outs) is given up early.
     if (nodes >= opt.max_nodes || res.iterations >= max_iterations ||
         (nodes == 1 && res.iterations >= kBoxedInIterations)) {
-      res.message = "no route within " + std::to_string(nodes) + " nodes of " +
-                    std::to_string(growth.step()).substr(0, 5) + " m; raise planner.params.max_nodes (now " +
-                    std::to_string(opt.max_nodes) + ") or give a shorter step_m for narrow gaps";
+      res.fail(Reason::budget, "no route within " + std::to_string(nodes) + " nodes of " +
+                                   std::to_string(growth.step()).substr(0, 5) +
+                                   " m; raise planner.params.max_nodes (now " + std::to_string(opt.max_nodes) +
+                                   ") or give a shorter step_m for narrow gaps");
       break;
     }
     ++res.iterations;
@@ -306,7 +306,7 @@ RrtResult rrt_search(const SegmentRule& rule, double max_turn, const RrtQuery& q
   res.raw = growth.tree().path_to(reached);  // step 7: backtrack
   if (res.raw.back() != q.goal) res.raw.push_back(q.goal);
   res.path = res.raw;
-  res.ok = true;
+  res.succeed();
   shorten(res, q, opt, max_turn, ok);
   return res;
 }
@@ -331,11 +331,10 @@ PlanResult RrtPlanner::do_plan(const Problem& pb, const World& world, const Stop
     q.seed = Rng(pb.seed).split(leg).next_u64();
     const RrtResult r = rrt_search(rule, pb.uav.max_turn_rad, q, options_, stop);
     out.stats.nodes_expanded += static_cast<std::uint64_t>(r.nodes);
-    if (!r.ok) {
+    if (!r.solved()) {
       out.route.waypoints.clear();
-      out.reason = r.stopped ? Reason::stopped : Reason::budget;
-      out.message = name_ + ": " + leg_name(leg, stops.size()) + " from " + point_text(q.start) + " to " +
-                    point_text(q.goal) + ": " + r.message;
+      out.fail(r.reason, name_ + ": " + leg_name(leg, stops.size()) + " from " + point_text(q.start) + " to " +
+                             point_text(q.goal) + ": " + r.message);
       return out;
     }
     for (std::size_t i = 1; i < r.path.size(); ++i) {

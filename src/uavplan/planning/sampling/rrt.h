@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "uavplan/core/status.h"
 #include "uavplan/core/stop.h"
 #include "uavplan/planning/params.h"
 #include "uavplan/planning/planner.h"
@@ -75,14 +76,13 @@ struct RrtQuery {
   std::uint64_t seed = 1;
 };
 
-struct RrtResult {
-  bool ok = false;
+// solved, or failed for invalid (an end outside the free space), budget (max_nodes or the
+// iterations) or stopped.
+struct RrtResult : Outcome {
   std::vector<Vec3> path;  // start ... goal
   std::vector<Vec3> raw;   // the tree's path before pruning and shortcutting
   int nodes = 0;
   std::uint64_t iterations = 0;
-  std::string message;   // why it failed
-  bool stopped = false;  // by the stop condition (else its node or iteration budget)
 };
 
 // Throws std::invalid_argument when the start breaks the rule (outside, inside an obstacle).

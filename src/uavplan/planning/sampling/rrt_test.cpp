@@ -102,8 +102,8 @@ TEST(Rrt, BothRrtsRouteAroundMovingDiscsAndImprovedIsShorter) {
     const SegmentRule rule(w.world, w.uav);
     const RrtResult c = rrt_search(rule, kPi, w.query, RrtOptions::common(), {});
     const RrtResult i = rrt_search(rule, kPi, w.query, RrtOptions::improved(), {});
-    ASSERT_TRUE(c.ok) << c.message;
-    ASSERT_TRUE(i.ok) << i.message;
+    ASSERT_TRUE(c.solved()) << c.message;
+    ASSERT_TRUE(i.solved()) << i.message;
     expect_route_holds(w, c.path, kPi);
     expect_route_holds(w, i.path, kPi);
     common_m += Route{c.path}.length_m();
@@ -122,7 +122,7 @@ TEST(Rrt, TurnLimitHoldsAtStartAlongAndIntoTheWayOn) {
   const double limit = deg_to_rad(45);
   for (const RrtOptions& o : {RrtOptions::common(), RrtOptions::improved()}) {
     const RrtResult r = rrt_search(SegmentRule(w.world, w.uav), limit, w.query, o, {});
-    ASSERT_TRUE(r.ok) << r.message;
+    ASSERT_TRUE(r.solved()) << r.message;
     expect_route_holds(w, r.path, limit);
     EXPECT_LE(turn_rad(*w.query.start_direction, r.path[1] - r.path[0]), limit + 1e-6);
     EXPECT_LE(turn_rad(r.path.back() - r.path[r.path.size() - 2], *w.query.goal_direction), limit + 1e-6);
@@ -142,7 +142,7 @@ TEST(Rrt, ClimbLimitAndThreeDimensions) {
   q.sample_box = world.bounds();
   q.seed = 2;
   const RrtResult r = rrt_search(SegmentRule(world, u), kPi, q, RrtOptions::improved(), {});
-  ASSERT_TRUE(r.ok) << r.message;
+  ASSERT_TRUE(r.solved()) << r.message;
   for (std::size_t i = 1; i < r.path.size(); ++i) {
     EXPECT_LE(std::abs(pitch_rad(r.path[i] - r.path[i - 1])), u.max_climb_rad + 1e-7);
     EXPECT_FALSE(world.segment_collides(r.path[i - 1], r.path[i], u.radius_m));
@@ -155,7 +155,8 @@ TEST(Rrt, BoxedInStartFailsFastAndAStopIsHonoured) {
   w.query.keep_outs = w.discs;
   w.query.start = Vec3(20, 1.2, 0);
   const RrtResult r = rrt_search(SegmentRule(w.world, w.uav), kPi, w.query, RrtOptions::improved(), {});
-  EXPECT_FALSE(r.ok);
+  EXPECT_FALSE(r.solved());
+  EXPECT_EQ(r.reason, Reason::budget);
   EXPECT_EQ(r.nodes, 1);
   EXPECT_LE(r.iterations, 2000u);
   std::atomic<bool> cancel{true};
@@ -163,7 +164,8 @@ TEST(Rrt, BoxedInStartFailsFastAndAStopIsHonoured) {
   m.query.keep_outs = m.discs;
   const RrtResult s = rrt_search(SegmentRule(m.world, m.uav), kPi, m.query, RrtOptions::improved(),
                                  StopCondition::cancel_flag(&cancel));
-  EXPECT_FALSE(s.ok);
+  EXPECT_FALSE(s.solved());
+  EXPECT_EQ(s.reason, Reason::stopped);
   EXPECT_NE(s.message.find("stopped"), std::string::npos);
 }
 

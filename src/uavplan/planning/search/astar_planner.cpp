@@ -129,12 +129,12 @@ Attempt route_on_grid(const World& world, const VoxelGrid& grid, const UavSpec& 
     const GridSearchResult vp = search.search(ga, gb, stop);
     res.stats.nodes_expanded += vp.expanded;
     res.stats.open_max = std::max(res.stats.open_max, vp.open_max);
-    if (vp.stopped) {
+    if (vp.reason == Reason::stopped) {
       res.message = "stopped before a route was found";
       res.reason = Reason::stopped;
       return Attempt::stopped;
     }
-    if (!vp.found) {
+    if (!vp.solved()) {
       res.reason = Reason::no_route;
       std::string walls;
       if (first && prove_walled_off(world, rule, a, b, stop, walls)) {
@@ -212,8 +212,8 @@ PlanResult AStarPlanner::do_plan(const Problem& pb, const World& world, const St
   }
   const TurnShaping shaped =
       enforce_turn_limits(path, pinned, uav.heading_rad, {uav.max_turn_rad, uav.max_climb_rad}, rule);
-  if (!shaped.ok) {
-    res.message = shaped.message;
+  if (!shaped.solved()) {
+    res.fail(shaped.reason, shaped.message);
     return res;
   }
   res.route.waypoints = shaped.waypoints;

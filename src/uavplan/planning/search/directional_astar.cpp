@@ -113,11 +113,8 @@ PlanResult DirectionalAStarPlanner::do_plan(const Problem& pb, const World& worl
     res.stats.nodes_expanded += r.expanded;
     res.stats.open_max = std::max(res.stats.open_max, r.open_max);
     res.stats.cell_m = q.cell_m;
-    if (!r.found) {
-      res.message = r.stopped ? r.message : leg_name(leg, stops.size()) + ": " + r.message;
-      res.reason = r.stopped                                                   ? Reason::stopped
-                   : r.expanded > static_cast<std::uint64_t>(q.max_expansions) ? Reason::budget
-                                                                               : Reason::no_route;
+    if (!r.solved()) {
+      res.fail(r.reason, r.reason == Reason::stopped ? r.message : leg_name(leg, stops.size()) + ": " + r.message);
       res.route.waypoints.clear();
       return res;
     }

@@ -20,6 +20,7 @@
 #include <optional>
 #include <vector>
 
+#include "uavplan/core/status.h"
 #include "uavplan/planning/params.h"
 #include "uavplan/planning/planner.h"
 #include "uavplan/planning/search/best_first.h"
@@ -61,9 +62,8 @@ struct DirectionalAStarOptions {
   static DirectionalAStarOptions from_params(const Params& params);
 };
 
-struct DirectionalRoute {
-  bool found = false;
-  bool stopped = false;
+// solved, or failed for stopped, budget (max_expansions), no_route or invalid (the query).
+struct DirectionalRoute : Outcome {
   std::vector<Vec3> waypoints;
   double length_m = 0.0;
   std::uint64_t expanded = 0, generated = 0, dead_zones = 0;
@@ -71,7 +71,6 @@ struct DirectionalRoute {
   std::uint64_t cells_opened = 0;      // distinct lattice points among them (P4's "OPEN grid cells")
   std::uint64_t open_max = 0;          // the most entries the open list held at once
   std::uint64_t relaxed_expanded = 0;  // points the relaxed heuristic's reverse search closed
-  std::string message;
 };
 
 // One directional search from `start` (with optional heading) to `goal`; `virtual_threats`

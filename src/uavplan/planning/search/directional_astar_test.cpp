@@ -138,19 +138,19 @@ TEST(DirectionalAStar, ShortStepsThatCannotClimbAndTheLengthBoundEndEarly) {
   DirectionalSearch search;
   q.step_cells = 1.2;
   const DirectionalRoute flat = search.run(w, q, {});
-  EXPECT_FALSE(flat.found);
+  EXPECT_FALSE(flat.solved());
   EXPECT_LT(flat.expanded, 200u);  // the level holds 66 x 66 points
   q.step_cells = 2.5;
   const DirectionalRoute climbs = search.run(w, q, {});
-  ASSERT_TRUE(climbs.found);
+  ASSERT_TRUE(climbs.solved());
   EXPECT_GT(climbs.length_m, (p.goal - p.uav.start).norm());
   q.max_length_m = climbs.length_m + 1.0;
   const DirectionalRoute bounded = search.run(w, q, {});
-  ASSERT_TRUE(bounded.found);
+  ASSERT_TRUE(bounded.solved());
   EXPECT_DOUBLE_EQ(bounded.length_m, climbs.length_m);
   q.max_length_m = climbs.length_m - 1.0;
   const DirectionalRoute cut = search.run(w, q, {});
-  EXPECT_FALSE(cut.found);
+  EXPECT_FALSE(cut.solved());
   EXPECT_LT(cut.expanded, climbs.expanded);
 }
 
@@ -191,7 +191,7 @@ TEST(DirectionalAStar, SharedConeTablesGiveTheSameRoutesAcrossThreads) {
     });
   for (auto& th : threads) th.join();
   for (std::size_t k = 0; k < qs.size(); ++k) {
-    ASSERT_TRUE(alone[k].found) << k;
+    ASSERT_TRUE(alone[k].solved()) << k;
     EXPECT_EQ(shared[k].waypoints, alone[k].waypoints) << k;
     EXPECT_EQ(shared[k].expanded, alone[k].expanded) << k;
   }
@@ -265,7 +265,7 @@ TEST(DirectionalAStar, CellsOpenedCountLatticePointsOnce) {
       const DirectionalRoute a = engine.run(w, q, {});
       const DirectionalRoute b = engine.run(w, q, {});  // the same buffers again: the stamps start anew
       EXPECT_EQ(a.cells_opened, b.cells_opened);
-      if (!a.found) continue;
+      if (!a.solved()) continue;
       EXPECT_LE(a.opened, a.generated + 1);
       if (sectors) {
         EXPECT_LT(a.cells_opened, a.opened - 2);  // some point is passed in two sectors
@@ -301,8 +301,8 @@ TEST(DirectionalAStar, AFirstRoutesBoundKeepsTheLengthsAndOpensFewerCells) {
       const DirectionalRoute alone = engine.run(w, q, {});
       q.incumbent_weight = 1.2;
       const DirectionalRoute bounded = engine.run(w, q, {});
-      ASSERT_EQ(alone.found, bounded.found) << trial << ": " << alone.message << " | " << bounded.message;
-      if (!alone.found) continue;
+      ASSERT_EQ(alone.solved(), bounded.solved()) << trial << ": " << alone.message << " | " << bounded.message;
+      if (!alone.solved()) continue;
       EXPECT_LE(bounded.length_m, alone.length_m + 1e-6) << trial;
       EXPECT_EQ(bounded.waypoints.front(), p.uav.start);
       EXPECT_EQ(bounded.waypoints.back(), p.goal);
@@ -334,14 +334,14 @@ TEST(DirectionalAStar, TheFirstRouteStandsWhenTheExactSearchRunsOut) {
     const DirectionalRoute exact = engine.run(w, q, {});
     q.heuristic_weight = 1.2;
     const DirectionalRoute first = engine.run(w, q, {});
-    if (!exact.found || first.expanded * 2 >= exact.expanded) continue;
+    if (!exact.solved() || first.expanded * 2 >= exact.expanded) continue;
     q.heuristic_weight = 1.0;
     q.max_expansions = static_cast<std::int64_t>(first.expanded + 1);
     const DirectionalRoute short_exact = engine.run(w, q, {});
-    EXPECT_FALSE(short_exact.found);
+    EXPECT_FALSE(short_exact.solved());
     q.incumbent_weight = 1.2;
     const DirectionalRoute bounded = engine.run(w, q, {});
-    ASSERT_TRUE(bounded.found) << bounded.message;
+    ASSERT_TRUE(bounded.solved()) << bounded.message;
     EXPECT_NEAR(bounded.length_m, first.length_m, 1e-6);
     EXPECT_LE(bounded.length_m, 1.2 * exact.length_m + 1e-6);
     ++checked;
@@ -393,7 +393,7 @@ TEST(DirectionalAStar, AOneLevelLatticeLiesAtTheStartsHeight) {
   for (const double z : {30.0, 50.0, 12.5}) {
     const Problem p = problem(Vec3(300, 300, z), Vec3(4700, 300, z), std::nullopt);
     const DirectionalRoute r = search.run(w, planner.query_for(p, w), {});
-    ASSERT_TRUE(r.found) << r.message;
+    ASSERT_TRUE(r.solved()) << r.message;
     for (const Vec3& pt : r.waypoints) EXPECT_DOUBLE_EQ(pt.z(), z);
     EXPECT_GT(r.length_m, 2 * std::hypot(2200.0, 2000.0) - 1.0);  // around the wall's end at y = 2300
   }

@@ -46,7 +46,7 @@ float DirectionalSearch::clearance_at(const World& world, std::uint32_t point, c
 DirectionalRoute DirectionalSearch::run(const World& world, const DirectionalQuery& q, const StopCondition& stop) {
   if (q.directions > ConeDirections::kMaxPitches) {
     DirectionalRoute r;
-    r.message = "directions: at most " + std::to_string(ConeDirections::kMaxPitches);
+    r.fail(Reason::invalid, "directions: at most " + std::to_string(ConeDirections::kMaxPitches));
     return r;
   }
   if (q.incumbent_weight > 1.0 && q.heuristic_weight == 1.0 && !std::isfinite(q.max_length_m))
@@ -66,15 +66,14 @@ DirectionalRoute DirectionalSearch::run_bounded_by_incumbent(const World& world,
   DirectionalQuery first = q;
   first.heuristic_weight = q.incumbent_weight;
   DirectionalRoute incumbent = run_with_bins(world, first, stop, bins);
-  if (incumbent.stopped) return incumbent;
+  if (incumbent.reason == Reason::stopped) return incumbent;
   DirectionalQuery exact = q;
   // The bound admits the incumbent's own length whatever the order of the sums.
-  if (incumbent.found) exact.max_length_m = incumbent.length_m * (1.0 + 1e-9) + 1e-9 * q.cell_m;
+  if (incumbent.solved()) exact.max_length_m = incumbent.length_m * (1.0 + 1e-9) + 1e-9 * q.cell_m;
   DirectionalRoute r = run_with_bins(world, exact, stop, bins, false);
   add_counts(r, incumbent);
-  if (r.found || !incumbent.found) return r;
-  r.found = true;
-  r.stopped = false;
+  if (r.solved() || !incumbent.solved()) return r;
+  r.succeed();
   r.waypoints = std::move(incumbent.waypoints);
   r.length_m = incumbent.length_m;
   r.message.clear();
@@ -392,11 +391,11 @@ bool DirectionalSearch::Run::stop_now(std::uint64_t expanded) {
   if (static_cast<std::int64_t>(out.expanded) <= q.max_expansions && !relaxed_stopped &&
       !((out.expanded & 255) == 0 && stop.should_stop(out.expanded)))
     return false;
-  out.stopped = static_cast<std::int64_t>(out.expanded) <= q.max_expansions;
-  out.message = out.stopped
-                    ? "stopped before a route was found"
-                    : "expansion limit reached (planner.params.max_expansions = " + std::to_string(q.max_expansions) +
-                          "; raise it, or give a larger cell_m)";
+  if (static_cast<std::int64_t>(out.expanded) <= q.max_expansions)
+    out.fail(Reason::stopped, "stopped before a route was found");
+  else
+    out.fail(Reason::budget, "expansion limit reached (planner.params.max_expansions = " +
+                                 std::to_string(q.max_expansions) + "; raise it, or give a larger cell_m)");
   return true;
 }
 
@@ -543,7 +542,7 @@ DirectionalRoute DirectionalSearch::Run::search() {
   const double h0 = this->h0();
   // Children beyond the length bound are never pushed: only the start can be.
   if (bounded && h0 > q.max_length_m) {
-    out.message = "no route within the length bound";
+    out.fail(Reason::no_route, "no route within the length bound");
     return std::move(out);
   }
   // f grows by a fraction of a step per expansion: buckets of half a cell hold a few hundred
@@ -567,6 +566,7 @@ DirectionalRoute DirectionalSearch::Run::search() {
 DirectionalRoute DirectionalSearch::Run::finish() {
   const SearchBuffers::Node& goal = self.search_.node(goal_id);
   if (!SearchBuffers::closed(goal)) {
+    out.reason = Reason::no_route;
     if (beyond_bound)
       out.message = "no route within the length bound";
     else if (relaxed_started && !relaxed_reached)
@@ -579,7 +579,7 @@ DirectionalRoute DirectionalSearch::Run::finish() {
                     limits_hint(q, flat);
     return std::move(out);
   }
-  out.found = true;
+  out.succeed();
   out.length_m = goal.g;
   for (const std::int64_t id : self.search_.path(start_id, goal_id))
     out.waypoints.push_back(position(static_cast<std::uint32_t>(id)));
@@ -591,7 +591,7 @@ DirectionalRoute DirectionalSearch::run_with_bins(const World& world, const Dire
   const std::int64_t states = make_lattice(world, q).size() * bins;
   if (states + 2 >= static_cast<std::int64_t>(SearchBuffers::kNoParent)) {
     DirectionalRoute out;
-    out.message = "lattice too large; give a larger cell_m";
+    out.fail(Reason::budget, "lattice too large; give a larger cell_m");
     return out;
   }
   return Run(*this, world, q, stop, bins, count_afresh).search();

@@ -38,9 +38,11 @@ GridSearchResult grid_result(BestFirst<>& search, SearchEnd end, const SearchCou
   out.generated = counts.generated;
   out.opened = counts.opened;
   out.open_max = counts.open_max;
-  out.stopped = end == SearchEnd::stopped;
-  if (end != SearchEnd::goal) return out;
-  out.found = true;
+  if (end != SearchEnd::goal) {
+    out.fail(end == SearchEnd::stopped ? Reason::stopped : Reason::no_route);
+    return out;
+  }
+  out.succeed();
   out.cost = search.node(goal).g;
   out.cells = search.path(start, goal);
   return out;

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <vector>
 
+#include "uavplan/core/status.h"
 #include "uavplan/core/stop.h"
 #include "uavplan/core/units.h"
 #include "uavplan/planning/search/best_first.h"
@@ -33,9 +34,8 @@ enum class GridHeuristic {
   euclidean,  // admissible for any cell shape and for any-angle paths
 };
 
-struct GridSearchResult {
-  bool found = false;
-  bool stopped = false;
+// solved, or failed for no_route (the goal cannot be reached) or stopped.
+struct GridSearchResult : Outcome {
   std::vector<std::int64_t> cells;  // start .. goal (for JPS: the jump points)
   double cost = 0.0;
   std::uint64_t expanded = 0;

@@ -63,8 +63,8 @@ TEST(GridAStar, OptimalAgainstDijkstraOnRandomGrids) {
     for (int repeat = 0; repeat < 2; ++repeat) {  // the second query reuses the buffers
       const GridSearchResult p = search.search(s, t);
       const double ref = dijkstra(g, s, t, cell, pitch);
-      ASSERT_EQ(p.found, ref >= 0) << "trial " << trial;
-      if (!p.found) continue;
+      ASSERT_EQ(p.solved(), ref >= 0) << "trial " << trial;
+      if (!p.solved()) continue;
       ASSERT_NEAR(p.cost, ref, 1e-9) << "trial " << trial;
       double len = 0;
       for (std::size_t i = 1; i < p.cells.size(); ++i) {
@@ -85,8 +85,8 @@ TEST(GridAStar, HonoursTheStopCondition) {
   GridAStar search(g, bounding_box_moves(g), GridHeuristic::euclidean);
   // Euclidean under-estimates the 3-D grid distance, so the search must expand many cells.
   const GridSearchResult p = search.search(0, g.size() - 1, StopCondition::iterations(4096));
-  EXPECT_TRUE(p.stopped);
-  EXPECT_FALSE(p.found);
+  EXPECT_EQ(p.reason, Reason::stopped);
+  EXPECT_FALSE(p.solved());
 }
 
 TEST(GridAStar, OctileDistance) {

@@ -27,8 +27,8 @@ void expect_same_cost_as_astar(const RandomGrids& o) {
     for (int q = 0; q < 5; ++q) {
       const std::int64_t s = r.uniform_int(0, g.size() - 1), t = r.uniform_int(0, g.size() - 1);
       const GridSearchResult a = astar.search(s, t), j = jps.search(s, t);
-      ASSERT_EQ(a.found, j.found) << "trial " << trial;
-      if (!a.found) continue;
+      ASSERT_EQ(a.solved(), j.solved()) << "trial " << trial;
+      if (!a.solved()) continue;
       ASSERT_NEAR(a.cost, j.cost, 1e-9) << "trial " << trial;
       const auto cells = jps.expand_path(j.cells);
       ASSERT_EQ(cells.front(), s);
@@ -68,7 +68,7 @@ TEST(Jps2d, TheTableGivesTheSameSearchesAsScanning) {
     for (int q = 0; q < 20; ++q) {
       const std::int64_t s = r.uniform_int(0, g.size() - 1), t = r.uniform_int(0, g.size() - 1);
       const GridSearchResult a = scan.search(s, t), b = table.search(s, t);
-      ASSERT_EQ(a.found, b.found) << "trial " << trial;
+      ASSERT_EQ(a.solved(), b.solved()) << "trial " << trial;
       ASSERT_EQ(a.cells, b.cells) << "trial " << trial;
       ASSERT_EQ(a.expanded, b.expanded) << "trial " << trial;
       ASSERT_EQ(a.generated, b.generated) << "trial " << trial;
@@ -93,7 +93,7 @@ TEST(Jps2d, TheTableSpansTheWidestGridItIsBuiltFor) {
                                       {g.index(0, 4, 0), g.index(width - 2, 0, 0)}};
     for (const auto& p : pairs) {
       const GridSearchResult a = scan.search(p[0], p[1]), b = table.search(p[0], p[1]);
-      ASSERT_TRUE(a.found);
+      ASSERT_TRUE(a.solved());
       EXPECT_EQ(a.cells, b.cells);
       EXPECT_EQ(a.expanded, b.expanded);
       EXPECT_NEAR(a.cost, b.cost, 1e-9);

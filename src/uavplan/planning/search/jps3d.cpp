@@ -434,7 +434,7 @@ GridSearchResult Jps3d::race(const StopCondition& stop) {
     both.opened += o.opened;
     both.open_max += o.open_max;
     GridSearchResult r = grid_result(side.search, end, both, side.from, side.to);
-    if (turn == 1 && r.found) r.cells = turned_round(*grid_, expand_path(r.cells));
+    if (turn == 1 && r.solved()) r.cells = turned_round(*grid_, expand_path(r.cells));
     return r;
   }
 }

@@ -39,8 +39,8 @@ void expect_same_cost_as_astar(const BitGrid& g, Rng& r, int queries, int trial)
     const GridSearchResult a = astar.search(s, t);
     for (Jps3d* jps : {&both, &forward}) {
       const GridSearchResult j = jps->search(s, t);
-      ASSERT_EQ(a.found, j.found) << "trial " << trial << " query " << q;
-      if (!a.found) continue;
+      ASSERT_EQ(a.solved(), j.solved()) << "trial " << trial << " query " << q;
+      if (!a.solved()) continue;
       ASSERT_NEAR(a.cost, j.cost, 1e-9) << "trial " << trial << " query " << q;
       expect_legal_path(g, *jps, j, s, t);
     }
@@ -89,14 +89,14 @@ TEST(Jps3d, ThroughAHoleAndAcrossEmptySpace) {
   GridAStar astar(g, bounding_box_moves(g), GridHeuristic::octile);
   const std::int64_t s = g.index(2, 3, 25), t = g.index(28, 27, 26);
   const GridSearchResult j = jps.search(s, t), a = astar.search(s, t);
-  ASSERT_TRUE(j.found);
+  ASSERT_TRUE(j.solved());
   EXPECT_NEAR(j.cost, a.cost, 1e-9);
   expect_legal_path(g, jps, j, s, t);
 
   BitGrid empty(40, 40, 40);
   Jps3d open(empty);
   const GridSearchResult e = open.search(empty.index(1, 2, 3), empty.index(38, 20, 9));
-  ASSERT_TRUE(e.found);
+  ASSERT_TRUE(e.solved());
   EXPECT_NEAR(e.cost, octile_distance(37, 18, 6), 1e-9);
   EXPECT_LE(e.expanded, 10u);
 }
@@ -125,7 +125,7 @@ TEST(Jps3d, BothEndsInTurnsTakeTheCheaperWay) {
   GridAStar astar(g, bounding_box_moves(g), GridHeuristic::octile);
   for (const auto& [s, t] : {std::pair{far, caged}, std::pair{caged, far}}) {
     const GridSearchResult a = astar.search(s, t), one = forward.search(s, t), two = both.search(s, t);
-    ASSERT_TRUE(two.found);
+    ASSERT_TRUE(two.solved());
     EXPECT_NEAR(two.cost, a.cost, 1e-9);
     EXPECT_NEAR(one.cost, a.cost, 1e-9);
     expect_legal_path(g, both, two, s, t);
@@ -141,11 +141,11 @@ TEST(Jps3d, BothEndsInTurnsTakeTheCheaperWay) {
   const std::int64_t also_caged = g.index(d[0], d[1], d[2]);
   Jps3d again(g);
   const GridSearchResult whole = again.search(also_caged, caged);
-  ASSERT_TRUE(whole.found);
+  ASSERT_TRUE(whole.solved());
   ASSERT_GT(whole.expanded, 2048u);
   const GridSearchResult cut = again.search(also_caged, caged, StopCondition::iterations(1024));
-  EXPECT_TRUE(cut.stopped);
-  EXPECT_FALSE(cut.found);
+  EXPECT_EQ(cut.reason, Reason::stopped);
+  EXPECT_FALSE(cut.solved());
   EXPECT_EQ(cut.expanded, 1024u);
 }
 

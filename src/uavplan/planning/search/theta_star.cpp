@@ -114,7 +114,7 @@ struct LazyThetaStar::Expansion {
 void LazyThetaStar::keep_pulled_if_shorter(std::int64_t start, std::int64_t goal, const StopCondition& stop,
                                            GridSearchResult& out) {
   const GridSearchResult a = grid_search_.search(start, goal, stop);
-  if (!a.found) return;
+  if (!a.solved()) return;
   std::vector<std::int64_t> pulled{a.cells.front()};
   double len = 0.0;
   for (std::size_t i = 0; i + 1 < a.cells.size();) {
@@ -146,7 +146,7 @@ GridSearchResult LazyThetaStar::search(std::int64_t start, std::int64_t goal, co
   SearchCounts counts;
   const SearchEnd end = search_.run(expansion, EuclideanToGoal{t}, s0, s0, s, goal_c, counts);
   GridSearchResult out = grid_result(search_, end, counts, s0, goal_c);
-  if (out.found) keep_pulled_if_shorter(start, goal, stop, out);
+  if (out.solved()) keep_pulled_if_shorter(start, goal, stop, out);
   return out;
 }
 

@@ -156,8 +156,9 @@ TurnShaping enforce_turn_limits(std::span<const Vec3> pts, std::span<const char>
       r.waypoints.resize(kept);
       const Vec3 rejoin = rejoin_point(r.waypoints, *dir, p[i + 1], lim, ok);
       if (rejoin == p[i + 1]) {
-        r.message = "no room to turn within " + num_text(rad_to_deg(lim.max_turn_rad)) + " deg at the corner near " +
-                    point_text(p[i]) + " (directional_astar keeps the turn limit while it searches)";
+        r.fail(Reason::no_route, "no room to turn within " + num_text(rad_to_deg(lim.max_turn_rad)) +
+                                     " deg at the corner near " + point_text(p[i]) +
+                                     " (directional_astar keeps the turn limit while it searches)");
         return r;
       }
       p.insert(p.begin() + static_cast<std::ptrdiff_t>(i + 1), rejoin);
@@ -166,21 +167,26 @@ TurnShaping enforce_turn_limits(std::span<const Vec3> pts, std::span<const char>
     }
     dir = r.waypoints.back() - r.waypoints[r.waypoints.size() - 2];
   }
-  r.ok = true;
+  r.succeed();
   return r;
 }
 
 TurnShaping shape_turns(std::span<const Vec3> points, std::span<const char> pinned, const UavSpec& uav,
                         const SegmentPredicate& ok) {
-  if (uav.max_turn_rad >= kPi - 1e-9 && !uav.heading_rad) return {true, {points.begin(), points.end()}, ""};
+  if (uav.max_turn_rad >= kPi - 1e-9 && !uav.heading_rad) {
+    TurnShaping as_given;
+    as_given.succeed();
+    as_given.waypoints.assign(points.begin(), points.end());
+    return as_given;
+  }
   return enforce_turn_limits(points, pinned, uav.heading_rad, {uav.max_turn_rad, uav.max_climb_rad}, ok);
 }
 
 void finish_with_turns(std::span<const Vec3> points, std::span<const char> pinned, const UavSpec& uav,
                        const SegmentPredicate& ok, PlanResult& res) {
   TurnShaping shaped = shape_turns(points, pinned, uav, ok);
-  if (!shaped.ok) {
-    res.message = "turn limits: " + shaped.message;
+  if (!shaped.solved()) {
+    res.fail(shaped.reason, "turn limits: " + shaped.message);
     return;
   }
   res.route.waypoints = std::move(shaped.waypoints);

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "uavplan/core/status.h"
 #include "uavplan/planning/planner.h"
 #include "uavplan/planning/smoothing/shortcut.h"
 #include "uavplan/vehicle/uav.h"
@@ -26,10 +27,9 @@ struct TurnLimits {
   double max_climb_rad;
 };
 
-struct TurnShaping {
-  bool ok = false;
+// solved, or failed for no_route (no room to turn within the limit at a corner).
+struct TurnShaping : Outcome {
   std::vector<Vec3> waypoints;
-  std::string message;
 };
 
 TurnShaping enforce_turn_limits(std::span<const Vec3> points, std::span<const char> pinned,

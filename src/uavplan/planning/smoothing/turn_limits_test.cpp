@@ -31,7 +31,7 @@ TEST(TurnLimits, RandomPolylinesComeOutWithinTheLimits) {
     pinned[3] = 1;  // a via point the route must touch
     const SegmentRule rule(w, u);
     const TurnShaping s = enforce_turn_limits(pts, pinned, u.heading_rad, {u.max_turn_rad, u.max_climb_rad}, rule);
-    ASSERT_TRUE(s.ok) << s.message << " trial " << trial;
+    ASSERT_TRUE(s.solved()) << s.message << " trial " << trial;
     EXPECT_TRUE(check_route_limits(s.waypoints, u).empty()) << "trial " << trial;
     EXPECT_EQ(s.waypoints.front(), pts.front());
     EXPECT_EQ(s.waypoints.back(), pts.back());
@@ -50,7 +50,7 @@ TEST(TurnLimits, ReversedStartHeadingTurnsAroundWithinTheLimit) {
   const std::vector<char> pinned{1, 1};
   const TurnShaping s =
       enforce_turn_limits(pts, pinned, u.heading_rad, {u.max_turn_rad, u.max_climb_rad}, SegmentRule(w, u));
-  ASSERT_TRUE(s.ok) << s.message;
+  ASSERT_TRUE(s.solved()) << s.message;
   EXPECT_TRUE(check_route_limits(s.waypoints, u).empty());
   EXPECT_GT(s.waypoints.size(), 6u);
 }
@@ -70,7 +70,7 @@ TEST(TurnLimits, AReversalAtAViaPointRejoinsTheLegInsideACorridor) {
   const std::vector<char> pinned{1, 1, 1};
   const SegmentRule rule(w, u);
   const TurnShaping s = enforce_turn_limits(pts, pinned, std::nullopt, {u.max_turn_rad, u.max_climb_rad}, rule);
-  ASSERT_TRUE(s.ok) << s.message;
+  ASSERT_TRUE(s.solved()) << s.message;
   EXPECT_TRUE(check_route_limits(s.waypoints, u).empty());
   EXPECT_NE(std::find(s.waypoints.begin(), s.waypoints.end(), pts[1]), s.waypoints.end());
   EXPECT_EQ(s.waypoints.back(), pts.back());
