@@ -74,7 +74,7 @@ Scenario city(const std::vector<Leg>& uavs, Rng& rng) {
   Scenario sc;
   sc.name = "city";
   sc.world = World(ws);
-  sc.mission.type = MissionType::independent;
+  sc.mission.type = "independent";
   sc.mission.separation_m = kSeparation_m;
   for (std::size_t i = 0; i < uavs.size(); ++i) {
     UavSpec u;

@@ -51,7 +51,7 @@ Scenario random_group(int n, std::uint64_t seed, bool three_d) {
     if (!on_a_goal) ws.obstacles.push_back(Sphere{c, r});
   }
   sc.world = World(std::move(ws));
-  sc.mission.type = MissionType::group;
+  sc.mission.type = "group";
   sc.mission.separation_m = separation;
   sc.planner.algorithm = "apf";
   return sc;

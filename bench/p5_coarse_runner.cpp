@@ -47,7 +47,7 @@ Problem problem_of(const Scenario& sc) {
   Problem p;
   p.uav = sc.uavs.front();
   p.goal = *p.uav.goal;
-  if (sc.mission.type == MissionType::route) {
+  if (sc.mission.type == "route") {
     p.via = sc.mission.waypoints;
     p.via_entry_heading_rad = sc.mission.waypoint_entry_heading_rad;
   }

@@ -15,12 +15,12 @@ namespace uavplan::bench {
 std::string run_soak(const SoakOptions& opt, bool* all_held) {
   struct Kind {
     std::string algorithm;
-    MissionType mission;
+    std::string mission;
   };
   std::vector<Kind> kinds;
-  for (const auto& p : planner_catalog()) kinds.push_back({p.name, MissionType::independent});
-  kinds.push_back({"apf", MissionType::group});
-  kinds.push_back({"directional_astar", MissionType::rendezvous});
+  for (const auto& p : planner_catalog()) kinds.push_back({p.name, "independent"});
+  kinds.push_back({"apf", "group"});
+  kinds.push_back({"directional_astar", "rendezvous"});
   std::string out;
   char buf[200];
   std::snprintf(buf, sizeof buf, "soak: %d random worlds per row, seed %llu, %g s stop per plan\n", opt.worlds,
@@ -51,8 +51,8 @@ std::string run_soak(const SoakOptions& opt, bool* all_held) {
         std::count_if(ms.begin(), ms.end(), [&](double t) { return t > 1000.0 * (opt.stop_s + kSoakGraceS); });
     held = held && claims.bad == 0 && late == 0;
     std::snprintf(buf, sizeof buf, "%-20s %-12s %7d %8d %10d %10.2f %10.1f %5d\n", k.algorithm.c_str(),
-                  std::string(to_string(k.mission)).c_str(), claims.uavs, claims.solved, claims.bad,
-                  ms.empty() ? 0.0 : ms[ms.size() / 2], ms.empty() ? 0.0 : ms.back(), static_cast<int>(late));
+                  k.mission.c_str(), claims.uavs, claims.solved, claims.bad, ms.empty() ? 0.0 : ms[ms.size() / 2],
+                  ms.empty() ? 0.0 : ms.back(), static_cast<int>(late));
     out += buf;
   }
   std::snprintf(buf, sizeof buf, "(late: plans that ended more than %g s after their stop)\n", kSoakGraceS);

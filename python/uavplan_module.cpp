@@ -195,7 +195,7 @@ PYBIND11_MODULE(uavplan, m) {
                                for (const auto& u : s.uavs) ids.push_back(u.id);
                                return ids;
                              })
-      .def_property_readonly("mission_type", [](const Scenario& s) { return std::string(to_string(s.mission.type)); })
+      .def_property_readonly("mission_type", [](const Scenario& s) { return s.mission.type; })
       .def_property_readonly("algorithm", [](const Scenario& s) { return s.planner.algorithm; })
       .def_property_readonly(
           "obstacles",

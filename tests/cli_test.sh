@@ -31,6 +31,14 @@ expect_bad() {  # expect_bad NAME FILE [PART]: exit 2, one stderr line naming th
 "$BIN" plan "$SRC/scenarios/demo.yaml" -o "$TMP/b" --time-limit 9.3e9 >/dev/null 2>&1; check time_limit.huge 0 $?
 cmp -s "$TMP/a/plan.json" "$TMP/b/plan.json"; check demo.deterministic 0 $?
 "$BIN" info "$SRC/scenarios/demo.yaml" >/dev/null 2>&1; check demo.info 0 $?
+# The mission types as declared: docs/formats.md's tables are info's own output.
+"$BIN" info --missions --markdown >"$TMP/missions.md"; check info.missions 0 $?
+sed -n '/<!-- mission-types: begin/,/<!-- mission-types: end/p' "$SRC/docs/formats.md" | sed '1d;$d' >"$TMP/missions.doc"
+cmp -s "$TMP/missions.md" "$TMP/missions.doc" && pass=$((pass + 1)) ||
+  { echo "FAIL docs/formats.md's mission tables differ from uavplan info --missions --markdown"; fails=$((fails + 1)); }
+"$BIN" info --missions | grep -q "^rendezvous: P4's simultaneous arrival" && pass=$((pass + 1)) ||
+  { echo "FAIL info --missions lists no rendezvous"; fails=$((fails + 1)); }
+"$BIN" info >/dev/null 2>&1; check info.nothing 2 $?
 # A route whose via point has an entry heading: pso_mpc plans it by default, info lists it alone,
 # and a planner that would not fly in along the heading is bad input.
 cat >"$TMP/entered.yaml" <<'EOF'

@@ -53,15 +53,11 @@ void print_world(const Scenario& sc) {
 }
 
 // What the mission type itself holds: via points, a shape, an airfield and task points.
-void print_mission(const MissionSpec& m) {
-  std::printf("mission   %s, separation %g m", std::string(to_string(m.type)).c_str(), m.separation_m);
-  if (m.type == MissionType::route) std::printf(", %zu via points", m.waypoints.size());
-  if (m.type == MissionType::rendezvous && m.arrival_tolerance_m)
-    std::printf(", route lengths within %g m", *m.arrival_tolerance_m);
-  if (m.type == MissionType::formation || m.type == MissionType::formation_mission) {
-    std::printf(", shape of %zu slots", m.shape.size());
-    if (m.type == MissionType::formation) std::printf(", arrivals within %g s", m.arrival_tolerance_s);
-  }
+void print_mission(const Scenario& sc) {
+  const MissionSpec& m = sc.mission;
+  const Mission* mission = find_mission(m.type);
+  std::printf("mission   %s, separation %g m%s", printable(m.type).c_str(), m.separation_m,
+              mission ? mission->describe(sc).c_str() : "");
   std::printf("\n");
   if (m.airfield)
     std::printf("airfield  threshold (%g, %g, %g), runway %g m heading %g deg\n", m.airfield->position.x(),
@@ -98,15 +94,9 @@ void print_uav(const UavSpec& u) {
 void print_planners(const Scenario& sc) {
   std::printf("planner   %s", mission_algorithm(sc, std::nullopt).c_str());
   for (const auto& [k, v] : sc.planner.params) std::printf(" %s=%s", k.c_str(), v.c_str());
-  const Mission* mission = find_mission(sc.mission.type);
-  const std::vector<std::string> allowed = mission ? mission->algorithms() : std::vector<std::string>{};
-  const bool entries = route_with_entry_headings(sc);
   std::printf("\nplanners for this mission:");
-  for (const auto& p : planner_catalog()) {
-    if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), p.name) == allowed.end()) continue;
-    if (sc.mission.type == MissionType::route && (!p.via_points || (entries && !p.entry_headings))) continue;
-    std::printf(" %s", p.name.c_str());
-  }
+  for (const auto& p : planner_catalog())
+    if (planner_refusal(sc, p).empty()) std::printf(" %s", p.name.c_str());
   std::printf("\n");
 }
 
@@ -119,7 +109,7 @@ int run_info(const std::string& path) {
     return kExitBadInput;
   }
   print_world(sc);
-  print_mission(sc.mission);
+  print_mission(sc);
   std::printf("uavs      %zu\n", sc.uavs.size());
   for (const auto& u : sc.uavs) print_uav(u);
   if (sc.default_min_agl_m > 0.0 && planning_min_agl_m(sc) == sc.default_min_agl_m)
@@ -131,13 +121,28 @@ int run_info(const std::string& path) {
   return kExitOk;
 }
 
+// The mission types as their rooms declare them: keys, planners, parameters.
+int run_missions(bool markdown) {
+  std::fputs(mission_catalog_text(markdown).c_str(), stdout);
+  return kExitOk;
+}
+
 }  // namespace
 
 void add_info_command(CLI::App& app, std::function<int()>& run) {
   auto path = std::make_shared<std::string>();
+  auto list = std::make_shared<bool>(false);
+  auto markdown = std::make_shared<bool>(false);
   CLI::App* cmd = app.add_subcommand("info", "Summarise a scenario: world, UAVs, mission, planner");
-  cmd->add_option("scenario", *path, "Scenario file")->required();
-  cmd->callback([path, &run] { run = [path] { return run_info(*path); }; });
+  cmd->add_option("scenario", *path, "Scenario file");
+  cmd->add_flag("--missions", *list, "List the mission types: their keys, planners and parameters");
+  cmd->add_flag("--markdown", *markdown, "With --missions: as docs/formats.md's tables");
+  cmd->callback([path, list, markdown, &run] {
+    if (*list && !path->empty()) throw CLI::ValidationError("info", "give a scenario or --missions, not both");
+    if (!*list && path->empty()) throw CLI::ValidationError("info", "give a scenario file (or --missions)");
+    if (*markdown && !*list) throw CLI::ValidationError("info", "--markdown goes with --missions");
+    run = [path, list, markdown] { return *list ? run_missions(*markdown) : run_info(*path); };
+  });
 }
 
 }  // namespace uavplan::cli

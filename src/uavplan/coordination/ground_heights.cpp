@@ -4,6 +4,7 @@
 #include <utility>
 #include <vector>
 
+#include "uavplan/coordination/mission.h"
 #include "uavplan/core/text.h"
 
 namespace uavplan {
@@ -64,9 +65,19 @@ std::optional<double> planning_max_agl_m(const Scenario& sc) {
   return agl;
 }
 
+namespace {
+
+// Whether the scenario's mission starts and ends its UAVs on its own ground (an airfield).
+bool own_ground(const Scenario& sc) {
+  const Mission* mission = find_mission(sc.mission.type);
+  return mission && mission->declaration().own_ground;
+}
+
+}  // namespace
+
 double default_min_agl_m(const Scenario& sc) {
   const World& w = sc.world;
-  if (w.bounds().extent().z() <= 0.0 || sc.mission.type == MissionType::formation_mission) return 0.0;
+  if (w.bounds().extent().z() <= 0.0 || own_ground(sc)) return 0.0;
   const Placed placed = placed_points(sc);
   if (!placed.defaulted) return 0.0;
   double agl = kDefaultMinAgl_m;

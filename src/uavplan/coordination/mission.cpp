@@ -11,26 +11,57 @@
 #include "uavplan/coordination/rendezvous/rendezvous_mission.h"
 #include "uavplan/coordination/routes/routes_mission.h"
 #include "uavplan/core/text.h"
-#include "uavplan/planning/registry.h"
 
 namespace uavplan {
 namespace {
 
-const std::vector<std::pair<MissionType, std::unique_ptr<Mission>>>& registry() {
-  static const auto table = [] {
-    std::vector<std::pair<MissionType, std::unique_ptr<Mission>>> t;
-    t.emplace_back(MissionType::independent, std::make_unique<RoutesMission>(MissionType::independent));
-    t.emplace_back(MissionType::route, std::make_unique<RoutesMission>(MissionType::route));
-    t.emplace_back(MissionType::group, std::make_unique<GroupMission>());
-    t.emplace_back(MissionType::rendezvous, std::make_unique<RendezvousMission>());
-    t.emplace_back(MissionType::formation, std::make_unique<FormationMission>());
-    t.emplace_back(MissionType::formation_mission, std::make_unique<PhasedFormationMission>());
+// The built-in missions first, then those registered by register_mission. Registration happens
+// before main (static objects) or before planning starts; lookups only read.
+std::vector<std::unique_ptr<const Mission>>& registry() {
+  static std::vector<std::unique_ptr<const Mission>> table = [] {
+    std::vector<std::unique_ptr<const Mission>> t;
+    t.push_back(std::make_unique<RoutesMission>(RoutesKind::independent));
+    t.push_back(std::make_unique<RoutesMission>(RoutesKind::route));
+    t.push_back(std::make_unique<GroupMission>());
+    t.push_back(std::make_unique<RendezvousMission>());
+    t.push_back(std::make_unique<FormationMission>());
+    t.push_back(std::make_unique<PhasedFormationMission>());
     return t;
   }();
   return table;
 }
 
+bool is_type_name(std::string_view s) {
+  return !s.empty() && std::all_of(s.begin(), s.end(),
+                                   [](char c) { return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_'; });
+}
+
 }  // namespace
+
+const std::vector<MissionKey>& common_mission_keys() {
+  static const std::vector<MissionKey> keys = {
+      {"type", "text", "independent", "", "the mission type: one of the types below"},
+      {"separation", "number", "0", "m", "the least distance between any two UAVs at any time"},
+      {"step_s", "number", "1", "s", "the sensing and control period of flights in the loop"},
+      {"goal_spacing", "number", "the separation", "m",
+       "UAVs whose goals lie closer than this arrive at distinct points this far apart"},
+  };
+  return keys;
+}
+
+void register_mission(std::unique_ptr<const Mission> mission) {
+  const MissionDeclaration& d = mission->declaration();
+  if (!is_type_name(d.name)) throw std::invalid_argument("mission type '" + d.name + "': not a name of [a-z0-9_]");
+  if (find_mission(d.name)) throw std::invalid_argument("mission type '" + d.name + "' is registered already");
+  std::vector<std::string> seen;
+  for (const MissionKey& k : common_mission_keys()) seen.push_back(k.key);
+  for (const MissionKey& k : d.keys) {
+    if (std::find(seen.begin(), seen.end(), k.key) != seen.end())
+      throw std::invalid_argument("mission type '" + d.name + "': key '" + k.key + "' declared twice");
+    seen.push_back(k.key);
+  }
+  registry().push_back(std::move(mission));
+}
 
 void Mission::check_pair(const Scenario& /*scenario*/, const UavSpec& a, const Trajectory& ta, const UavSpec& b,
                          const Trajectory& tb, double need_m, Violations& out) const {
@@ -41,75 +72,99 @@ void Mission::check_pair(const Scenario& /*scenario*/, const UavSpec& a, const T
         "distance " + num_text(e.distance_m) + " m to '" + b.id + "', below the separation " + num_text(need_m) + " m");
 }
 
-const Mission* find_mission(MissionType type) {
-  for (const auto& [t, m] : registry())
-    if (t == type) return m.get();
+const Mission* find_mission(std::string_view type) {
+  for (const auto& m : registry())
+    if (m->declaration().name == type) return m.get();
   return nullptr;
 }
 
-std::vector<MissionType> mission_types() {
-  std::vector<MissionType> types;
-  for (const auto& [t, m] : registry()) types.push_back(t);
-  return types;
+std::vector<const Mission*> missions() {
+  std::vector<const Mission*> out;
+  for (const auto& m : registry()) out.push_back(m.get());
+  return out;
 }
 
 std::string mission_type_list() {
   const auto& table = registry();
   std::string list;
   for (std::size_t i = 0; i < table.size(); ++i)
-    list += (i == 0 ? "" : i + 1 == table.size() ? " or " : ", ") + std::string(to_string(table[i].first));
+    list += (i == 0 ? "" : i + 1 == table.size() ? " or " : ", ") + table[i]->declaration().name;
   return list;
-}
-
-bool route_with_entry_headings(const Scenario& sc) {
-  const auto& headings = sc.mission.waypoint_entry_heading_rad;
-  return sc.mission.type == MissionType::route &&
-         std::any_of(headings.begin(), headings.end(), [](const std::optional<double>& h) { return h.has_value(); });
 }
 
 namespace {
 
-// Refuses `asked` where the planner lacks a capability (`has`), naming those that have it.
-void require_planner(const std::string& asked, bool PlannerInfo::*has, const std::string& lacks,
-                     const std::string& who) {
-  for (const PlannerInfo& p : planner_catalog())
-    if (p.name == asked && !(p.*has)) {
-      std::string why = "'" + asked + "' ";
-      why += lacks;
-      why += "; ";
-      why += who;
-      why += " plans with ";
-      const std::size_t named = why.size();
-      for (const PlannerInfo& q : planner_catalog())
-        if (q.*has) (why += why.size() > named ? ", " : "") += q.name;
-      throw std::invalid_argument(why);
-    }
+// "a, b or c"
+std::string either(const std::vector<std::string>& names) {
+  std::string list;
+  for (std::size_t i = 0; i < names.size(); ++i) list += (i ? (i + 1 == names.size() ? " or " : ", ") : "") + names[i];
+  return list;
 }
 
 }  // namespace
 
+std::string planner_refusal(const Scenario& sc, const PlannerInfo& planner) {
+  const Mission* mission = find_mission(sc.mission.type);
+  if (!mission) return "no mission type '" + sc.mission.type + "' is registered";
+  const std::vector<std::string>& allowed = mission->declaration().algorithms;
+  if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), planner.name) == allowed.end())
+    return "a " + sc.mission.type + " mission plans with " + either(allowed) + ", not '" + planner.name + "'";
+  return mission->planner_refusal(sc, planner);
+}
+
 std::string mission_algorithm(const Scenario& sc, const std::optional<std::string>& asked_cli) {
   const Mission* mission = find_mission(sc.mission.type);
-  const std::vector<std::string> allowed = mission ? mission->algorithms() : std::vector<std::string>{};
+  if (!mission) throw std::invalid_argument("no mission type '" + sc.mission.type + "' is registered");
   const std::optional<std::string> asked = asked_cli ? asked_cli
                                            : sc.planner.algorithm_given
                                                ? std::optional<std::string>(sc.planner.algorithm)
                                                : std::nullopt;
-  const std::string type(to_string(sc.mission.type));
-  const bool entries = route_with_entry_headings(sc);
-  if (!asked) return entries ? std::string("pso_mpc") : mission ? mission->default_algorithm() : std::string("astar");
-  if (entries)  // only planners that fly into a via point along its heading
-    require_planner(*asked, &PlannerInfo::entry_headings, "does not fly into a via point along its entry_heading_deg",
-                    "a route with entry headings");
-  if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), *asked) == allowed.end()) {
-    std::string list;
-    for (std::size_t i = 0; i < allowed.size(); ++i)
-      list += (i ? (i + 1 == allowed.size() ? " or " : ", ") : "") + allowed[i];
-    throw std::invalid_argument("a " + type + " mission plans with " + list + ", not '" + *asked + "'");
+  if (!asked) return mission->default_algorithm(sc);
+  for (const PlannerInfo& p : planner_catalog()) {
+    if (p.name != *asked) continue;
+    const std::string why = planner_refusal(sc, p);
+    if (why.empty()) return *asked;
+    std::vector<std::string> able;
+    for (const PlannerInfo& q : planner_catalog())
+      if (planner_refusal(sc, q).empty()) able.push_back(q.name);
+    throw std::invalid_argument(why + (able.empty() ? "" : "; it plans with " + either(able)));
   }
-  if (sc.mission.type == MissionType::route)
-    require_planner(*asked, &PlannerInfo::via_points, "does not plan through via points", "a route mission");
-  return *asked;
+  return *asked;  // an unknown name: make_planner says so, listing the planners
+}
+
+std::string mission_catalog_text(bool markdown) {
+  std::string out;
+  const auto row = [&](const MissionKey& k) {
+    const std::string dflt = k.default_value.empty() ? "required" : k.default_value;
+    if (markdown)
+      out += "| `" + k.key + "` | " + k.type + " | " + dflt + " | " + (k.unit.empty() ? "-" : k.unit) + " | " + k.doc +
+             " |\n";
+    else
+      out +=
+          "    " + k.key + " (" + k.type + (k.unit.empty() ? "" : ", " + k.unit) + "; " + dflt + "): " + k.doc + "\n";
+  };
+  const auto header = [&] {
+    if (markdown) out += "| key | type | default | unit | meaning |\n|---|---|---|---|---|\n";
+  };
+  out += markdown ? "Every mission type reads these keys of `mission`:\n\n" : "every mission type:\n";
+  header();
+  for (const MissionKey& k : common_mission_keys()) row(k);
+  for (const Mission* m : missions()) {
+    const MissionDeclaration& d = m->declaration();
+    const std::string planners =
+        d.algorithms.empty() ? "any planner, " + d.default_algorithm + " by default" : either(d.algorithms);
+    if (markdown) {
+      out += "\n**`" + d.name + "`**: " + d.summary + " Plans with " + planners + ".";
+      if (!d.parameters.empty()) out += " Reads " + either(d.parameters) + " of `planner.params` itself.";
+      out += d.keys.empty() ? " No keys of its own.\n" : "\n\n";
+      if (!d.keys.empty()) header();
+    } else {
+      out += d.name + ": " + d.summary + "\n  plans with " + planners + "\n";
+      if (!d.parameters.empty()) out += "  reads planner.params " + either(d.parameters) + "\n";
+    }
+    for (const MissionKey& k : d.keys) row(k);
+  }
+  return out;
 }
 
 }  // namespace uavplan

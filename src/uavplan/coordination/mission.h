@@ -5,9 +5,9 @@
 // (evaluation/verifier.cpp) look the type up and do the rest.
 #pragma once
 
-#include <array>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -18,6 +18,7 @@
 #include "uavplan/coordination/contract/section.h"
 #include "uavplan/coordination/contract/violation.h"
 #include "uavplan/core/stop.h"
+#include "uavplan/planning/registry.h"
 
 namespace uavplan {
 
@@ -58,33 +59,63 @@ struct MissionContext {
   GroundPoints ground;
 };
 
-// The keys of the `mission` section every type reads (io/scenario_io.cpp): type, separation,
-// step_s, goal_spacing.
-inline constexpr std::array<const char*, 4> kCommonMissionKeys = {"type", "separation", "step_s", "goal_spacing"};
+// One key of a mission type's section as a row of its declaration: what the scenario reader
+// accepts, what `uavplan info --missions` lists and docs/formats.md's table shows.
+struct MissionKey {
+  std::string key;
+  std::string type;           // in the scenario's words: "number", "[x, y, z]", "list of ...", ...
+  std::string default_value;  // as text; empty: required when the type is planned
+  std::string unit;           // "m", "s", "deg"; empty: none
+  std::string doc;            // one sentence
+};
+
+// The keys of the `mission` section every type reads (io/scenario_io.cpp).
+const std::vector<MissionKey>& common_mission_keys();
+
+// How an export verifies the flights it writes (io/flight_export.cpp): as independent flights
+// (via points and the mission's own rules are the plan's, verified already), or under the
+// mission's own pair rule as well (an airfield's: separation in the air, bodies on the ground).
+enum class ExportRules { independent, own_pair_rule };
+
+// Everything about a mission type that is not code, declared once by its room: the reader, the
+// planner's choice, metrics, exports, `info` and the docs read it.
+struct MissionDeclaration {
+  std::string name;  // the scenario's mission.type
+  std::string summary;
+  std::vector<MissionKey> keys;         // its section's keys besides the common ones
+  std::vector<std::string> algorithms;  // the planners it plans with, default first; empty: any
+  std::string default_algorithm = "astar";
+  std::vector<std::string> parameters;  // keys of planner.params (and --set) it reads itself
+  bool needs_goals = true;              // every UAV needs a goal
+  bool flies_homes = false;             // a UAV may take off from its `home` and land there
+  // It flies the UAVs' take-off and landing legs within its own timing (MissionContext::ground);
+  // otherwise they are added around its plan.
+  bool times_ground_legs = false;
+  // Its UAVs start and end on its own ground (an airfield): planners keep no default height
+  // above the ground for it (planning_view.h).
+  bool own_ground = false;
+  ExportRules export_rules = ExportRules::independent;
+  std::vector<std::string> metrics;  // plan metrics it adds to every plan's (metrics.cpp)
+};
 
 class Mission {
  public:
   virtual ~Mission() = default;
+  virtual const MissionDeclaration& declaration() const = 0;
 
   // Reading the scenario.
-  // The keys of the `mission` section it reads besides kCommonMissionKeys.
-  virtual std::vector<const char*> section_keys() const { return {}; }
-  // Reads them into scenario.mission once the world, the UAVs and the common keys are read;
+  // Reads its keys into scenario.mission once the world, the UAVs and the common keys are read;
   // checks what they ask of the UAVs (`uavs`: the scenario's list). Fails through the sections.
   virtual void read_section(const Section& /*mission*/, const Section& /*uavs*/, Scenario& /*scenario*/) const {}
-  // Whether every UAV needs a goal.
-  virtual bool needs_goals() const { return true; }
+  // What `info` says of the scenario's section after the type and separation (", 3 via points").
+  virtual std::string describe(const Scenario& /*scenario*/) const { return {}; }
 
   // Planning.
-  // The planners this mission plans with, the default first; empty: any registered planner.
-  virtual std::vector<std::string> algorithms() const { return {}; }
-  // The planner it plans with when none is asked for.
-  virtual std::string default_algorithm() const { return algorithms().empty() ? "astar" : algorithms().front(); }
-  // Keys of planner.params (and --set) that the mission reads itself, not its planner.
-  virtual std::vector<std::string> parameters() const { return {}; }
-  // Whether the mission flies UAVs' take-off and landing legs within its own timing (from
-  // MissionContext::ground); otherwise they are added around its plan.
-  virtual bool times_ground_legs() const { return false; }
+  // Why the planner cannot plan this scenario's mission (empty: it can), beside the declared
+  // algorithms; a route's via points need planners that pass them.
+  virtual std::string planner_refusal(const Scenario& /*scenario*/, const PlannerInfo& /*planner*/) const { return {}; }
+  // The planner it plans this scenario with when none is asked for.
+  virtual std::string default_algorithm(const Scenario& /*scenario*/) const { return declaration().default_algorithm; }
   // Appends one UavPlan per scenario UAV, in scenario order. Throws std::invalid_argument for
   // bad parameters or a malformed problem.
   virtual void plan(const Scenario& scenario, const MissionContext& context, Plan& plan) const = 0;
@@ -97,23 +128,42 @@ class Mission {
   // closest approach of their trajectories.
   virtual void check_pair(const Scenario& scenario, const UavSpec& a, const Trajectory& ta, const UavSpec& b,
                           const Trajectory& tb, double need_m, Violations& out) const;
+  // The distance of two UAVs its separation rule measures (metrics' min_separation_m); none: the
+  // closest approach of their trajectories.
+  virtual std::optional<double> pair_distance_m(const Scenario& /*scenario*/, const UavSpec& /*a*/,
+                                                const Trajectory& /*ta*/, const UavSpec& /*b*/,
+                                                const Trajectory& /*tb*/) const {
+    return std::nullopt;
+  }
   // On the whole plan (the UAVs that have a trajectory).
   virtual void check_plan(const Scenario& /*scenario*/, const FlownUavs& /*flown*/, Violations& /*out*/) const {}
 };
 
-// The mission registered for a type, or nullptr when none is.
-const Mission* find_mission(MissionType type);
-// The registered mission types, in registry order.
-std::vector<MissionType> mission_types();
+// The mission registered under a name, or nullptr when none is.
+const Mission* find_mission(std::string_view type);
+// Every registered mission, the built-in ones first, in registry order.
+std::vector<const Mission*> missions();
 // The registered mission types' names in registry order ("independent, route, ... or X"), for
 // messages that list them.
 std::string mission_type_list();
+
+// Adds a mission type (a mission's room: `static MissionRegistration r{std::make_unique<M>()};`
+// in its file). Throws std::invalid_argument for a name already registered or one that is not
+// [a-z0-9_]+, or a key of its declaration that a common key or another key already has.
+void register_mission(std::unique_ptr<const Mission> mission);
+struct MissionRegistration {
+  explicit MissionRegistration(std::unique_ptr<const Mission> mission) { register_mission(std::move(mission)); }
+};
+
+// The declarations as text: `info --missions` (markdown = false) and docs/formats.md's table of
+// mission types and keys (markdown = true).
+std::string mission_catalog_text(bool markdown);
 
 // The planner a mission plans with: the one asked for (--algorithm, else the scenario's when it
 // names one), else the mission's default. Throws std::invalid_argument when the one asked for
 // cannot plan this mission, naming those that can.
 std::string mission_algorithm(const Scenario& scenario, const std::optional<std::string>& asked);
-// Whether the scenario is a route whose via points require entry headings (pso_mpc plans it).
-bool route_with_entry_headings(const Scenario& scenario);
+// Why the planner cannot plan the scenario's mission (empty: it can).
+std::string planner_refusal(const Scenario& scenario, const PlannerInfo& planner);
 
 }  // namespace uavplan

@@ -14,7 +14,7 @@ namespace {
 // note (so one file can compare planners); the mission's own ones go to it. Others stay, and the
 // planner refuses them (a typo is bad input).
 void sort_params(const Mission* mission, MissionContext& ctx, std::vector<std::string>& notes) {
-  const std::vector<std::string> own = mission ? mission->parameters() : std::vector<std::string>{};
+  const std::vector<std::string> own = mission ? mission->declaration().parameters : std::vector<std::string>{};
   Params kept;
   for (const auto& [key, value] : ctx.params) {
     if (std::find(own.begin(), own.end(), key) != own.end()) {
@@ -54,7 +54,7 @@ Plan plan_mission(const Scenario& sc, const MissionOptions& opt) {
   plan.algorithm = ctx.algorithm;
   make_planner(ctx.algorithm, ctx.params);  // unknown names and parameters are errors for every mission
   const PlanningView view = planning_view(
-      sc, mission && mission->times_ground_legs() ? GroundLegTiming::by_mission : GroundLegTiming::shifted);
+      sc, mission && mission->declaration().times_ground_legs ? GroundLegTiming::by_mission : GroundLegTiming::shifted);
   ctx.ground = view.ground;
   if (mission) {
     try {
@@ -78,8 +78,7 @@ Plan plan_mission(const Scenario& sc, const MissionOptions& opt) {
     for (const auto& u : sc.uavs) {
       UavPlan up;
       up.id = u.id;
-      up.message = "mission type '" + std::string(to_string(sc.mission.type)) + "' is not supported by planner '" +
-                   plan.algorithm + "'";
+      up.message = "mission type '" + sc.mission.type + "' is not supported by planner '" + plan.algorithm + "'";
       plan.uavs.push_back(std::move(up));
     }
   }

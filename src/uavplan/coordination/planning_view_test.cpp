@@ -41,7 +41,7 @@ TEST(DefaultMinAgl, NoneWhereTheScenarioSaysOrNoOneTouchesTheGround) {
   airborne.uavs[0].start.z() = 30;
   EXPECT_EQ(default_min_agl_m(airborne), 0.0);
   Scenario p5 = from_the_ground(50, 0);
-  p5.mission.type = MissionType::formation_mission;  // a runway's take-offs, by P5's phases
+  p5.mission.type = "formation_mission";  // a runway's take-offs, by P5's phases
   EXPECT_EQ(default_min_agl_m(p5), 0.0);
 }
 

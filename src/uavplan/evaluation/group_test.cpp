@@ -36,7 +36,7 @@ Scenario p3_group(bool three_d) {
     u.speed = {0, 1, 1};
     sc.uavs.push_back(u);
   }
-  sc.mission.type = MissionType::group;
+  sc.mission.type = "group";
   sc.mission.separation_m = 0.5;
   sc.planner.algorithm = "apf";
   return sc;
@@ -98,7 +98,7 @@ Scenario crowded(int n, std::uint64_t seed) {
     if (clear) ws.obstacles.push_back(Sphere{c, r});
   }
   sc.world = World(std::move(ws));
-  sc.mission.type = MissionType::group;
+  sc.mission.type = "group";
   sc.mission.separation_m = 0.5;
   sc.planner.algorithm = "apf";
   return sc;

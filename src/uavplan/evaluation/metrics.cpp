@@ -6,6 +6,7 @@
 
 #include "uavplan/coordination/contract/arrival_points.h"
 #include "uavplan/coordination/contract/separation.h"
+#include "uavplan/coordination/mission.h"
 #include "uavplan/core/geometry.h"
 #include "uavplan/core/units.h"
 #include "uavplan/evaluation/ground_legs.h"
@@ -165,11 +166,20 @@ void add_formation_metrics(Plan& plan, const std::vector<const UavPlan*>& flown)
   plan.metrics["backing_up_m"] = back;
 }
 
+// Whether the scenario's mission type declares the metric (MissionDeclaration::metrics).
+bool declares_metric(const Scenario& sc, const std::string& metric) {
+  const Mission* mission = find_mission(sc.mission.type);
+  if (!mission) return false;
+  const auto& m = mission->declaration().metrics;
+  return std::find(m.begin(), m.end(), metric) != m.end();
+}
+
 // The smallest distance between two flown UAVs (for formation_mission, while either is in the
 // air). Only pairs whose lower bound is within a reach are measured, nearest bound first, until a
 // bound clears the smallest distance found; a reach that held none nearer than itself grows
 // fourfold (the pairs it measured are not measured again), up to every pair.
 double smallest_separation_m(const Scenario& sc, const std::vector<const UavPlan*>& flown) {
+  const Mission* mission = find_mission(sc.mission.type);
   if (flown.size() < 2) return World::kInf;
   std::vector<const Trajectory*> trs;
   trs.reserve(flown.size());
@@ -192,12 +202,12 @@ double smallest_separation_m(const Scenario& sc, const std::vector<const UavPlan
     for (const SweptBoxes::NearPair& pr : pairs) {
       if (pr.bound_m >= min_sep) break;
       if (pr.bound_m < done_m) continue;
-      // formation_mission: in the air (on the ground only bodies count, and a landed UAV is gone)
-      min_sep = std::min(min_sep, sc.mission.type == MissionType::formation_mission
-                                      ? airfield_encounter(sc, *sc.find_uav(flown[pr.i]->id), *trs[pr.i],
-                                                           *sc.find_uav(flown[pr.j]->id), *trs[pr.j])
-                                            .airborne_min_m
-                                      : boxes.closest_below(trs, pr.i, pr.j, min_sep).distance_m);
+      // The mission's own measure where it has one (an airfield's: in the air only).
+      const std::optional<double> own = mission
+                                            ? mission->pair_distance_m(sc, *sc.find_uav(flown[pr.i]->id), *trs[pr.i],
+                                                                       *sc.find_uav(flown[pr.j]->id), *trs[pr.j])
+                                            : std::nullopt;
+      min_sep = std::min(min_sep, own ? *own : boxes.closest_below(trs, pr.i, pr.j, min_sep).distance_m);
     }
     if (min_sep < reach_m || reach_m > extent_m) return min_sep;
     done_m = reach_m;
@@ -250,7 +260,7 @@ void compute_metrics(const Scenario& sc, Plan& plan) {
   add_formation_metrics(plan, flown);
   const double min_sep = smallest_separation_m(sc, flown);
   plan.metrics["total_length_m"] = total;
-  if (sc.mission.type == MissionType::group) plan.metrics["p3_group_score"] = p3_total;  // P3's score, of a group
+  if (declares_metric(sc, "p3_group_score")) plan.metrics["p3_group_score"] = p3_total;  // P3's score, of a group
   if (std::isfinite(t_max)) plan.metrics["arrival_spread_s"] = t_max - t_min;            // inf: a UAV never arrives
   plan.metrics["length_spread_m"] = l_max - l_min;
   double reversals = 0.0;

@@ -117,7 +117,7 @@ TEST(Metrics, AWedgeTurningAroundObstaclesNeitherShuttlesNorBacksUp) {
     ws.obstacles.push_back(Cylinder{Vec2(270, 150 - dy), 30.0, -1.0, 1.0});
     for (int k = 0; k < 6; ++k) ws.radars.push_back({Vec3(60.0 + 55.0 * k, k % 2 ? 40.0 : 260.0, 0.0), 1e5});
     sc.world = World(std::move(ws));
-    sc.mission.type = MissionType::formation;
+    sc.mission.type = "formation";
     sc.mission.separation_m = 2.0;
     sc.mission.shape = wedge;
     for (std::size_t i = 0; i < 3; ++i) {

@@ -98,7 +98,7 @@ Scenario random_world(std::uint64_t seed, const RandomWorldOptions& opt) {
         if (start && (o.start - *start).norm() < 3 * sc.mission.separation_m + o.radius_m + u.radius_m) start.reset();
     }
     const std::optional<Vec3> goal =
-        opt.mission == MissionType::rendezvous ? common_goal : free_point(r, sc.world, u.radius_m + 2);
+        opt.mission == "rendezvous" ? common_goal : free_point(r, sc.world, u.radius_m + 2);
     if (!start || !goal) continue;  // a crowded world: fewer UAVs
     u.start = *start;
     u.goal = *goal;
@@ -125,7 +125,7 @@ Scenario random_world(std::uint64_t seed, const RandomWorldOptions& opt) {
     sc.uavs = std::move(kept);
   }
   if (sc.uavs.empty()) return random_world(seed + 1000003, opt);
-  if (opt.mission == MissionType::rendezvous) sc.mission.arrival_tolerance_m = r.uniform(5, 30);
+  if (opt.mission == "rendezvous") sc.mission.arrival_tolerance_m = r.uniform(5, 30);
   return sc;
 }
 
@@ -188,7 +188,7 @@ Scenario random_formation_world(std::uint64_t seed) {
   }
   Scenario sc;
   sc.name = "formation" + std::to_string(seed);
-  sc.mission.type = MissionType::formation;
+  sc.mission.type = "formation";
   sc.mission.separation_m = r.uniform(1.5, 4.0);
   const int n = static_cast<int>(r.uniform_int(3, 7));
   sc.mission.shape =
@@ -262,7 +262,7 @@ Scenario random_via_world(std::uint64_t seed) {
   Scenario sc;
   sc.name = "via" + std::to_string(seed);
   sc.world = World(std::move(ws));
-  sc.mission.type = MissionType::route;
+  sc.mission.type = "route";
   sc.mission.separation_m = r.uniform(1.5, 3.0);
   sc.mission.waypoints.assign(route.begin() + 1, route.end() - 1);
   const double sensor = r.uniform(20, 60);
@@ -301,7 +301,7 @@ Scenario random_p5_world(std::uint64_t seed) {
   Scenario sc;
   sc.name = "p5_random" + std::to_string(seed);
   sc.world = World(std::move(ws));
-  sc.mission.type = MissionType::route;
+  sc.mission.type = "route";
   for (int k = 1; k <= vias; ++k) {
     sc.mission.waypoints.push_back(keep[static_cast<std::size_t>(k)]);
     sc.mission.waypoint_entry_heading_rad.push_back(deg_to_rad(45.0 * static_cast<double>(r.uniform_int(-3, 4))));
@@ -362,7 +362,7 @@ Scenario random_formation_mission(std::uint64_t seed) {
                                             {af.position + (af.runway_length_m + 15000.0) * dir, 30000.0}};
   Scenario sc;
   sc.name = "p5_mission_random" + std::to_string(seed);
-  sc.mission.type = MissionType::formation_mission;
+  sc.mission.type = "formation_mission";
   sc.mission.separation_m = 50.0;
   sc.mission.airfield = af;
   for (int k = static_cast<int>(r.uniform_int(2, 5)); k > 0; --k) {

@@ -12,7 +12,7 @@ namespace uavplan {
 struct RandomWorldOptions {
   int max_uavs = 3;
   bool limits = true;  // random turn and climb limits on some UAVs
-  MissionType mission = MissionType::independent;
+  std::string mission = "independent";
   // 3-D worlds: about half the starts and goals on the ground, and random clearance and min_agl.
   bool ground_and_margins = false;
 };

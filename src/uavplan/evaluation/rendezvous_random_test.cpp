@@ -46,7 +46,7 @@ Scenario random_rendezvous(std::uint64_t seed) {
     u.max_climb_rad = deg_to_rad(r.uniform(20, 30));
     sc.uavs.push_back(u);
   }
-  sc.mission.type = MissionType::rendezvous;
+  sc.mission.type = "rendezvous";
   sc.mission.arrival_tolerance_m = r.uniform(300, 1500);
   sc.mission.separation_m = 20;
   sc.planner.algorithm = "directional_astar";

@@ -210,8 +210,7 @@ void check_pairs(const Scenario& sc, const Mission& mission, const FlownUavs& fl
 std::vector<Violation> verify_plan(const Scenario& sc, const Plan& plan) {
   Violations out;
   const Mission* mission = find_mission(sc.mission.type);
-  if (!mission)
-    throw std::invalid_argument("no mission registered for type " + std::string(to_string(sc.mission.type)));
+  if (!mission) throw std::invalid_argument("no mission registered for type " + sc.mission.type);
   for (const auto& up : plan.uavs)
     if (!sc.find_uav(up.id))
       add_violation(out, ViolationKind::unknown_uav, up.id, std::nullopt, std::nullopt,

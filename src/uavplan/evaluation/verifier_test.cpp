@@ -149,7 +149,7 @@ TEST(Verifier, StartAndGoal) {
 
 TEST(Verifier, ViaPointsInOrder) {
   Scenario sc = base_scenario();
-  sc.mission.type = MissionType::route;
+  sc.mission.type = "route";
   sc.mission.waypoints = {{20, 30, 20}, {20, 10, 20}};
   Plan p = base_plan(sc);
   fly(p, 0, {{10, 10, 20}, {20, 10, 20}, {20, 30, 20}, {30, 10, 20}});  // visits them reversed
@@ -161,7 +161,7 @@ TEST(Verifier, ViaPointsInOrder) {
 
 TEST(Verifier, RendezvousLengthSpread) {
   Scenario sc = base_scenario();
-  sc.mission.type = MissionType::rendezvous;
+  sc.mission.type = "rendezvous";
   sc.mission.arrival_tolerance_m = 1.0;
   Plan p = base_plan(sc);
   fly(p, 1, {{10, 20, 20}, {20, 30, 20}, {30, 20, 20}});  // 28.3 m against 20 m
@@ -284,7 +284,7 @@ TEST(Verifier, SharedGoalsAreNoExemption) {
 // is held against arrival_tolerance_s.
 TEST(Verifier, FormationArrivalsAreAtTheGoalToStay) {
   Scenario sc = base_scenario();
-  sc.mission.type = MissionType::formation;
+  sc.mission.type = "formation";
   sc.mission.shape = {{0, 0, 0}, {0, 10, 0}};
   sc.mission.arrival_tolerance_s = 2.0;
   Plan p = base_plan(sc);  // both fly 20 m at 5 m/s: arrive at 4 s

@@ -159,7 +159,7 @@ bool dotted(const std::string& key) { return key.find_first_of(".[") != std::str
 bool mission_reads(const Scenario& sc, const std::string& key) {
   const Mission* m = find_mission(sc.mission.type);
   if (!m) return false;
-  const auto keys = m->parameters();
+  const auto keys = m->declaration().parameters;
   return std::find(keys.begin(), keys.end(), key) != keys.end();
 }
 

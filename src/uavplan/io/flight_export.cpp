@@ -5,6 +5,7 @@
 #include <set>
 
 #include "uavplan/coordination/contract/separation.h"
+#include "uavplan/coordination/mission.h"
 #include "uavplan/core/geometry.h"
 #include "uavplan/core/text.h"
 #include "uavplan/core/units.h"
@@ -379,7 +380,8 @@ std::vector<Violation> verify_flights(const Scenario& sc, const std::vector<Expo
   Scenario ext = sc;
   // Via points and lengths are the plan's, verified; a formation_mission keeps its airfield rule
   // (separation in the air only, a landed UAV gone).
-  if (ext.mission.type != MissionType::formation_mission) ext.mission.type = MissionType::independent;
+  const Mission* mission = find_mission(ext.mission.type);
+  if (!mission || mission->declaration().export_rules == ExportRules::independent) ext.mission.type = "independent";
   ext.mission.waypoints.clear();
   Plan p;
   for (const ExportedUav& e : uavs) {

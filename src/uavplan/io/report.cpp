@@ -230,7 +230,7 @@ std::string report_data_json(const Scenario& sc, const Plan& plan_in, const std:
   j["seed"] = plan.seed;
   j["status"] = to_string(plan.status);
   j["message"] = plan.message;
-  j["mission"] = to_string(sc.mission.type);
+  j["mission"] = sc.mission.type;
   j["separation_m"] = sc.mission.separation_m;
   add_world(j, sc.world, opt);
   add_mission_places(j, sc.mission);

@@ -96,7 +96,7 @@ TEST(Report, RadarShellsWhereTheThreatCostFallsToTheFuelCost) {
 // airfield's rule: nothing while both UAVs are on the ground, nothing once one has gone.
 TEST(Report, PhasesAndTheSpacingInTheAir) {
   Scenario sc = scenario_with();
-  sc.mission.type = MissionType::formation_mission;
+  sc.mission.type = "formation_mission";
   sc.mission.airfield = Airfield{Vec3(0, 0, 0), 0.0, 1000.0};
   UavSpec b = sc.uavs[0];
   b.id = "b";

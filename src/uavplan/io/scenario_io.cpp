@@ -456,14 +456,25 @@ void check_room(const At& obstacles, const World& w) {
   }
 }
 
+// "independent and route": the names of the registered types whose declaration has `has`.
+template <class Pred>
+std::string missions_that(Pred has) {
+  std::vector<std::string> names;
+  for (const Mission* m : missions())
+    if (has(m->declaration())) names.push_back(m->declaration().name);
+  std::string list;
+  for (std::size_t i = 0; i < names.size(); ++i) list += (i ? (i + 1 == names.size() ? " and " : ", ") : "") + names[i];
+  return list;
+}
+
 // A home on the ground, in the world, with room to lift off, for a UAV that starts and ends in
 // the air of a mission planned UAV by UAV.
 void check_home(const At& ui, const Scenario& sc, const UavSpec& u) {
   const At h = ui["home"];
   const World& w = sc.world;
-  if (sc.mission.type != MissionType::independent && sc.mission.type != MissionType::route)
-    h.fail("a home is flown by independent and route missions (a " + std::string(to_string(sc.mission.type)) +
-           " mission's UAVs take off from their starts)");
+  if (!find_mission(sc.mission.type)->declaration().flies_homes)
+    h.fail("a home is flown by " + missions_that([](const MissionDeclaration& d) { return d.flies_homes; }) +
+           " missions (a " + sc.mission.type + " mission's UAVs take off from their starts)");
   if (!w.in_bounds(*u.home)) h.fail("outside the world bounds");
   if (!w.on_ground(*u.home))
     h.fail("must lie on the ground (z = the ground there, " + num_text(w.ground_z(u.home->x(), u.home->y())) + " m)");
@@ -475,13 +486,12 @@ void check_home(const At& ui, const Scenario& sc, const UavSpec& u) {
 void check_uavs_fit(const At& uavs, const Scenario& sc) {
   const World& w = sc.world;
   // (a formation's goals are its slots at the end; a formation_mission's UAVs land on the runway)
-  const bool goals_needed = find_mission(sc.mission.type)->needs_goals();
+  const bool goals_needed = find_mission(sc.mission.type)->declaration().needs_goals;
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
     const UavSpec& u = sc.uavs[i];
     const At ui = uavs.item(i);
     if (goals_needed && !u.goal)
-      ui.fail("missing required key 'goal' (a " + std::string(to_string(sc.mission.type)) +
-              " mission needs every UAV's goal)");
+      ui.fail("missing required key 'goal' (a " + sc.mission.type + " mission needs every UAV's goal)");
     for (const MovingObstacle& m : w.moving())
       if ((m.position_at(0.0) - u.start).norm() < m.radius_m + u.radius_m)
         ui["start"].fail("inside moving obstacle '" + m.id + "' at t = 0");
@@ -714,18 +724,20 @@ void read_uavs(const At& uavs, Scenario& sc) {
 void read_mission(const At& m, const At& uavs, Scenario& sc) {
   m.expect_map();
   if (m.has("type")) {
-    const auto t = mission_type_from_string(m["type"].text());
-    if (!t) m["type"].fail("unknown mission type '" + m["type"].text() + "' (expected " + mission_type_list() + ")");
-    sc.mission.type = *t;
+    const std::string t = m["type"].text();
+    if (!find_mission(t)) m["type"].fail("unknown mission type '" + t + "' (expected " + mission_type_list() + ")");
+    sc.mission.type = t;
   }
   // Every type's keys are known: a scenario switches `type` and keeps the others' keys, which
   // the type it names does not read.
-  std::vector<const char*> keys(kCommonMissionKeys.begin(), kCommonMissionKeys.end());
-  for (MissionType t : mission_types())
-    for (const char* k : find_mission(t)->section_keys())
-      if (std::none_of(keys.begin(), keys.end(), [&](const char* a) { return std::string_view(k) == a; }))
-        keys.push_back(k);
-  m.keys(keys);
+  std::vector<std::string> keys;
+  for (const MissionKey& k : common_mission_keys()) keys.push_back(k.key);
+  for (const Mission* mission : missions())
+    for (const MissionKey& k : mission->declaration().keys)
+      if (std::find(keys.begin(), keys.end(), k.key) == keys.end()) keys.push_back(k.key);
+  std::vector<const char*> allowed;
+  for (const std::string& k : keys) allowed.push_back(k.c_str());
+  m.keys(allowed);
   const Mission& mission = *find_mission(sc.mission.type);
   if (m.has("separation")) sc.mission.separation_m = m["separation"].non_negative();
   if (m.has("step_s")) sc.mission.step_s = m["step_s"].in_range(kMinStep_s, 3600.0);

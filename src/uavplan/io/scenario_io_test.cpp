@@ -80,7 +80,7 @@ TEST(ScenarioIo, ReadsEveryContractField) {
   EXPECT_NEAR(*u.heading_rad, kPi / 2, 1e-12);
   EXPECT_DOUBLE_EQ(u.speed.max_mps, 6);
   EXPECT_NEAR(u.max_turn_rad, kPi / 3, 1e-12);
-  EXPECT_EQ(sc.mission.type, MissionType::route);
+  EXPECT_EQ(sc.mission.type, "route");
   EXPECT_EQ(sc.mission.waypoints.size(), 1u);
   EXPECT_EQ(sc.planner.params.at("cell_m"), "2");
 }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,10 +13,11 @@
 
 namespace uavplan {
 
-enum class MissionType { independent, route, group, rendezvous, formation, formation_mission };
-
-std::string_view to_string(MissionType t);
-std::optional<MissionType> mission_type_from_string(std::string_view s);
+// A mission type's own values, as its room defines them (a struct deriving from this, read by
+// its Mission::read_section and read back with MissionSpec::section_as).
+struct MissionSection {
+  virtual ~MissionSection() = default;
+};
 
 // formation_mission (P5): the runway the UAVs take off from and land on. `position` is the
 // runway's threshold on the ground; the runway runs runway_length_m from it along the heading.
@@ -35,9 +37,9 @@ struct TaskPoint {
 inline constexpr double kTaskHeadingTolerance_deg = 15.0;
 
 struct MissionSpec {
-  MissionType type = MissionType::independent;
-  double separation_m = 0.0;    // between any two UAVs at any time
-  std::vector<Vec3> waypoints;  // route: via points, in order
+  std::string type = "independent";  // a registered mission type's name (coordination/mission.h)
+  double separation_m = 0.0;         // between any two UAVs at any time
+  std::vector<Vec3> waypoints;       // route: via points, in order
   // The entry heading required at each via point (0 = east, pi/2 = north), by index; shorter or
   // empty: none (pso_mpc plans them; the verifier checks them within kEntryHeadingTolerance_deg).
   std::vector<std::optional<double>> waypoint_entry_heading_rad;
@@ -57,6 +59,12 @@ struct MissionSpec {
   std::optional<Airfield> airfield;
   std::vector<TaskPoint> task_points;
   std::vector<std::vector<double>> topology;
+  // A mission type's own section (types registered outside the built-in ones keep theirs here).
+  std::shared_ptr<const MissionSection> section;
+  template <class T>
+  const T* section_as() const {
+    return dynamic_cast<const T*>(section.get());
+  }
 };
 
 struct PlannerSpec {

@@ -16,13 +16,10 @@ namespace uavplan {
 
 class FormationMission final : public Mission {
  public:
+  const MissionDeclaration& declaration() const override;
   // `shape`, `reform_after_steps`, `arrival_tolerance_s` (formation_rules.cpp).
-  std::vector<const char*> section_keys() const override {
-    return {"shape", "reform_after_steps", "arrival_tolerance_s"};
-  }
   void read_section(const Section& mission, const Section& uavs, Scenario& scenario) const override;
-  std::string default_algorithm() const override { return "aco_voronoi"; }
-  std::vector<std::string> parameters() const override { return {"local", "window_m"}; }
+  std::string describe(const Scenario& scenario) const override;
   void plan(const Scenario& scenario, const MissionContext& context, Plan& plan) const override;
   void check_plan(const Scenario& scenario, const FlownUavs& flown, Violations& out) const override;
 };
@@ -30,5 +27,7 @@ class FormationMission final : public Mission {
 // A formation's `shape` (formation and formation_mission): one slot per UAV, every two slots at
 // least the separation (and their bodies) apart.
 void read_formation_shape(const Section& list, Scenario& scenario);
+// The `shape` key's declaration (both types read it).
+MissionKey formation_shape_key();
 
 }  // namespace uavplan

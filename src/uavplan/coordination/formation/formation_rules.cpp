@@ -27,6 +27,33 @@ void read_formation_shape(const Section& list, Scenario& sc) {
     }
 }
 
+MissionKey formation_shape_key() {
+  return {"shape", "list of [forward, left, up]", "", "m",
+          "one slot per UAV in scenario order, from the reference point in a frame turning with its heading"};
+}
+
+const MissionDeclaration& FormationMission::declaration() const {
+  static const MissionDeclaration d = [] {
+    MissionDeclaration m;
+    m.name = "formation";
+    m.summary =
+        "P1's formation: the UAVs fly one shape along a reference route, leave their slots to avoid what they "
+        "sense (the local RRT) and re-form, and arrive at one time.";
+    m.keys = {formation_shape_key(),
+              {"reform_after_steps", "integer", "5", "", "clear control periods before a UAV re-forms"},
+              {"arrival_tolerance_s", "number", "2", "s", "the largest spread of the arrival times"}};
+    m.default_algorithm = "aco_voronoi";
+    m.parameters = {"local", "window_m"};
+    return m;
+  }();
+  return d;
+}
+
+std::string FormationMission::describe(const Scenario& sc) const {
+  return ", shape of " + std::to_string(sc.mission.shape.size()) + " slots, arrivals within " +
+         num_text(sc.mission.arrival_tolerance_s) + " s";
+}
+
 void FormationMission::read_section(const Section& m, const Section& /*uavs*/, Scenario& sc) const {
   read_formation_shape(*m.req("shape"), sc);
   if (m.has("reform_after_steps")) {

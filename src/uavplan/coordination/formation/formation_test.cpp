@@ -126,7 +126,7 @@ Scenario crossing(bool with_obstacle) {
     u.sensor_range_m = 20;
     sc.uavs.push_back(u);
   }
-  sc.mission.type = MissionType::formation;
+  sc.mission.type = "formation";
   sc.mission.separation_m = 2;
   sc.mission.shape = kWedge;
   sc.planner.algorithm = "aco_voronoi";

@@ -99,6 +99,45 @@ void check_parked(const Section& uavs, const Scenario& sc) {
 
 }  // namespace
 
+const MissionDeclaration& PhasedFormationMission::declaration() const {
+  static const MissionDeclaration d = [] {
+    MissionDeclaration m;
+    m.name = "formation_mission";
+    m.summary =
+        "P5's whole formation mission of fixed wings in five phases: take-off from the airfield, form up, fly the "
+        "task points in shape (multi-step PSO waypoints, consensus control), dismiss, land without conflicts; "
+        "no goals: the UAVs land on the runway.";
+    m.keys = {formation_shape_key(),
+              {"airfield", "{position: [x, y, z], runway_heading_deg, runway_length_m}", "", "m, deg",
+               "the runway's threshold on the ground, its heading (0 = east) and length (default 3000 m)"},
+              {"task_points", "list of {position: [x, y, z], entry_heading_deg, radius_m}", "", "m, deg",
+               "reached in order by the formation's reference within radius_m (default 1000 m), along the entry "
+               "heading where one is given"},
+              {"topology", "list of rows a_ij", "the complete graph", "",
+               "the consensus control's communication weights, a row per UAV in scenario order"}};
+    m.algorithms = {"pso_mpc"};
+    m.default_algorithm = "pso_mpc";
+    m.parameters = {"layer_spacing_m",  "enlargement",        "shape_tolerance_m",
+                    "form_up_height_m", "takeoff_interval_s", "dismiss_within_m"};
+    m.needs_goals = false;
+    m.times_ground_legs = true;
+    m.own_ground = true;
+    m.export_rules = ExportRules::own_pair_rule;
+    return m;
+  }();
+  return d;
+}
+
+std::string PhasedFormationMission::describe(const Scenario& sc) const {
+  return ", shape of " + std::to_string(sc.mission.shape.size()) + " slots";
+}
+
+std::optional<double> PhasedFormationMission::pair_distance_m(const Scenario& sc, const UavSpec& a,
+                                                              const Trajectory& ta, const UavSpec& b,
+                                                              const Trajectory& tb) const {
+  return airfield_encounter(sc, a, ta, b, tb).airborne_min_m;
+}
+
 void PhasedFormationMission::read_section(const Section& m, const Section& uavs, Scenario& sc) const {
   if (m.has("shape")) read_formation_shape(*m.at("shape"), sc);
   sc.mission.airfield = read_airfield(*m.req("airfield"), sc.world);

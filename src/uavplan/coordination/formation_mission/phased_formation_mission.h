@@ -51,17 +51,11 @@ struct FormationMissionOptions {
 
 class PhasedFormationMission final : public Mission {
  public:
+  const MissionDeclaration& declaration() const override;
   // `shape`, `airfield`, `task_points`, `topology`; no goals: the UAVs land on the runway
   // (formation_mission_rules.cpp).
-  std::vector<const char*> section_keys() const override { return {"shape", "airfield", "task_points", "topology"}; }
   void read_section(const Section& mission, const Section& uavs, Scenario& scenario) const override;
-  bool needs_goals() const override { return false; }
-  std::vector<std::string> algorithms() const override { return {"pso_mpc"}; }
-  std::vector<std::string> parameters() const override {
-    return {"layer_spacing_m",  "enlargement",        "shape_tolerance_m",
-            "form_up_height_m", "takeoff_interval_s", "dismiss_within_m"};
-  }
-  bool times_ground_legs() const override { return true; }
+  std::string describe(const Scenario& scenario) const override;
   void plan(const Scenario& scenario, const MissionContext& context, Plan& plan) const override;
   // The airfield's rule (contract/separation.h): separation in the air, bodies on the ground.
   void check_pair(const Scenario& scenario, const UavSpec& a, const Trajectory& ta, const UavSpec& b,
@@ -69,6 +63,9 @@ class PhasedFormationMission final : public Mission {
   // The task points reached by the formation's reference in order at their entry headings,
   // every UAV ending stopped on the runway.
   void check_plan(const Scenario& scenario, const FlownUavs& flown, Violations& out) const override;
+  // In the air only (on the ground bodies count, and a landed UAV is gone).
+  std::optional<double> pair_distance_m(const Scenario& scenario, const UavSpec& a, const Trajectory& ta,
+                                        const UavSpec& b, const Trajectory& tb) const override;
 };
 
 }  // namespace uavplan

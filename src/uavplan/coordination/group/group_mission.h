@@ -8,7 +8,20 @@ namespace uavplan {
 
 class GroupMission final : public Mission {
  public:
-  std::vector<std::string> algorithms() const override { return {"apf", "apf_traditional"}; }
+  const MissionDeclaration& declaration() const override {
+    static const MissionDeclaration d = [] {
+      MissionDeclaration m;
+      m.name = "group";
+      m.summary =
+          "P3's group: each UAV plans in the potential field frame by frame, the others' time-stamped positions "
+          "its obstacles, then its path is smoothed; the plan adds P3's path score.";
+      m.algorithms = {"apf", "apf_traditional"};
+      m.default_algorithm = "apf";
+      m.metrics = {"p3_group_score"};
+      return m;
+    }();
+    return d;
+  }
   void plan(const Scenario& scenario, const MissionContext& context, Plan& plan) const override;
 };
 

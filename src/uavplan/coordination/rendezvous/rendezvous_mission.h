@@ -9,10 +9,23 @@ namespace uavplan {
 
 class RendezvousMission final : public Mission {
  public:
-  // `arrival_tolerance`: the largest difference of the route lengths (rendezvous_rules.cpp).
-  std::vector<const char*> section_keys() const override { return {"arrival_tolerance"}; }
+  const MissionDeclaration& declaration() const override {
+    static const MissionDeclaration d = [] {
+      MissionDeclaration m;
+      m.name = "rendezvous";
+      m.summary =
+          "P4's simultaneous arrival: directional A* routes brought to one length (multi-step search, loiter "
+          "circle, virtual threat); all UAVs depart at once at their cruise speed.";
+      m.keys = {{"arrival_tolerance", "number", "none", "m", "the largest difference of the UAVs' flown lengths"}};
+      m.algorithms = {"directional_astar"};
+      m.default_algorithm = "directional_astar";
+      return m;
+    }();
+    return d;
+  }
+  // `arrival_tolerance` (rendezvous_rules.cpp).
   void read_section(const Section& mission, const Section& uavs, Scenario& scenario) const override;
-  std::vector<std::string> algorithms() const override { return {"directional_astar"}; }
+  std::string describe(const Scenario& scenario) const override;
   void plan(const Scenario& scenario, const MissionContext& context, Plan& plan) const override;
   void check_plan(const Scenario& scenario, const FlownUavs& flown, Violations& out) const override;
 };

@@ -11,6 +11,11 @@ void RendezvousMission::read_section(const Section& m, const Section& /*uavs*/, 
   if (m.has("arrival_tolerance")) sc.mission.arrival_tolerance_m = m.at("arrival_tolerance")->positive();
 }
 
+std::string RendezvousMission::describe(const Scenario& sc) const {
+  return sc.mission.arrival_tolerance_m ? ", route lengths within " + num_text(*sc.mission.arrival_tolerance_m) + " m"
+                                        : "";
+}
+
 // The flown lengths of all UAVs within the tolerance of one another.
 void RendezvousMission::check_plan(const Scenario& sc, const FlownUavs& flown, Violations& out) const {
   if (!sc.mission.arrival_tolerance_m || flown.size() < 2) return;

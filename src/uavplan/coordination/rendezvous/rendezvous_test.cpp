@@ -29,7 +29,7 @@ Scenario rendezvous(WorldSpec ws, std::vector<UavSpec> uavs, double tolerance_m,
   sc.name = "rv";
   sc.world = World(std::move(ws));
   sc.uavs = std::move(uavs);
-  sc.mission.type = MissionType::rendezvous;
+  sc.mission.type = "rendezvous";
   sc.mission.arrival_tolerance_m = tolerance_m;
   sc.planner.algorithm = "directional_astar";
   sc.planner.params = std::move(params);

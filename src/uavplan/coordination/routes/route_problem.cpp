@@ -5,7 +5,7 @@ namespace uavplan {
 Problem uav_problem(const Scenario& sc, const MissionOptions& opt, const GroundPoints& ground, std::size_t i) {
   const UavSpec& u = sc.uavs[i];
   Problem pb{u, *u.goal, {}};
-  if (sc.mission.type == MissionType::route) {
+  if (sc.mission.type == "route") {
     pb.via = sc.mission.waypoints;
     pb.via_entry_heading_rad = sc.mission.waypoint_entry_heading_rad;
   }

@@ -9,14 +9,47 @@
 
 namespace uavplan {
 
-std::vector<const char*> RoutesMission::section_keys() const {
-  if (type_ == MissionType::route) return {"waypoints"};
+RoutesMission::RoutesMission(RoutesKind kind) : kind_(kind) {
+  MissionDeclaration& d = declaration_;
+  const bool route = kind == RoutesKind::route;
+  d.name = route ? "route" : "independent";
+  d.summary = std::string(route ? "Every UAV flies through the via points in order, each" : "Each UAV flies") +
+              " on its own route by the chosen planner; the routes are timed so that the UAVs keep their "
+              "separation and clear the moving obstacles (departure delays, or space and time), UAVs with a "
+              "sensor_range replanning in the loop (P1's rolling window).";
+  d.parameters = {"local", "window_m", "deconfliction", "space_time_method", "space_time_cell_m"};
+  d.flies_homes = true;
+  d.times_ground_legs = true;
+  if (route)
+    d.keys = {{"waypoints", "list of [x, y, z] or {position: [x, y, z], entry_heading_deg}", "", "m, deg",
+               "the via points every UAV passes in order; entry_heading_deg: the heading to enter one along"}};
+}
+
+bool route_with_entry_headings(const Scenario& sc) {
+  const auto& headings = sc.mission.waypoint_entry_heading_rad;
+  return sc.mission.type == "route" &&
+         std::any_of(headings.begin(), headings.end(), [](const std::optional<double>& h) { return h.has_value(); });
+}
+
+std::string RoutesMission::describe(const Scenario& sc) const {
+  return kind_ == RoutesKind::route ? ", " + std::to_string(sc.mission.waypoints.size()) + " via points" : "";
+}
+
+std::string RoutesMission::planner_refusal(const Scenario& sc, const PlannerInfo& p) const {
+  if (kind_ != RoutesKind::route) return {};
+  if (route_with_entry_headings(sc) && !p.entry_headings)
+    return "'" + p.name + "' does not fly into a via point along its entry_heading_deg";
+  if (!p.via_points) return "'" + p.name + "' does not plan through via points";
   return {};
+}
+
+std::string RoutesMission::default_algorithm(const Scenario& sc) const {
+  return route_with_entry_headings(sc) ? "pso_mpc" : declaration_.default_algorithm;
 }
 
 // A row is [x, y, z], or {position: [x, y, z], entry_heading_deg: h}.
 void RoutesMission::read_section(const Section& m, const Section& /*uavs*/, Scenario& sc) const {
-  if (type_ != MissionType::route) return;
+  if (kind_ != RoutesKind::route) return;
   const auto list = m.req("waypoints");
   list->expect_seq();
   for (std::size_t i = 0; i < list->size(); ++i) {
@@ -39,7 +72,7 @@ void RoutesMission::read_section(const Section& m, const Section& /*uavs*/, Scen
 
 // Via points visited in order (within the UAV's radius), entered at their headings.
 void RoutesMission::check_uav(const Scenario& sc, const UavSpec& u, const Trajectory& tr, Violations& out) const {
-  if (type_ != MissionType::route) return;
+  if (kind_ != RoutesKind::route) return;
   const std::string& id = u.id;
   const double tol = std::max(u.radius_m, kPositionTolerance_m);
   TrackProgress at;

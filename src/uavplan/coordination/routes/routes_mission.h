@@ -17,22 +17,29 @@
 
 namespace uavplan {
 
+enum class RoutesKind { independent, route };
+
 class RoutesMission final : public Mission {
  public:
   // `independent` or `route` (its via points: `mission.waypoints`, route_rules.cpp).
-  explicit RoutesMission(MissionType type) : type_(type) {}
-  std::vector<const char*> section_keys() const override;
+  explicit RoutesMission(RoutesKind kind);
+  const MissionDeclaration& declaration() const override { return declaration_; }
   void read_section(const Section& mission, const Section& uavs, Scenario& scenario) const override;
-  std::vector<std::string> parameters() const override {
-    return {"local", "window_m", "deconfliction", "space_time_method", "space_time_cell_m"};
-  }
-  bool times_ground_legs() const override { return true; }
+  std::string describe(const Scenario& scenario) const override;
+  // A route's via points need planners that pass them, and with entry headings planners that fly
+  // in along them (pso_mpc then by default).
+  std::string planner_refusal(const Scenario& scenario, const PlannerInfo& planner) const override;
+  std::string default_algorithm(const Scenario& scenario) const override;
   void plan(const Scenario& scenario, const MissionContext& context, Plan& plan) const override;
   void check_uav(const Scenario& scenario, const UavSpec& uav, const Trajectory& trajectory,
                  Violations& out) const override;
 
  private:
-  MissionType type_;
+  RoutesKind kind_;
+  MissionDeclaration declaration_;
 };
+
+// Whether the scenario is a route whose via points require entry headings (pso_mpc plans it).
+bool route_with_entry_headings(const Scenario& scenario);
 
 }  // namespace uavplan
