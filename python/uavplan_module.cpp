@@ -325,10 +325,16 @@ PYBIND11_MODULE(uavplan, m) {
           d["description"] = p.description;
           d["complete"] = p.complete;
           d["via_points"] = p.via_points;
-          d["params"] = planner_parameters(p.name);
+          py::dict params, docs;
+          for (const ParamDecl& decl : planner_parameters(p.name)) {
+            params[py::str(decl.key)] = decl.default_value;
+            docs[py::str(decl.key)] = decl.doc;
+          }
+          d["params"] = params;
+          d["param_docs"] = docs;
           l.append(d);
         }
         return l;
       },
-      "Every registered planner: name, description and its parameters with their defaults");
+      "Every registered planner: name, description, its parameters with their defaults and their meaning");
 }

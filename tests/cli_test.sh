@@ -38,7 +38,13 @@ cmp -s "$TMP/missions.md" "$TMP/missions.doc" && pass=$((pass + 1)) ||
   { echo "FAIL docs/formats.md's mission tables differ from uavplan info --missions --markdown"; fails=$((fails + 1)); }
 "$BIN" info --missions | grep -q "^rendezvous: P4's simultaneous arrival" && pass=$((pass + 1)) ||
   { echo "FAIL info --missions lists no rendezvous"; fails=$((fails + 1)); }
+# The planners' parameters as declared: docs/planners.md's tables are info's own output.
+"$BIN" info --planners --markdown >"$TMP/planners.md"; check info.planners 0 $?
+sed -n '/<!-- planner-params: begin/,/<!-- planner-params: end/p' "$SRC/docs/planners.md" | sed '1d;$d' >"$TMP/planners.doc"
+cmp -s "$TMP/planners.md" "$TMP/planners.doc" && pass=$((pass + 1)) ||
+  { echo "FAIL docs/planners.md's parameter tables differ from uavplan info --planners --markdown"; fails=$((fails + 1)); }
 "$BIN" info >/dev/null 2>&1; check info.nothing 2 $?
+"$BIN" info --missions --planners >/dev/null 2>&1; check info.two 2 $?
 # A route whose via point has an entry heading: pso_mpc plans it by default, info lists it alone,
 # and a planner that would not fly in along the heading is bad input.
 cat >"$TMP/entered.yaml" <<'EOF'

@@ -121,9 +121,10 @@ int run_info(const std::string& path) {
   return kExitOk;
 }
 
-// The mission types as their rooms declare them: keys, planners, parameters.
-int run_missions(bool markdown) {
-  std::fputs(mission_catalog_text(markdown).c_str(), stdout);
+// The mission types as their rooms declare them (keys, planners, parameters), or the planners
+// as their options declare them (parameters with type, range, default, meaning).
+int run_catalog(bool planners, bool markdown) {
+  std::fputs((planners ? planner_catalog_text(markdown) : mission_catalog_text(markdown)).c_str(), stdout);
   return kExitOk;
 }
 
@@ -132,16 +133,20 @@ int run_missions(bool markdown) {
 void add_info_command(CLI::App& app, std::function<int()>& run) {
   auto path = std::make_shared<std::string>();
   auto list = std::make_shared<bool>(false);
+  auto planners = std::make_shared<bool>(false);
   auto markdown = std::make_shared<bool>(false);
   CLI::App* cmd = app.add_subcommand("info", "Summarise a scenario: world, UAVs, mission, planner");
   cmd->add_option("scenario", *path, "Scenario file");
   cmd->add_flag("--missions", *list, "List the mission types: their keys, planners and parameters");
-  cmd->add_flag("--markdown", *markdown, "With --missions: as docs/formats.md's tables");
-  cmd->callback([path, list, markdown, &run] {
-    if (*list && !path->empty()) throw CLI::ValidationError("info", "give a scenario or --missions, not both");
-    if (!*list && path->empty()) throw CLI::ValidationError("info", "give a scenario file (or --missions)");
-    if (*markdown && !*list) throw CLI::ValidationError("info", "--markdown goes with --missions");
-    run = [path, list, markdown] { return *list ? run_missions(*markdown) : run_info(*path); };
+  cmd->add_flag("--planners", *planners, "List the planners: their parameters with type, range, default, meaning");
+  cmd->add_flag("--markdown", *markdown, "With --missions or --planners: as the docs' tables");
+  cmd->callback([path, list, planners, markdown, &run] {
+    const int asked = (path->empty() ? 0 : 1) + (*list ? 1 : 0) + (*planners ? 1 : 0);
+    if (asked != 1) throw CLI::ValidationError("info", "give one of: a scenario file, --missions, --planners");
+    if (*markdown && path->size()) throw CLI::ValidationError("info", "--markdown goes with --missions or --planners");
+    run = [path, list, planners, markdown] {
+      return path->empty() ? run_catalog(*planners, *markdown) : run_info(*path);
+    };
   });
 }
 

@@ -160,6 +160,10 @@ def test_planners_lists_names_and_parameters(root, exe):
     assert group.split("planners for this mission:")[1].split() == ["apf", "apf_traditional"]
     rrt = next(p for p in uavplan.planners() if p["name"] == "rrt")
     assert "goal_bias" in rrt["params"] and rrt["description"]
+    assert rrt["params"]["goal_bias"] == "0.5" and "goal" in rrt["param_docs"]["goal_bias"]
+    # The same declarations as the command line's table.
+    listed = subprocess.run([exe, "info", "--planners"], capture_output=True, text=True, check=True).stdout
+    assert "    goal_bias (number [0, 1]; 0.5): " + rrt["param_docs"]["goal_bias"] in listed
 
 
 def test_the_gil_is_released_while_planning(demo):

@@ -2,6 +2,10 @@
 // obstacle, an unreachable goal, the stop condition, determinism, and valid routes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
+#include "uavplan/core/text.h"
+
 #include "uavplan/planning/registry.h"
 #include "uavplan/planning/segment_rule.h"
 
@@ -145,14 +149,30 @@ namespace {
 
 TEST(Registry, ListsEveryPlannersParametersWithTheirDefaults) {
   for (const PlannerInfo& info : planner_catalog()) {
-    const auto params = planner_parameters(info.name);
+    const std::vector<ParamDecl> params = planner_parameters(info.name);
     EXPECT_FALSE(params.empty()) << info.name;
-    for (const auto& [key, value] : params)
-      EXPECT_TRUE(planner_accepts(info.name, key, value) || value == "nan" || value == "inf")
-          << info.name << " " << key << "=" << value;
+    for (const ParamDecl& d : params) {
+      EXPECT_TRUE(planner_accepts(info.name, d.key, d.default_value) || d.default_value == "nan" ||
+                  d.default_value == "inf")
+          << info.name << " " << d.key << "=" << d.default_value;
+      EXPECT_FALSE(d.doc.empty()) << info.name << " " << d.key;  // each one says what it is
+      // Its declared range is what it takes: the ends in, just past them out.
+      if (d.kind == ParamKind::number || d.kind == ParamKind::integer) {
+        EXPECT_TRUE(planner_accepts(info.name, d.key, num_text(d.lo))) << info.name << " " << d.key;
+        EXPECT_FALSE(planner_accepts(info.name, d.key, num_text(d.hi * 2 + 1))) << info.name << " " << d.key;
+      }
+      for (const std::string& c : d.choices) EXPECT_TRUE(planner_accepts(info.name, d.key, c)) << d.key << " " << c;
+    }
   }
-  EXPECT_EQ(planner_parameters("rrt").count("goal_bias"), 1u);
+  const auto rrt = planner_parameters("rrt");
+  EXPECT_EQ(std::count_if(rrt.begin(), rrt.end(), [](const ParamDecl& d) { return d.key == "goal_bias"; }), 1);
   EXPECT_THROW(planner_parameters("nosuch"), std::invalid_argument);
+  EXPECT_FALSE(planner_accepts("nosuch", "cell_m", "1"));
+  EXPECT_FALSE(planner_accepts("astar", "cel_m", "1"));  // unknown key
+  EXPECT_FALSE(planner_accepts("astar", "cell_m", "x"));
+  EXPECT_FALSE(planner_accepts("aco_voronoi", "deposit", "both"));
+  EXPECT_FALSE(planner_accepts("directional_astar", "step_cells", "0.3"));  // a rule beyond the range
+  EXPECT_NE(planner_catalog_text(true).find("| `goal_bias` | number | [0, 1] | 0.5 |"), std::string::npos);
 }
 
 }  // namespace

@@ -28,11 +28,16 @@ struct PlannerInfo {
 };
 std::vector<PlannerInfo> planner_catalog();
 
-// The planner's parameters and their defaults as text (0, nan or inf where the planner derives
-// the value from the problem). Throws std::invalid_argument for an unknown name.
-std::map<std::string, std::string> planner_parameters(std::string_view name);
+// The planner's parameters as its options struct declares them (key, type, range, default as
+// text: 0, nan or inf where the planner derives the value from the problem, meaning). Throws
+// std::invalid_argument for an unknown name.
+std::vector<ParamDecl> planner_parameters(std::string_view name);
 
-// Whether the planner takes this parameter (the value checked too).
+// Whether the planner takes this parameter (the value checked too); false for an unknown planner.
 bool planner_accepts(std::string_view name, const std::string& key, const std::string& value);
+
+// Every planner with its parameters: `info --planners` (markdown = false) and docs/planners.md's
+// tables (markdown = true).
+std::string planner_catalog_text(bool markdown);
 
 }  // namespace uavplan

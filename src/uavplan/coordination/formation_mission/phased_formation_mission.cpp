@@ -495,14 +495,25 @@ void check_airfield_rules(const Scenario& sc, Plan& plan) {
 
 FormationMissionOptions FormationMissionOptions::from_params(const Params& params) {
   ParamReader r(params, "formation_mission");
-  FormationMissionOptions o;
-  o.layer_spacing_m = r.number("layer_spacing_m", o.layer_spacing_m, 0.0, 1e5);
-  o.enlargement = r.number("enlargement", o.enlargement, 1.0, 100.0);
-  o.shape_tolerance_m = r.number("shape_tolerance_m", o.shape_tolerance_m, 1e-3, 1e5);
-  o.form_up_height_m = r.number("form_up_height_m", o.form_up_height_m, 0.0, 1e5);
-  o.takeoff_interval_s = r.number("takeoff_interval_s", o.takeoff_interval_s, 0.0, 3600.0);
-  o.dismiss_within_m = r.number("dismiss_within_m", o.dismiss_within_m, 0.0, 1e7);
+  FormationMissionOptions o = read(r);
   r.finish();
+  return o;
+}
+
+FormationMissionOptions FormationMissionOptions::read(ParamReader& r) {
+  FormationMissionOptions o;
+  o.layer_spacing_m = r.number("layer_spacing_m", o.layer_spacing_m, 0.0, 1e5,
+                               "the height between two UAVs' layers while forming up, m");
+  o.enlargement =
+      r.number("enlargement", o.enlargement, 1.0, 100.0, "the shape's enlargement while forming up and dismissing");
+  o.shape_tolerance_m = r.number("shape_tolerance_m", o.shape_tolerance_m, 1e-3, 1e5,
+                                 "a form-up or dismiss step ends under this shape error, m");
+  o.form_up_height_m =
+      r.number("form_up_height_m", o.form_up_height_m, 0.0, 1e5, "the lowest layer's height above the airfield, m");
+  o.takeoff_interval_s =
+      r.number("takeoff_interval_s", o.takeoff_interval_s, 0.0, 3600.0, "the least time between two lift-offs, s");
+  o.dismiss_within_m = r.number("dismiss_within_m", o.dismiss_within_m, 0.0, 1e7,
+                                "the formation dismisses within this distance of the airfield, m");
   return o;
 }
 

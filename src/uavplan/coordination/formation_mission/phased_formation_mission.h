@@ -47,6 +47,10 @@ struct FormationMissionOptions {
   LandingOptions landing;            // phase 5 (landing.h)
 
   static FormationMissionOptions from_params(const Params& params);
+
+  // The declaration of its parameters: reads them from r (params.h).
+
+  static FormationMissionOptions read(ParamReader& r);
 };
 
 class PhasedFormationMission final : public Mission {

@@ -12,11 +12,10 @@ LocalLayer local_layer(const MissionContext& ctx) {
 }
 
 LocalLayer local_layer(const MissionContext& ctx, ParamReader& r) {
-  const std::string local = r.text("local", "improved_rrt");
-  if (local != "improved_rrt" && local != "rrt")
-    throw std::invalid_argument("planner.params.local: expected improved_rrt or rrt, got '" + local + "'");
+  const std::string local = r.choice("local", "improved_rrt", {"improved_rrt", "rrt"},
+                                     "the local replanner of UAVs with sensors (P1's improved RRT, or the common one)");
   LocalLayer out;
-  out.window_m = r.number("window_m", 0.0, 0.0, 1e12);
+  out.window_m = r.number("window_m", 0.0, 0.0, 1e12, "the route ahead a sensing UAV checks, m; 0: its sensor range");
   // The global planner's own RRT parameters apply to the local one of the same kind.
   out.rrt = local == ctx.algorithm ? RrtOptions::from_params(ctx.params, local == "improved_rrt" ? RrtVariant::improved
                                                                                                  : RrtVariant::common)

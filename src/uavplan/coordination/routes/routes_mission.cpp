@@ -37,18 +37,16 @@ RoutesOptions routes_options(const MissionContext& ctx) {
   ParamReader r(ctx.mission_params, ctx.algorithm);
   RoutesOptions o;
   o.local = local_layer(ctx, r);
-  const std::string d = r.text("deconfliction", "auto");
-  if (d == "delays")
-    o.deconfliction = Deconfliction::delays;
-  else if (d == "space_time")
-    o.deconfliction = Deconfliction::space_time;
-  else if (d != "auto")
-    throw std::invalid_argument("planner.params.deconfliction: expected auto, delays or space_time, got '" + d + "'");
-  const std::string m = r.text("space_time_method", "auto");
-  if (!parse_mapf_method(m, o.space_time.method))
-    throw std::invalid_argument("planner.params.space_time_method: expected auto, prioritized, ecbs or cbs, got '" + m +
-                                "'");
-  o.space_time.cell_m = r.number("space_time_cell_m", 0.0, 0.0, 1e6);
+  const std::string d =
+      r.choice("deconfliction", "auto", {"auto", "delays", "space_time"},
+               "departure delays, space and time, or auto: delays, then space and time where that solves more");
+  if (d == "delays") o.deconfliction = Deconfliction::delays;
+  if (d == "space_time") o.deconfliction = Deconfliction::space_time;
+  const std::string m = r.choice("space_time_method", "auto", {"auto", "prioritized", "ecbs", "cbs"},
+                                 "the space-time solver (auto: prioritised planning, then ECBS)");
+  parse_mapf_method(m, o.space_time.method);
+  o.space_time.cell_m = r.number("space_time_cell_m", 0.0, 0.0, 1e6,
+                                 "the space-time lattice's spacing, m; 0: a little above the separation");
   r.finish();
   return o;
 }

@@ -8,9 +8,14 @@ namespace uavplan {
 
 CellAStarOptions CellAStarOptions::from_params(const Params& params) {
   ParamReader r(params, "cell_astar");
+  CellAStarOptions o = read(r);
+  r.finish();
+  return o;
+}
+
+CellAStarOptions CellAStarOptions::read(ParamReader& r) {
   CellAStarOptions o;
   o.cells.read(r);
-  r.finish();
   return o;
 }
 

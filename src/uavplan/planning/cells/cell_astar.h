@@ -9,6 +9,8 @@ namespace uavplan {
 struct CellAStarOptions {
   CellPlanOptions cells;
   static CellAStarOptions from_params(const Params& params);
+  // The declaration of its parameters: reads them from r (params.h).
+  static CellAStarOptions read(ParamReader& r);
 };
 
 // Optimal node path on the graph (A*); nothing when the goal is unreachable or the stop came

@@ -11,11 +11,11 @@
 namespace uavplan {
 
 void CellPlanOptions::read(ParamReader& r) {
-  cell_m = r.number("cell_m", cell_m, 0.0, 1e6);
-  level_m = r.number("level_m", level_m, 0.0, 1e6);
-  weights.w1 = r.number("w1", weights.w1, 0.0, 1e12);
-  weights.w2 = r.number("w2", weights.w2, -1.0, 1e12);
-  weights.w3 = r.number("w3", weights.w3, 0.0, 1e12);
+  cell_m = r.number("cell_m", cell_m, 0.0, 1e6, "the cell map's cell, m; 0: the terrain's cell, else the bounds / 64");
+  level_m = r.number("level_m", level_m, 0.0, 1e6, "the spacing of heights, m; 0: cell_m / 2");
+  weights.w1 = r.number("w1", weights.w1, 0.0, 1e12, "w1, the range term's weight (P2 eq. 1)");
+  weights.w2 = r.number("w2", weights.w2, -1.0, 1e12, "w2, the height term's weight (negative: height rewarded)");
+  weights.w3 = r.number("w3", weights.w3, 0.0, 1e12, "w3, the threat term's weight");
 }
 
 namespace {

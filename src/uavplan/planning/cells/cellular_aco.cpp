@@ -11,21 +11,29 @@ namespace uavplan {
 
 CellularAcoOptions CellularAcoOptions::from_params(const Params& params) {
   ParamReader r(params, "cellular_aco");
+  CellularAcoOptions o = read(r);
+  r.finish();
+  return o;
+}
+
+CellularAcoOptions CellularAcoOptions::read(ParamReader& r) {
   CellularAcoOptions o;
   o.cells.read(r);
-  o.ants = r.integer("ants", o.ants, 1, 100000);
-  o.iterations = r.integer("iterations", o.iterations, 1, 100000);
-  o.alpha = r.number("alpha", o.alpha, 0.0, 20.0);
-  o.beta = r.number("beta", o.beta, 0.0, 20.0);
-  o.q = r.number("q", o.q, 1e-12, 1e12);
-  o.rho0 = r.number("rho0", o.rho0, 0.0, 1.0);
-  o.rho_max = r.number("rho_max", o.rho_max, 0.0, 1.0);
-  o.tau_max = r.number("tau_max", o.tau_max, 1e-12, 1e12);
-  o.tau_min = r.number("tau_min", o.tau_min, 1e-12, o.tau_max);
-  o.max_steps_factor = r.integer("max_steps_factor", o.max_steps_factor, 1, 1000);
-  o.threads = r.integer("threads", o.threads, 0, 1024);
-  o.local_update = r.boolean("local_update", o.local_update);
-  r.finish();
+  o.ants = r.integer("ants", o.ants, 1, 100000, "the ants per iteration");
+  o.iterations = r.integer("iterations", o.iterations, 1, 100000, "the colony's iterations");
+  o.alpha = r.number("alpha", o.alpha, 0.0, 20.0, "the pheromone's weight (P2)");
+  o.beta = r.number("beta", o.beta, 0.0, 20.0, "the heuristic's weight (P2)");
+  o.q = r.number("q", o.q, 1e-12, 1e12, "the deposit constant (P2)");
+  o.rho0 = r.number("rho0", o.rho0, 0.0, 1.0, "the initial evaporation");
+  o.rho_max = r.number("rho_max", o.rho_max, 0.0, 1.0, "the evaporation's cap");
+  o.tau_max =
+      r.number("tau_max", o.tau_max, 1e-12, 1e12, "the pheromone's upper bound (relative: the best ant deposits 1)");
+  o.tau_min = r.number("tau_min", o.tau_min, 1e-12, o.tau_max, "the pheromone's lower bound, at most tau_max");
+  o.max_steps_factor = r.integer("max_steps_factor", o.max_steps_factor, 1, 1000,
+                                 "an ant dies after this many times the straight-line cell count");
+  o.threads =
+      r.integer("threads", o.threads, 0, 1024, "threads of the colony; 0: the run's (--threads, else every core)");
+  o.local_update = r.boolean("local_update", o.local_update, "the cellular automaton's update of the best route");
   return o;
 }
 

@@ -27,6 +27,8 @@ struct CellularAcoOptions {
   int threads = 0;           // 0 = the run's (--threads, else every core)
   bool local_update = true;  // the cellular-automaton update of the best route
   static CellularAcoOptions from_params(const Params& params);
+  // The declaration of its parameters: reads them from r (params.h).
+  static CellularAcoOptions read(ParamReader& r);
 };
 
 struct AcoLegReport {

@@ -14,20 +14,30 @@
 namespace uavplan {
 
 ApfOptions ApfOptions::from_params(const Params& params, ApfField field) {
+  ParamReader r(params, field == ApfField::improved ? "apf" : "apf_traditional");
+  ApfOptions o = read(r, field);
+  r.finish();
+  return o;
+}
+
+ApfOptions ApfOptions::read(ParamReader& r, ApfField field) {
   const bool improved = field == ApfField::improved;
-  ParamReader r(params, improved ? "apf" : "apf_traditional");
   ApfOptions o;
   o.improved = improved;
-  o.step_m = r.number("step_m", o.step_m, 0.0, 1e9);
-  o.k_att = r.number("k_att", o.k_att, 1e-9, 1e9);
-  o.r_att_m = r.number("r_att_m", o.r_att_m, 0.0, 1e9);
-  o.k_rep = r.number("k_rep", o.k_rep, 0.0, 1e12);
-  o.r_rep_m = r.number("r_rep_m", o.r_rep_m, 0.0, 1e9);
-  o.sector_deg = r.number("sector_deg", o.sector_deg, 1.0, 180.0);
-  o.max_frames = r.integer("max_frames", o.max_frames, 0, 10'000'000);
-  o.smooth = r.boolean("smooth", improved) && improved;
-  o.smoothing_threshold_deg = r.number("smoothing_threshold_deg", o.smoothing_threshold_deg, 0.0, 180.0);
-  r.finish();
+  o.step_m =
+      r.number("step_m", o.step_m, 0.0, 1e9, "l, the step per frame, m; 0: derived from the separation and the world");
+  o.k_att = r.number("k_att", o.k_att, 1e-9, 1e9, "K_a, the attraction's gain");
+  o.r_att_m = r.number("r_att_m", o.r_att_m, 0.0, 1e9, "R_a0, the attraction's cap radius, m; 0: 10 l");
+  o.k_rep = r.number("k_rep", o.k_rep, 0.0, 1e12, "K_r, the repulsion's gain; 0: balances the attraction at R_r0 / 2");
+  o.r_rep_m =
+      r.number("r_rep_m", o.r_rep_m, 0.0, 1e9, "R_r0, the repulsion's reach, m; 0: max(5 l, 2 separation, 3 radius)");
+  o.sector_deg = r.number("sector_deg", o.sector_deg, 1.0, 180.0, "the sector rule's half angle, deg (P3: 15)");
+  o.max_frames = r.integer("max_frames", o.max_frames, 0, 10'000'000,
+                           "frames before giving up; 0: 4 x straight distance / l + 500");
+  o.smooth =
+      r.boolean("smooth", improved, "P3's triple smoothing afterwards (the traditional field: never)") && improved;
+  o.smoothing_threshold_deg = r.number("smoothing_threshold_deg", o.smoothing_threshold_deg, 0.0, 180.0,
+                                       "turns under this are smoothed away, deg");
   return o;
 }
 

@@ -51,6 +51,10 @@ struct ApfOptions {
   double smoothing_threshold_deg = 5.0;
 
   static ApfOptions from_params(const Params& params, ApfField field);
+
+  // The declaration of its parameters: reads them from r (params.h).
+
+  static ApfOptions read(ParamReader& r, ApfField field);
 };
 
 // Options with every derived value filled for this UAV and world. The derived step is half the

@@ -14,35 +14,6 @@ namespace {
 
 constexpr double kMinTau = 1e-12;  // evaporation never takes an edge out of the choice entirely
 
-AcoVoronoiOptions read_options(const Params& params, RoadmapSearch search) {
-  const bool colony = search == RoadmapSearch::colony;
-  ParamReader r(params, colony ? "aco_voronoi" : "voronoi_dijkstra");
-  AcoVoronoiOptions o;
-  o.roadmap.k1 = r.number("k1", o.roadmap.k1, 0.0, 1.0);
-  o.roadmap.threat_prefactor = r.number("threat_prefactor", o.roadmap.threat_prefactor, 0.0, 1e12);
-  o.roadmap.join_nearest = r.integer("join_nearest", o.roadmap.join_nearest, 1, 1000);
-  o.roadmap.outline_spacing_m = r.number("outline_spacing_m", o.roadmap.outline_spacing_m, 0.0, 1e9);
-  if (colony) {
-    o.ants = r.integer("ants", o.ants, 1, 100000);
-    o.iterations = r.integer("iterations", o.iterations, 1, 100000);
-    o.alpha = r.number("alpha", o.alpha, 0.0, 20.0);
-    o.beta = r.number("beta", o.beta, 0.0, 20.0);
-    o.rho = r.number("rho", o.rho, 0.0, 1.0);
-    o.q = r.number("q", o.q, 1e-12, 1e12);
-    const std::string d = r.text("deposit", o.deposit_by_cost ? "cost" : "length");
-    if (d != "length" && d != "cost")
-      throw std::invalid_argument(
-          "planner.params.deposit: expected 'length' (P1's Q / L_k) or 'cost' (Q / J_k), got '" + d + "'");
-    o.deposit_by_cost = d == "cost";
-    o.tau0 = r.number("tau0", o.tau0, 1e-12, 1e12);
-    o.toward_goal = r.number("toward_goal", o.toward_goal, 0.0, 1.0);
-    o.elite = r.number("elite", o.elite, 0.0, 1e6);
-    o.max_min = r.boolean("max_min", o.max_min);
-  }
-  r.finish();
-  return o;
-}
-
 // x^y; the colony's exponents are small whole numbers (alpha 1, beta 1 or 5), where std::pow
 // took most of the walk's time.
 double raised(double x, double y) {
@@ -136,8 +107,41 @@ std::uint32_t edge_between(const Roadmap& map, std::uint32_t a, std::uint32_t b)
 
 }  // namespace
 
+AcoVoronoiOptions AcoVoronoiOptions::read(ParamReader& r, RoadmapSearch search) {
+  const bool colony = search == RoadmapSearch::colony;
+  AcoVoronoiOptions o;
+  o.roadmap.k1 = r.number("k1", o.roadmap.k1, 0.0, 1.0, "P1 eq. 3: the weight of the threat cost against length");
+  o.roadmap.threat_prefactor = r.number("threat_prefactor", o.roadmap.threat_prefactor, 0.0, 1e12,
+                                        "multiplies J_threat (1: P1's L_i; 1/3: the midpoint rule)");
+  o.roadmap.join_nearest = r.integer("join_nearest", o.roadmap.join_nearest, 1, 1000,
+                                     "a stop is joined to this many nearest roadmap vertices it sees");
+  o.roadmap.outline_spacing_m =
+      r.number("outline_spacing_m", o.roadmap.outline_spacing_m, 0.0, 1e9,
+               "obstacle outlines sampled this often, m; 0: 1/100 of the bounds' larger side");
+  if (colony) {
+    o.ants = r.integer("ants", o.ants, 1, 100000, "m, the ants per iteration");
+    o.iterations = r.integer("iterations", o.iterations, 1, 100000, "N_max, the colony's iterations");
+    o.alpha = r.number("alpha", o.alpha, 0.0, 20.0, "the pheromone's exponent");
+    o.beta = r.number("beta", o.beta, 0.0, 20.0, "the heuristic's exponent");
+    o.rho = r.number("rho", o.rho, 0.0, 1.0, "the evaporation rate");
+    o.q = r.number("q", o.q, 1e-12, 1e12, "Q, the deposit constant");
+    const std::string d = r.choice("deposit", o.deposit_by_cost ? "cost" : "length", {"cost", "length"},
+                                   "what an ant's deposit divides Q by: cost (J_k) or length (P1's L_k)");
+    o.deposit_by_cost = d == "cost";
+    o.tau0 = r.number("tau0", o.tau0, 1e-12, 1e12, "the initial pheromone (P1 gives none)");
+    o.toward_goal = r.number("toward_goal", o.toward_goal, 0.0, 1.0,
+                             "the share of the heuristic that favours edges toward the goal");
+    o.elite = r.number("elite", o.elite, 0.0, 1e6, "the best route so far gets elite x Q / L_best more each iteration");
+    o.max_min = r.boolean("max_min", o.max_min, "MAX-MIN ant system: only the iteration's best deposits, tau bounded");
+  }
+  return o;
+}
+
 AcoVoronoiOptions AcoVoronoiOptions::from_params(const Params& params, RoadmapSearch search) {
-  return read_options(params, search);
+  ParamReader r(params, search == RoadmapSearch::colony ? "aco_voronoi" : "voronoi_dijkstra");
+  AcoVoronoiOptions o = read(r, search);
+  r.finish();
+  return o;
 }
 
 std::optional<GraphRoute> aco_route(const Roadmap& map, std::uint32_t from, std::uint32_t to,

@@ -43,6 +43,8 @@ struct AcoVoronoiOptions {
   // The colony's keys (for the colony), and the roadmap's (k1, threat_prefactor, join_nearest)
   // that both read.
   static AcoVoronoiOptions from_params(const Params& params, RoadmapSearch search = RoadmapSearch::colony);
+  // The declaration of its parameters: reads them from r (params.h).
+  static AcoVoronoiOptions read(ParamReader& r, RoadmapSearch search = RoadmapSearch::colony);
 };
 
 struct GraphRoute {

@@ -112,19 +112,28 @@ struct LegPlanner {
 
 PsoMpcOptions PsoMpcOptions::from_params(const Params& params) {
   ParamReader r(params, "pso_mpc");
-  PsoMpcOptions o;
-  o.step_m = r.number("step", 0.0, 0.0, 1e7);
-  o.max_turn_deg = r.number("max_turn_deg", o.max_turn_deg, 1.0, 90.0);
-  o.max_dh_m = r.number("max_dh", 0.0, 0.0, 1e6);
-  o.alpha = r.number("alpha", o.alpha, 0.0, 1e6);
-  o.beta_per_l = r.number("beta_per_l", o.beta_per_l, 0.0, 1e3);
-  o.gamma_per_l = r.number("gamma_per_l", o.gamma_per_l, 0.0, 1e3);
-  o.prediction_steps = r.integer("prediction", o.prediction_steps, 0, 100);
-  o.pso.particles = r.integer("particles", o.pso.particles, 2, 10000);
-  o.pso.iterations = r.integer("iterations", o.pso.iterations, 0, 100000);
-  o.pso.stall_iterations = r.integer("stall", o.pso.stall_iterations, 0, 100000);
-  o.pso.infeasible_iterations = r.integer("give_up", o.pso.infeasible_iterations, 0, 100000);
+  PsoMpcOptions o = read(r);
   r.finish();
+  return o;
+}
+
+PsoMpcOptions PsoMpcOptions::read(ParamReader& r) {
+  PsoMpcOptions o;
+  o.step_m = r.number("step", 0.0, 0.0, 1e7, "l, the step to the next waypoint, m; 0: derived from the distance");
+  o.max_turn_deg = r.number("max_turn_deg", o.max_turn_deg, 1.0, 90.0,
+                            "dphi_max, deg (P5 Table 1: 30); never more than the UAV's turn limit");
+  o.max_dh_m = r.number("max_dh", 0.0, 0.0, 1e6, "dh_max, the climb per step, m; 0: from the UAV's climb limit");
+  o.alpha = r.number("alpha", o.alpha, 0.0, 1e6, "alpha, the terminal term's weight (P5 Table 1)");
+  o.beta_per_l = r.number("beta_per_l", o.beta_per_l, 0.0, 1e3, "beta per l, the distance-to-target weight");
+  o.gamma_per_l = r.number("gamma_per_l", o.gamma_per_l, 0.0, 1e3, "gamma per l, the entry-heading weight");
+  o.prediction_steps =
+      r.integer("prediction", o.prediction_steps, 0, 100, "the look-ahead steps (P5: 11; 0: J0, eq. 4)");
+  o.pso.particles = r.integer("particles", o.pso.particles, 2, 10000, "the swarm's particles");
+  o.pso.iterations = r.integer("iterations", o.pso.iterations, 0, 100000, "the swarm's iterations per step");
+  o.pso.stall_iterations = r.integer("stall", o.pso.stall_iterations, 0, 100000,
+                                     "iterations without improvement before a step ends (0: never)");
+  o.pso.infeasible_iterations = r.integer("give_up", o.pso.infeasible_iterations, 0, 100000,
+                                          "iterations without a feasible particle before a step fails (0: never)");
   return o;
 }
 

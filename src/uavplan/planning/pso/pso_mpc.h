@@ -43,6 +43,8 @@ struct PsoMpcOptions {
                  .stall_tolerance = 1e-6,
                  .infeasible_iterations = 20};
   static PsoMpcOptions from_params(const Params& params);
+  // The declaration of its parameters: reads them from r (params.h).
+  static PsoMpcOptions read(ParamReader& r);
 };
 
 // What these options give for a UAV in a world: l, dphi_max and dh_max (the scaling above).

@@ -61,13 +61,19 @@ struct LegCost {
 
 PsoSingleOptions PsoSingleOptions::from_params(const Params& params) {
   ParamReader r(params, "pso_single");
-  PsoSingleOptions o;
-  o.steps.step_m = r.number("step", 0.0, 0.0, 1e7);
-  o.steps.max_turn_deg = r.number("max_turn_deg", o.steps.max_turn_deg, 1.0, 90.0);
-  o.waypoints = r.integer("waypoints", 0, 0, 1000);
-  o.pso.particles = r.integer("particles", o.pso.particles, 2, 10000);
-  o.pso.iterations = r.integer("iterations", o.pso.iterations, 0, 100000);
+  PsoSingleOptions o = read(r);
   r.finish();
+  return o;
+}
+
+PsoSingleOptions PsoSingleOptions::read(ParamReader& r) {
+  PsoSingleOptions o;
+  o.steps.step_m = r.number("step", 0.0, 0.0, 1e7, "l, the segment length, m; 0: derived from the distance");
+  o.steps.max_turn_deg =
+      r.number("max_turn_deg", o.steps.max_turn_deg, 1.0, 90.0, "dphi_max, the turn between segments, deg");
+  o.waypoints = r.integer("waypoints", 0, 0, 1000, "waypoints per leg; 0: floor(distance / l) - 1");
+  o.pso.particles = r.integer("particles", o.pso.particles, 2, 10000, "the swarm's particles");
+  o.pso.iterations = r.integer("iterations", o.pso.iterations, 0, 100000, "the swarm's iterations");
   return o;
 }
 

@@ -33,6 +33,8 @@ struct PsoSingleOptions {
                  .stall_tolerance = 1e-9,
                  .infeasible_iterations = 0};
   static PsoSingleOptions from_params(const Params& params);
+  // The declaration of its parameters: reads them from r (params.h).
+  static PsoSingleOptions read(ParamReader& r);
 };
 
 struct SingleStepRoute {

@@ -27,21 +27,29 @@ RrtOptions RrtOptions::improved() {
 }
 
 RrtOptions RrtOptions::from_params(const Params& params, RrtVariant variant) {
-  const bool improved = variant == RrtVariant::improved;
-  ParamReader r(params, improved ? "improved_rrt" : "rrt");
-  RrtOptions o = improved ? RrtOptions::improved() : RrtOptions::common();
-  o.step_m = r.number("step_m", o.step_m, 0.0, 1e9);
-  o.goal_bias = r.number("goal_bias", o.goal_bias, 0.0, 1.0);
-  o.max_nodes = r.integer("max_nodes", o.max_nodes, 2, 10'000'000);
-  if (improved) {
-    o.chaotic = r.boolean("chaotic", o.chaotic);
-    o.arcsine_uniform = r.boolean("arcsine_uniform", o.arcsine_uniform);
-    o.lambda = r.number("lambda", o.lambda, -100.0, 100.0);
-    o.prune = r.boolean("prune", o.prune);
-    o.lookahead = r.integer("lookahead", o.lookahead, 1, 1000);
-    o.shortcut = r.boolean("shortcut", o.shortcut);
-  }
+  ParamReader r(params, variant == RrtVariant::improved ? "improved_rrt" : "rrt");
+  RrtOptions o = read(r, variant);
   r.finish();
+  return o;
+}
+
+RrtOptions RrtOptions::read(ParamReader& r, RrtVariant variant) {
+  const bool improved = variant == RrtVariant::improved;
+  RrtOptions o = improved ? RrtOptions::improved() : RrtOptions::common();
+  o.step_m = r.number("step_m", o.step_m, 0.0, 1e9,
+                      "epsilon, the growth step, m; 0: P1's 2 m, or diagonal / 50 in worlds over 100 m");
+  o.goal_bias = r.number("goal_bias", o.goal_bias, 0.0, 1.0, "p_s, the probability of growing toward the goal");
+  o.max_nodes =
+      r.integer("max_nodes", o.max_nodes, 2, 10'000'000, "the tree's nodes before giving up (P1: 5000 per replan)");
+  if (improved) {
+    o.chaotic = r.boolean("chaotic", o.chaotic, "logistic-map samples (improved)");
+    o.arcsine_uniform = r.boolean("arcsine_uniform", o.arcsine_uniform, "the chaos transformed to uniform samples");
+    o.lambda = r.number("lambda", o.lambda, -100.0, 100.0,
+                        "the growth bias toward the obstacle's velocity V_b / cruise (improved: 1)");
+    o.prune = r.boolean("prune", o.prune, "P1's 5-look-ahead removal of redundant waypoints");
+    o.lookahead = r.integer("lookahead", o.lookahead, 1, 1000, "the pruning's look-ahead");
+    o.shortcut = r.boolean("shortcut", o.shortcut, "line-of-sight shortcuts after pruning");
+  }
   return o;
 }
 

@@ -42,6 +42,8 @@ struct RrtOptions {
   // planner.params: step_m, goal_bias, max_nodes, and for the improved one chaotic,
   // arcsine_uniform, lambda, prune, lookahead, shortcut.
   static RrtOptions from_params(const Params& params, RrtVariant variant);
+  // The declaration of its parameters: reads them from r (params.h).
+  static RrtOptions read(ParamReader& r, RrtVariant variant);
   // The step used in a world: step_m, or the default from the world's scale.
   double step_in(const Aabb& bounds) const;
 };

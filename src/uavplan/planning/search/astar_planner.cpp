@@ -17,13 +17,20 @@ namespace uavplan {
 
 AStarOptions AStarOptions::from_params(const Params& params) {
   ParamReader r(params, "astar");
-  AStarOptions o;
-  o.cell_m = r.number("cell_m", o.cell_m, 0.0, 1e9);
-  o.shortcut = r.boolean("shortcut", o.shortcut);
-  o.refinements = r.integer("refinements", o.refinements, 0, 8);
-  o.max_cells = r.integer("max_cells", static_cast<int>(o.max_cells), 1, 1'000'000'000);
-  o.target_cells = static_cast<std::int64_t>(r.number("target_cells", static_cast<double>(o.target_cells), 1, 1e9));
+  AStarOptions o = read(r);
   r.finish();
+  return o;
+}
+
+AStarOptions AStarOptions::read(ParamReader& r) {
+  AStarOptions o;
+  o.cell_m = r.number("cell_m", o.cell_m, 0.0, 1e9, "horizontal cell size, m; 0: derived from the world's size");
+  o.shortcut = r.boolean("shortcut", o.shortcut, "remove redundant waypoints along clear straight lines afterwards");
+  o.refinements =
+      r.integer("refinements", o.refinements, 0, 8, "with a derived cell: times it is halved when no route is found");
+  o.max_cells = r.count("max_cells", o.max_cells, 1, 1'000'000'000, "a refined grid never has more cells than this");
+  o.target_cells =
+      r.count("target_cells", o.target_cells, 1, 1'000'000'000, "a derived cell aims at about this many voxels");
   return o;
 }
 

@@ -20,6 +20,10 @@ struct AStarOptions {
   std::int64_t target_cells = 1'000'000;  // derived cells aim at about this many voxels
 
   static AStarOptions from_params(const Params& params);
+
+  // The declaration of its parameters: reads them from r (params.h).
+
+  static AStarOptions read(ParamReader& r);
 };
 
 // The derived cell size: about `target_cells` voxels over the world's bounds, no coarser than

@@ -17,23 +17,37 @@ using namespace directional;
 
 DirectionalAStarOptions DirectionalAStarOptions::from_params(const Params& params) {
   ParamReader r(params, "directional_astar");
-  DirectionalAStarOptions o;
-  o.cell_m = r.number("cell_m", o.cell_m, 0.0, 1e9);
-  o.step_cells = r.number("step_cells", o.step_cells, 0.0, 100.0);
-  if (o.step_cells > 0.0 && o.step_cells < 0.5)
-    throw std::invalid_argument("planner.params.step_cells: must be 0 (derived) or at least 0.5");
-  o.directions = r.integer("directions", o.directions, 1, 64);
-  o.max_yaw_rad = deg_to_rad(r.number("max_yaw_deg", rad_to_deg(o.max_yaw_rad), 0.0, 180.0));
-  o.max_pitch_rad = deg_to_rad(r.number("max_pitch_deg", rad_to_deg(o.max_pitch_rad), 0.0, 90.0));
-  o.max_expansions = r.integer("max_expansions", static_cast<int>(o.max_expansions), 1, 1'000'000'000);
-  o.target_points = static_cast<std::int64_t>(r.number("target_points", static_cast<double>(o.target_points), 1, 1e9));
-  o.step_cells_max = r.number("step_cells_max", o.step_cells_max, 0.5, 100.0);
-  o.min_turn_radius_m = r.number("min_turn_radius_m", o.min_turn_radius_m, 0.0, 1e9);
-  o.heuristic_weight = r.number("heuristic_weight", o.heuristic_weight, 1.0, 10.0);
-  o.climb_bound = r.boolean("climb_bound", o.climb_bound);
-  o.relaxed_heuristic = r.boolean("relaxed_heuristic", o.relaxed_heuristic);
-  o.incumbent_weight = r.number("incumbent_weight", o.incumbent_weight, 1.0, 10.0);
+  DirectionalAStarOptions o = read(r);
   r.finish();
+  return o;
+}
+
+DirectionalAStarOptions DirectionalAStarOptions::read(ParamReader& r) {
+  DirectionalAStarOptions o;
+  o.cell_m = r.number("cell_m", o.cell_m, 0.0, 1e9, "lattice spacing, m; 0: derived from the world");
+  o.step_cells = r.number("step_cells", o.step_cells, 0.0, 100.0,
+                          "L, the step in cells; 0: max(2.5, 2 / psi_max, in 3-D 1 / tan(phi_max))");
+  r.require(o.step_cells == 0.0 || o.step_cells >= 0.5, "step_cells", "must be 0 (derived) or at least 0.5");
+  o.directions =
+      r.integer("directions", o.directions, 1, 64, "M, the directions of the cone for yaw and (in 3-D) pitch");
+  o.max_yaw_rad = deg_to_rad(r.number("max_yaw_deg", rad_to_deg(o.max_yaw_rad), 0.0, 180.0,
+                                      "psi_max, deg; 0: the UAV's max_turn (60 if it has none)"));
+  o.max_pitch_rad = deg_to_rad(r.number("max_pitch_deg", rad_to_deg(o.max_pitch_rad), 0.0, 90.0,
+                                        "phi_max, deg; 0: the UAV's max_climb (30 if it has none)"));
+  o.max_expansions = r.count("max_expansions", o.max_expansions, 1, 1'000'000'000,
+                             "the search gives up (budget) after this many expansions");
+  o.target_points =
+      r.count("target_points", o.target_points, 1, 1'000'000'000, "a derived lattice has about this many points");
+  o.step_cells_max = r.number("step_cells_max", o.step_cells_max, 0.5, 100.0, "the longest derived step, in cells");
+  o.min_turn_radius_m = r.number("min_turn_radius_m", o.min_turn_radius_m, 0.0, 1e9,
+                                 "the least radius of a turn, m (0: none beyond the yaw limit)");
+  o.heuristic_weight =
+      r.number("heuristic_weight", o.heuristic_weight, 1.0, 10.0, "w in f = g + w h; above 1 trades length for speed");
+  o.climb_bound = r.boolean("climb_bound", o.climb_bound, "bound the heuristic by the climb limit (exact in 3-D)");
+  o.relaxed_heuristic = r.boolean("relaxed_heuristic", o.relaxed_heuristic,
+                                  "the heuristic from a reverse search without the turn limits");
+  o.incumbent_weight = r.number("incumbent_weight", o.incumbent_weight, 1.0, 10.0,
+                                "a first search at this weight bounds the exact one (1: none)");
   return o;
 }
 

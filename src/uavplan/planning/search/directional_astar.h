@@ -60,6 +60,10 @@ struct DirectionalAStarOptions {
   double incumbent_weight = 1.2;
 
   static DirectionalAStarOptions from_params(const Params& params);
+
+  // The declaration of its parameters: reads them from r (params.h).
+
+  static DirectionalAStarOptions read(ParamReader& r);
 };
 
 // solved, or failed for stopped, budget (max_expansions), no_route or invalid (the query).
