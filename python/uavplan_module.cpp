@@ -17,6 +17,7 @@
 
 #include "uavplan/coordination/mission_planner.h"
 #include "uavplan/evaluation/verifier.h"
+#include "uavplan/experiments/plan_run.h"
 #include "uavplan/io/export.h"
 #include "uavplan/io/files.h"
 #include "uavplan/io/input_error.h"
@@ -49,28 +50,29 @@ Overrides overrides_of(const py::dict& d) {
 
 std::shared_ptr<Plan> plan_scenario(const Scenario& sc, const std::optional<std::string>& algorithm,
                                     const std::optional<std::uint64_t>& seed, const py::dict& params,
-                                    const std::optional<double>& time_limit_s) {
-  MissionOptions opt;
-  opt.algorithm = algorithm;
-  opt.seed = seed.value_or(sc.seed.value_or(1));
-  for (const auto& [k, v] : overrides_of(params)) opt.params[k] = v;
+                                    const std::optional<double>& time_limit_s, int threads,
+                                    const std::optional<std::uint64_t>& max_memory_bytes) {
+  PlanRequest request;  // the command line's plan: plan_and_verify, the same defaults
+  request.algorithm = algorithm;
+  request.seed = seed;
+  for (const auto& [k, v] : overrides_of(params)) request.params[k] = v;
   if (time_limit_s) {
     if (!(*time_limit_s > 0.0)) throw py::value_error("time_limit_s must be a positive number of seconds");
-    opt.stop = StopCondition::time_limit(*time_limit_s);
+    request.time_limit_s = *time_limit_s;
   }
+  if (threads < 0) throw py::value_error("threads must be 0 (every core) or more");
+  request.threads = threads;
+  request.max_memory_bytes = max_memory_bytes;
   // Planning runs on a thread of its own while this one, holding the GIL only for a moment every
   // 50 ms, looks for Python's signals: Ctrl-C stops the plan at its next stop check and raises
   // KeyboardInterrupt then, not after the whole plan.
   auto plan = std::make_shared<Plan>();
   std::atomic<bool> cancel{false};
-  opt.stop = opt.stop | StopCondition::cancel_flag(&cancel);
+  request.stop = StopCondition::cancel_flag(&cancel);
   std::future<void> done;
   {
     py::gil_scoped_release release;
-    done = std::async(std::launch::async, [&] {
-      *plan = plan_mission(sc, opt);
-      if (!cancel.load()) finalize_plan(sc, *plan);
-    });
+    done = std::async(std::launch::async, [&] { *plan = plan_and_verify(sc, request).plan; });
     while (done.wait_for(std::chrono::milliseconds(50)) != std::future_status::ready) {
       py::gil_scoped_acquire acquire;
       if (PyErr_CheckSignals() != 0) {
@@ -140,6 +142,7 @@ std::vector<std::string> export_plan(const Scenario& sc, const Plan& plan, const
     fs.push_back(*ef);
   }
   opt.autopilot = std::any_of(fs.begin(), fs.end(), autopilot_format);
+  if (const auto problem = export_request_problem(sc, fs, opt)) throw ExportError(*problem);
   const VerifiedExport flights = verified_export(sc, plan, opt);
   if (flights.uavs.empty() || (!flights.holds() && !force)) {
     std::string why = "export refused: the plan does not hold";
@@ -306,8 +309,11 @@ PYBIND11_MODULE(uavplan, m) {
       });
 
   m.def("plan", &plan_scenario, py::arg("scenario"), py::arg("algorithm") = py::none(), py::arg("seed") = py::none(),
-        py::arg("params") = py::dict(), py::arg("time_limit_s") = py::none(),
-        "Plan and verify a scenario (the GIL is released while planning); a plan that does not hold is never solved");
+        py::arg("params") = py::dict(), py::arg("time_limit_s") = py::none(), py::arg("threads") = 0,
+        py::arg("max_memory_bytes") = py::none(),
+        "Plan and verify a scenario as `uavplan plan` does (the GIL is released while planning): a plan that does not "
+        "hold is never solved; threads 0 uses every core; the planners' grids take at most max_memory_bytes (default "
+        "half the machine's memory, 0: no cap)");
   m.def(
       "verify", [](const Scenario& sc, const Plan& p) { return Verdict{verify_plan(sc, p)}; }, py::arg("scenario"),
       py::arg("plan"), "Every violation of the plan against the scenario");

@@ -138,18 +138,6 @@ std::optional<std::vector<RunRecord>> previous_runs(const BatchArgs& a, const st
   return previous;
 }
 
-// This rank's share of the runs not done before.
-std::vector<RunSpec> pending_runs(const std::vector<RunSpec>& runs, const std::vector<RunRecord>& previous,
-                                  const MpiSession& mpi) {
-  std::set<std::size_t> done_before;
-  for (const RunRecord& r : previous) done_before.insert(r.spec.index);
-  std::vector<RunSpec> pending;
-  std::size_t k = 0;
-  for (const RunSpec& r : runs)
-    if (!done_before.count(r.index) && (k++ % std::size_t(mpi.size())) == std::size_t(mpi.rank())) pending.push_back(r);
-  return pending;
-}
-
 BatchOptions batch_options(const BatchArgs& a, const Sweep& sweep, int rank) {
   BatchOptions opt;
   opt.jobs = a.jobs;
@@ -224,7 +212,7 @@ int run_batch_command(const BatchArgs& a) {
   mpi.barrier();  // every rank has looked before rank 0 touches the folder
   const std::optional<std::vector<RunRecord>> previous = previous_runs(a, l->runs, mpi);
   if (!previous) return kExitBadInput;
-  const std::vector<RunSpec> pending = pending_runs(l->runs, *previous, mpi);
+  const std::vector<RunSpec> pending = pending_runs(l->runs, *previous, mpi.rank(), mpi.size());
   std::optional<JournalWriter> journal;
   try {
     journal.emplace(a.out_dir, mpi.rank());
@@ -277,10 +265,7 @@ void add_batch_command(CLI::App& app, std::function<int()>& run) {
   cmd->footer("Example: uavplan batch sweeps/compare.yaml -o results --jobs 2 --ompl-log results/ompl.log");
   cmd->callback([args, &run] {
     run = [args] {
-      if (args->max_memory_bytes == 0) {
-        const int jobs = args->jobs > 0 ? args->jobs : int(std::max(1u, std::thread::hardware_concurrency()));
-        args->max_memory_bytes = default_memory_cap_bytes() / std::uint64_t(jobs);
-      }
+      if (args->max_memory_bytes == 0) args->max_memory_bytes = default_run_memory_cap_bytes(args->jobs);
       return run_batch_command(*args);
     };
   });

@@ -35,21 +35,9 @@ std::optional<std::string> export_request_problem(const Scenario& sc, const Expo
           "formats too");
     return std::nullopt;
   }
-  if (sc.mission.airfield && a.vehicle == "multirotor")
-    return "a formation_mission takes off and lands on its runway, as a fixed wing does: export it with --vehicle "
-           "fixedwing (the default for it)";
-  for (const std::string& f : a.formats)
-    if (needs_origin(*export_format_from_string(f)) && !sc.origin)
-      return "scenario '" + sc.name + "' has no origin: add origin: {lat, lon, alt} to export " + f +
-             " (WGS84); csv exports local coordinates without one";
-  const ExportOptions opt = options_of(sc, a);
-  if (!opt.autopilot) return std::nullopt;
-  try {  // an altitude frame the firmware does not take
-    (void)altitude_frame(sc, opt);
-  } catch (const ExportError& e) {
-    return std::string(e.what());
-  }
-  return std::nullopt;
+  std::vector<ExportFormat> formats;
+  for (const std::string& f : a.formats) formats.push_back(*export_format_from_string(f));
+  return uavplan::export_request_problem(sc, formats, options_of(sc, a));
 }
 
 void add_export_options(CLI::App& cmd, ExportArgs& a, bool formats_required) {

@@ -4,8 +4,7 @@
 #include <optional>
 
 #include "commands.h"
-#include "uavplan/coordination/mission_planner.h"
-#include "uavplan/evaluation/verifier.h"
+#include "uavplan/experiments/plan_run.h"
 #include "uavplan/io/export.h"
 #include "uavplan/io/files.h"
 #include "uavplan/io/input_error.h"
@@ -135,28 +134,28 @@ int run_plan(const PlanArgs& a) {
     std::cerr << a.scenario << ": export: " << *problem << "\n";
     return kExitBadInput;
   }
-  MissionOptions opt;
-  if (!a.algorithm.empty()) opt.algorithm = a.algorithm;
-  opt.seed = a.seed.value_or(sc.seed.value_or(1));
-  opt.stop = stop;
+  PlanRequest request;
+  if (!a.algorithm.empty()) request.algorithm = a.algorithm;
+  request.seed = a.seed;
+  request.stop = stop;  // --time-limit counts from the process's start
+  request.threads = a.run.threads;
+  request.max_memory_bytes = a.run.max_memory_bytes;
   Progress progress;
   progress.update("planning");
   progress.start_heartbeat();
-  opt.progress = [&](std::size_t done, std::size_t total) {
-    progress.update("planning: " + std::to_string(done) + "/" + std::to_string(total) + " UAVs");
+  request.progress = [&](std::size_t done, std::size_t total) {
+    progress.update(done == total ? "verifying the plan"
+                                  : "planning: " + std::to_string(done) + "/" + std::to_string(total) + " UAVs");
   };
   Plan plan;
   try {
-    plan = plan_mission(sc, opt);
+    plan = plan_and_verify(sc, request).plan;
   } catch (const std::invalid_argument& e) {
     std::cerr << a.scenario << ": planner: " << e.what() << "\n";
     return kExitBadInput;
   }
-  for (const std::string& note : plan.notes) std::cerr << a.scenario << ": note: " << note << "\n";
-  if (interrupted_nothing_written()) return kExitInterrupted;
-  progress.update("verifying the plan");
-  finalize_plan(sc, plan);  // verifies
   progress.finish();
+  for (const std::string& note : plan.notes) std::cerr << a.scenario << ": note: " << note << "\n";
   if (interrupted_nothing_written()) return kExitInterrupted;
   const int export_rc = write_outputs(a, sc, plan);
   if (export_rc != kExitOk) return export_rc;

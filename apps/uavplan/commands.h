@@ -15,6 +15,7 @@
 #include "uavplan/coordination/contract/plan.h"
 #include "uavplan/coordination/contract/scenario.h"
 #include "uavplan/core/stop.h"
+#include "uavplan/experiments/plan_run.h"
 #include "uavplan/io/export.h"
 
 namespace uavplan::cli {
@@ -72,7 +73,7 @@ struct RunArgs {
   int threads = 0;
   std::uint64_t max_memory_bytes = 0;  // set to the default when the options are added
 };
-std::uint64_t default_memory_cap_bytes();
+
 // Validators with one-line messages.
 CLI::Validator positive_number();
 CLI::Validator non_negative_integer();

@@ -106,12 +106,6 @@ StopCondition run_stop(const RunArgs& a) {
   return stop.with_threads(a.threads).with_memory_cap(a.max_memory_bytes);
 }
 
-std::uint64_t default_memory_cap_bytes() {
-  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
-  if (pages <= 0 || page <= 0) return 0;
-  return static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) / 2;
-}
-
 void add_run_options(CLI::App& cmd, RunArgs& a) {
   cmd.add_option("--time-limit", a.time_limit_s, "Stop after this many seconds of wall time (the whole command)")
       ->check(positive_number());

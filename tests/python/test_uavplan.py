@@ -271,3 +271,22 @@ def test_hostile_elevation_models_are_input_errors(tmp_path):
             "uavs:\n  - {id: a, start: [-50, -50, 200], goal: [50, 50, 200]}\n")
         with pytest.raises(uavplan.InputError, match=f"{name}.vrt"):
             uavplan.Scenario.load(str(tmp_path / f"{name}.yaml"))
+
+
+def test_plan_and_export_follow_the_command_lines_rules(root, exe, tmp_path, demo):
+    # One entry point: the same memory cap gives the same refusal, word for word.
+    cli = subprocess.run([exe, "plan", str(root / "scenarios/demo.yaml"), "-o", str(tmp_path / "cli"),
+                          "--max-memory", "1K"], capture_output=True, text=True)
+    assert cli.returncode == 2
+    with pytest.raises(ValueError) as e:
+        uavplan.plan(demo, max_memory_bytes=1024)
+    assert str(e.value) in cli.stderr, (str(e.value), cli.stderr)
+    # The export rules are the library's: a runway mission is not exported as a multirotor.
+    p5 = uavplan.Scenario.load(str(root / "scenarios/p5_mission.yaml"))
+    cli = subprocess.run([exe, "plan", str(root / "scenarios/p5_mission.yaml"), "-o", str(tmp_path / "p5"),
+                          "--export", "qgc", "--vehicle", "multirotor"], capture_output=True, text=True)
+    assert cli.returncode == 2
+    with pytest.raises(uavplan.ExportError) as e:
+        uavplan.export(p5, uavplan.plan(p5), ["qgc"], str(tmp_path / "py"), vehicle="multirotor")
+    assert str(e.value) in cli.stderr, (str(e.value), cli.stderr)
+    assert not (tmp_path / "py").exists() or not any((tmp_path / "py").iterdir())

@@ -19,8 +19,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "uavplan/coordination/mission_planner.h"
 #include "uavplan/evaluation/verifier.h"
+#include "uavplan/experiments/plan_run.h"
 #include "uavplan/io/files.h"
 #include "uavplan/io/input_error.h"
 #include "uavplan/io/plan_io.h"
@@ -150,22 +150,25 @@ RunOutcome run_in_process(const RunSpec& run, const ScenarioCache& cache, const 
   plan_json.clear();
   RunOutcome o;
   ParamSetting overrides;
-  MissionOptions opt;
-  split_params(run.params, overrides, opt.params);
-  if (!run.planner.empty()) opt.algorithm = run.planner;
-  opt.seed = run.seed;
-  if (time_limit_s > 0.0) opt.stop = StopCondition::time_limit(time_limit_s);
-  if (options.stop) opt.stop = opt.stop | StopCondition::cancel_flag(options.stop);  // an interrupt stops the run
-  opt.stop = opt.stop.with_threads(1).with_memory_cap(options.max_memory_bytes);  // the batch is parallel; a run is not
+  PlanRequest request;
+  split_params(run.params, overrides, request.params);
+  if (!run.planner.empty()) request.algorithm = run.planner;
+  request.seed = run.seed;
+  request.time_limit_s = time_limit_s;
+  if (options.stop) request.stop = StopCondition::cancel_flag(options.stop);  // an interrupt stops the run
+  request.threads = 1;                                                        // the batch is parallel; a run is not
+  request.max_memory_bytes = options.max_memory_bytes;
   try {
-    const auto sc = cache.get(run.scenario, overrides, opt.stop);
-    const auto p0 = Clock::now();
-    Plan plan = plan_mission(*sc, opt);
-    const double plan_ms = ms_since(p0);
-    const std::size_t violations = finalize_plan(*sc, plan).size();
-    o = outcome_of(plan, violations, time_limit_s > 0.0);
-    o.plan_ms = plan_ms;
-    plan_json = plan_to_json(plan);
+    // The load counts against the run's limits as the plan does.
+    const StopCondition load_stop =
+        (time_limit_s > 0.0 ? request.stop | StopCondition::time_limit(time_limit_s) : request.stop)
+            .with_threads(1)
+            .with_memory_cap(options.max_memory_bytes);
+    const auto sc = cache.get(run.scenario, overrides, load_stop);
+    const VerifiedPlan v = plan_and_verify(*sc, request);
+    o = outcome_of(v.plan, v.violations.size(), time_limit_s > 0.0);
+    o.plan_ms = v.plan_ms;
+    plan_json = plan_to_json(v.plan);
   } catch (const std::exception& e) {
     o = RunOutcome{};
     o.status = RunStatus::error;

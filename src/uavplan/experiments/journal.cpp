@@ -44,6 +44,18 @@ std::vector<RunRecord> parse_journal_lines(const std::string& lines) {
   return out;
 }
 
+std::vector<RunSpec> pending_runs(const std::vector<RunSpec>& runs, const std::vector<RunRecord>& previous, int rank,
+                                  int ranks) {
+  std::set<std::size_t> done_before;
+  for (const RunRecord& r : previous) done_before.insert(r.spec.index);
+  std::vector<RunSpec> pending;
+  std::size_t k = 0;
+  for (const RunSpec& r : runs)
+    if (!done_before.count(r.index) && (k++ % std::size_t(std::max(ranks, 1))) == std::size_t(rank))
+      pending.push_back(r);
+  return pending;
+}
+
 std::optional<std::vector<RunRecord>> resumed_runs(const std::string& out_dir, const std::vector<RunSpec>& runs,
                                                    std::string& error) {
   std::vector<RunRecord> kept;

@@ -25,6 +25,11 @@ std::vector<RunRecord> parse_journal_lines(const std::string& lines);
 
 // The runs the journal holds, one record per run number, each checked against the sweep's run
 // of that number; nullopt with `error` set when one is of another sweep or its scenario changed.
+// The runs not among `previous` (a resumed batch's) that rank `rank` of `ranks` runs: every
+// ranks-th of them in run order, so the ranks share the work and each run is done once.
+std::vector<RunSpec> pending_runs(const std::vector<RunSpec>& runs, const std::vector<RunRecord>& previous, int rank,
+                                  int ranks);
+
 std::optional<std::vector<RunRecord>> resumed_runs(const std::string& out_dir, const std::vector<RunSpec>& runs,
                                                    std::string& error);
 

@@ -132,6 +132,24 @@ bool needs_origin(ExportFormat f) { return f != ExportFormat::csv; }
 bool autopilot_format(ExportFormat f) { return f == ExportFormat::qgc || f == ExportFormat::wpl; }
 std::string_view default_vehicle(const Scenario& sc) { return sc.mission.airfield ? "fixedwing" : "multirotor"; }
 
+std::optional<std::string> export_request_problem(const Scenario& sc, const std::vector<ExportFormat>& formats,
+                                                  const ExportOptions& opt) {
+  if (sc.mission.airfield && opt.vehicle == VehicleKind::multirotor)
+    return "a formation_mission takes off and lands on its runway, as a fixed wing does: export it with --vehicle "
+           "fixedwing (the default for it)";
+  for (const ExportFormat f : formats)
+    if (needs_origin(f) && !sc.origin)
+      return "scenario '" + sc.name + "' has no origin: add origin: {lat, lon, alt} to export " +
+             std::string(to_string(f)) + " (WGS84); csv exports local coordinates without one";
+  if (!opt.autopilot) return std::nullopt;
+  try {  // an altitude frame the firmware does not take
+    (void)altitude_frame(sc, opt);
+  } catch (const ExportError& e) {
+    return std::string(e.what());
+  }
+  return std::nullopt;
+}
+
 ExportOptions export_options(std::string_view firmware, std::string_view vehicle, std::string_view end,
                              std::string_view fence) {
   const auto bad = [](const char* what, std::string_view v, const char* choices) {

@@ -31,6 +31,12 @@ bool autopilot_format(ExportFormat f);
 // runway), else "multirotor".
 std::string_view default_vehicle(const Scenario& scenario);
 
+// Why this export cannot be made of the scenario, asked before a plan is made or exported (the
+// command line and the Python module alike): a runway mission as a multirotor, a WGS84 format
+// without an origin, an altitude frame the firmware does not take; nullopt when it can.
+std::optional<std::string> export_request_problem(const Scenario& scenario, const std::vector<ExportFormat>& formats,
+                                                  const ExportOptions& options);
+
 struct ExportFile {
   std::string name;  // file name inside the output directory
   std::string content;
