@@ -1,4 +1,5 @@
 #include "uavplan/coordination/planning_view.h"
+#include "uavplan/core/tolerances.h"
 
 #include <algorithm>
 #include <cmath>
@@ -199,7 +200,7 @@ namespace {
 void fly_to(Trajectory& tr, const Vec3& to, double v_mps, double max_dt_s) {
   const Vec3 from = tr.back().p;
   const double t0 = tr.back().t_s, dur = (to - from).norm() / v_mps;
-  const int pieces = std::max(1, static_cast<int>(std::ceil(dur / max_dt_s - 1e-9)));
+  const int pieces = std::max(1, static_cast<int>(std::ceil(dur / max_dt_s - kWholeNumberSlack)));
   for (int k = 1; k <= pieces; ++k)
     tr.push_back({t0 + dur * k / pieces, k == pieces ? to : Vec3(from + (to - from) * k / pieces)});
 }
@@ -212,7 +213,7 @@ Trajectory with_takeoff(const Trajectory& flown, const Vec3& ground, double v_mp
   std::size_t held = 0;
   while (held + 1 < flown.size() && flown[held + 1].p == lift) ++held;
   const double hold_s = flown[held].t_s - flown.front().t_s;
-  const bool in_wait = hold_s >= climb_s - 1e-9;
+  const bool in_wait = hold_s >= climb_s - kSameTime_s;
   const double shift = in_wait ? 0.0 : (shift_s > 0.0 ? shift_s : climb_s);
   const double lift_s = in_wait ? flown[held].t_s : shift;
   Trajectory tr{{0.0, ground}};
@@ -232,7 +233,7 @@ void to_scenario(const PlanningView& v, const Scenario& sc, Plan& plan, double m
     if (up.trajectory.empty()) continue;
     const double v_mps = sc.uavs[i].speed.cruise_mps;
     bool changed = false;
-    if (v.lift_off[i] && (up.trajectory.front().p - *v.lift_off[i]).norm() <= 1e-9) {
+    if (v.lift_off[i] && (up.trajectory.front().p - *v.lift_off[i]).norm() <= kSamePoint_m) {
       up.trajectory = with_takeoff(up.trajectory, *v.ground.start[i], v_mps, v.takeoff_s, max_dt_s);
       up.waypoints.insert(up.waypoints.begin(), *v.ground.start[i]);
       changed = true;

@@ -1,5 +1,6 @@
 #include "uavplan/coordination/timing.h"
 #include "uavplan/core/text.h"
+#include "uavplan/core/tolerances.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -34,7 +35,7 @@ Departure earliest_departure(const Scenario& sc, const UavSpec& u, const std::ve
                              double max_delay_s, const Committed& committed, double delay_step_s,
                              double max_sample_dt_s, const StopCondition& stop, MovingObstacles moving) {
   Departure d;
-  for (int k = 0; k == 0 || (delay_step_s > 0.0 && k * delay_step_s <= max_delay_s + 1e-9); ++k) {
+  for (int k = 0; k == 0 || (delay_step_s > 0.0 && k * delay_step_s <= max_delay_s + kSameTime_s); ++k) {
     if (stop.should_stop()) {
       d.stopped = true;
       break;

@@ -1,4 +1,5 @@
 #include "uavplan/evaluation/metrics.h"
+#include "uavplan/core/tolerances.h"
 
 #include <algorithm>
 #include <cmath>
@@ -48,14 +49,14 @@ int count_reversals(const Trajectory& tr, double over_deg, double within_s) {
   std::size_t k = 1;
   while (k < tr.size()) {
     const Vec3 a = tr[k].p - tr[k - 1].p;
-    if (a.norm() <= 1e-9) {
+    if (a.norm() <= kSamePoint_m) {
       ++k;
       continue;
     }
     std::size_t m = k + 1;
     for (; m < tr.size() && tr[m - 1].t_s - tr[k].t_s <= within_s; ++m) {
       const Vec3 b = tr[m].p - tr[m - 1].p;
-      if (b.norm() > 1e-9 && a.dot(b) < cos_limit * a.norm() * b.norm()) break;
+      if (b.norm() > kSamePoint_m && a.dot(b) < cos_limit * a.norm() * b.norm()) break;
     }
     if (m < tr.size() && tr[m - 1].t_s - tr[k].t_s <= within_s) {
       ++count;
@@ -71,7 +72,7 @@ double backing_up_m(const Trajectory& own, std::span<const Trajectory* const> gr
   double back = 0.0;
   for (std::size_t k = 1; k < own.size(); ++k) {
     const Vec3 d = own[k].p - own[k - 1].p;
-    if (d.norm() <= 1e-9 || group.empty() || own[k - 1].t_s < from_s || own[k].t_s > to_s) continue;
+    if (d.norm() <= kSamePoint_m || group.empty() || own[k - 1].t_s < from_s || own[k].t_s > to_s) continue;
     Vec3 mean = Vec3::Zero();
     for (const Trajectory* g : group)
       mean += (position_at(*g, own[k].t_s) - position_at(*g, own[k - 1].t_s)) / static_cast<double>(group.size());
@@ -193,7 +194,7 @@ double smallest_separation_m(const Scenario& sc, const std::vector<const UavPlan
   double min_sep = World::kInf, done_m = 0.0;
   // A plan that verified keeps its pairs at least the separation apart: a first reach of twice
   // that mostly holds the nearest pair.
-  double reach_m = std::max({2.0 * sc.mission.separation_m, 4.0 * widest_m, extent_m / 1024.0, 1e-9});
+  double reach_m = std::max({2.0 * sc.mission.separation_m, 4.0 * widest_m, extent_m / 1024.0, kTinyDivisor});
   for (;;) {
     std::vector<SweptBoxes::NearPair> pairs = boxes.pairs_within(reach_m);
     std::sort(pairs.begin(), pairs.end(), [](const SweptBoxes::NearPair& a, const SweptBoxes::NearPair& b) {

@@ -139,7 +139,7 @@ INSTANTIATE_TEST_SUITE_P(Registered, PlannerProperties, ::testing::ValuesIn(plan
 // UAVs with sensors flown in the loop (P1's local layer).
 TEST(MissionProperties, GroupRendezvousAndSensingClaimsHold) {
   for (std::uint64_t seed = 1; seed <= sweep_cases(25); ++seed) {
-    for (const std::string type : {std::string("group"), std::string("rendezvous")}) {
+    for (const std::string& type : {std::string("group"), std::string("rendezvous")}) {
       RandomWorldOptions o;
       o.mission = type;
       o.limits = type == "rendezvous";

@@ -1,5 +1,6 @@
 #include "uavplan/evaluation/world_bench.h"
 #include "uavplan/core/text.h"
+#include "uavplan/core/tolerances.h"
 
 #include <chrono>
 #include <cmath>
@@ -100,7 +101,7 @@ std::string format_world_bench(const std::vector<WorldBenchRow>& rows) {
               "speedup", "clearance_us", "collisions", "mismatch");
   for (const auto& r : rows)
     out += strf("%10d %8d %12.2f %14.2f %8.1fx %12.2f %11d %10d\n", r.obstacles, r.queries, r.segment_us,
-                r.segment_brute_us, r.segment_brute_us / std::max(r.segment_us, 1e-9), r.point_us, r.collisions,
+                r.segment_brute_us, r.segment_brute_us / std::max(r.segment_us, kTinyDivisor), r.point_us, r.collisions,
                 r.mismatches);
   return out;
 }

@@ -29,8 +29,8 @@ VerifiedPlan plan_and_verify(const Scenario& sc, const PlanRequest& request) {
   opt.params = request.params;
   opt.stop = request.stop;
   if (request.time_limit_s > 0.0) opt.stop = opt.stop | StopCondition::time_limit(request.time_limit_s);
-  opt.stop =
-      opt.stop.with_threads(request.threads).with_memory_cap(request.max_memory_bytes.value_or(default_memory_cap_bytes()));
+  opt.stop = opt.stop.with_threads(request.threads)
+                 .with_memory_cap(request.max_memory_bytes.value_or(default_memory_cap_bytes()));
   opt.progress = request.progress;
   VerifiedPlan out;
   const auto t0 = std::chrono::steady_clock::now();

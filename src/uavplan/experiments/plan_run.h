@@ -38,9 +38,9 @@ struct PlanRequest {
 };
 
 struct VerifiedPlan {
-  Plan plan;                         // finalized: a UAV the verifier faults is not solved
+  Plan plan;                          // finalized: a UAV the verifier faults is not solved
   std::vector<Violation> violations;  // what the verifier found in what was planned
-  double plan_ms = 0.0;              // planning alone (wall time)
+  double plan_ms = 0.0;               // planning alone (wall time)
 };
 
 // Plans the scenario's mission and verifies the plan (finalize_plan). A stop that comes while

@@ -1,4 +1,5 @@
 #include "uavplan/io/elevation_model.h"
+#include "uavplan/core/tolerances.h"
 
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
@@ -214,7 +215,7 @@ struct Cells {
 Cells world_cells(const Aabb& bounds, double c, std::size_t max_cells) {
   Cells w{bounds.min.head<2>(), bounds.max.head<2>(), c, 0, 0};
   const auto count = [](double size, double cell) {
-    return std::max(1, static_cast<int>(std::ceil(size / cell - 1e-9)));
+    return std::max(1, static_cast<int>(std::ceil(size / cell - kWholeNumberSlack)));
   };
   w.nx = count(w.hi.x() - w.lo.x(), c);
   w.ny = count(w.hi.y() - w.lo.y(), c);

@@ -1,4 +1,5 @@
 #include "uavplan/io/flight_export.h"
+#include "uavplan/core/tolerances.h"
 
 #include <algorithm>
 #include <cmath>
@@ -36,7 +37,7 @@ void append_flight(Trajectory& tr, const std::vector<Vec3>& pts, double v_mps) {
 Vec3 final_heading(const Trajectory& tr, std::size_t last, const UavSpec& u) {
   for (std::size_t k = last; k > 0; --k) {
     const Vec3 d(tr[k].p.x() - tr[k - 1].p.x(), tr[k].p.y() - tr[k - 1].p.y(), 0.0);
-    if (d.norm() > 1e-9) return d.normalized();
+    if (d.norm() > kSamePoint_m) return d.normalized();
   }
   return u.heading_rad ? heading_vector(*u.heading_rad) : Vec3::UnitX();
 }
@@ -45,7 +46,7 @@ Vec3 first_heading(const Trajectory& tr, const UavSpec& u) {
   if (u.heading_rad) return heading_vector(*u.heading_rad);
   for (std::size_t k = 1; k < tr.size(); ++k) {
     const Vec3 d(tr[k].p.x() - tr[0].p.x(), tr[k].p.y() - tr[0].p.y(), 0.0);
-    if (d.norm() > 1e-9) return d.normalized();
+    if (d.norm() > kSamePoint_m) return d.normalized();
   }
   return Vec3::UnitX();
 }
@@ -284,7 +285,7 @@ class Builder {
     std::string first;
     Vec3 last = dir;  // the last leg that moves, in 3-D
     for (std::size_t k = tr.size() - 1; k > 0; --k)
-      if ((tr[k].p - tr[k - 1].p).norm() > 1e-9) {
+      if ((tr[k].p - tr[k - 1].p).norm() > kSamePoint_m) {
         last = (tr[k].p - tr[k - 1].p).normalized();
         break;
       }

@@ -49,10 +49,9 @@ class FerryMission final : public Mission {
   void plan(const Scenario& sc, const MissionContext& ctx, Plan& plan) const override {
     const double h = sc.mission.section_as<FerrySection>()->height_m;
     for (const UavSpec& u : sc.uavs) {
-      const std::vector<Vec3> route = {u.start, {u.start.x(), u.start.y(), h}, {u.goal->x(), u.goal->y(), h},
-                                       *u.goal};
-      plan.uavs.push_back(flown_plan(u.id, true, "", route,
-                                     time_route(route, u.speed.cruise_mps, 0.0, ctx.options.max_sample_dt_s)));
+      const std::vector<Vec3> route = {u.start, {u.start.x(), u.start.y(), h}, {u.goal->x(), u.goal->y(), h}, *u.goal};
+      plan.uavs.push_back(
+          flown_plan(u.id, true, "", route, time_route(route, u.speed.cruise_mps, 0.0, ctx.options.max_sample_dt_s)));
     }
   }
   // Its rule: level flight at the ferry height between the climb and the descent.
@@ -98,9 +97,8 @@ TEST(ToyMission, ReadPlannedVerifiedAndListedThroughTheRegistryAlone) {
   for (UavPlan& u : low.uavs)
     for (auto& s : u.trajectory) s.p.z() = std::min(s.p.z(), 35.0);
   const auto violations = verify_plan(sc, low);
-  EXPECT_TRUE(std::any_of(violations.begin(), violations.end(), [](const Violation& v) {
-    return v.message.find("ferry height") != std::string::npos;
-  }));
+  EXPECT_TRUE(std::any_of(violations.begin(), violations.end(),
+                          [](const Violation& v) { return v.message.find("ferry height") != std::string::npos; }));
 
   // Listed with its keys, in both of info's forms; its name is among the types a typo is told.
   EXPECT_NE(mission_catalog_text(false).find("ferry: Each UAV climbs"), std::string::npos);

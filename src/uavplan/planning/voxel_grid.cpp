@@ -1,4 +1,5 @@
 #include "uavplan/planning/voxel_grid.h"
+#include "uavplan/core/tolerances.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +11,7 @@ VoxelGrid::VoxelGrid(const Aabb& region, const Vec3& cell) : origin_(region.min)
   int n[3];
   for (int a = 0; a < 3; ++a) {
     const double want = cell[a] > 0.0 ? cell[a] : 1.0;
-    n[a] = std::max(1, static_cast<int>(std::min(std::floor(ext[a] / want + 1e-9), 1e9)));
+    n[a] = std::max(1, static_cast<int>(std::min(std::floor(ext[a] / want + kWholeNumberSlack), 1e9)));
     cell_[a] = ext[a] > 0.0 ? ext[a] / n[a] : 0.0;
   }
   cells_ = BitGrid(n[0], n[1], n[2]);
@@ -21,7 +22,7 @@ double VoxelGrid::cell_count(const Aabb& region, const Vec3& cell) {
   double count = 1.0;
   for (int a = 0; a < 3; ++a) {
     const double want = cell[a] > 0.0 ? cell[a] : 1.0;
-    count *= std::max(1.0, std::min(std::floor(ext[a] / want + 1e-9), 1e9));  // as the constructor
+    count *= std::max(1.0, std::min(std::floor(ext[a] / want + kWholeNumberSlack), 1e9));  // as the constructor
   }
   return count;
 }

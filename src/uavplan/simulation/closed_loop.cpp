@@ -1,4 +1,5 @@
 #include "uavplan/simulation/closed_loop.h"
+#include "uavplan/core/tolerances.h"
 
 #include <algorithm>
 #include <cmath>
@@ -54,7 +55,7 @@ Trajectory densified(const Trajectory& tr, double max_dt) {
   for (std::size_t i = 0; i < tr.size(); ++i) {
     if (i > 0 && max_dt > 0.0) {
       const TrajectorySample &a = tr[i - 1], &b = tr[i];
-      const int pieces = static_cast<int>(std::ceil((b.t_s - a.t_s) / max_dt - 1e-9));
+      const int pieces = static_cast<int>(std::ceil((b.t_s - a.t_s) / max_dt - kWholeNumberSlack));
       for (int k = 1; k < pieces; ++k) {
         const double f = static_cast<double>(k) / pieces;
         out.push_back({a.t_s + f * (b.t_s - a.t_s), a.p + f * (b.p - a.p)});
@@ -133,7 +134,7 @@ LoopResult fly_closed_loop(const World& world, std::span<const LoopUav> uavs, st
     for (std::size_t i = 0; i < uavs.size(); ++i) sense(sensors[i], truth, first_uav + i, res.uavs[i].position, t);
     controller.control(t, res.uavs, sensors);
     for (FlightState& s : res.uavs)
-      if (!s.route.empty() && t + 1e-9 >= s.depart_s) advance(s, t, opt.step_s);
+      if (!s.route.empty() && t + kSameTime_s >= s.depart_s) advance(s, t, opt.step_s);
     res.steps = k + 1;
   }
   for (FlightState& s : res.uavs) s.flown = densified(s.flown, opt.max_sample_dt_s);

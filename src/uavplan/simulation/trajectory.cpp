@@ -1,5 +1,6 @@
 #include "uavplan/simulation/trajectory.h"
 #include <Eigen/Geometry>
+#include "uavplan/core/tolerances.h"
 
 #include <algorithm>
 #include <cmath>
@@ -18,7 +19,8 @@ Trajectory time_route(std::span<const Vec3> pts, double speed_mps, double depart
     const double len = (pts[i] - pts[i - 1]).norm();
     if (len <= 0.0) continue;
     const double dur = len / speed_mps;
-    const int pieces = max_dt_s > 0.0 ? std::max(1, static_cast<int>(std::ceil(dur / max_dt_s - 1e-9))) : 1;
+    const int pieces =
+        max_dt_s > 0.0 ? std::max(1, static_cast<int>(std::ceil(dur / max_dt_s - kWholeNumberSlack))) : 1;
     for (int k = 1; k <= pieces; ++k) {
       const double f = static_cast<double>(k) / pieces;
       tr.push_back({t + f * dur, k == pieces ? pts[i] : Vec3(pts[i - 1] + f * (pts[i] - pts[i - 1]))});
@@ -32,8 +34,8 @@ void append_straight_run(Trajectory& tr, const Vec3& to, double v0, double v1, d
   const Vec3 from = tr.back().p;
   const double len = (to - from).norm(), t0 = tr.back().t_s;
   if (len <= 0.0) return;
-  const double dur = 2.0 * len / std::max(v0 + v1, 1e-9), acc = (v1 - v0) / dur;
-  for (double t = sample_s; t < dur - 1e-9; t += sample_s)
+  const double dur = 2.0 * len / std::max(v0 + v1, kTinyDivisor), acc = (v1 - v0) / dur;
+  for (double t = sample_s; t < dur - kSameTime_s; t += sample_s)
     tr.push_back({t0 + t, from + (v0 * t + 0.5 * acc * t * t) / len * (to - from)});
   tr.push_back({t0 + dur, to});
 }

@@ -1,4 +1,5 @@
 #include "uavplan/vehicle/autopilot.h"
+#include "uavplan/core/tolerances.h"
 
 #include <algorithm>
 #include <array>
@@ -47,7 +48,7 @@ void AutopilotModel::advance(AutopilotState& state, const AutopilotCommand& c, d
   };
   boost::numeric::odeint::runge_kutta4<State> rk4;
   State x = pack(state);
-  const int steps = std::max(1, static_cast<int>(std::ceil(dt_s / step_s_ - 1e-9)));
+  const int steps = std::max(1, static_cast<int>(std::ceil(dt_s / step_s_ - kWholeNumberSlack)));
   const double h = dt_s / steps;
   for (int k = 0; k < steps; ++k) {
     rk4.do_step(rhs, x, k * h, h);
@@ -124,10 +125,10 @@ FollowResult follow_waypoints(const AutopilotModel& model, AutopilotState s, con
       continue;
     }
     const Vec3 aim = to - s.position;
-    const double bearing = aim.head<2>().norm() > 1e-9 ? std::atan2(aim.y(), aim.x()) : s.heading_rad;
+    const double bearing = aim.head<2>().norm() > kSamePoint_m ? std::atan2(aim.y(), aim.x()) : s.heading_rad;
     model.advance(s, {cruise_mps, to.z(), bearing}, h);
     t += h;
-    if (t + 1e-9 >= next_sample) {
+    if (t + kSameTime_s >= next_sample) {
       r.samples.push_back({t, s});
       next_sample += o.sample_s;
     }

@@ -1,4 +1,5 @@
 #include "uavplan/coordination/formation/formation_flight.h"
+#include "uavplan/core/tolerances.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -12,7 +13,7 @@ namespace {
 // What a UAV is told to fly for the coming period: the straight line from where it is to where
 // its route takes it by the period's end, and how far the route strays from that line.
 Intent commanded(double t, const FlightState& s, double step_s) {
-  if (s.route.empty() || t + 1e-9 < s.depart_s || s.speed_mps <= 0.0) return {};
+  if (s.route.empty() || t + kSameTime_s < s.depart_s || s.speed_mps <= 0.0) return {};
   const double v = std::clamp(s.speed_mps, s.spec->speed.min_mps, s.spec->speed.max_mps);
   std::vector<Vec3> pts{s.position};
   double left = v * step_s;
@@ -86,7 +87,7 @@ void FormationFlight::fly_slot(double t, std::size_t i, FlightState& s, double h
   s.route = std::move(route);
   // At its goal before the clock's end (its end leg has no length) it hovers there: it has not
   // arrived before the others.
-  const bool at_goal = (s.position - sched_.slots[i].back()).norm() <= 1e-9;
+  const bool at_goal = (s.position - sched_.slots[i].back()).norm() <= kSamePoint_m;
   if (s.route.empty() || at_goal) s.route.clear();
   if (at_goal && (next < sched_.end_s() || waiting())) s.route.push_back(s.position);
   s.speed_mps = now_m / opt_.step_s;
@@ -137,7 +138,7 @@ void FormationFlight::clip_route(std::size_t i, FlightState& s) const {
     s.route.pop_back();
     const Vec3 left = sched_.at(i, members_[i].tau_s);
     const bool rejoins = !s.route.empty() && on_approach(i, s.route.back());
-    if (!rejoins && (s.position - left).norm() > 1e-9) s.route.push_back(left);
+    if (!rejoins && (s.position - left).norm() > kSamePoint_m) s.route.push_back(left);
   }
   // Where it waits is its goal when the approach has no length: it hovers there until the others
   // are in their slots (it has not arrived before them).
@@ -159,7 +160,7 @@ double FormationFlight::reform_span_s() const {
   for (const Member& m : members_) lo = std::min(lo, m.tau_s);
   const double hi = lead_tau_s();
   const double catch_up = std::max(1.0, opt_.max_speed_mps / opt_.cruise_mps);
-  return std::max(1.0, std::ceil((hi - lo) / catch_up / opt_.step_s - 1e-9)) * opt_.step_s;
+  return std::max(1.0, std::ceil((hi - lo) / catch_up / opt_.step_s - kWholeNumberSlack)) * opt_.step_s;
 }
 
 // Whether every pair stays apart while re-forming: each UAV runs its own path at its own clock
@@ -206,7 +207,7 @@ void FormationFlight::control(double t, std::span<FlightState> uavs, std::span<c
   for (const FlightState& s : uavs) intent_.push_back(commanded(t, s, opt_.step_s));
   period_tau_.clear();
   for (const Member& m : members_) period_tau_.push_back(m.tau_s);
-  if (reform_end_s_ >= 0.0 && t + 1e-9 >= reform_end_s_) {  // re-formed: w = 0 again
+  if (reform_end_s_ >= 0.0 && t + kSameTime_s >= reform_end_s_) {  // re-formed: w = 0 again
     for (Member& m : members_)
       if (m.mode == Mode::reforming) m.mode = Mode::formed, m.rate = 1.0;
     for (FormationBreak& b : breaks_)

@@ -1,5 +1,6 @@
 #include "uavplan/coordination/formation/formation_mission.h"
 #include "uavplan/core/text.h"
+#include "uavplan/core/tolerances.h"
 
 #include <algorithm>
 #include <cmath>
@@ -105,7 +106,7 @@ void check_flown(const Scenario& sc, const ArrivalSpread& spread, Plan& plan) {
       up.message = "could not avoid " + c.what;
     }
   }
-  if (spread.s() <= sc.mission.arrival_tolerance_s + 1e-9) return;
+  if (spread.s() <= sc.mission.arrival_tolerance_s + kSameTime_s) return;
   const std::string buf = strf(
       "arrivals %.1f s apart ('%s' at its goal at %.1f s, '%s' at %.1f s), more than "
       "arrival_tolerance_s = %g s: '%s' could not re-form before the goals",

@@ -1,5 +1,6 @@
 #include "uavplan/coordination/formation/formation_schedule.h"
 #include "uavplan/core/geometry.h"
+#include "uavplan/core/tolerances.h"
 
 #include <algorithm>
 #include <cmath>
@@ -20,7 +21,7 @@ std::vector<double> headings(const std::vector<Vec3>& route) {
   std::vector<char> known(psi.size(), 0);
   for (std::size_t k = 0; k + 1 < route.size(); ++k) {
     const Vec3 d = route[k + 1] - route[k];
-    if (d.head<2>().norm() > 1e-9) {
+    if (d.head<2>().norm() > kSamePoint_m) {
       psi[k] = std::atan2(d.y(), d.x());
       known[k] = 1;
     }
@@ -60,9 +61,9 @@ Approach split_for_approach(const std::vector<Vec3>& route, double approach_m) {
   Approach a{{route.front()}, {}};
   double left = polyline_length_m(route) - approach_m;
   std::size_t k = 0;
-  for (; k + 1 < route.size() && left > 1e-9; ++k) {
+  for (; k + 1 < route.size() && left > kSamePoint_m; ++k) {
     const double len = (route[k + 1] - route[k]).norm();
-    if (len > left + 1e-9) {
+    if (len > left + kSamePoint_m) {
       a.cruise.push_back(route[k] + (route[k + 1] - route[k]) * (left / len));
       break;
     }
@@ -116,7 +117,7 @@ Arc corner_arc(const Vec3& before, const Vec3& corner, const Vec3& after, double
   a.side = a.turn > 0.0 ? 1.0 : -1.0;
   a.from = psi_in;
   a.centre = a.t1 + a.side * a.radius_m * Vec3(-std::sin(psi_in), std::cos(psi_in), 0.0);
-  a.chords = std::max(1, static_cast<int>(std::ceil(std::abs(a.turn) / (M_PI / 9.0) - 1e-9)));
+  a.chords = std::max(1, static_cast<int>(std::ceil(std::abs(a.turn) / (M_PI / 9.0) - kWholeNumberSlack)));
   a.ok = true;
   return a;
 }
@@ -168,7 +169,7 @@ std::vector<Vec3> without_wiggles(const std::vector<Vec3>& cruise, double tol_m,
     for (std::size_t m = k + 2; m < cruise.size(); ++m) {
       const Vec3& a = cruise[k];
       const Vec3 d = cruise[m] - a;
-      bool near = d.head<2>().norm() > 1e-9;
+      bool near = d.head<2>().norm() > kSamePoint_m;
       for (std::size_t j = k + 1; j < m && near; ++j) {
         const double f = std::clamp((cruise[j] - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
         near = (a + f * d - cruise[j]).norm() <= tol_m;
@@ -214,7 +215,7 @@ std::vector<Pose> pursued(const std::vector<Vec3>& route, double heading_rad, do
     if ((route.back() - next.p).norm() <= step) {
       next.p = route.back();
       const Vec3 d = next.p - out.back().p;
-      if (d.head<2>().norm() > 1e-9) next.heading_rad = std::atan2(d.y(), d.x());
+      if (d.head<2>().norm() > kSamePoint_m) next.heading_rad = std::atan2(d.y(), d.x());
       out.push_back(next);
       return out;
     }
@@ -309,7 +310,7 @@ class Builder {
   // than cos 10 deg of their distance): a column turning round never runs through itself.
   void turn_about(const Vec3& p, double from, double to) {
     const double turn = turn_between(from, to);
-    const int chords = std::max(1, static_cast<int>(std::ceil(std::abs(turn) / (M_PI / 9.0) - 1e-9)));
+    const int chords = std::max(1, static_cast<int>(std::ceil(std::abs(turn) / (M_PI / 9.0) - kWholeNumberSlack)));
     for (int c = 1; c <= chords; ++c) leg(slots_at(p, from + turn * c / chords));
   }
   // Whether every slot's chord between consecutive poses is clear.
@@ -365,7 +366,7 @@ void fly_approach(Builder& b, const Approach& a, double from, double to, const s
   const Vec3 begin = a.cruise.back(), end = a.rest.back();
   if (a.rest.size() == 1 && (end - begin).norm() >= 1.5 * b.reach_m() * std::abs(turn)) {
     s.final_knot = s.knots_s.size() - 1;
-    const int pieces = std::max(1, static_cast<int>(std::ceil(std::abs(turn) / (M_PI / 36.0) - 1e-9)));
+    const int pieces = std::max(1, static_cast<int>(std::ceil(std::abs(turn) / (M_PI / 36.0) - kWholeNumberSlack)));
     for (int c = 1; c < pieces; ++c) {
       const double f = static_cast<double>(c) / pieces;
       b.pose({begin + f * (end - begin), from + f * turn});

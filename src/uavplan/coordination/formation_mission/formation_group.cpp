@@ -1,4 +1,5 @@
 #include "uavplan/coordination/formation_mission/formation_group.h"
+#include "uavplan/core/tolerances.h"
 
 #include <algorithm>
 #include <cmath>
@@ -102,7 +103,7 @@ void FormationGroup::step(const FormationOrder& order, const std::function<Autop
   for (std::size_t i = 0; i < size(); ++i) {
     if (!flying_[i]) continue;
     models_[i].advance(states_[i], cmd[i], o_.dt_s);
-    if (rows_[i].empty() || t_s_ - rows_[i].back().t_s >= o_.record_s - 1e-9) record(i);
+    if (rows_[i].empty() || t_s_ - rows_[i].back().t_s >= o_.record_s - kSameTime_s) record(i);
   }
 }
 

@@ -1,4 +1,5 @@
 #include "uavplan/coordination/formation_mission/landing.h"
+#include "uavplan/core/tolerances.h"
 
 #include <algorithm>
 #include <cmath>
@@ -51,7 +52,8 @@ LandingResult plan_landing(const Airfield& af, const AutopilotModel& model, cons
       const int n = std::max(1, static_cast<int>(std::ceil(total / deg_to_rad(30.0))));
       for (int k = 0; k <= n; ++k) {
         const double a = total * k / n, th = th0 + a;
-        const double down = std::clamp((a - 2.0 * kPi * holds) / std::max(total - 2.0 * kPi * holds, 1e-9), 0.0, 1.0);
+        const double down =
+            std::clamp((a - 2.0 * kPi * holds) / std::max(total - 2.0 * kPi * holds, kTinyDivisor), 0.0, 1.0);
         wps.emplace_back(centre.x() + r * std::cos(th), centre.y() + r * std::sin(th), z0 + down * (z_gate - z0));
       }
       wps.push_back(gate);

@@ -1,5 +1,6 @@
 #include "uavplan/coordination/formation_mission/phased_formation_mission.h"
 #include "uavplan/core/text.h"
+#include "uavplan/core/tolerances.h"
 
 #include <algorithm>
 #include <cmath>
@@ -33,7 +34,7 @@ AutopilotModel mission_model(const UavSpec& u, const FormationMissionOptions& o)
   AutopilotLimits lim = own.limits();
   if (!u.max_turn_rate_rad_s) lim.max_turn_rate_rad_s = kG_mps2 * std::tan(deg_to_rad(o.bank_deg)) / u.speed.cruise_mps;
   double climb = u.max_climb_rate_mps.value_or(o.max_climb_rate_mps);
-  if (u.max_climb_rad < kPi / 2 - 1e-9)
+  if (u.max_climb_rad < kPi / 2 - kUnlimitedAngleSlack_rad)
     climb = std::min(climb, 0.95 * std::max(u.speed.min_mps, 1.0) * std::tan(u.max_climb_rad));
   lim.max_climb_rate_mps = climb;
   // An altitude order that jumps (a layer left for the shape's heights) must not flip the climb
@@ -117,7 +118,7 @@ std::vector<GroundRun> departures(const Scenario& sc, const std::vector<Vec3>& s
     const double acc =
         std::max(o.min_roll_accel_mps2, v_lo * v_lo / (2.0 * o.lift_off_within_runway * af.runway_length_m));
     const double ground_s = (starts[i] - af.position).norm() / o.taxi_mps + v_lo / acc;
-    const auto on_step = [&](double t) { return std::ceil(t / dt_s - 1e-9) * dt_s; };
+    const auto on_step = [&](double t) { return std::ceil(t / dt_s - kWholeNumberSlack) * dt_s; };
     double lift = on_step(std::max(prev_lift + o.takeoff_interval_s, ground_s));
     GroundRun d = ground_run(af, starts[i], lift, v_lo, acc, o);
     const std::vector<TimeSpan> occ = runway_occupancy(af, d.ground);
@@ -305,9 +306,9 @@ class PhasedFlight {
   Trajectory trajectory(std::size_t i) const {
     Trajectory tr = dep_[i].ground;
     for (const TrajectorySample& s : group_.trajectory(i))
-      if (s.t_s > tr.back().t_s + 1e-9) tr.push_back(s);
+      if (s.t_s > tr.back().t_s + kSameTime_s) tr.push_back(s);
     for (const TrajectorySample& s : landings_[i])
-      if (s.t_s > tr.back().t_s + 1e-9) tr.push_back(s);
+      if (s.t_s > tr.back().t_s + kSameTime_s) tr.push_back(s);
     return tr;
   }
 
@@ -389,7 +390,7 @@ void PhasedFlight::step() {
     return AutopilotCommand{lift_off_mps(sc_.uavs[i]), z_form_ + layer_[i], af_.runway_heading_rad};
   };
   for (std::size_t i = 0; i < n_; ++i) {
-    if (!group_.flying(i) && dep_[i].lift_s <= group_.time_s() + 1e-9)
+    if (!group_.flying(i) && dep_[i].lift_s <= group_.time_s() + kSameTime_s)
       group_.launch(i, dep_[i].lift_off, FormationGroup::Launch::solo);
     // Straight ahead off the runway, into the consensus once clear of the ground.
     if (group_.flying(i) && group_.state(i).position.z() > af_.position.z() + o_.join_above_m) group_.join(i);

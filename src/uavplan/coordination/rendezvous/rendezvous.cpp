@@ -1,5 +1,6 @@
 #include "uavplan/coordination/rendezvous/rendezvous.h"
 #include "uavplan/core/text.h"
+#include "uavplan/core/tolerances.h"
 
 #include <algorithm>
 #include <atomic>
@@ -97,7 +98,7 @@ struct Lengthening {
                                           bool left) const {
     const Vec3 heading = at > 0 ? Vec3(base[at] - base[at - 1])
                                 : (limits.heading_rad ? heading_vector(*limits.heading_rad) : Vec3(base[1] - base[0]));
-    if (heading.head<2>().norm() <= 1e-9 * heading.norm()) return std::nullopt;
+    if (heading.head<2>().norm() <= kSamePoint_m * heading.norm()) return std::nullopt;
     const auto loop = loiter_polygon(base[at], heading, extra / laps, sides, left);
     for (std::size_t i = 1; i < loop.size(); ++i)
       if (!rule(loop[i - 1], loop[i])) return std::nullopt;
@@ -119,7 +120,7 @@ struct Lengthening {
     double legs = extra;  // the two new legs together
     for (std::size_t k = i; k < j; ++k) legs += (base[k + 1] - base[k]).norm();
     const Vec3 across(a.y() - b.y(), b.x() - a.x(), 0.0);  // horizontal, left of a -> b
-    if (across.norm() <= 1e-9 * chord || legs <= chord) return std::nullopt;
+    if (across.norm() <= kSamePoint_m * chord || legs <= chord) return std::nullopt;
     const double h = std::sqrt(0.25 * legs * legs - 0.25 * chord * chord);
     const Vec3 m = 0.5 * (a + b) + (left ? h : -h) * across.normalized();
     if (!rule(a, m) || !rule(m, b)) return std::nullopt;
@@ -392,7 +393,7 @@ class Lengthener {
 bool Lengthener::multi_point() {
   best_ = r_.waypoints;
   std::vector<std::pair<double, int>> combos;
-  for (int li = 0; 1.0 + 0.2 * li <= step_cells_max_ + 1e-9; ++li)
+  for (int li = 0; 1.0 + 0.2 * li <= step_cells_max_ + kWholeNumberSlack; ++li)
     for (int m = 3; m <= 6; ++m) combos.emplace_back(1.0 + 0.2 * li, m);
   std::vector<DirectionalQuery> qs(combos.size(), q_);
   for (std::size_t c = 0; c < combos.size(); ++c) {

@@ -1,5 +1,6 @@
 #include "uavplan/coordination/routes/rolling_window.h"
 #include "uavplan/core/text.h"
+#include "uavplan/core/tolerances.h"
 
 #include <algorithm>
 #include <chrono>
@@ -150,7 +151,7 @@ std::vector<ThreatDisc> RollingWindow::discs_for(double t, std::size_t i, const 
 
 bool RollingWindow::threatened(double t, std::size_t i, const FlightState& s, const std::vector<Track>& tracks) const {
   const std::vector<ThreatDisc> threats = discs_for(t, i, s, tracks);
-  if (s.route.empty() || t + 1e-9 < s.depart_s) return !clear_to_stay(t, i, s, threats);
+  if (s.route.empty() || t + kSameTime_s < s.depart_s) return !clear_to_stay(t, i, s, threats);
   std::vector<MovingKeepOut> discs;
   for (const ThreatDisc& d : threats) discs.push_back(d.disc);
   // At the speed it was given (a formation's slot may fly slower or faster than cruise).
@@ -164,7 +165,7 @@ bool RollingWindow::guard(double t, std::size_t i, FlightState& s, const std::ve
   const UavSpec& u = *s.spec;
   RollingWindowLog& log = logs_[i];
   const std::vector<ThreatDisc> threats = discs_for(t, i, s, tracks);
-  if (s.route.empty() || t + 1e-9 < s.depart_s) {  // at its goal, or waiting to depart: keep watch
+  if (s.route.empty() || t + kSameTime_s < s.depart_s) {  // at its goal, or waiting to depart: keep watch
     if (clear_to_stay(t, i, s, threats)) return false;
     s.route.insert(s.route.begin(), s.position);  // comes back here
     s.depart_s = t;
@@ -225,7 +226,7 @@ bool RollingWindow::replan(double t, std::size_t i, FlightState& s, const std::v
   join_s = std::min({join_s, ahead.along.back(), next_via_along(ahead, opt_.via_points)});
   std::size_t rest = 0;
   const Vec3 join = ahead.at(join_s, &rest);
-  if (rest < ahead.pts.size() && (ahead.pts[rest] - join).norm() <= 1e-9) ++rest;  // joins at a vertex
+  if (rest < ahead.pts.size() && (ahead.pts[rest] - join).norm() <= kSamePoint_m) ++rest;  // joins at a vertex
   if (!clear_at(join, t + join_s / v, discs)) {  // even the goal is taken then: no route can end there
     why = join_s < ahead.along.back() ? "its next via point is inside a disc" : "its goal is inside a disc";
     return false;

@@ -5,6 +5,7 @@
 #include "uavplan/coordination/routes/routes_mission.h"
 #include "uavplan/core/geometry.h"
 #include "uavplan/core/text.h"
+#include "uavplan/core/tolerances.h"
 #include "uavplan/core/units.h"
 
 namespace uavplan {
@@ -85,7 +86,7 @@ void RoutesMission::check_uav(const Scenario& sc, const UavSpec& u, const Trajec
     const std::optional<double> entry =
         v < sc.mission.waypoint_entry_heading_rad.size() ? sc.mission.waypoint_entry_heading_rad[v] : std::nullopt;
     if (hit && entry && tr.size() > 1) {  // the heading it arrives with: the row into the point
-      const std::size_t k = from <= 1e-9 && seg > 0 ? seg - 1 : seg;
+      const std::size_t k = from <= kSamePoint_m && seg > 0 ? seg - 1 : seg;
       const Vec3 d = tr[std::min(k + 1, tr.size() - 1)].p - tr[k].p;
       const double off = d.head<2>().norm() > 0.0 ? std::abs(wrap_angle_rad(std::atan2(d.y(), d.x()) - *entry)) : kPi;
       if (off > deg_to_rad(kEntryHeadingTolerance_deg))

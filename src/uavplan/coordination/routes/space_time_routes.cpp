@@ -1,4 +1,5 @@
 #include "uavplan/coordination/routes/space_time_routes.h"
+#include "uavplan/core/tolerances.h"
 
 #include <algorithm>
 #include <cmath>
@@ -84,7 +85,7 @@ void fail(UavPlan& up, Reason why, std::string message) {
 // Appends a straight piece to `to` over dt_s, in rows at most max_dt_s apart.
 void append_piece(Trajectory& tr, const Vec3& to, double dt_s, double max_dt_s) {
   const TrajectorySample from = tr.back();
-  const int n = std::max(1, static_cast<int>(std::ceil(dt_s / max_dt_s - 1e-9)));
+  const int n = std::max(1, static_cast<int>(std::ceil(dt_s / max_dt_s - kWholeNumberSlack)));
   for (int s = 1; s <= n; ++s) {
     const double f = static_cast<double>(s) / n;
     tr.push_back({from.t_s + f * dt_s, from.p + f * (to - from.p)});

@@ -1,5 +1,6 @@
 #include "uavplan/coordination/spacetime/cbs.h"
 #include "uavplan/core/text.h"
+#include "uavplan/core/tolerances.h"
 
 #include <climits>
 #include <cmath>
@@ -138,7 +139,7 @@ void ConflictSearch::open(int id) {
 
 // The open node with the fewest conflicts among those within w of the least bound.
 int ConflictSearch::take() {
-  const int most = static_cast<int>(std::floor(w_ * by_bound_.begin()->first + 1e-9));
+  const int most = static_cast<int>(std::floor(w_ * by_bound_.begin()->first + kWholeNumberSlack));
   if (most > focal_cost_) {
     for (auto it = by_cost_.upper_bound({focal_cost_, INT_MAX}); it != by_cost_.end() && it->first <= most; ++it)
       focal_.emplace(nodes_[it->second].conflicts, it->first, it->second);

@@ -1,4 +1,5 @@
 #include "uavplan/coordination/spacetime/space_time_astar.h"
+#include "uavplan/core/tolerances.h"
 
 #include <algorithm>
 #include <climits>
@@ -43,7 +44,7 @@ SpaceTimeAnswer SpaceTimeSearch::find(const SpaceTimeGraph& g, const SpaceTimeQu
   const int earliest_end = goal_after + 1;
   const auto f_of = [&](int v, int t) { return std::max(t + h[v], earliest_end); };
   int f_min = f_of(q.start, q.start_t);
-  bound_ = static_cast<int>(std::floor(q.w * f_min + 1e-9));
+  bound_ = static_cast<int>(std::floor(q.w * f_min + kWholeNumberSlack));
   int f_top = f_min;  // highest f pushed: the buckets to empty afterwards
   first_visit(q.start, q.start_t, still);
   push({q.start, q.start_t, -1, 0, f_min, -1});
@@ -74,7 +75,7 @@ SpaceTimeAnswer SpaceTimeSearch::find(const SpaceTimeGraph& g, const SpaceTimeQu
       for (int k = g.first[cur.v]; k < g.first[cur.v + 1]; ++k) expand(g.next[k]);
     }
     while (f_min <= f_top && live_[f_min] == 0) ++f_min;
-    if (f_min <= f_top) raise_bound(static_cast<int>(std::floor(q.w * f_min + 1e-9)));
+    if (f_min <= f_top) raise_bound(static_cast<int>(std::floor(q.w * f_min + kWholeNumberSlack)));
   }
   if (found >= 0) {
     a.found = true;

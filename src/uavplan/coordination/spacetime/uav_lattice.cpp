@@ -1,4 +1,5 @@
 #include "uavplan/coordination/spacetime/uav_lattice.h"
+#include "uavplan/core/tolerances.h"
 
 #include <algorithm>
 #include <climits>
@@ -167,7 +168,7 @@ bool gone(const Aabb& bounds, const Vec3& p, const Vec3& v, double need_m) {
 // limit, and clear of obstacles by the body.
 bool joinable(const World& world, const Vec3& a, const Vec3& b, double cell_m, const UavLatticeOptions& o) {
   const Vec3 step = b - a;
-  if (step.norm() > std::sqrt(3.0) * cell_m || step.norm() < 1e-9) return false;
+  if (step.norm() > std::sqrt(3.0) * cell_m || step.norm() < kSamePoint_m) return false;
   if (std::atan2(std::abs(step.z()), step.head<2>().norm()) > o.max_climb_rad + 1e-9) return false;
   return world.segment_valid(a, b, o.body_m);
 }

@@ -1,4 +1,5 @@
 #include "uavplan/planning/cells/cell_graph.h"
+#include "uavplan/core/tolerances.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -15,7 +16,7 @@ CellGraph::CellGraph(const CellMap& map, const World& world, double speed_mps, c
       floor_z_(world.bounds().min.z()),
       max_climb_rad_(max_climb_rad),
       ceiling_m_(ceiling_m) {
-  const double usable = std::max(1e-9, ceiling_m - floor_z_);
+  const double usable = std::max(kTinyDivisor, ceiling_m - floor_z_);
   w2_ = w.w2 >= 0.0 ? w.w2 : w.w1 * speed_mps * speed_mps / (usable * usable);
 }
 

@@ -1,5 +1,6 @@
 #include "uavplan/planning/cells/cell_map.h"
 #include "uavplan/core/text.h"
+#include "uavplan/core/tolerances.h"
 
 #include <cstdio>
 
@@ -72,10 +73,11 @@ CellMap::CellMap(const World& world, const CellMapOptions& opt, const StopCondit
   level_m_ = opt.level_m > 0.0 ? opt.level_m : cell_m_ / 2.0;
   origin_ = Vec2(b.min.x(), b.min.y());
   {  // sized before anything is built (or an int overflows)
-    const double nx = std::max(1.0, std::ceil((b.max.x() - b.min.x()) / cell_m_ - 1e-9));
-    const double ny = std::max(1.0, std::ceil((b.max.y() - b.min.y()) / cell_m_ - 1e-9));
+    const double nx = std::max(1.0, std::ceil((b.max.x() - b.min.x()) / cell_m_ - kWholeNumberSlack));
+    const double ny = std::max(1.0, std::ceil((b.max.y() - b.min.y()) / cell_m_ - kWholeNumberSlack));
     const double nz = std::max(
-        1.0, std::floor((opt.ceiling_m - opt.inflation_m - b.min.z() - opt.inflation_m) / level_m_ + 1e-9) + 1);
+        1.0,
+        std::floor((opt.ceiling_m - opt.inflation_m - b.min.z() - opt.inflation_m) / level_m_ + kWholeNumberSlack) + 1);
     const std::string what = strf("planner.params.cell_m = %g m, level_m = %g m", cell_m_, level_m_);
     // Heights per column, and per node the graph's costs, pheromone and search state.
     require_grid(nx * ny * nz, 48.0, stop, what);
@@ -84,15 +86,17 @@ CellMap::CellMap(const World& world, const CellMapOptions& opt, const StopCondit
                                   " x " + std::to_string(static_cast<long long>(ny)) + " x " +
                                   std::to_string(static_cast<long long>(nz)) + " cells is too large: raise cell_m");
   }
-  nx_ = std::max(1, static_cast<int>(std::ceil((b.max.x() - b.min.x()) / cell_m_ - 1e-9)));
-  ny_ = std::max(1, static_cast<int>(std::ceil((b.max.y() - b.min.y()) / cell_m_ - 1e-9)));
+  nx_ = std::max(1, static_cast<int>(std::ceil((b.max.x() - b.min.x()) / cell_m_ - kWholeNumberSlack)));
+  ny_ = std::max(1, static_cast<int>(std::ceil((b.max.y() - b.min.y()) / cell_m_ - kWholeNumberSlack)));
   // Cells must lie inside the bounds: shrink the cell so the grid fits exactly.
   cell_m_ = std::min((b.max.x() - b.min.x()) / nx_, (b.max.y() - b.min.y()) / ny_);
   // A flat world (no height) is one level in its plane: no ground to keep the radius from.
   const bool flat = b.extent().z() <= 0.0;
   z0_ = flat ? b.min.z() : b.min.z() + opt.inflation_m;
   nz_ = flat ? 1
-             : std::max(0, static_cast<int>(std::floor((opt.ceiling_m - opt.inflation_m - z0_) / level_m_ + 1e-9)) + 1);
+             : std::max(0, static_cast<int>(
+                               std::floor((opt.ceiling_m - opt.inflation_m - z0_) / level_m_ + kWholeNumberSlack)) +
+                               1);
 
   const double r = opt.inflation_m;
   // A level exactly at top + r would sit on the boundary of the exact segment check and fail it

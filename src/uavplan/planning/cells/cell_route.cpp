@@ -1,5 +1,6 @@
 #include "uavplan/planning/cells/cell_route.h"
 #include "uavplan/core/text.h"
+#include "uavplan/core/tolerances.h"
 
 #include <algorithm>
 #include <cmath>
@@ -46,7 +47,7 @@ std::int64_t attach(const CellMap& map, const Vec3& p, const SegmentRule& rule) 
           cand.emplace_back((map.centre(i, j, k) - p).norm(), map.index(i, j, k));
   std::sort(cand.begin(), cand.end());
   for (const auto& [d, n] : cand)
-    if (d < 1e-9 || rule(p, map.centre(n))) return n;
+    if (d < kSamePoint_m || rule(p, map.centre(n))) return n;
   return -1;
 }
 
@@ -109,7 +110,7 @@ namespace {
 // spike (a 180 degree turn). Cut one side of it where the straight segment is safe.
 void cut_spikes(std::vector<Vec3>& route, std::vector<char>& pinned, const SegmentRule& rule) {
   for (std::size_t i = 1; i + 1 < route.size(); ++i) {
-    if (!pinned[i] || (route[i - 1] - route[i + 1]).norm() > 1e-9) continue;
+    if (!pinned[i] || (route[i - 1] - route[i + 1]).norm() > kSamePoint_m) continue;
     if (i + 2 < route.size() && rule(route[i], route[i + 2])) {
       route.erase(route.begin() + static_cast<std::ptrdiff_t>(i) + 1);
       pinned.erase(pinned.begin() + static_cast<std::ptrdiff_t>(i) + 1);
@@ -180,12 +181,12 @@ bool route_legs(const World& world, const CellWorld& cw, const std::vector<Vec3>
     }
     for (std::int64_t n : *path) {
       const Vec3 c = cw.map.centre(n);
-      if ((c - route.back()).norm() > 1e-9) {
+      if ((c - route.back()).norm() > kSamePoint_m) {
         route.push_back(c);
         pinned.push_back(0);
       }
     }
-    if ((stops[leg + 1] - route.back()).norm() > 1e-9) {
+    if ((stops[leg + 1] - route.back()).norm() > kSamePoint_m) {
       route.push_back(stops[leg + 1]);
       pinned.push_back(1);
     } else {

@@ -1,4 +1,5 @@
 #include "uavplan/planning/cells/cellular_aco.h"
+#include "uavplan/core/tolerances.h"
 
 #include <algorithm>
 #include <cmath>
@@ -155,7 +156,7 @@ class Colony {
         const std::int64_t a = p[idx - 1], c = p[idx], b = p[idx + 1];
         const Vec3 pa = pos(a), pb = pos(b);
         const double now = g_.cost(pa, pos(c)) + g_.cost(pos(c), pb);
-        if (adjacent(a, b) && g_.cost(pa, pb) < now - 1e-9 * now) {
+        if (adjacent(a, b) && g_.cost(pa, pb) < now - kRelativeTie * now) {
           p.erase(p.begin() + static_cast<std::ptrdiff_t>(idx));
           changed = true;
           --idx;
@@ -164,7 +165,7 @@ class Colony {
         int ci = 0, cj = 0, ck = 0;
         m_.unpack(c, ci, cj, ck);
         std::int64_t best = -1;
-        double best_cost = now - 1e-9 * now;
+        double best_cost = now - kRelativeTie * now;
         for (int mv = 0; mv < CellGraph::kMoves; ++mv) {
           const std::int64_t u = g_.neighbour(ci, cj, ck, mv);
           if (u < 0 || u == a || u == b || !adjacent(a, u) || !adjacent(u, b)) continue;

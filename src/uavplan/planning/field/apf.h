@@ -27,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "uavplan/core/tolerances.h"
 #include "uavplan/planning/params.h"
 #include "uavplan/planning/planner.h"
 #include "uavplan/vehicle/uav.h"
@@ -175,7 +176,7 @@ int smooth_triples(std::vector<Vec3>& pts, double threshold_rad, Accept&& accept
       if (nab <= 1e-12 || nbc <= 1e-12) continue;
       if (ab.dot(bc) >= cos_threshold * nab * nbc) continue;  // turn within the threshold
       const Vec3 candidate = 0.5 * (pts[i] + 0.5 * (pts[i - 1] + pts[i + 1]));
-      if ((candidate - pts[i]).norm() <= 1e-9 || !accept(i, candidate)) continue;
+      if ((candidate - pts[i]).norm() <= kSamePoint_m || !accept(i, candidate)) continue;
       pts[i] = candidate;
       ++changed;
     }

@@ -1,4 +1,5 @@
 #include "uavplan/planning/graph/aco_voronoi.h"
+#include "uavplan/core/tolerances.h"
 
 #include <algorithm>
 #include <cmath>
@@ -177,7 +178,7 @@ std::optional<GraphRoute> aco_route(const Roadmap& map, std::uint32_t from, std:
     double hi = World::kInf, lo = kMinTau;
     if (o.max_min && best) {
       // MAX-MIN ant system (Stuetzle and Hoos 2000): tau in [tau_max / (2 n), 1 / (rho * L_best)].
-      hi = amount(*best) / std::max(o.rho, 1e-9);
+      hi = amount(*best) / std::max(o.rho, kTinyDivisor);
       lo = hi / (2.0 * static_cast<double>(map.vertices.size()));
       if (it == 0) std::fill(tau.begin(), tau.end(), hi);
     }
@@ -231,7 +232,7 @@ PlanResult AcoVoronoiPlanner::do_plan(const Problem& pb, const World& world, con
       res.reason = Reason::stopped;
       return res;
     }
-    if ((stops[leg + 1] - stops[leg]).norm() <= 1e-9) continue;  // a stop repeated: nothing to fly
+    if ((stops[leg + 1] - stops[leg]).norm() <= kSamePoint_m) continue;  // a stop repeated: nothing to fly
     const std::optional<GraphRoute> r =
         colony_ ? aco_route(map, at[leg], at[leg + 1], options_, Rng(pb.seed).split(leg).next_u64(), stop, res.stats)
                 : dijkstra_route(map, at[leg], at[leg + 1], res.stats);

@@ -1,4 +1,5 @@
 #include "uavplan/planning/graph/threat_roadmap.h"
+#include "uavplan/core/tolerances.h"
 
 #include <algorithm>
 #include <cmath>
@@ -38,7 +39,7 @@ struct IntFrame {
   Vec2 origin;
   double scale;
   explicit IntFrame(const Aabb& b)
-      : origin(b.min.x(), b.min.y()), scale(268'435'456.0 / std::max({b.extent().x(), b.extent().y(), 1e-9})) {}
+      : origin(b.min.x(), b.min.y()), scale(268'435'456.0 / std::max({b.extent().x(), b.extent().y(), kTinyDivisor})) {}
   Site to_int(const Vec2& p) const {
     return {static_cast<std::int32_t>(std::lround((p.x() - origin.x()) * scale)),
             static_cast<std::int32_t>(std::lround((p.y() - origin.y()) * scale))};
@@ -184,7 +185,7 @@ Roadmap threat_roadmap(const World& world, const SegmentRule& rule, double plane
     double t0 = 0.0, t1 = 1.0;
     if ((b - a).norm() <= 0.0 || !clip_segment_to_box(a, b, box, t0, t1)) continue;
     const Vec3 pa = a + t0 * (b - a), pb = a + t1 * (b - a);
-    if ((pb - pa).norm() <= 1e-9 || !rule(pa, pb)) continue;  // an edge through an obstacle is dropped
+    if ((pb - pa).norm() <= kSamePoint_m || !rule(pa, pb)) continue;  // an edge through an obstacle is dropped
     const std::uint32_t va = vertex_of(e.vertex0(), pa, t0 > 0.0);
     const std::uint32_t vb = vertex_of(e.vertex1(), pb, t1 < 1.0);
     map.add_edge(va, vb, (pb - pa).norm(), p1_edge_cost(pa, pb, world, o));
@@ -201,7 +202,8 @@ Roadmap threat_roadmap(const World& world, const SegmentRule& rule, double plane
   for (std::size_t k = 0; k < rim.size() && rim.size() > 1; ++k) {
     const std::uint32_t va = rim[k].second, vb = rim[(k + 1) % rim.size()].second;
     const Vec3 &pa = map.vertices[va], &pb = map.vertices[vb];
-    if ((pb - pa).norm() > 1e-9 && rule(pa, pb)) map.add_edge(va, vb, (pb - pa).norm(), p1_edge_cost(pa, pb, world, o));
+    if ((pb - pa).norm() > kSamePoint_m && rule(pa, pb))
+      map.add_edge(va, vb, (pb - pa).norm(), p1_edge_cost(pa, pb, world, o));
   }
   return map;
 }
@@ -215,7 +217,7 @@ std::uint32_t join_stop(Roadmap& map, const Vec3& p, const SegmentRule& rule, co
   const std::uint32_t s = map.add_vertex(p);
   auto link = [&](std::uint32_t v) {
     const Vec3& q = map.vertices[v];
-    if ((q - p).norm() <= 1e-9 || !rule(p, q)) return false;
+    if ((q - p).norm() <= kSamePoint_m || !rule(p, q)) return false;
     map.add_edge(s, v, (q - p).norm(), p1_edge_cost(p, q, world, o));
     return true;
   };

@@ -1,5 +1,6 @@
 #include "uavplan/planning/pso/pso_mpc.h"
 #include "uavplan/core/text.h"
+#include "uavplan/core/tolerances.h"
 
 #include <algorithm>
 #include <array>
@@ -77,7 +78,7 @@ struct LegPlanner {
   bool closes(const Vec3& x, const std::optional<Vec3>& in, const Vec3& t, const std::optional<double>& entry,
               const Nearby* n = nullptr) const {
     const Vec3 last = t - x;
-    if (last.norm() <= 1e-9) return true;
+    if (last.norm() <= kSamePoint_m) return true;
     if (in && !turn_within(*in, last, turn_max + kAngleTolerance_rad)) return false;
     if (std::abs(t.z() - x.z()) > dh_max + 1e-9 || !allowed(x, t, n)) return false;
     return !entry || turn_within(last, heading_vector(*entry), turn_max + kAngleTolerance_rad);
@@ -296,7 +297,7 @@ LegOutcome LegFlight::fly(std::vector<Vec3>& route_io, std::optional<Vec3>& in_i
   p_ = route_.back();
   psi_ = in_ ? std::atan2(in_->y(), in_->x()) : bearing(p_, target_);
   const int cap = static_cast<int>(10.0 * (p_ - target_).norm() / l) + 20;
-  bool arrived = (p_ - target_).norm() <= 1e-9;
+  bool arrived = (p_ - target_).norm() <= kSamePoint_m;
   for (int step = 0; static_cast<int>(history_.size()) < cap && !arrived; ++step) {  // backtracks are bounded
     if (stop_.should_stop()) return {Reason::stopped, kStoppedWhy};
     if ((p_ - target_).norm() < 2.0 * l && lp_.closes(p_, in_, target_, entry_)) {  // the target: the last waypoint
@@ -338,7 +339,7 @@ PsoSteps pso_steps(const PsoMpcOptions& o, const UavSpec& uav, const World& worl
   if (o.step_m <= 0.0 && uav.max_turn_rate_rad_s)  // long enough for the vehicle to turn dphi_max between waypoints
     st.step_m =
         std::max(st.step_m, 2.0 * uav.speed.cruise_mps / *uav.max_turn_rate_rad_s * std::sin(0.5 * st.max_turn_rad));
-  double climb = uav.max_climb_rad < kPi / 2 - 1e-9 ? uav.max_climb_rad : std::atan(300.0 / 5000.0);
+  double climb = uav.max_climb_rad < kPi / 2 - kUnlimitedAngleSlack_rad ? uav.max_climb_rad : std::atan(300.0 / 5000.0);
   if (uav.max_climb_rate_mps) climb = std::min(climb, std::atan(*uav.max_climb_rate_mps / uav.speed.cruise_mps));
   st.max_dh_m = o.max_dh_m > 0.0 ? o.max_dh_m : st.step_m * std::tan(climb);
   return st;

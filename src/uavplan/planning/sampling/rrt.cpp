@@ -1,4 +1,5 @@
 #include "uavplan/planning/sampling/rrt.h"
+#include "uavplan/core/tolerances.h"
 
 #include <Eigen/Geometry>
 
@@ -89,7 +90,7 @@ class EdgeCheck {
 // rotation that keeps the limit, by bisection; the incoming direction itself always does).
 std::optional<Vec3> limited(Vec3 dir, const std::optional<Vec3>& in, double max_turn, double max_climb, bool planar) {
   if (planar) dir.z() = 0.0;
-  if ((planar || max_climb >= kPi / 2 - 1e-9) && (!in || max_turn >= kPi)) {  // nothing to limit
+  if ((planar || max_climb >= kPi / 2 - kUnlimitedAngleSlack_rad) && (!in || max_turn >= kPi)) {  // nothing to limit
     const double n = dir.norm();
     return n > 0.0 ? std::optional<Vec3>(dir / n) : std::nullopt;
   }
@@ -152,14 +153,14 @@ class RrtGrowth {
         ok_(ok),
         max_turn_(max_turn),
         step_(opt.step_in(rule.world().bounds())),
-        max_climb_(std::min(rule.max_climb_rad(), kPi / 2 - 1e-9)),
+        max_climb_(std::min(rule.max_climb_rad(), kPi / 2 - kUnlimitedAngleSlack_rad)),
         rng_(q.seed),
         chaos_(rng_.split(1).next_u64(), opt.arcsine_uniform),
         tree_(q.start, opt.max_nodes),
         // Step 2 of P1: the newest node within one step of the goal, and the last edge clear.
         // Under a turn limit a node one step away rarely faces the goal; within four steps the
         // tree can turn into it.
-        arrive_m_(max_turn < kPi - 1e-9 ? 4.0 * step_ : step_),
+        arrive_m_(max_turn < kPi - kUnlimitedAngleSlack_rad ? 4.0 * step_ : step_),
         biased_(opt.lambda != 0.0 && q.bias_velocity_mps.squaredNorm() > 0.0) {
     goal_tried_.reserve(512);
     goal_tried_.push_back(0);
@@ -209,7 +210,7 @@ class RrtGrowth {
     if (!d) return -1;
     // Short of the target only when heading straight at it: a step bent by the limits would
     // stop beside the target, needing a sharp turn to finish.
-    const bool straight = (*d - dir.normalized()).norm() < 1e-9;
+    const bool straight = (*d - dir.normalized()).norm() < kSamePoint_m;
     const double len = straight ? std::min(step_, dist) : step_;
     if (len < 1e-3 * step_) return -1;
     const Vec3 next = tree_.pos(near) + len * *d;

@@ -2,6 +2,7 @@
 // one search per leg through via points. The search is directional_search.cpp, the cone tables
 // directional_cones.cpp, what they share directional_lattice.h.
 #include "uavplan/planning/search/directional_astar.h"
+#include "uavplan/core/tolerances.h"
 
 #include <algorithm>
 #include <cmath>
@@ -59,8 +60,8 @@ namespace {
 
 double default_step_cells(const World& world, const DirectionalQuery& q) {
   double l = std::max(2.5, 2.0 / q.max_yaw_rad);
-  if (make_lattice(world, q).n[2] > 1 && q.max_pitch_rad < kPi / 2 - 1e-9)
-    l = std::max(l, std::ceil(10.0 / std::tan(q.max_pitch_rad) - 1e-9) / 10.0);
+  if (make_lattice(world, q).n[2] > 1 && q.max_pitch_rad < kPi / 2 - kUnlimitedAngleSlack_rad)
+    l = std::max(l, std::ceil(10.0 / std::tan(q.max_pitch_rad) - kWholeNumberSlack) / 10.0);
   return l;
 }
 
@@ -74,8 +75,8 @@ DirectionalQuery DirectionalAStarPlanner::query_for(const Problem& pb, const Wor
   q.heading_rad = u.heading_rad;
   q.cell_m = options_.cell_m > 0.0 ? options_.cell_m : derived_cell(world, options_.target_points);
   q.directions = options_.directions;
-  const double uav_yaw = u.max_turn_rad < kPi - 1e-9 ? u.max_turn_rad : kDefaultYaw_rad;
-  const double uav_pitch = u.max_climb_rad < kPi / 2 - 1e-9 ? u.max_climb_rad : kDefaultPitch_rad;
+  const double uav_yaw = u.max_turn_rad < kPi - kUnlimitedAngleSlack_rad ? u.max_turn_rad : kDefaultYaw_rad;
+  const double uav_pitch = u.max_climb_rad < kPi / 2 - kUnlimitedAngleSlack_rad ? u.max_climb_rad : kDefaultPitch_rad;
   q.max_yaw_rad = options_.max_yaw_rad > 0.0 ? std::min(options_.max_yaw_rad, u.max_turn_rad) : uav_yaw;
   q.max_pitch_rad = options_.max_pitch_rad > 0.0 ? std::min(options_.max_pitch_rad, u.max_climb_rad) : uav_pitch;
   q.step_cells = options_.step_cells > 0.0 ? options_.step_cells : default_step_cells(world, q);
@@ -94,7 +95,7 @@ void DirectionalAStarPlanner::require_lattice(const World& world, const Directio
                                               const StopCondition& stop) {
   const Vec3 ext = world.bounds().extent();
   double points = 1.0;
-  for (int a = 0; a < 3; ++a) points *= 1.0 + std::floor(ext[a] / q.cell_m + 1e-9);
+  for (int a = 0; a < 3; ++a) points *= 1.0 + std::floor(ext[a] / q.cell_m + kWholeNumberSlack);
   const std::string what = strf("planner.params.cell_m = %g m", q.cell_m);
   // Per lattice point: a cached clearance (4 bytes), search nodes (16 bytes) for up to 8
   // heading sectors and the relaxed heuristic's distance and flag (9 bytes), per engine.

@@ -3,6 +3,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "uavplan/core/tolerances.h"
 #include "uavplan/planning/search/directional_lattice.h"
 
 namespace uavplan {
@@ -41,7 +42,7 @@ DirectionalCones::Cone build_cone(const DirectionalCones::Key& key, int dx, int 
         }
     for (int i = 0; i < n; ++i) {
       const Vec3& seg = pts[i];
-      if (seg.norm() < 1e-9 || !lim.turn_ok(heading, seg) || !lim.pitch_ok(seg)) continue;
+      if (seg.norm() < kSamePoint_m || !lim.turn_ok(heading, seg) || !lim.pitch_ok(seg)) continue;
       const DirectionalCones::Child child{
           {static_cast<std::int16_t>(seg.x()), static_cast<std::int16_t>(seg.y()), static_cast<std::int16_t>(seg.z())},
           seg.norm()};

@@ -12,6 +12,7 @@
 
 #include "uavplan/core/geometry.h"
 #include "uavplan/core/text.h"
+#include "uavplan/core/tolerances.h"
 #include "uavplan/planning/grid_budget.h"
 #include "uavplan/planning/search/directional_astar.h"
 
@@ -93,7 +94,8 @@ inline Lattice make_lattice(const World& world, const DirectionalQuery& q) {
   const double cell = q.cell_m;
   Lattice l{world.bounds().min, cell, {1, 1, 1}};
   const Vec3 ext = world.bounds().extent();
-  for (int a = 0; a < 3; ++a) l.n[a] = 1 + static_cast<int>(std::min(std::floor(ext[a] / cell + 1e-9), 2e6));
+  for (int a = 0; a < 3; ++a)
+    l.n[a] = 1 + static_cast<int>(std::min(std::floor(ext[a] / cell + kWholeNumberSlack), 2e6));
   if (l.n[2] == 1) l.origin.z() = std::clamp(q.start.z(), world.bounds().min.z(), world.bounds().max.z());
   l.inv_n0 = 1.0 / l.n[0];
   l.inv_n01 = 1.0 / (static_cast<double>(l.n[0]) * l.n[1]);
@@ -197,7 +199,7 @@ inline void general_children(const Lattice& lat, const DirectionalQuery& q, cons
     const int nc = lat.corners(target, cand, cand_pt);
     for (int c = 0; c < nc; ++c) {
       const Vec3 seg = cand_pt[c] - p;
-      if (seg.norm() < 1e-9 || !lim.turn_ok(heading, seg) || !lim.pitch_ok(seg)) continue;
+      if (seg.norm() < kSamePoint_m || !lim.turn_ok(heading, seg) || !lim.pitch_ok(seg)) continue;
       f(cand[c], cand_pt[c]);
       break;
     }

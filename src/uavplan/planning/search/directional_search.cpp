@@ -3,6 +3,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "uavplan/core/tolerances.h"
 #include "uavplan/planning/search/directional_lattice.h"
 #include "uavplan/planning/segment_rule.h"
 
@@ -69,7 +70,7 @@ DirectionalRoute DirectionalSearch::run_bounded_by_incumbent(const World& world,
   if (incumbent.reason == Reason::stopped) return incumbent;
   DirectionalQuery exact = q;
   // The bound admits the incumbent's own length whatever the order of the sums.
-  if (incumbent.solved()) exact.max_length_m = incumbent.length_m * (1.0 + 1e-9) + 1e-9 * q.cell_m;
+  if (incumbent.solved()) exact.max_length_m = incumbent.length_m * (1.0 + kRelativeTie) + kRelativeTie * q.cell_m;
   DirectionalRoute r = run_with_bins(world, exact, stop, bins, false);
   add_counts(r, incumbent);
   if (r.solved() || !incumbent.solved()) return r;

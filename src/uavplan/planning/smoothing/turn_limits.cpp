@@ -1,4 +1,5 @@
 #include "uavplan/planning/smoothing/turn_limits.h"
+#include "uavplan/core/tolerances.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +11,6 @@
 namespace uavplan {
 namespace {
 
-constexpr double kTiny_m = 1e-9;
 constexpr int kMaxChords = 64;
 constexpr int kMaxPursuitSteps = 4000;
 
@@ -62,12 +62,12 @@ bool pursue(std::vector<Vec3>& out, Vec3 dir, const Vec3& target, const TurnLimi
   for (int step = 0; step < kMaxPursuitSteps; ++step) {
     const Vec3 v = target - p;
     const double dist = v.norm();
-    if (dist <= kTiny_m) return true;
+    if (dist <= kSamePoint_m) return true;
     if (turn_ok(dir, v, lim) && std::abs(pitch_rad(v)) <= lim.max_climb_rad + kAngleTolerance_rad && ok(p, target)) {
       out.push_back(target);
       return true;
     }
-    const double yaw = dir.head<2>().norm() > kTiny_m ? std::atan2(dir.y(), dir.x()) : std::atan2(v.y(), v.x());
+    const double yaw = dir.head<2>().norm() > kSamePoint_m ? std::atan2(dir.y(), dir.x()) : std::atan2(v.y(), v.x());
     const double pitch = pitch_rad(dir);
     const double want_pitch = std::clamp(pitch_rad(v), -lim.max_climb_rad, lim.max_climb_rad);
     const double new_yaw = yaw + std::clamp(wrap_angle_rad(std::atan2(v.y(), v.x()) - yaw), -step_rad, step_rad);
@@ -98,7 +98,7 @@ Vec3 rejoin_point(std::vector<Vec3>& out, const Vec3& dir, const Vec3& target, c
   const std::size_t kept = out.size();
   for (double f = 0.5; f > 1.0 / 1024; f *= 0.5) {
     Vec3 q = corner + f * (target - corner);
-    if ((q - corner).norm() <= kTiny_m) break;
+    if ((q - corner).norm() <= kSamePoint_m) break;
     if (pursue(out, dir, q, lim, ok)) return q;
     out.resize(kept);
   }
@@ -114,7 +114,7 @@ TurnShaping enforce_turn_limits(std::span<const Vec3> pts, std::span<const char>
   std::vector<Vec3> p;
   std::vector<char> pin;
   for (std::size_t i = 0; i < pts.size(); ++i) {
-    if (!p.empty() && (pts[i] - p.back()).norm() <= kTiny_m) {
+    if (!p.empty() && (pts[i] - p.back()).norm() <= kSamePoint_m) {
       pin.back() = pin.back() || pinned[i];
       continue;
     }
@@ -173,7 +173,7 @@ TurnShaping enforce_turn_limits(std::span<const Vec3> pts, std::span<const char>
 
 TurnShaping shape_turns(std::span<const Vec3> points, std::span<const char> pinned, const UavSpec& uav,
                         const SegmentPredicate& ok) {
-  if (uav.max_turn_rad >= kPi - 1e-9 && !uav.heading_rad) {
+  if (uav.max_turn_rad >= kPi - kUnlimitedAngleSlack_rad && !uav.heading_rad) {
     TurnShaping as_given;
     as_given.succeed();
     as_given.waypoints.assign(points.begin(), points.end());
