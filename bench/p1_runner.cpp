@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <map>
 
+#include "uavplan/coordination/formation/formation_mission.h"
 #include "uavplan/coordination/mission_planner.h"
 #include "uavplan/core/rng.h"
 #include "uavplan/evaluation/metrics.h"
@@ -169,7 +170,7 @@ std::string unseen_worlds(int worlds, bool* ok) {
     const double took = ms_since(t0);
     const auto violations = verify_plan(sc, plan);
     compute_metrics(sc, plan);
-    for (Tally* t : {&by_kind[shape_kind(sc.mission.shape)], &by_kind["all"]}) {
+    for (Tally* t : {&by_kind[shape_kind(formation_shape(sc))], &by_kind["all"]}) {
       ++t->worlds;
       t->ms.push_back(took);
       t->claims.add(plan, violations);

@@ -1,4 +1,5 @@
 #include "uavplan/evaluation/metrics.h"
+#include "uavplan/coordination/formation/formation_mission.h"
 
 #include <gtest/gtest.h>
 
@@ -119,7 +120,7 @@ TEST(Metrics, AWedgeTurningAroundObstaclesNeitherShuttlesNorBacksUp) {
     sc.world = World(std::move(ws));
     sc.mission.type = "formation";
     sc.mission.separation_m = 2.0;
-    sc.mission.shape = wedge;
+    sc.mission.edit_section<FormationSection>().shape = wedge;
     for (std::size_t i = 0; i < 3; ++i) {
       UavSpec u;
       u.id = "u" + std::to_string(i + 1);
@@ -136,7 +137,7 @@ TEST(Metrics, AWedgeTurningAroundObstaclesNeitherShuttlesNorBacksUp) {
     compute_metrics(sc, plan);
     ASSERT_TRUE(plan.formation);
     EXPECT_TRUE(plan.formation->breaks.empty()) << "dy " << dy;
-    EXPECT_LE(plan.metrics.at("arrival_spread_s"), sc.mission.arrival_tolerance_s) << "dy " << dy;
+    EXPECT_LE(plan.metrics.at("arrival_spread_s"), formation_section(sc).arrival_tolerance_s) << "dy " << dy;
     const double formed_s = plan.formation->phases.front().end_s;
     for (const UavPlan& u : plan.uavs) {
       Trajectory formed;

@@ -4,7 +4,10 @@
 #include <cmath>
 #include <optional>
 
+#include "uavplan/coordination/formation/formation_mission.h"
+#include "uavplan/coordination/formation_mission/phased_formation_mission.h"
 #include "uavplan/coordination/planning_view.h"
+#include "uavplan/coordination/rendezvous/rendezvous_mission.h"
 #include "uavplan/core/rng.h"
 #include "uavplan/core/units.h"
 
@@ -125,7 +128,7 @@ Scenario random_world(std::uint64_t seed, const RandomWorldOptions& opt) {
     sc.uavs = std::move(kept);
   }
   if (sc.uavs.empty()) return random_world(seed + 1000003, opt);
-  if (opt.mission == "rendezvous") sc.mission.arrival_tolerance_m = r.uniform(5, 30);
+  if (opt.mission == "rendezvous") sc.mission.edit_section<RendezvousSection>().arrival_tolerance_m = r.uniform(5, 30);
   return sc;
 }
 
@@ -191,14 +194,14 @@ Scenario random_formation_world(std::uint64_t seed) {
   sc.mission.type = "formation";
   sc.mission.separation_m = r.uniform(1.5, 4.0);
   const int n = static_cast<int>(r.uniform_int(3, 7));
-  sc.mission.shape =
+  const std::vector<Vec3>& shape = sc.mission.edit_section<FormationSection>().shape =
       formation_shape(static_cast<int>(r.uniform_int(0, 2)), n, r.uniform(2.5, 4.0) * sc.mission.separation_m);
   const Vec3 dir = (to - from).normalized(), left(-dir.y(), dir.x(), 0.0);
   const double v = r.uniform(3, 8), sensor = r.uniform(20, 100);
   for (int i = 0; i < n; ++i) {
     UavSpec u;
     u.id = "uav" + std::to_string(i + 1);
-    const Vec3 slot = sc.mission.shape[static_cast<std::size_t>(i)];
+    const Vec3 slot = shape[static_cast<std::size_t>(i)];
     const Vec3 offset = slot.x() * dir + slot.y() * left;
     u.start = from + offset;
     u.goal = to + offset;
@@ -385,14 +388,15 @@ Scenario random_formation_mission(std::uint64_t seed) {
   const std::size_t n = static_cast<std::size_t>(r.uniform_int(3, 6));
   const double gap = r.uniform(60.0, 150.0);
   const int kind = static_cast<int>(r.uniform_int(0, 3));
+  std::vector<Vec3>& shape = sc.mission.edit_section<PhasedFormationSection>().shape;
   if (kind < 3) {
-    sc.mission.shape = formation_shape(kind, static_cast<int>(n), gap);
+    shape = formation_shape(kind, static_cast<int>(n), gap);
   } else {  // a diamond grid: rows of two, alternating sides
     for (std::size_t k = 0; k < n; ++k)
-      sc.mission.shape.emplace_back(-gap * static_cast<double>(k), (k % 2 == 0 ? 0.5 : -0.5) * gap, 0.0);
+      shape.emplace_back(-gap * static_cast<double>(k), (k % 2 == 0 ? 0.5 : -0.5) * gap, 0.0);
   }
   if (r.uniform01() < 0.3)
-    for (std::size_t k = 0; k < n; ++k) sc.mission.shape[k].z() = 30.0 * static_cast<double>(k % 3);
+    for (std::size_t k = 0; k < n; ++k) shape[k].z() = 30.0 * static_cast<double>(k % 3);
   if (r.uniform01() < 0.4) sc.mission.topology = ring_topology(n);
   const std::vector<Vec3> starts = parking(r, af, n, r.uniform(100.0, 250.0));
   const bool own_model = r.uniform01() < 0.5;

@@ -4,6 +4,7 @@
 
 #include <cstdio>
 
+#include "uavplan/coordination/rendezvous/rendezvous_mission.h"
 #include "uavplan/core/rng.h"
 
 #include "uavplan/coordination/mission_planner.h"
@@ -47,7 +48,7 @@ Scenario random_rendezvous(std::uint64_t seed) {
     sc.uavs.push_back(u);
   }
   sc.mission.type = "rendezvous";
-  sc.mission.arrival_tolerance_m = r.uniform(300, 1500);
+  sc.mission.edit_section<RendezvousSection>().arrival_tolerance_m = r.uniform(300, 1500);
   sc.mission.separation_m = 20;
   sc.planner.algorithm = "directional_astar";
   return sc;

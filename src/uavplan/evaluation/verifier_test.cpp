@@ -1,5 +1,7 @@
 // The verifier catches every violation class: each test crafts a plan with one defect.
 #include "uavplan/evaluation/verifier.h"
+#include "uavplan/coordination/formation/formation_mission.h"
+#include "uavplan/coordination/rendezvous/rendezvous_mission.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -162,7 +164,7 @@ TEST(Verifier, ViaPointsInOrder) {
 TEST(Verifier, RendezvousLengthSpread) {
   Scenario sc = base_scenario();
   sc.mission.type = "rendezvous";
-  sc.mission.arrival_tolerance_m = 1.0;
+  sc.mission.edit_section<RendezvousSection>().arrival_tolerance_m = 1.0;
   Plan p = base_plan(sc);
   fly(p, 1, {{10, 20, 20}, {20, 30, 20}, {30, 20, 20}});  // 28.3 m against 20 m
   EXPECT_THAT(kinds(sc, p), ::testing::Contains(K::length_spread));
@@ -285,8 +287,8 @@ TEST(Verifier, SharedGoalsAreNoExemption) {
 TEST(Verifier, FormationArrivalsAreAtTheGoalToStay) {
   Scenario sc = base_scenario();
   sc.mission.type = "formation";
-  sc.mission.shape = {{0, 0, 0}, {0, 10, 0}};
-  sc.mission.arrival_tolerance_s = 2.0;
+  sc.mission.edit_section<FormationSection>().shape = {{0, 0, 0}, {0, 10, 0}};
+  sc.mission.edit_section<FormationSection>().arrival_tolerance_s = 2.0;
   Plan p = base_plan(sc);  // both fly 20 m at 5 m/s: arrive at 4 s
   EXPECT_TRUE(kinds(sc, p).empty());
   fly(p, 1, {{10, 20, 20}, {30, 20, 20}}, 5.0, 10.0);        // b leaves at 10 s: arrives at 14 s

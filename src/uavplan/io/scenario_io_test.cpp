@@ -4,7 +4,9 @@
 
 #include <chrono>
 
+#include "uavplan/coordination/formation/formation_mission.h"
 #include "uavplan/coordination/mission.h"
+#include "uavplan/coordination/rendezvous/rendezvous_mission.h"
 #include "uavplan/io/input_error.h"
 #include "uavplan/io/tree_check.h"
 
@@ -359,9 +361,9 @@ TEST(ScenarioIo, EachMissionTypeReadsItsOwnKeys) {
   const Scenario rendezvous =
       parse_scenario(replace(replace(kGood, "type: route", "type: rendezvous"), "  waypoints: [[50, 10, 10]]\n", extra),
                      "s.yaml", {{"planner.algorithm", "directional_astar"}});
-  EXPECT_EQ(rendezvous.mission.arrival_tolerance_m, 5.0);
+  EXPECT_EQ(rendezvous_section(rendezvous).arrival_tolerance_m, 5.0);
   EXPECT_TRUE(rendezvous.mission.waypoints.empty());
-  EXPECT_TRUE(rendezvous.mission.shape.empty());
+  EXPECT_TRUE(formation_shape(rendezvous).empty());
   EXPECT_FALSE(rendezvous.mission.airfield.has_value());
   expect_error(replace(kGood, "type: route", "type: formation"), {"mission", "missing required key 'shape'"});
   expect_error(replace(kGood, "  waypoints: [[50, 10, 10]]\n", "  waypoint: [[50, 10, 10]]\n"),

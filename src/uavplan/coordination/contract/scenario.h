@@ -43,17 +43,10 @@ struct MissionSpec {
   // The entry heading required at each via point (0 = east, pi/2 = north), by index; shorter or
   // empty: none (pso_mpc plans them; the verifier checks them within kEntryHeadingTolerance_deg).
   std::vector<std::optional<double>> waypoint_entry_heading_rad;
-  std::optional<double> arrival_tolerance_m;  // rendezvous: max spread of route lengths
-  double step_s = 1.0;                        // sensing / control period T of flights in the loop
+  double step_s = 1.0;  // sensing / control period T of flights in the loop
   // UAVs whose goals lie closer than this arrive at distinct points this far apart (0: they
   // meet at the goal); default the separation. Not for rendezvous (one goal by design).
   std::optional<double> goal_spacing_m;
-  // formation (P1): a slot per UAV in scenario order, forward / left / up (m) from the reference
-  // point in a frame turning with the reference's heading; clear periods before re-forming; the
-  // largest spread of the arrival times.
-  std::vector<Vec3> shape;
-  int reform_after_steps = 5;
-  double arrival_tolerance_s = 2.0;
   // formation_mission (P5): the airfield, the task points in order, the communication topology
   // a_ij of the consensus control (rows per UAV in scenario order; empty: the complete graph).
   std::optional<Airfield> airfield;
@@ -64,6 +57,15 @@ struct MissionSpec {
   template <class T>
   const T* section_as() const {
     return dynamic_cast<const T*>(section.get());
+  }
+  // The section as a T to change (a copy of the one there when it is a T, else a new T): for
+  // code that builds or edits a scenario.
+  template <class T>
+  T& edit_section() {
+    auto copy = section_as<T>() ? std::make_shared<T>(*section_as<T>()) : std::make_shared<T>();
+    T& ref = *copy;
+    section = std::move(copy);
+    return ref;
   }
 };
 

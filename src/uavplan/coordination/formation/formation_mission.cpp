@@ -26,10 +26,10 @@ Vec3 centroid(const std::vector<Vec3>& pts) {
 // The reference's route: for a body as wide as the shape, else for the widest UAV alone.
 PlanResult reference_route(const Scenario& sc, const MissionContext& ctx, const Vec3& from, const Vec3& to) {
   const auto planner = make_planner(ctx.algorithm, ctx.params);
-  const Vec3 c = centroid(sc.mission.shape);
+  const Vec3 c = centroid(formation_shape(sc));
   double body = 0.0, widest = 0.0;
   for (std::size_t i = 0; i < sc.uavs.size(); ++i) {
-    body = std::max(body, (sc.mission.shape[i] - c).norm() + sc.uavs[i].radius_m);
+    body = std::max(body, (formation_shape(sc)[i] - c).norm() + sc.uavs[i].radius_m);
     widest = std::max(widest, sc.uavs[i].radius_m);
   }
   Problem pb;
@@ -106,12 +106,12 @@ void check_flown(const Scenario& sc, const ArrivalSpread& spread, Plan& plan) {
       up.message = "could not avoid " + c.what;
     }
   }
-  if (spread.s() <= sc.mission.arrival_tolerance_s + kSameTime_s) return;
+  if (spread.s() <= formation_section(sc).arrival_tolerance_s + kSameTime_s) return;
   const std::string buf = strf(
       "arrivals %.1f s apart ('%s' at its goal at %.1f s, '%s' at %.1f s), more than "
       "arrival_tolerance_s = %g s: '%s' could not re-form before the goals",
       spread.s(), spread.first->id.c_str(), spread.first->arrival_s, spread.last->id.c_str(), spread.last->arrival_s,
-      sc.mission.arrival_tolerance_s, spread.last->id.c_str());
+      formation_section(sc).arrival_tolerance_s, spread.last->id.c_str());
   for (UavPlan& up : plan.uavs)
     if (up.status == Status::solved) {  // the common arrival time: a mission's rule, not a route's
       up.status = Status::failed;
@@ -134,7 +134,7 @@ void FormationMission::plan(const Scenario& sc, const MissionContext& ctx, Plan&
     vmax = std::min(vmax, u.speed.max_mps);
     vmin = std::max(vmin, u.speed.min_mps);
   }
-  if (sc.mission.shape.size() != sc.uavs.size())
+  if (formation_shape(sc).size() != sc.uavs.size())
     throw std::invalid_argument("a formation mission needs one slot per UAV");
   const PlanResult ref = reference_route(sc, ctx, centroid(starts), centroid(goals));
   if (ref.status != Status::solved) return fail_all(sc, "the formation's reference route: " + ref.message, plan);
@@ -142,7 +142,7 @@ void FormationMission::plan(const Scenario& sc, const MissionContext& ctx, Plan&
   so.slot_clear = [&sc](std::size_t i, const Vec3& a, const Vec3& b) {
     return sc.world.segment_valid(a, b, keep_off_m(sc.uavs[i]));
   };
-  const FormationSchedule sched = formation_schedule(ref.route.waypoints, sc.mission.shape, starts, goals, so);
+  const FormationSchedule sched = formation_schedule(ref.route.waypoints, formation_shape(sc), starts, goals, so);
 
   RollingWindowOptions rw;
   rw.step_s = sc.mission.step_s;
@@ -153,7 +153,8 @@ void FormationMission::plan(const Scenario& sc, const MissionContext& ctx, Plan&
   std::vector<std::string> ids;
   for (const UavSpec& u : sc.uavs) ids.push_back(u.id);
   RollingWindow guard(sc.world, rw, windows_of(sc, layer), ids);
-  FormationFlightOptions fo{sc.mission.step_s, sc.mission.separation_m, sc.mission.reform_after_steps, vmax, cruise};
+  FormationFlightOptions fo{sc.mission.step_s, sc.mission.separation_m, formation_section(sc).reform_after_steps, vmax,
+                            cruise};
   fo.slow_pace = std::clamp(vmin / cruise, fo.slow_pace, 1.0);
   FormationFlight flight(sched, fo, guard);
   std::vector<LoopUav> loop;

@@ -14,6 +14,22 @@
 
 namespace uavplan {
 
+// A formation's shape (formation and formation_mission): a slot per UAV in scenario order,
+// forward / left / up (m) from the reference point in a frame turning with its heading.
+struct FormationShapeSection : MissionSection {
+  std::vector<Vec3> shape;
+};
+// formation's section: the shape, the clear periods before re-forming, the largest spread of
+// the arrival times.
+struct FormationSection : FormationShapeSection {
+  int reform_after_steps = 5;
+  double arrival_tolerance_s = 2.0;
+};
+// The scenario's shape (empty where its mission has none), and formation's section (the
+// defaults where it has none).
+const std::vector<Vec3>& formation_shape(const Scenario& scenario);
+const FormationSection& formation_section(const Scenario& scenario);
+
 class FormationMission final : public Mission {
  public:
   const MissionDeclaration& declaration() const override;
@@ -26,7 +42,7 @@ class FormationMission final : public Mission {
 
 // A formation's `shape` (formation and formation_mission): one slot per UAV, every two slots at
 // least the separation (and their bodies) apart.
-void read_formation_shape(const Section& list, Scenario& scenario);
+std::vector<Vec3> read_formation_shape(const Section& list, const Scenario& scenario);
 // The `shape` key's declaration (both types read it).
 MissionKey formation_shape_key();
 

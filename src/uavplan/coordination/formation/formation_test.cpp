@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "uavplan/coordination/formation/formation_mission.h"
 #include "uavplan/coordination/formation/formation_schedule.h"
 #include "uavplan/coordination/mission_planner.h"
 #include "uavplan/simulation/trajectory.h"
@@ -128,7 +129,7 @@ Scenario crossing(bool with_obstacle) {
   }
   sc.mission.type = "formation";
   sc.mission.separation_m = 2;
-  sc.mission.shape = kWedge;
+  sc.mission.edit_section<FormationSection>().shape = kWedge;
   sc.planner.algorithm = "aco_voronoi";
   return sc;
 }
@@ -158,10 +159,10 @@ TEST(FormationMission, LeavesItsSlotToAvoidAndReformsWithOneEta) {
   // One ETA: they arrive together (each at its goal to stay, within arrival_tolerance_s of the
   // last), none waiting at its goal for the others; never faster than V_max.
   ASSERT_TRUE(p.formation->arrival_spread_s);
-  EXPECT_LE(*p.formation->arrival_spread_s, sc.mission.arrival_tolerance_s);
+  EXPECT_LE(*p.formation->arrival_spread_s, formation_section(sc).arrival_tolerance_s);
   for (std::size_t i = 0; i < 3; ++i) {
     EXPECT_LE(p.uavs[i].arrival_s, p.formation->eta_s);
-    EXPECT_GE(p.uavs[i].arrival_s, p.formation->eta_s - sc.mission.arrival_tolerance_s);
+    EXPECT_GE(p.uavs[i].arrival_s, p.formation->eta_s - formation_section(sc).arrival_tolerance_s);
     EXPECT_GT(p.uavs[i].arrival_s, p.uavs[i].trajectory.back().t_s - 1.0) << "waited at its goal";
     EXPECT_NEAR((p.uavs[i].trajectory.back().p - *sc.uavs[i].goal).norm(), 0.0, 1e-6);
     const Trajectory& tr = p.uavs[i].trajectory;

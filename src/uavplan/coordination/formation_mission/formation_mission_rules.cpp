@@ -129,7 +129,7 @@ const MissionDeclaration& PhasedFormationMission::declaration() const {
 }
 
 std::string PhasedFormationMission::describe(const Scenario& sc) const {
-  return ", shape of " + std::to_string(sc.mission.shape.size()) + " slots";
+  return ", shape of " + std::to_string(formation_shape(sc).size()) + " slots";
 }
 
 std::optional<double> PhasedFormationMission::pair_distance_m(const Scenario& sc, const UavSpec& a,
@@ -139,7 +139,7 @@ std::optional<double> PhasedFormationMission::pair_distance_m(const Scenario& sc
 }
 
 void PhasedFormationMission::read_section(const Section& m, const Section& uavs, Scenario& sc) const {
-  if (m.has("shape")) read_formation_shape(*m.at("shape"), sc);
+  if (m.has("shape")) sc.mission.edit_section<FormationShapeSection>().shape = read_formation_shape(*m.at("shape"), sc);
   sc.mission.airfield = read_airfield(*m.req("airfield"), sc.world);
   sc.mission.task_points = read_task_points(*m.req("task_points"), sc.world);
   if (m.has("topology")) sc.mission.topology = read_topology(*m.at("topology"), sc.uavs.size());

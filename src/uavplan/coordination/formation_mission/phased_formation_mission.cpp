@@ -151,9 +151,9 @@ struct FormationBody {
 FormationBody formation_body(const Scenario& sc, const std::vector<AutopilotModel>& models) {
   const std::size_t n = sc.uavs.size();
   FormationBody b;
-  for (const Vec3& s : sc.mission.shape) b.mean_slot += s / static_cast<double>(n);
+  for (const Vec3& s : formation_shape(sc)) b.mean_slot += s / static_cast<double>(n);
   for (std::size_t i = 0; i < n; ++i) {
-    b.half_width_m = std::max(b.half_width_m, (sc.mission.shape[i] - b.mean_slot).head<2>().norm());
+    b.half_width_m = std::max(b.half_width_m, (formation_shape(sc)[i] - b.mean_slot).head<2>().norm());
     b.widest_m = std::max(b.widest_m, sc.uavs[i].radius_m);
     b.cruise_mps = std::min(b.cruise_mps, sc.uavs[i].speed.cruise_mps);
     b.turn_rate_rad_s = std::min(b.turn_rate_rad_s, models[i].limits().max_turn_rate_rad_s);
@@ -278,12 +278,12 @@ class PhasedFlight {
         layer_(layers(order_, o)),
         dep_(departures(sc, starts, order_, models, climb_altitudes(z_form, layer_), o, go_.dt_s,
                         go_.record_s + go_.dt_s)),
-        group_(models, sc.mission.shape, sc.mission.topology.empty() ? complete_topology(n_) : sc.mission.topology, go_,
-               0.0),
+        group_(models, formation_shape(sc), sc.mission.topology.empty() ? complete_topology(n_) : sc.mission.topology,
+               go_, 0.0),
         route_s_(3.0 * route_m / body.cruise_mps + o.step_timeout_s),
         models_(models) {
     up_.resize(n_);
-    for (std::size_t i = 0; i < n_; ++i) up_[i] = sc.mission.shape[i].z() - body.mean_slot.z();
+    for (std::size_t i = 0; i < n_; ++i) up_[i] = formation_shape(sc)[i].z() - body.mean_slot.z();
     order_now_.speed_mps = body.cruise_mps;
     order_now_.heading_rad = af_.runway_heading_rad;
     order_now_.scale = o.enlargement;
@@ -521,7 +521,7 @@ FormationMissionOptions FormationMissionOptions::read(ParamReader& r) {
 void PhasedFormationMission::plan(const Scenario& sc, const MissionContext& ctx, Plan& plan) const {
   FormationMissionOptions o = FormationMissionOptions::from_params(ctx.mission_params);
   const std::size_t n = sc.uavs.size();
-  if (!sc.mission.airfield || sc.mission.shape.size() != n || sc.mission.task_points.empty())
+  if (!sc.mission.airfield || formation_shape(sc).size() != n || sc.mission.task_points.empty())
     throw std::invalid_argument("a formation_mission needs an airfield, a slot per UAV and a task point");
   const Airfield& af = *sc.mission.airfield;
   std::vector<Vec3> starts;

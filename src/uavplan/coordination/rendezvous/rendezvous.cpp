@@ -1,4 +1,5 @@
 #include "uavplan/coordination/rendezvous/rendezvous.h"
+#include "uavplan/coordination/rendezvous/rendezvous_mission.h"
 #include "uavplan/core/text.h"
 #include "uavplan/core/tolerances.h"
 
@@ -600,7 +601,7 @@ RendezvousResult plan_rendezvous(const Scenario& sc, const DirectionalAStarPlann
   for (const auto& r : res.uavs)
     if (r.solved()) res.target_m = std::max(res.target_m, r.final_m);
   const double cell = queries.empty() ? 1.0 : queries.front().cell_m;
-  res.epsilon_m = sc.mission.arrival_tolerance_m.value_or(cell);
+  res.epsilon_m = rendezvous_section(sc).arrival_tolerance_m.value_or(cell);
   const LengthWindow window{res.target_m - res.epsilon_m, res.target_m, res.target_m - 0.5 * res.epsilon_m,
                             res.epsilon_m};
   for (std::size_t s = 0; s < res.uavs.size(); ++s) {

@@ -7,6 +7,13 @@
 
 namespace uavplan {
 
+// Its section: the largest difference of the UAVs' flown lengths (none: the lattice's cell).
+struct RendezvousSection : MissionSection {
+  std::optional<double> arrival_tolerance_m;
+};
+// The scenario's rendezvous section (an empty one where it has none).
+const RendezvousSection& rendezvous_section(const Scenario& scenario);
+
 class RendezvousMission final : public Mission {
  public:
   const MissionDeclaration& declaration() const override {

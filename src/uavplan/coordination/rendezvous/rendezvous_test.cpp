@@ -1,4 +1,5 @@
 #include "uavplan/coordination/rendezvous/rendezvous.h"
+#include "uavplan/coordination/rendezvous/rendezvous_mission.h"
 
 #include <gtest/gtest.h>
 
@@ -30,7 +31,7 @@ Scenario rendezvous(WorldSpec ws, std::vector<UavSpec> uavs, double tolerance_m,
   sc.world = World(std::move(ws));
   sc.uavs = std::move(uavs);
   sc.mission.type = "rendezvous";
-  sc.mission.arrival_tolerance_m = tolerance_m;
+  sc.mission.edit_section<RendezvousSection>().arrival_tolerance_m = tolerance_m;
   sc.planner.algorithm = "directional_astar";
   sc.planner.params = std::move(params);
   return sc;
