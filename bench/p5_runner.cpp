@@ -7,6 +7,7 @@
 
 #include "uavplan/coordination/contract/separation.h"
 #include "uavplan/coordination/formation_mission/formation_group.h"
+#include "uavplan/coordination/formation_mission/task_points.h"
 #include "uavplan/coordination/mission_planner.h"
 #include "uavplan/evaluation/random_worlds.h"
 #include "uavplan/evaluation/verifier.h"
@@ -165,8 +166,8 @@ std::string random_table(int missions, bool& ok) {
           why = u.id + ": " + u.message;
           break;
         }
-      failures += line("  seed %d (%zu UAVs, %zu task points): %s\n", s, sc.uavs.size(), sc.mission.task_points.size(),
-                       why.c_str());
+      failures += line("  seed %d (%zu UAVs, %zu task points): %s\n", s, sc.uavs.size(),
+                       phased_section(sc).task_points.size(), why.c_str());
     }
   }
   ok = ok && bad == 0;

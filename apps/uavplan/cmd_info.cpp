@@ -52,23 +52,14 @@ void print_world(const Scenario& sc) {
     std::printf("origin    lat %.7f lon %.7f alt %.2f m\n", sc.origin->lat_deg, sc.origin->lon_deg, sc.origin->alt_m);
 }
 
-// What the mission type itself holds: via points, a shape, an airfield and task points.
+// The mission type and what it holds, in its own words (Mission::describe): via points, a shape,
+// an airfield and task points.
 void print_mission(const Scenario& sc) {
   const MissionSpec& m = sc.mission;
   const Mission* mission = find_mission(m.type);
   std::printf("mission   %s, separation %g m%s", printable(m.type).c_str(), m.separation_m,
               mission ? mission->describe(sc).c_str() : "");
   std::printf("\n");
-  if (m.airfield)
-    std::printf("airfield  threshold (%g, %g, %g), runway %g m heading %g deg\n", m.airfield->position.x(),
-                m.airfield->position.y(), m.airfield->position.z(), m.airfield->runway_length_m,
-                rad_to_deg(m.airfield->runway_heading_rad));
-  for (std::size_t k = 0; k < m.task_points.size(); ++k) {
-    const TaskPoint& t = m.task_points[k];
-    std::printf("task %-4zu (%g, %g, %g) within %g m", k, t.position.x(), t.position.y(), t.position.z(), t.radius_m);
-    if (t.entry_heading_rad) std::printf(", entered at %g deg", rad_to_deg(*t.entry_heading_rad));
-    std::printf("\n");
-  }
 }
 
 // A UAV's line: where, how fast, its limits, what it senses and how it flies.

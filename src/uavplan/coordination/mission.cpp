@@ -124,6 +124,9 @@ std::string mission_algorithm(const Scenario& sc, const std::optional<std::strin
     if (p.name != *asked) continue;
     const std::string why = planner_refusal(sc, p);
     if (why.empty()) return *asked;
+    const std::vector<std::string>& declared = mission->declaration().algorithms;
+    if (!declared.empty() && std::find(declared.begin(), declared.end(), p.name) == declared.end())
+      throw std::invalid_argument(why);  // it names the planners already
     std::vector<std::string> able;
     for (const PlannerInfo& q : planner_catalog())
       if (planner_refusal(sc, q).empty()) able.push_back(q.name);

@@ -372,7 +372,7 @@ Scenario random_formation_mission(std::uint64_t seed) {
     TaskPoint tp;
     tp.position = Vec3(r.uniform(0.1, 0.9) * size, r.uniform(0.1, 0.9) * size, r.uniform(3000, 7000));
     tp.entry_heading_rad = deg_to_rad(r.uniform(-180.0, 180.0));
-    sc.mission.task_points.push_back(tp);
+    sc.mission.edit_section<PhasedFormationSection>().task_points.push_back(tp);
     keep.emplace_back(tp.position, 25000.0);
   }
   WorldSpec ws;
@@ -397,7 +397,7 @@ Scenario random_formation_mission(std::uint64_t seed) {
   }
   if (r.uniform01() < 0.3)
     for (std::size_t k = 0; k < n; ++k) shape[k].z() = 30.0 * static_cast<double>(k % 3);
-  if (r.uniform01() < 0.4) sc.mission.topology = ring_topology(n);
+  if (r.uniform01() < 0.4) sc.mission.edit_section<PhasedFormationSection>().topology = ring_topology(n);
   const std::vector<Vec3> starts = parking(r, af, n, r.uniform(100.0, 250.0));
   const bool own_model = r.uniform01() < 0.5;
   for (std::size_t i = 0; i < n; ++i) {

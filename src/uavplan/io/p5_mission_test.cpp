@@ -8,6 +8,7 @@
 
 #include "uavplan/coordination/contract/runway.h"
 #include "uavplan/coordination/contract/separation.h"
+#include "uavplan/coordination/formation_mission/task_points.h"
 #include "uavplan/coordination/mission_planner.h"
 #include "uavplan/evaluation/verifier.h"
 #include "uavplan/io/flight_export.h"
@@ -121,7 +122,8 @@ TEST(P5Mission, TheVerifierCatchesAMissedRunwayAndATaskPointMissed) {
   bool runway = false;
   for (const Violation& v : verify_plan(sc, off)) runway = runway || (v.kind == ViolationKind::goal && v.uav == "u1");
   EXPECT_TRUE(runway);
-  sc.mission.task_points[1].entry_heading_rad = *sc.mission.task_points[1].entry_heading_rad + kPi / 2;
+  auto& points = sc.mission.edit_section<PhasedFormationSection>().task_points;
+  points[1].entry_heading_rad = *points[1].entry_heading_rad + kPi / 2;
   bool task = false;
   for (const Violation& v : verify_plan(sc, plan)) task = task || v.kind == ViolationKind::via_point;
   EXPECT_TRUE(task);

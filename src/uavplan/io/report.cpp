@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "uavplan/coordination/contract/separation.h"
+#include "uavplan/coordination/formation_mission/task_points.h"
 #include "uavplan/evaluation/metrics.h"
 #include "uavplan/io/palette.h"
 #include "uavplan/io/report_assets.h"
@@ -125,11 +126,12 @@ void add_world(ojson& j, const World& w, const ReportOptions& opt) {
 }
 
 // What the mission asks for on the map: a route's via points, P5's task points and airfield.
-void add_mission_places(ojson& j, const MissionSpec& m) {
+void add_mission_places(ojson& j, const Scenario& sc) {
+  const MissionSpec& m = sc.mission;
   j["via_points"] = ojson::array();
   for (const Vec3& v : m.waypoints) j["via_points"].push_back(vec(v));
   j["task_points"] = ojson::array();
-  for (const TaskPoint& tp : m.task_points)
+  for (const TaskPoint& tp : phased_section(sc).task_points)
     j["task_points"].push_back(
         {{"position", vec(tp.position)},
          {"radius_m", tp.radius_m},
@@ -233,7 +235,7 @@ std::string report_data_json(const Scenario& sc, const Plan& plan_in, const std:
   j["mission"] = sc.mission.type;
   j["separation_m"] = sc.mission.separation_m;
   add_world(j, sc.world, opt);
-  add_mission_places(j, sc.mission);
+  add_mission_places(j, sc);
   std::vector<const UavPlan*> flown;
   double t_end = 0.0;
   j["uavs"] = ojson::array();

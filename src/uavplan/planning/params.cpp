@@ -120,7 +120,8 @@ void ParamReader::require(bool holds, const std::string& key, const std::string&
 }
 
 void ParamReader::finish() {
-  for (const auto& [key, value] : params_) {
+  for (const auto& given : params_) {
+    const std::string& key = given.first;
     if (std::any_of(declared_.begin(), declared_.end(), [&](const ParamDecl& d) { return d.key == key; })) continue;
     std::vector<std::string> keys;
     for (const ParamDecl& d : declared_) keys.push_back(d.key);

@@ -27,15 +27,6 @@ struct Airfield {
   double runway_length_m = 3000.0;
 };
 
-// formation_mission: reached when the formation's reference passes within radius_m of the
-// position flying within kTaskHeadingTolerance_deg of the entry heading (when one is given).
-struct TaskPoint {
-  Vec3 position = Vec3::Zero();
-  std::optional<double> entry_heading_rad;
-  double radius_m = 1000.0;
-};
-inline constexpr double kTaskHeadingTolerance_deg = 15.0;
-
 struct MissionSpec {
   std::string type = "independent";  // a registered mission type's name (coordination/mission.h)
   double separation_m = 0.0;         // between any two UAVs at any time
@@ -47,24 +38,25 @@ struct MissionSpec {
   // UAVs whose goals lie closer than this arrive at distinct points this far apart (0: they
   // meet at the goal); default the separation. Not for rendezvous (one goal by design).
   std::optional<double> goal_spacing_m;
-  // formation_mission (P5): the airfield, the task points in order, the communication topology
-  // a_ij of the consensus control (rows per UAV in scenario order; empty: the complete graph).
+  // The airfield the UAVs take off from and land on (formation_mission): the exports fly its
+  // runway and the verifier's airfield rule reads it.
   std::optional<Airfield> airfield;
-  std::vector<TaskPoint> task_points;
-  std::vector<std::vector<double>> topology;
   // A mission type's own section (types registered outside the built-in ones keep theirs here).
-  std::shared_ptr<const MissionSection> section;
+  std::shared_ptr<MissionSection> section;
   template <class T>
   const T* section_as() const {
     return dynamic_cast<const T*>(section.get());
   }
-  // The section as a T to change (a copy of the one there when it is a T, else a new T): for
-  // code that builds or edits a scenario.
+  // The section as a T to change, for code that builds or edits a scenario: the one there when it
+  // is a T held by this scenario alone (references to it stay valid), a copy when another
+  // scenario shares it (copies of a scenario share their sections), else a new T.
   template <class T>
   T& edit_section() {
-    auto copy = section_as<T>() ? std::make_shared<T>(*section_as<T>()) : std::make_shared<T>();
-    T& ref = *copy;
-    section = std::move(copy);
+    T* now = dynamic_cast<T*>(section.get());
+    if (now && section.use_count() == 1) return *now;
+    auto fresh = now ? std::make_shared<T>(*now) : std::make_shared<T>();
+    T& ref = *fresh;
+    section = std::move(fresh);
     return ref;
   }
 };

@@ -6,10 +6,10 @@
 
 #include "uavplan/coordination/contract/runway.h"
 #include "uavplan/coordination/contract/separation.h"
-#include "uavplan/coordination/contract/task_points.h"
 #include "uavplan/coordination/formation/formation_mission.h"
 #include "uavplan/coordination/formation_mission/consensus.h"
 #include "uavplan/coordination/formation_mission/phased_formation_mission.h"
+#include "uavplan/coordination/formation_mission/task_points.h"
 #include "uavplan/core/text.h"
 #include "uavplan/core/units.h"
 
@@ -129,7 +129,17 @@ const MissionDeclaration& PhasedFormationMission::declaration() const {
 }
 
 std::string PhasedFormationMission::describe(const Scenario& sc) const {
-  return ", shape of " + std::to_string(formation_shape(sc).size()) + " slots";
+  std::string out = ", shape of " + std::to_string(formation_shape(sc).size()) + " slots";
+  if (const auto& af = sc.mission.airfield)
+    out += strf("\nairfield  threshold (%g, %g, %g), runway %g m heading %g deg", af->position.x(), af->position.y(),
+                af->position.z(), af->runway_length_m, rad_to_deg(af->runway_heading_rad));
+  const auto& points = phased_section(sc).task_points;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const TaskPoint& t = points[k];
+    out += strf("\ntask %-4zu (%g, %g, %g) within %g m", k, t.position.x(), t.position.y(), t.position.z(), t.radius_m);
+    if (t.entry_heading_rad) out += strf(", entered at %g deg", rad_to_deg(*t.entry_heading_rad));
+  }
+  return out;
 }
 
 std::optional<double> PhasedFormationMission::pair_distance_m(const Scenario& sc, const UavSpec& a,
@@ -139,10 +149,11 @@ std::optional<double> PhasedFormationMission::pair_distance_m(const Scenario& sc
 }
 
 void PhasedFormationMission::read_section(const Section& m, const Section& uavs, Scenario& sc) const {
-  if (m.has("shape")) sc.mission.edit_section<FormationShapeSection>().shape = read_formation_shape(*m.at("shape"), sc);
+  PhasedFormationSection& s = sc.mission.edit_section<PhasedFormationSection>();
+  if (m.has("shape")) s.shape = read_formation_shape(*m.at("shape"), sc);
   sc.mission.airfield = read_airfield(*m.req("airfield"), sc.world);
-  sc.mission.task_points = read_task_points(*m.req("task_points"), sc.world);
-  if (m.has("topology")) sc.mission.topology = read_topology(*m.at("topology"), sc.uavs.size());
+  s.task_points = read_task_points(*m.req("task_points"), sc.world);
+  if (m.has("topology")) s.topology = read_topology(*m.at("topology"), sc.uavs.size());
   if (!m.has("shape")) m.req("shape");
   check_parked(uavs, sc);
 }
@@ -166,8 +177,8 @@ void PhasedFormationMission::check_plan(const Scenario& sc, const FlownUavs& flo
   std::vector<const Trajectory*> trs;
   for (const auto& f : flown) trs.push_back(&f.second->trajectory);
   const std::vector<TaskVisit> visits = task_visits(sc, formation_reference(sc, trs));
-  for (std::size_t k = 0; k < sc.mission.task_points.size(); ++k) {
-    const TaskPoint& tp = sc.mission.task_points[k];
+  for (std::size_t k = 0; k < phased_section(sc).task_points.size(); ++k) {
+    const TaskPoint& tp = phased_section(sc).task_points[k];
     if (k < visits.size() && visits[k].reached) continue;
     std::string why = "task point " + std::to_string(k) + " not reached in order by the formation's reference";
     if (k < visits.size() && std::isfinite(visits[k].miss_m))

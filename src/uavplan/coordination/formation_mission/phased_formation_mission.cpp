@@ -234,13 +234,13 @@ Problem coarse_problem(const Scenario& sc, const MissionContext& ctx, const Form
   pb.uav.speed.cruise_mps = b.cruise_mps;
   pb.uav.max_turn_rate_rad_s = o.turn_margin * b.turn_rate_rad_s;  // margin for the shape turning as a body
   pb.uav.model = lead.model.value_or(AutopilotParams{});
-  for (const TaskPoint& tp : sc.mission.task_points) {
+  for (const TaskPoint& tp : phased_section(sc).task_points) {
     pb.via.push_back(tp.position);
     pb.via_entry_heading_rad.push_back(tp.entry_heading_rad);
   }
   // Back to the landing cylinder (phase 5) at the last task point's altitude.
   const Vec3 cylinder = af.position - o.landing.cylinder_before_threshold_m * dir;
-  pb.goal = Vec3(cylinder.x(), cylinder.y(), sc.mission.task_points.back().position.z());
+  pb.goal = Vec3(cylinder.x(), cylinder.y(), phased_section(sc).task_points.back().position.z());
   pb.seed = ctx.options.seed;
   return pb;
 }
@@ -249,7 +249,7 @@ Problem coarse_problem(const Scenario& sc, const MissionContext& ctx, const Form
 std::vector<char> task_fly_over(const Scenario& sc, const std::vector<Vec3>& wps, std::size_t& last_task) {
   std::vector<char> fly_over(wps.size(), 0);
   last_task = 0;
-  for (const TaskPoint& tp : sc.mission.task_points)
+  for (const TaskPoint& tp : phased_section(sc).task_points)
     for (std::size_t k = last_task + 1; k < wps.size(); ++k)
       if ((wps[k] - tp.position).norm() < kTaskPointMatch_m) {
         fly_over[k] = 1, last_task = k;
@@ -278,8 +278,8 @@ class PhasedFlight {
         layer_(layers(order_, o)),
         dep_(departures(sc, starts, order_, models, climb_altitudes(z_form, layer_), o, go_.dt_s,
                         go_.record_s + go_.dt_s)),
-        group_(models, formation_shape(sc), sc.mission.topology.empty() ? complete_topology(n_) : sc.mission.topology,
-               go_, 0.0),
+        group_(models, formation_shape(sc),
+               phased_section(sc).topology.empty() ? complete_topology(n_) : phased_section(sc).topology, go_, 0.0),
         route_s_(3.0 * route_m / body.cruise_mps + o.step_timeout_s),
         models_(models) {
     up_.resize(n_);
@@ -521,7 +521,7 @@ FormationMissionOptions FormationMissionOptions::read(ParamReader& r) {
 void PhasedFormationMission::plan(const Scenario& sc, const MissionContext& ctx, Plan& plan) const {
   FormationMissionOptions o = FormationMissionOptions::from_params(ctx.mission_params);
   const std::size_t n = sc.uavs.size();
-  if (!sc.mission.airfield || formation_shape(sc).size() != n || sc.mission.task_points.empty())
+  if (!sc.mission.airfield || formation_shape(sc).size() != n || phased_section(sc).task_points.empty())
     throw std::invalid_argument("a formation_mission needs an airfield, a slot per UAV and a task point");
   const Airfield& af = *sc.mission.airfield;
   std::vector<Vec3> starts;

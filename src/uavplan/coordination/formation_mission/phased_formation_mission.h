@@ -11,8 +11,8 @@
 // Quantities P5 leaves out are papers.md P5's defaults (FormationMissionOptions).
 #pragma once
 
-#include "uavplan/coordination/formation/formation_mission.h"
 #include "uavplan/coordination/formation_mission/landing.h"
+#include "uavplan/coordination/formation_mission/task_points.h"
 #include "uavplan/coordination/mission.h"
 
 namespace uavplan {
@@ -53,10 +53,6 @@ struct FormationMissionOptions {
 
   static FormationMissionOptions read(ParamReader& r);
 };
-
-// Its section: the shape (the airfield, task points and topology are MissionSpec's: the exports
-// and the airfield's separation rule read them).
-struct PhasedFormationSection : FormationShapeSection {};
 
 class PhasedFormationMission final : public Mission {
  public:

@@ -6,10 +6,29 @@
 
 #include <vector>
 
-#include "uavplan/coordination/contract/scenario.h"
+#include "uavplan/coordination/formation/formation_mission.h"
 #include "uavplan/simulation/trajectory.h"
 
 namespace uavplan {
+
+// Reached when the formation's reference passes within radius_m of the position flying within
+// kTaskHeadingTolerance_deg of the entry heading (when one is given).
+struct TaskPoint {
+  Vec3 position = Vec3::Zero();
+  std::optional<double> entry_heading_rad;
+  double radius_m = 1000.0;
+};
+inline constexpr double kTaskHeadingTolerance_deg = 15.0;
+
+// formation_mission's section: the shape, the task points in order, the communication topology
+// a_ij of the consensus control (rows per UAV in scenario order; empty: the complete graph).
+// The airfield is MissionSpec's (the exports fly its runway).
+struct PhasedFormationSection : FormationShapeSection {
+  std::vector<TaskPoint> task_points;
+  std::vector<std::vector<double>> topology;
+};
+// The scenario's formation_mission section (an empty one where it has none).
+const PhasedFormationSection& phased_section(const Scenario& scenario);
 
 // The reference at the merged row times of the trajectories (times with no UAV airborne left out).
 Trajectory formation_reference(const Scenario& scenario, const std::vector<const Trajectory*>& trajectories);

@@ -1,4 +1,4 @@
-#include "uavplan/coordination/contract/task_points.h"
+#include "uavplan/coordination/formation_mission/task_points.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,6 +7,12 @@
 #include "uavplan/core/geometry.h"
 
 namespace uavplan {
+
+const PhasedFormationSection& phased_section(const Scenario& sc) {
+  static const PhasedFormationSection none;
+  const PhasedFormationSection* s = sc.mission.section_as<PhasedFormationSection>();
+  return s ? *s : none;
+}
 
 Trajectory formation_reference(const Scenario& sc, const std::vector<const Trajectory*>& trs) {
   const double ground = sc.mission.airfield ? sc.mission.airfield->position.z() : sc.world.bounds().min.z();
@@ -33,7 +39,7 @@ std::vector<TaskVisit> task_visits(const Scenario& sc, const Trajectory& ref) {
   std::vector<TaskVisit> out;
   std::size_t from = 0;
   const double tol = deg_to_rad(kTaskHeadingTolerance_deg);
-  for (const TaskPoint& tp : sc.mission.task_points) {
+  for (const TaskPoint& tp : phased_section(sc).task_points) {
     TaskVisit v;
     v.miss_m = World::kInf;
     for (std::size_t k = from; k + 1 < ref.size(); ++k) {
