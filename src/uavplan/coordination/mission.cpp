@@ -39,10 +39,12 @@ bool is_type_name(std::string_view s) {
 }  // namespace
 
 const std::vector<MissionKey>& common_mission_keys() {
+  const MissionSpec defaults;
   static const std::vector<MissionKey> keys = {
-      {"type", "text", "independent", "", "the mission type: one of the types below"},
-      {"separation", "number", "0", "m", "the least distance between any two UAVs at any time"},
-      {"step_s", "number", "1", "s", "the sensing and control period of flights in the loop"},
+      {"type", "text", defaults.type, "", "the mission type: one of the types below"},
+      {"separation", "number", num_text(defaults.separation_m), "m",
+       "the least distance between any two UAVs at any time"},
+      {"step_s", "number", num_text(defaults.step_s), "s", "the sensing and control period of flights in the loop"},
       {"goal_spacing", "number", "the separation", "m",
        "UAVs whose goals lie closer than this arrive at distinct points this far apart"},
   };

@@ -53,9 +53,12 @@ const MissionDeclaration& FormationMission::declaration() const {
     m.summary =
         "P1's formation: the UAVs fly one shape along a reference route, leave their slots to avoid what they "
         "sense (the local RRT) and re-form, and arrive at one time.";
+    const FormationSection defaults;
     m.keys = {formation_shape_key(),
-              {"reform_after_steps", "integer", "5", "", "clear control periods before a UAV re-forms"},
-              {"arrival_tolerance_s", "number", "2", "s", "the largest spread of the arrival times"}};
+              {"reform_after_steps", "integer", std::to_string(defaults.reform_after_steps), "",
+               "clear control periods before a UAV re-forms"},
+              {"arrival_tolerance_s", "number", num_text(defaults.arrival_tolerance_s), "s",
+               "the largest spread of the arrival times"}};
     m.default_algorithm = "aco_voronoi";
     m.parameters = {"local", "window_m"};
     return m;

@@ -109,10 +109,11 @@ const MissionDeclaration& PhasedFormationMission::declaration() const {
         "no goals: the UAVs land on the runway.";
     m.keys = {formation_shape_key(),
               {"airfield", "{position: [x, y, z], runway_heading_deg, runway_length_m}", "", "m, deg",
-               "the runway's threshold on the ground, its heading (0 = east) and length (default 3000 m)"},
+               "the runway's threshold on the ground, its heading (0 = east) and length (default " +
+                   num_text(Airfield{}.runway_length_m) + " m)"},
               {"task_points", "list of {position: [x, y, z], entry_heading_deg, radius_m}", "", "m, deg",
-               "reached in order by the formation's reference within radius_m (default 1000 m), along the entry "
-               "heading where one is given"},
+               "reached in order by the formation's reference within radius_m (default " +
+                   num_text(TaskPoint{}.radius_m) + " m), along the entry heading where one is given"},
               {"topology", "list of rows a_ij", "the complete graph", "",
                "the consensus control's communication weights, a row per UAV in scenario order"}};
     m.algorithms = {"pso_mpc"};
