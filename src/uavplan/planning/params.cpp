@@ -126,9 +126,9 @@ void ParamReader::finish() {
     std::vector<std::string> keys;
     for (const ParamDecl& d : declared_) keys.push_back(d.key);
     std::sort(keys.begin(), keys.end());
-    std::string list;
-    for (const auto& k : keys) list += (list.empty() ? "" : ", ") + k;
-    problem("planner.params." + key + ": unknown parameter for planner '" + owner_ + "' (known: " + list + ")");
+    std::string why = "planner.params." + key + ": unknown parameter for planner '" + owner_ + "' (known: ";
+    for (std::size_t i = 0; i < keys.size(); ++i) why.append(i ? ", " : "").append(keys[i]);
+    problem(why + ")");
   }
 }
 
