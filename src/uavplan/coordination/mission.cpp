@@ -87,30 +87,17 @@ std::vector<const Mission*> missions() {
 }
 
 std::string mission_type_list() {
-  const auto& table = registry();
-  std::string list;
-  for (std::size_t i = 0; i < table.size(); ++i)
-    list += (i == 0 ? "" : i + 1 == table.size() ? " or " : ", ") + table[i]->declaration().name;
-  return list;
+  std::vector<std::string> names;
+  for (const auto& m : registry()) names.push_back(m->declaration().name);
+  return word_list(names);
 }
-
-namespace {
-
-// "a, b or c"
-std::string either(const std::vector<std::string>& names) {
-  std::string list;
-  for (std::size_t i = 0; i < names.size(); ++i) list += (i ? (i + 1 == names.size() ? " or " : ", ") : "") + names[i];
-  return list;
-}
-
-}  // namespace
 
 std::string planner_refusal(const Scenario& sc, const PlannerInfo& planner) {
   const Mission* mission = find_mission(sc.mission.type);
   if (!mission) return "no mission type '" + sc.mission.type + "' is registered";
   const std::vector<std::string>& allowed = mission->declaration().algorithms;
   if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), planner.name) == allowed.end())
-    return "a " + sc.mission.type + " mission plans with " + either(allowed) + ", not '" + planner.name + "'";
+    return "a " + sc.mission.type + " mission plans with " + word_list(allowed) + ", not '" + planner.name + "'";
   return mission->planner_refusal(sc, planner);
 }
 
@@ -132,7 +119,7 @@ std::string mission_algorithm(const Scenario& sc, const std::optional<std::strin
     std::vector<std::string> able;
     for (const PlannerInfo& q : planner_catalog())
       if (planner_refusal(sc, q).empty()) able.push_back(q.name);
-    throw std::invalid_argument(why + (able.empty() ? "" : "; it plans with " + either(able)));
+    throw std::invalid_argument(why + (able.empty() ? "" : "; it plans with " + word_list(able)));
   }
   return *asked;  // an unknown name: make_planner says so, listing the planners
 }
@@ -157,15 +144,15 @@ std::string mission_catalog_text(bool markdown) {
   for (const Mission* m : missions()) {
     const MissionDeclaration& d = m->declaration();
     const std::string planners =
-        d.algorithms.empty() ? "any planner, " + d.default_algorithm + " by default" : either(d.algorithms);
+        d.algorithms.empty() ? "any planner, " + d.default_algorithm + " by default" : word_list(d.algorithms);
     if (markdown) {
       out += "\n**`" + d.name + "`**: " + d.summary + " Plans with " + planners + ".";
-      if (!d.parameters.empty()) out += " Reads " + either(d.parameters) + " of `planner.params` itself.";
+      if (!d.parameters.empty()) out += " Reads " + word_list(d.parameters) + " of `planner.params` itself.";
       out += d.keys.empty() ? " No keys of its own.\n" : "\n\n";
       if (!d.keys.empty()) header();
     } else {
       out += d.name + ": " + d.summary + "\n  plans with " + planners + "\n";
-      if (!d.parameters.empty()) out += "  reads planner.params " + either(d.parameters) + "\n";
+      if (!d.parameters.empty()) out += "  reads planner.params " + word_list(d.parameters) + "\n";
     }
     for (const MissionKey& k : d.keys) row(k);
   }

@@ -22,4 +22,11 @@ std::string strf(const char* format, ...) {
   return out;
 }
 
+std::string word_list(const std::vector<std::string>& words, const std::string& conjunction) {
+  std::string list;
+  for (std::size_t i = 0; i < words.size(); ++i)
+    list += (i == 0 ? "" : i + 1 == words.size() ? " " + conjunction + " " : ", ") + words[i];
+  return list;
+}
+
 }  // namespace uavplan

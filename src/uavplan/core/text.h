@@ -3,6 +3,7 @@
 
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "uavplan/core/vec.h"
 
@@ -22,6 +23,9 @@ inline std::string point_text(const Vec3& p) {
   std::snprintf(buf, sizeof buf, "(%.6g, %.6g, %.6g)", p.x(), p.y(), p.z());
   return buf;
 }
+
+// "a, b or c" (conjunction "and": "a, b and c"); "" for none.
+std::string word_list(const std::vector<std::string>& words, const std::string& conjunction = "or");
 
 // "1 UAV", "3 UAVs": a count with its noun, plural but for one (the noun's plural adds "s").
 inline std::string count_text(std::size_t n, const std::string& noun) {

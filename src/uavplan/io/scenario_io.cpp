@@ -462,9 +462,7 @@ std::string missions_that(Pred has) {
   std::vector<std::string> names;
   for (const Mission* m : missions())
     if (has(m->declaration())) names.push_back(m->declaration().name);
-  std::string list;
-  for (std::size_t i = 0; i < names.size(); ++i) list += (i ? (i + 1 == names.size() ? " and " : ", ") : "") + names[i];
-  return list;
+  return word_list(names, "and");
 }
 
 // A home on the ground, in the world, with room to lift off, for a UAV that starts and ends in

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "uavplan/core/text.h"
+
 namespace uavplan {
 namespace {
 
@@ -108,10 +110,7 @@ std::string ParamReader::choice(const std::string& key, const std::string& fallb
   const std::string* s = find({key, ParamKind::choice, 0, 0, choices, fallback, doc});
   if (!s) return fallback;
   if (std::find(choices.begin(), choices.end(), *s) != choices.end()) return *s;
-  std::string list;
-  for (std::size_t i = 0; i < choices.size(); ++i)
-    list += (i ? (i + 1 == choices.size() ? " or " : ", ") : "") + choices[i];
-  problem("planner.params." + key + ": expected " + list + ", got '" + *s + "'");
+  problem("planner.params." + key + ": expected " + word_list(choices) + ", got '" + *s + "'");
   return fallback;
 }
 
