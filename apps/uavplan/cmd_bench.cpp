@@ -5,6 +5,7 @@
 #include "commands.h"
 #include "deconfliction_runner.h"
 #include "mapf_runner.h"
+#include "movingai_plan_runner.h"
 #include "movingai_runner.h"
 #include "p1_local_runner.h"
 #include "p1_runner.h"
@@ -45,6 +46,38 @@ struct MovingAiArgs {
   bool json = false;
 };
 
+struct MovingAiPlanArgs {
+  std::string map, scen;
+  bench::MovingAiPlanOptions options;
+};
+
+void add_movingai_plan(CLI::App* cmd, std::function<int()>& run) {
+  auto a = std::make_shared<MovingAiPlanArgs>();
+  CLI::App* m = cmd->add_subcommand(
+      "movingai-plan", "`plan` itself on a MovingAI map made a scenario: JPS and A* beside the file's optima");
+  m->add_option("map", a->map, "MovingAI .map (2-D) or .3dmap (3-D)")->required();
+  m->add_option("scen", a->scen, "Its .scen or .3dscen")->required();
+  m->add_option("--limit", a->options.limit,
+                "Plan this many problems, spread evenly over the file (default 100; 0: all)");
+  m->add_flag("!--no-astar", a->options.astar_too, "Skip planning each problem again with A* alone");
+  m->add_option("--scenario-out", a->options.scenario_out, "Write the first problem's scenario to this file");
+  m->footer(
+      "Example: uavplan bench movingai-plan ../shared/data/movingai-3d/Complex.3dmap "
+      "../shared/data/movingai-3d/Complex.3dmap.3dscen --limit 200");
+  m->callback([a, &run] {
+    run = [a] {
+      try {
+        const auto rep = bench::run_movingai_plan(a->map, a->scen, a->options);
+        std::cout << bench::format_movingai_plan(rep);
+        return rep.passed() ? kExitOk : kExitNotSolved;
+      } catch (const InputError& e) {
+        std::cerr << e.what() << "\n";
+        return kExitBadInput;
+      }
+    };
+  });
+}
+
 void add_movingai(CLI::App* cmd, std::function<int()>& run) {
   auto a = std::make_shared<MovingAiArgs>();
   CLI::App* m = cmd->add_subcommand("movingai", "MovingAI grid benchmark: ours against the optimum and a textbook A*");
@@ -71,6 +104,8 @@ void add_movingai(CLI::App* cmd, std::function<int()>& run) {
       }
     };
   });
+
+  add_movingai_plan(cmd, run);
 
   auto blocked = std::make_shared<long long>(2'000'000);
   auto scratch = std::make_shared<std::string>("/tmp/uavplan-a1-probe.3dmap");

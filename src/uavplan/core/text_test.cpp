@@ -16,3 +16,16 @@ TEST(Text, StrfIsNeverCut) {
 
 }  // namespace
 }  // namespace uavplan
+
+namespace uavplan {
+namespace {
+
+TEST(Text, WordListsJoinWithCommasAndTheLastConjunction) {
+  EXPECT_EQ(word_list({}), "");
+  EXPECT_EQ(word_list({"a"}), "a");
+  EXPECT_EQ(word_list({"a", "b"}), "a or b");
+  EXPECT_EQ(word_list({"a", "b", "c"}, "and"), "a, b and c");
+}
+
+}  // namespace
+}  // namespace uavplan

@@ -10,6 +10,8 @@
 #include <sstream>
 #include <type_traits>
 
+#include <nlohmann/json.hpp>
+
 #include "uavplan/io/input_error.h"
 
 namespace uavplan {
@@ -173,6 +175,62 @@ std::vector<MovingAiProblem> read_movingai_3dscen(const std::string& path) {
     out.push_back(p);
   }
   return out;
+}
+
+namespace {
+
+// Whether every cell of the box [i0, i1) x [j0, j1) x {k} is blocked and not yet taken.
+bool all_open_blocked(const BitGrid& grid, const BitGrid& taken, int i0, int i1, int j0, int j1, int k) {
+  for (int j = j0; j < j1; ++j)
+    for (int i = i0; i < i1; ++i) {
+      const std::int64_t idx = grid.index(i, j, k);
+      if (!grid.blocked(idx) || taken.blocked(idx)) return false;
+    }
+  return true;
+}
+
+}  // namespace
+
+std::vector<CellBox> merge_blocked_cells(const BitGrid& grid) {
+  std::vector<CellBox> boxes;
+  BitGrid taken(grid.nx(), grid.ny(), grid.nz());
+  for (int k = 0; k < grid.nz(); ++k)
+    for (int j = 0; j < grid.ny(); ++j)
+      for (int i = 0; i < grid.nx(); ++i) {
+        if (!all_open_blocked(grid, taken, i, i + 1, j, j + 1, k)) continue;
+        int i1 = i + 1, j1 = j + 1, k1 = k + 1;
+        while (i1 < grid.nx() && all_open_blocked(grid, taken, i1, i1 + 1, j, j + 1, k)) ++i1;
+        while (j1 < grid.ny() && all_open_blocked(grid, taken, i, i1, j1, j1 + 1, k)) ++j1;
+        while (k1 < grid.nz() && all_open_blocked(grid, taken, i, i1, j, j1, k1)) ++k1;
+        for (int c = k; c < k1; ++c)
+          for (int b = j; b < j1; ++b)
+            for (int a = i; a < i1; ++a) taken.set_blocked(grid.index(a, b, c));
+        boxes.push_back({{i, j, k}, {i1, j1, k1}});
+      }
+  return boxes;
+}
+
+std::string movingai_scenario_yaml(const BitGrid& grid, const std::vector<CellBox>& boxes, const std::string& name,
+                                   const MovingAiProblem& problem) {
+  // A 2-D map is a world of zero height (z = 0): its boxes reach 1 m below and above it.
+  const bool flat = grid.nz() == 1;
+  const auto z_low = [flat](int k) { return flat ? -1 : k; };
+  const auto z_high = [flat](int k) { return flat ? 1 : k; };
+  const auto centre = [&](const int c[3]) {
+    return "[" + std::to_string(c[0]) + ".5, " + std::to_string(c[1]) + ".5, " +
+           (flat ? std::string("0") : std::to_string(c[2]) + ".5") + "]";
+  };
+  std::ostringstream out;
+  out << "version: 1\nname: " << nlohmann::json(name).dump() << "\nworld:\n  bounds: {min: [0, 0, 0], max: ["
+      << grid.nx() << ", " << grid.ny() << ", " << (flat ? 0 : grid.nz()) << "]}\n  obstacles:\n";
+  if (boxes.empty()) out << "    []\n";
+  for (const CellBox& b : boxes)
+    out << "    - {type: box, min: [" << b.min[0] << ", " << b.min[1] << ", " << z_low(b.min[2]) << "], max: ["
+        << b.max[0] << ", " << b.max[1] << ", " << z_high(b.max[2]) << "]}\n";
+  out << "uavs:\n  - {id: u1, start: " << centre(problem.start) << ", goal: " << centre(problem.goal)
+      << ", radius: 0, speed: 5}\nmission: {type: independent}\n"
+      << "planner: {algorithm: astar, params: {cell_m: 1}}\n";
+  return out.str();
 }
 
 }  // namespace uavplan

@@ -31,4 +31,20 @@ std::vector<MovingAiProblem> read_movingai_3dscen(const std::string& path);
 // True for a `.3dmap` path.
 bool is_movingai_3d(const std::string& map_path);
 
+// A box of cells [min, max) per axis.
+struct CellBox {
+  int min[3], max[3];
+};
+// The blocked cells as boxes, each cell in exactly one: runs along x, rows of equal runs along
+// y, then layers of equal rows along z (greedy; far fewer boxes than cells on maps of walls).
+std::vector<CellBox> merge_blocked_cells(const BitGrid& grid);
+
+// A scenario of the public contract for one problem on a map: the world is the map's blocked
+// cells as boxes of 1 m cells (a 2-D map: a world of zero height), one point UAV (radius 0)
+// from the start cell's centre to the goal's, planned by `astar` on the map's own cells
+// (cell_m = 1, no climb limit): its grid is the map's, so its lengths are the file's optima
+// (any-angle shortcuts may only shorten them).
+std::string movingai_scenario_yaml(const BitGrid& grid, const std::vector<CellBox>& boxes, const std::string& name,
+                                   const MovingAiProblem& problem);
+
 }  // namespace uavplan

@@ -4,8 +4,11 @@
 
 #include <cstdio>
 #include <fstream>
+#include <tuple>
 
+#include "uavplan/core/rng.h"
 #include "uavplan/io/input_error.h"
+#include "uavplan/planning/voxel_grid.h"
 
 namespace uavplan {
 namespace {
@@ -66,6 +69,35 @@ TEST(MovingAi, BadFilesNameTheLine) {
   }
   EXPECT_THROW(read_movingai_map(write_temp("bad.map", "type octile\nheight 2\nwidth 3\nmap\n...\n")), InputError);
   EXPECT_THROW(read_movingai_scen(write_temp("bad.scen", "version 1\n1\tx\t3\n")), InputError);
+}
+
+// A map made a world of boxes (merge_blocked_cells, each cell in one box) is voxelised, for a
+// point UAV on the map's cells, into the map itself: every cell beside a wall stays free.
+TEST(MovingAi, BoxesOfAMapVoxeliseBackIntoIt) {
+  Rng r(3);
+  for (const auto& [nx, ny, nz] : {std::tuple{23, 17, 9}, std::tuple{40, 31, 1}}) {
+    BitGrid map(nx, ny, nz);
+    for (std::int64_t c = 0; c < map.size(); ++c)
+      if (r.uniform01() < 0.35) map.set_blocked(c);
+    for (int j = 3; j < 14; ++j) map.set_blocked(map.index(5, j, 0));  // a wall: runs to merge
+    const std::vector<CellBox> boxes = merge_blocked_cells(map);
+    WorldSpec ws;
+    ws.bounds = Aabb{Vec3::Zero(), Vec3(nx, ny, nz > 1 ? nz : 0)};
+    std::int64_t volume = 0;
+    for (const CellBox& b : boxes) {
+      const double lo_z = nz > 1 ? b.min[2] : -1.0, hi_z = nz > 1 ? b.max[2] : 1.0;
+      ws.obstacles.push_back(Box{Vec3(b.min[0], b.min[1], lo_z), Vec3(b.max[0], b.max[1], hi_z)});
+      volume += static_cast<std::int64_t>(b.max[0] - b.min[0]) * (b.max[1] - b.min[1]) * (b.max[2] - b.min[2]);
+    }
+    std::int64_t blocked = 0;
+    for (std::int64_t c = 0; c < map.size(); ++c) blocked += map.blocked(c);
+    EXPECT_EQ(volume, blocked);  // no cell in two boxes
+    EXPECT_LT(boxes.size(), static_cast<std::size_t>(blocked));
+    const World world(std::move(ws));
+    const VoxelGrid g = voxelize(world, Vec3(1, 1, 1), 1e-3, 1e9, {}, CellRule::lattice);
+    ASSERT_EQ(g.size(), map.size());
+    for (std::int64_t c = 0; c < map.size(); ++c) ASSERT_EQ(g.blocked(c), map.blocked(c)) << "cell " << c;
+  }
 }
 
 }  // namespace

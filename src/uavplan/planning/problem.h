@@ -37,6 +37,7 @@ struct PlanStats {
   std::uint64_t open_max = 0;    // largest open list seen
   std::uint64_t grid_cells = 0;  // size of the search grid, when there is one
   double cell_m = 0.0;           // horizontal grid resolution used
+  double grid_route_m = 0.0;     // a grid search's route before shortcuts (0: none); not in plan files
   double plan_ms = 0.0;
 };
 

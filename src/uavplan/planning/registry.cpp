@@ -26,7 +26,9 @@ struct Entry {
 
 const std::vector<Entry>& entries() {
   static const std::vector<Entry> list = {
-      {{"astar", "grid A* on a voxelised world, 26 neighbours, shortcut and turn shaping"},
+      {{"astar",
+        "optimal grid search on a voxelised world (JPS where it applies, else A*), 26 neighbours, shortcut and turn "
+        "shaping"},
        [](ParamReader& r) { return std::make_unique<AStarPlanner>(AStarOptions::read(r)); }},
       {{"directional_astar",
         "P4 directional A*: a cone of M yaw x M pitch directions at step L, turn and climb limits held"},

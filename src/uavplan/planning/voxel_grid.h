@@ -53,6 +53,7 @@ class VoxelGrid {
   bool blocked(std::int64_t idx) const { return cells_.blocked(idx); }
   bool blocked(int i, int j, int k) const { return cells_.blocked(i, j, k); }
   void set_blocked(std::int64_t idx, bool b = true) { cells_.set_blocked(idx, b); }
+  BitGrid& cells_mut() { return cells_; }
 
  private:
   Vec3 origin_ = Vec3::Zero();
@@ -60,11 +61,27 @@ class VoxelGrid {
   BitGrid cells_;
 };
 
-// Marks every cell that is not safe for a UAV of `inflation_m` radius, and every cell whose
-// centre lies above `ceiling_m`. Obstacles are rasterised through their bounding boxes, so the
-// cost is proportional to the space they cover, not to the grid.
+// What a free cell promises.
+enum class CellRule {
+  // Every point of a free cell is at least the inflation from the world (a cell is blocked when
+  // its centre lies closer than the inflation plus its half-diagonal): any path inside free
+  // cells is safe. Walls proofs and any-angle searches need it.
+  whole_cell,
+  // Every straight move between the centres of free cells whose bounding box of cells is free
+  // (grid search's moves) is at least the inflation from the world. Such a move keeps h, the
+  // smallest half cell size, from every cell outside its bounding box, so a cell is blocked
+  // only when the world inflated by max(0, inflation - h) reaches into its interior: boxes are
+  // tested exactly, other shapes and the terrain by the half-diagonal. A cell beside a wall is
+  // free when the UAV fits between the wall and the centre (a MovingAI voxel map made of boxes
+  // is searched as the map itself when the inflation is at most half a cell).
+  lattice,
+};
+
+// Marks every cell that is not safe for a UAV of `inflation_m` radius (by `rule`), and every
+// cell whose centre lies above `ceiling_m`. Obstacles are rasterised through their bounding
+// boxes, so the cost is proportional to the space they cover, not to the grid.
 // Throws Stopped (core/stop.h) when the stop condition holds while it is built.
 VoxelGrid voxelize(const World& world, const Vec3& cell, double inflation_m, double ceiling_m,
-                   const StopCondition& stop = {});
+                   const StopCondition& stop = {}, CellRule rule = CellRule::whole_cell);
 
 }  // namespace uavplan

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "uavplan/core/rng.h"
+#include "uavplan/planning/search/grid_astar.h"
 
 namespace uavplan {
 namespace {
@@ -79,6 +80,43 @@ TEST(VoxelGrid, ShortcutsBlockExactlyWhatTheDefinitionBlocks) {
         blocked += near;
       }
   EXPECT_GT(blocked, g.size() / 4);
+}
+
+// The lattice rule: every move a grid search may make between free cells (to one of the 26
+// neighbours, its bounding box of cells free) keeps the inflation from every obstacle and the
+// terrain, though cells beside obstacles are free where the whole-cell rule blocks them.
+TEST(VoxelGrid, LatticeMovesBetweenFreeCellsAreSafe) {
+  Rng r(12);
+  WorldSpec ws = test_world(r).spec();
+  for (int i = 0; i < 25; ++i) {
+    const Vec3 lo(r.uniform(0, 95), r.uniform(0, 75), r.uniform(0, 28));
+    ws.obstacles.push_back(Box{lo, lo + Vec3(r.uniform(0.5, 9), r.uniform(0.5, 9), r.uniform(0.5, 9))});
+  }
+  const World w(std::move(ws));
+  const Vec3 cell(2.5, 2.5, 2.0);
+  for (const double inflation : {0.6, 1.7}) {
+    const VoxelGrid g = voxelize(w, cell, inflation, 1e9, {}, CellRule::lattice);
+    const VoxelGrid whole = voxelize(w, cell, inflation, 1e9);
+    std::int64_t free_lattice = 0, free_whole = 0, moves = 0;
+    for (std::int64_t c = 0; c < g.size(); ++c) {
+      free_lattice += !g.blocked(c);
+      free_whole += !whole.blocked(c);
+      ASSERT_TRUE(!whole.blocked(c) ? !g.blocked(c) : true) << "the lattice rule blocks more than the whole cell's";
+    }
+    EXPECT_GT(free_lattice, free_whole);
+    for (const GridMove& m : bounding_box_moves(g.cells(), cell.x(), cell.y(), cell.z()))
+      for (int k = 0; k < g.nz(); ++k)
+        for (int j = 0; j < g.ny(); ++j)
+          for (int i = 0; i < g.nx(); ++i) {
+            if (m.di + 2 * m.dj + 4 * m.dk < 0 || g.blocked(i, j, k)) continue;  // each move one way
+            if ((g.cells().free_mask(i, j, k) & m.need) != m.need) continue;
+            const Vec3 a = g.center(i, j, k), b = g.center(i + m.di, j + m.dj, k + m.dk);
+            ++moves;
+            ASSERT_GE(w.segment_clearance(a, b, 10.0), inflation - 1e-9)
+                << "inflation " << inflation << " from " << a.transpose() << " to " << b.transpose();
+          }
+    EXPECT_GT(moves, 10000);
+  }
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "uavplan/world/shapes.h"
 #include "uavplan/world/terrain.h"
 #include "uavplan/world/threat.h"
+#include "uavplan/world/world_memo.h"
 
 namespace uavplan {
 
@@ -97,9 +99,13 @@ class World {
   double p1_threat_cost(const Vec3& a, const Vec3& b) const { return uavplan::p1_threat_cost(a, b, spec_.radars); }
   double threat_integral(const Vec3& a, const Vec3& b) const { return uavplan::threat_integral(a, b, spec_.radars); }
 
+  // What planners derive from this world and reuse (world_memo.h).
+  const WorldMemo& memo() const { return *memo_; }
+
  private:
   WorldSpec spec_;
   Bvh bvh_;
+  std::shared_ptr<WorldMemo> memo_ = std::make_shared<WorldMemo>();
 };
 
 }  // namespace uavplan

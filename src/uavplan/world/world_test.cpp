@@ -147,3 +147,27 @@ TEST(World, RejectsInvalidSpecs) {
 
 }  // namespace
 }  // namespace uavplan
+
+namespace uavplan {
+namespace {
+
+// A value is made once per key and shared, by copies of the world too; the oldest beyond
+// kMaxValues is dropped; a make() that throws keeps nothing.
+TEST(WorldMemo, MakesOnceKeepsTheRecentAndNothingThatFailed) {
+  const World w;
+  const World copy = w;
+  int made = 0;
+  const auto make = [&made] { return ++made; };
+  const auto a = w.memo().get<int>("a", make);
+  EXPECT_EQ(copy.memo().get<int>("a", make), a);
+  EXPECT_EQ(made, 1);
+  for (std::size_t k = 0; k < WorldMemo::kMaxValues; ++k) w.memo().get<int>("k" + std::to_string(k), make);
+  EXPECT_EQ(made, 1 + static_cast<int>(WorldMemo::kMaxValues));
+  EXPECT_EQ(*w.memo().get<int>("a", make), made);  // dropped, made again
+  EXPECT_THROW(w.memo().get<int>("bad", []() -> int { throw std::runtime_error("no"); }), std::runtime_error);
+  EXPECT_EQ(*w.memo().get<int>("bad", [] { return 7; }), 7);
+  EXPECT_NE(World().memo().get<int>("a", make), w.memo().get<int>("a", make));  // another world
+}
+
+}  // namespace
+}  // namespace uavplan

@@ -3,11 +3,17 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
+#include <optional>
+#include <string>
 
 #include "uavplan/core/geometry.h"
 #include "uavplan/core/text.h"
+#include "uavplan/core/tolerances.h"
 #include "uavplan/planning/grid_budget.h"
 #include "uavplan/planning/search/grid_astar.h"
+#include "uavplan/planning/search/jps2d.h"
+#include "uavplan/planning/search/jps3d.h"
 #include "uavplan/planning/segment_rule.h"
 #include "uavplan/planning/smoothing/shortcut.h"
 #include "uavplan/planning/smoothing/turn_limits.h"
@@ -31,6 +37,9 @@ AStarOptions AStarOptions::read(ParamReader& r) {
   o.max_cells = r.count("max_cells", o.max_cells, 1, 1'000'000'000, "a refined grid never has more cells than this");
   o.target_cells =
       r.count("target_cells", o.target_cells, 1, 1'000'000'000, "a derived cell aims at about this many voxels");
+  o.jump_points = r.boolean("jump_points", o.jump_points,
+                            "jump point search where cells are cubes (no climb limit) or squares (2-D): the same "
+                            "lengths as A*, fewer nodes; false: A* always");
   return o;
 }
 
@@ -48,7 +57,50 @@ double layer_height_m(double cell_m, double max_climb_rad) {
   return max_climb_rad >= kPi / 4 ? cell_m : cell_m * std::tan(max_climb_rad) * 0.999;
 }
 
+GridEngine grid_engine(const VoxelGrid& grid, double max_climb_rad, bool jump_points) {
+  // The jump searches index cells by 32 bits.
+  if (!jump_points || grid.size() >= std::int64_t{0xFFFFFFFF}) return GridEngine::astar;
+  const Vec3& c = grid.cell();
+  const auto same = [](double a, double b) { return std::abs(a - b) <= kRelativeTie * std::max(a, b); };
+  if (!same(c.x(), c.y())) return GridEngine::astar;
+  if (grid.nz() == 1) return GridEngine::jps2d;
+  // Every vertical move, and cells the JPS's unit costs scale: 1, sqrt 2, sqrt 3.
+  const bool all_moves = max_climb_rad >= kPi / 2 - kUnlimitedAngleSlack_rad;
+  return all_moves && same(c.x(), c.z()) ? GridEngine::jps3d : GridEngine::astar;
+}
+
 namespace {
+
+// One grid's search, by its engine: the cells of a route from one free cell to another.
+class GridRouter {
+ public:
+  // `key` names the grid in the world's memo, where its lines are kept beside it.
+  GridRouter(const World& world, const std::string& key, const VoxelGrid& grid, const UavSpec& uav, bool jump_points)
+      : engine_(grid_engine(grid, uav.max_climb_rad, jump_points)) {
+    const Vec3& cs = grid.cell();
+    if (engine_ == GridEngine::jps3d)
+      jps3d_.emplace(grid.cells(),
+                     world.memo().get<Jps3dLines>(key + " lines", [&] { return jps3d_lines(grid.cells()); }));
+    else if (engine_ == GridEngine::jps2d)
+      jps2d_.emplace(grid.cells());
+    else
+      astar_.emplace(grid.cells(), bounding_box_moves(grid.cells(), cs.x(), cs.y(), cs.z(), uav.max_climb_rad),
+                     GridHeuristic::euclidean, cs.x(), cs.y(), cs.z());
+  }
+  // Every cell of the route (a JPS's jump points filled in).
+  GridSearchResult search(std::int64_t from, std::int64_t to, const StopCondition& stop) {
+    if (astar_) return astar_->search(from, to, stop);
+    GridSearchResult r = jps3d_ ? jps3d_->search(from, to, stop) : jps2d_->search(from, to, stop);
+    if (r.solved()) r.cells = jps3d_ ? jps3d_->expand_path(r.cells) : jps2d_->expand_path(r.cells);
+    return r;
+  }
+
+ private:
+  GridEngine engine_;
+  std::optional<GridAStar> astar_;
+  std::optional<Jps3d> jps3d_;
+  std::optional<Jps2d> jps2d_;
+};
 
 // The nearest free cell whose centre the UAV can fly to straight from p (and back).
 std::int64_t attach(const VoxelGrid& g, const Vec3& p, const SegmentRule& rule) {
@@ -110,12 +162,18 @@ bool prove_walled_off(const World& world, const SegmentRule& rule, const Vec3& a
 // The route through every stop on one grid, each leg straight where it is clear, else grid A*
 // between the free cells reached straight from its ends; `pinned` marks the stops.
 // On the first grid, a leg without a route is checked for walls before finer grids are tried.
-Attempt route_on_grid(const World& world, const VoxelGrid& grid, const UavSpec& uav, const SegmentRule& rule,
-                      const std::vector<Vec3>& stops, bool derived, bool first, const StopCondition& stop,
-                      PlanResult& res, std::vector<Vec3>& path, std::vector<char>& pinned) {
+// The grid key of a cell size and a body's rule on a world (every input of the voxelisation).
+std::string grid_key(const Vec3& cell3, const SegmentRule& rule) {
+  return strf("astar lattice %.17g %.17g %.17g %.17g %.17g", cell3.x(), cell3.y(), cell3.z(), rule.inflation_m(),
+              rule.ceiling_m());
+}
+
+Attempt route_on_grid(const World& world, const std::string& key, const VoxelGrid& grid, const UavSpec& uav,
+                      const SegmentRule& rule, const std::vector<Vec3>& stops, bool derived, bool first,
+                      bool jump_points, const StopCondition& stop, PlanResult& res, std::vector<Vec3>& path,
+                      std::vector<char>& pinned) {
   const Vec3& cs = grid.cell();
-  GridAStar search(grid.cells(), bounding_box_moves(grid.cells(), cs.x(), cs.y(), cs.z(), uav.max_climb_rad),
-                   GridHeuristic::euclidean, cs.x(), cs.y(), cs.z());
+  GridRouter search(world, key, grid, uav, jump_points);
   path.assign(1, stops[0]);
   pinned.assign(1, 1);
   for (std::size_t s = 0; s + 1 < stops.size(); ++s) {
@@ -207,12 +265,17 @@ PlanResult AStarPlanner::do_plan(const Problem& pb, const World& world, const St
     if (k > 0 && (cells > static_cast<double>(options_.max_cells) || !grid_fits(cells, kBytesPerVoxel, stop))) break;
     require_grid(cells, kBytesPerVoxel, stop,
                  derived ? "the derived cell of " + fmt_m(cell) : "planner.params.cell_m = " + fmt_m(cell));
-    const VoxelGrid grid = voxelize(world, cell3, rule.inflation_m(), rule.ceiling_m(), stop);
-    res.stats.grid_cells = static_cast<std::uint64_t>(grid.size());
-    res.stats.cell_m = grid.cell().x();
-    attempt = route_on_grid(world, grid, uav, rule, stops, derived, k == 0, stop, res, path, pinned);
+    // Made once per world, cell and body: the UAVs of a mission and the plans of a batch share it.
+    const std::string key = grid_key(cell3, rule);
+    const std::shared_ptr<const VoxelGrid> grid = world.memo().get<VoxelGrid>(
+        key, [&] { return voxelize(world, cell3, rule.inflation_m(), rule.ceiling_m(), stop, CellRule::lattice); });
+    res.stats.grid_cells = static_cast<std::uint64_t>(grid->size());
+    res.stats.cell_m = grid->cell().x();
+    attempt = route_on_grid(world, key, *grid, uav, rule, stops, derived, k == 0, options_.jump_points, stop, res, path,
+                            pinned);
   }
   if (attempt != Attempt::found) return res;
+  for (std::size_t i = 1; i < path.size(); ++i) res.stats.grid_route_m += (path[i] - path[i - 1]).norm();
   if (options_.shortcut) {
     path = shortcut(path, pinned, rule);
     pinned = stop_pins(path, stops);

@@ -1,7 +1,9 @@
-// Planner `astar`: grid A* on a voxelisation of the World (inflated by the UAV radius),
-// 26 neighbours, then shortcutting with exact segment checks and turn shaping. The default
-// resolution comes from the world's size (see auto_cell_m); when the search finds no route on
-// the derived grid it refines it, so narrow passages are found without tuning.
+// Planner `astar`: an optimal grid search on a voxelisation of the World (inflated by the UAV
+// radius), 26 neighbours, then shortcutting with exact segment checks and turn shaping. The
+// default resolution comes from the world's size (see auto_cell_m); when the search finds no
+// route on the derived grid it refines it, so narrow passages are found without tuning.
+// The search is jump point search where it applies and finds the same lengths (cubic cells and
+// no climb limit: 3-D JPS from both ends; square cells of a 2-D world: 2-D JPS), else A*.
 #pragma once
 
 #include <cstdint>
@@ -18,11 +20,10 @@ struct AStarOptions {
   int refinements = 2;                    // with a derived cell: halve it this often when no route
   std::int64_t max_cells = 8'000'000;     // refinement never exceeds this grid size
   std::int64_t target_cells = 1'000'000;  // derived cells aim at about this many voxels
+  bool jump_points = true;                // JPS where it applies (same lengths), else A*
 
   static AStarOptions from_params(const Params& params);
-
   // The declaration of its parameters: reads them from r (params.h).
-
   static AStarOptions read(ParamReader& r);
 };
 
@@ -33,6 +34,11 @@ double auto_cell_m(const World& world, double radius_m, std::int64_t target_cell
 // Vertical cell size for a horizontal one: diagonal climbing moves must respect the climb
 // limit, so layers are thinner when the limit is below 45 degrees.
 double layer_height_m(double cell_m, double max_climb_rad);
+
+// Which search a grid gets: jump point search needs every move of its lattice at the octile
+// costs (cubic cells with vertical moves allowed, or square cells of one layer).
+enum class GridEngine { astar, jps2d, jps3d };
+GridEngine grid_engine(const VoxelGrid& grid, double max_climb_rad, bool jump_points);
 
 class AStarPlanner final : public Planner {
  public:

@@ -2,6 +2,7 @@
 // count as blocked.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -35,6 +36,21 @@ class BitGrid {
     const std::uint64_t bit = std::uint64_t{1} << (idx & 63);
     bits_[idx >> 6] = b ? (bits_[idx >> 6] | bit) : (bits_[idx >> 6] & ~bit);
   }
+
+  // Blocks the `count` cells from idx on (consecutive indices), a word at a time.
+  void set_blocked_run(std::int64_t idx, std::int64_t count) {
+    while (count > 0) {
+      const int off = static_cast<int>(idx & 63);
+      const int n = static_cast<int>(std::min<std::int64_t>(64 - off, count));
+      const std::uint64_t bits = n == 64 ? ~std::uint64_t{0} : ((std::uint64_t{1} << n) - 1) << off;
+      bits_[static_cast<std::size_t>(idx >> 6)] |= bits;
+      idx += n;
+      count -= n;
+    }
+  }
+
+  // The bits, 64 cells a word in index order (bits past the last cell are 0).
+  const std::vector<std::uint64_t>& words() const { return bits_; }
 
   // Bit (dk+1)*9 + (dj+1)*3 + (di+1) is set when cell (i+di, j+dj, k+dk) is free, for
   // di, dj, dk in {-1, 0, 1}: one read of three consecutive bits per row instead of 27 lookups.

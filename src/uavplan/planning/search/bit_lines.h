@@ -23,15 +23,11 @@ class BitLines {
     across_ = axis == 0 ? n[1] : n[0];
     lines_ = static_cast<int>(grid.size() / std::max(length_, 1));
     bits_.assign(static_cast<std::size_t>((static_cast<std::int64_t>(lines_) * length_ + 63) / 64 + 1), 0);
-    int c[3];
-    for (c[2] = 0; c[2] < n[2]; ++c[2])
-      for (c[1] = 0; c[1] < n[1]; ++c[1])
-        for (c[0] = 0; c[0] < n[0]; ++c[0]) {
-          if (!grid.blocked(grid.index(c[0], c[1], c[2]))) continue;
-          const int u = c[axis == 0 ? 1 : 0], w = c[axis == 2 ? 1 : 2];
-          const std::int64_t idx = (static_cast<std::int64_t>(w) * across_ + u) * length_ + c[axis];
-          bits_[static_cast<std::size_t>(idx >> 6)] |= std::uint64_t{1} << (idx & 63);
-        }
+    if (axis == 0) {  // the lines along x are the grid's own bits, in its order
+      std::copy(grid.words().begin(), grid.words().end(), bits_.begin());
+      return;
+    }
+    transpose_from(grid, axis);
   }
 
   // The line of the cells with other coordinates (u, w), or -1 when they are outside the grid
@@ -62,6 +58,10 @@ class BitLines {
   }
 
  private:
+  // Lines along y or z from the grid's rows along x, 64 x 64 cells at a time (a bit-matrix
+  // transpose): a building costs the grid's words, however many cells are blocked.
+  void transpose_from(const BitGrid& grid, int axis);
+
   int lines_ = 0, length_ = 0, across_ = 0;  // across_: how many values u takes
   std::vector<std::uint64_t> bits_;          // line-major, one zero word of padding
 };

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 #include "uavplan/core/rng.h"
 
 namespace uavplan {
@@ -32,11 +34,20 @@ TEST(BitLines, WindowsReadTheGridCellByCell) {
   }
 }
 
+void check_volume(Rng& r, int nx, int ny, int nz);
+
 // In 3-D, the lines along each axis read the cells with that coordinate running and the other
-// two fixed (line(u, w) names them; -1 outside the grid, read as blocked).
+// two fixed (line(u, w) names them; -1 outside the grid, read as blocked); sides shorter and
+// longer than the 64-cell blocks the lines are transposed by.
 TEST(BitLines, LinesAlongEachAxisOfAVolume) {
   Rng r(9);
-  BitGrid g(70, 5, 4);
+  for (const auto& [nx, ny, nz] :
+       {std::tuple{70, 5, 4}, std::tuple{130, 67, 3}, std::tuple{9, 3, 140}, std::tuple{65, 70, 66}})
+    check_volume(r, nx, ny, nz);
+}
+
+void check_volume(Rng& r, int nx, int ny, int nz) {
+  BitGrid g(nx, ny, nz);
   for (std::int64_t c = 0; c < g.size(); ++c)
     if (r.uniform01() < 0.3) g.set_blocked(c);
   const int n[3] = {g.nx(), g.ny(), g.nz()};
@@ -53,7 +64,8 @@ TEST(BitLines, LinesAlongEachAxisOfAVolume) {
             c[a] = u;
             c[b] = w;
             ASSERT_EQ((bits >> q) & 1u, g.blocked(c[0], c[1], c[2]) ? 1u : 0u)
-                << "axis " << axis << " u " << u << " w " << w << " from " << from << " bit " << q;
+                << nx << "x" << ny << "x" << nz << " axis " << axis << " u " << u << " w " << w << " from " << from
+                << " bit " << q;
           }
         }
   }

@@ -157,16 +157,21 @@ const Tables& tables() {
 
 }  // namespace jps3d_rules
 
-Jps3d::Jps3d(const BitGrid& grid, Jps3dOptions options) : grid_(&grid), options_(options) {
+Jps3dLines jps3d_lines(const BitGrid& grid) { return {BitLines(grid, 0), BitLines(grid, 1), BitLines(grid, 2)}; }
+
+Jps3d::Jps3d(const BitGrid& grid, Jps3dOptions options)
+    : Jps3d(grid, std::make_shared<const Jps3dLines>(jps3d_lines(grid)), options) {}
+
+Jps3d::Jps3d(const BitGrid& grid, std::shared_ptr<const Jps3dLines> lines, Jps3dOptions options)
+    : grid_(&grid), options_(options), lines_(std::move(lines)) {
   options_.slice_expansions = std::max<std::uint32_t>(options_.slice_expansions, 1);
   if (grid.size() >= std::int64_t{std::numeric_limits<std::uint32_t>::max()})
     throw std::invalid_argument("Jump Point Search in 3-D: the grid has too many cells (under 2^32 - 1)");
-  for (int a = 0; a < 3; ++a) lines_[a] = BitLines(grid, a);
   (void)jps3d_rules::tables();
 }
 
 std::size_t Jps3d::line_bytes() const {
-  return lines_[0].memory_bytes() + lines_[1].memory_bytes() + lines_[2].memory_bytes();
+  return (*lines_)[0].memory_bytes() + (*lines_)[1].memory_bytes() + (*lines_)[2].memory_bytes();
 }
 
 int Jps3d::WalkLimit::first_over(const int c[3], int axis, int cur, int step) const {
@@ -196,7 +201,7 @@ bool Jps3d::jump_straight(int c[3], int axis, int step, const WalkLimit& limit) 
   using namespace jps3d_rules;
   const Tables& tb = tables();
   const int ua = axis == 0 ? 1 : 0, wa = axis == 2 ? 1 : 2;
-  const BitLines& lines = lines_[axis];
+  const BitLines& lines = (*lines_)[axis];
   int near[9];
   for (int q = 0; q < 9; ++q) near[q] = lines.line(c[ua] + q % 3 - 1, c[wa] + q / 3 - 1);
   const int* goal = limit.goal;

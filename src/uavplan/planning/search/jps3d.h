@@ -29,7 +29,9 @@
 // at most twice the cheaper one. docs/decisions/0018 compares it with A* on the Warframe maps.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "uavplan/core/stop.h"
@@ -38,6 +40,10 @@
 #include "uavplan/planning/search/grid_astar.h"
 
 namespace uavplan {
+
+// The grid's blocked cells as bit lines along x, y and z (bit_lines.h), what a search reads.
+using Jps3dLines = std::array<BitLines, 3>;
+Jps3dLines jps3d_lines(const BitGrid& grid);
 
 struct Jps3dOptions {
   bool both_directions = true;          // false: the search from the start alone
@@ -49,6 +55,9 @@ class Jps3d {
   // Throws std::invalid_argument when the grid has 2^32 - 1 cells or more. The grid must outlive
   // the object; one object per thread (it owns buffers, one set per direction).
   explicit Jps3d(const BitGrid& grid, Jps3dOptions options = {});
+  // The same with the grid's lines built before (jps3d_lines(grid)): a planner keeps them with
+  // its grid, so a query does not pay for them.
+  Jps3d(const BitGrid& grid, std::shared_ptr<const Jps3dLines> lines, Jps3dOptions options = {});
 
   // result.cells are the jump points (or, for a route found backwards, the cells where its move
   // changes); expand_path() gives every cell. Counts are both directions' together.
@@ -110,7 +119,7 @@ class Jps3d {
 
   const BitGrid* grid_;
   Jps3dOptions options_;
-  BitLines lines_[3];
+  std::shared_ptr<const Jps3dLines> lines_;
   Side sides_[2];  // from the start, from the goal
 };
 
