@@ -139,11 +139,10 @@ std::string format_movingai_plan(const MovingAiPlanReport& rep) {
   if (rep.astar_too) line("A* (jump_points = false)", &MovingAiPlanRow::astar);
   for (const std::string& m : rep.misses) out += "MISS " + m + "\n";
   out +=
-      "\ngrid route = optimum: the grid search's route (before shortcuts) is the file's optimum to 1e-4: the\n"
-      "voxelised world is the map (or the straight line, where it is clear: then no grid search). route within: the "
-      "planned route is no longer than that and no shorter\n"
-      "than the straight line (shortcuts are checked against the boxes, not the grid, so they may cut\n"
-      "past the grid's no-corner-cutting rule).\n";
+      "\ngrid route = optimum: the grid search's route (before shortcuts) is the file's optimum to 1e-4\n"
+      "(or the straight line where it is clear: then no search): the voxelised world is the map.\n"
+      "route within: the planned route is no longer than that and no shorter than the straight line\n"
+      "(shortcuts are checked against the boxes, not the grid: they may cut past its corner rule).\n";
   return out;
 }
 
