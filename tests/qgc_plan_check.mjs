@@ -34,6 +34,10 @@ function checkPlan(file) {
   if (!Array.isArray(home) || home.length !== 3 || !latOk(home[0]) || !lonOk(home[1]) || !isNum(home[2]))
     fail(file, 'plannedHomePosition is not [lat, lon, alt]');
   if (!Array.isArray(m.items) || m.items.length === 0) { fail(file, 'mission has no items'); return null; }
+  // What each firmware stores: ArduPilot 650 (its SITL: "Only 650 items are supported"), PX4 500
+  // (NUM_MISSIONS_SUPPORTED on its NuttX boards).
+  const store = m.firmwareType === 3 ? 650 : 500;
+  if (m.items.length > store) fail(file, `${m.items.length} mission items, more than the ${store} its firmware stores`);
   m.items.forEach((it, k) => {
     const at = `mission.items[${k}]`;
     if (it.type !== 'SimpleItem') fail(file, `${at}.type is not SimpleItem`);

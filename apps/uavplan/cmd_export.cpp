@@ -17,6 +17,7 @@ ExportOptions options_of(const Scenario& sc, const ExportArgs& a) {
   const std::string_view vehicle = !a.vehicle.empty() ? std::string_view(a.vehicle) : default_vehicle(sc);
   ExportOptions opt = export_options(a.firmware, vehicle, a.end, a.fence);  // CLI11 checked the spellings
   opt.flat_altitude_m = a.flat_altitude_m;
+  opt.max_items = a.max_items;
   if (a.altitude == "home") opt.altitude = AltitudeFrame::home;
   if (a.altitude == "amsl") opt.altitude = AltitudeFrame::amsl;
   if (a.altitude == "terrain") opt.altitude = AltitudeFrame::terrain;
@@ -77,6 +78,11 @@ void add_export_options(CLI::App& cmd, ExportArgs& a, bool formats_required) {
                  "columns at every height")
       ->check(CLI::Range(0.5, 10000.0))
       ->each(given);
+  cmd.add_option("--max-items", a.max_items,
+                 "Most mission items per UAV (default: what the firmware stores: ArduPilot 650, PX4 500); a longer "
+                 "mission is flown as fewer verified chords of its flight")
+      ->check(CLI::Range(8, 65535))
+      ->each(given);
   cmd.add_flag("--force", a.force, "Write the UAVs that hold even when others do not (those are named on stderr)")
       ->each(given);
 }
@@ -93,7 +99,8 @@ std::string export_source(const std::string& scenario_path, const Plan& plan, co
     text = scenario_path;
   }
   text += '\n' + plan_to_json(plan) + '\n' + a.firmware + ' ' + a.vehicle + ' ' + a.end + ' ' + a.fence + ' ' +
-          a.altitude + ' ' + num_text(a.flat_altitude_m) + (a.force ? " force" : "");
+          a.altitude + ' ' + num_text(a.flat_altitude_m) + (a.max_items ? ' ' + std::to_string(a.max_items) : "") +
+          (a.force ? " force" : "");
   return content_fingerprint(text);
 }
 

@@ -47,6 +47,7 @@ struct ExportArgs {
   std::string fence = "bounds";
   std::string altitude;                                      // empty: amsl over an elevation model, else home
   double flat_altitude_m = ExportOptions{}.flat_altitude_m;  // a flat world's plan flies this high
+  int max_items = 0;                                         // 0: what the firmware stores
   bool force = false;                                        // write the UAVs that hold when others do not
   bool options_given = false;  // --firmware, --vehicle, --end, --fence or --force on the command line
 };

@@ -666,3 +666,53 @@ TEST(Export, Px4DistanceRulesAreNamed) {
 
 }  // namespace
 }  // namespace uavplan
+
+namespace uavplan {
+namespace {
+
+// A UAV flying a half circle 1 m off a mast's radius, in 1,500 rows (a direction change each).
+struct CloseArc {
+  Scenario sc = test::scenario_with({Cylinder{Vec2(500, 500), 20.0, 0.0, 100.0}});
+  Plan plan;
+  CloseArc() {
+    sc.uavs[0].start = Vec3(479, 500, 10);
+    UavPlan u = test::sample_uav();
+    u.trajectory.clear();
+    constexpr int kRows = 1500;
+    const double step_s = kPi * 21.0 / 5.0 / (kRows - 1);  // 5 m/s along the arc
+    for (int k = 0; k < kRows; ++k) {
+      const double a = kPi - kPi * k / (kRows - 1);
+      u.trajectory.push_back({k * step_s, Vec3(500 + 21 * std::cos(a), 500 + 21 * std::sin(a), 10)});
+    }
+    plan = test::plan_of({u});
+  }
+};
+
+// No mission exceeds what its firmware stores: a longer one is flown as fewer chords that hold
+// (here within a centimetre or two of the arc); where no chords that few hold, the UAV is left
+// out, naming the limit.
+TEST(ExportItems, AMissionOverTheFirmwaresStoreIsFlownAsFewerChords) {
+  const CloseArc arc;
+  for (const Firmware fw : {Firmware::ardupilot, Firmware::px4}) {
+    ExportOptions opt;
+    opt.firmware = fw;
+    const VerifiedExport v = verified_export(arc.sc, arc.plan, opt);
+    ASSERT_TRUE(v.holds()) << v.left_out.front();
+    const std::size_t items = mission_items(arc.sc, v.uavs[0], opt).size();
+    EXPECT_LE(items, static_cast<std::size_t>(mission_item_limit(opt)));
+    EXPECT_GT(items, 20u);  // the arc is still flown as an arc
+    ExportOptions all;
+    all.firmware = fw;
+    all.max_items = 65535;
+    EXPECT_GT(mission_items(arc.sc, verified_export(arc.sc, arc.plan, all).uavs[0], all).size(), 1500u);
+  }
+  ExportOptions few;
+  few.max_items = 8;
+  const VerifiedExport v = verified_export(arc.sc, arc.plan, few);
+  ASSERT_FALSE(v.holds());
+  EXPECT_NE(v.left_out.front().find("more than the 8 the PX4 firmware stores"), std::string::npos)
+      << v.left_out.front();
+}
+
+}  // namespace
+}  // namespace uavplan

@@ -12,6 +12,7 @@
 #include "uavplan/core/units.h"
 #include "uavplan/evaluation/ground_legs.h"
 #include "uavplan/io/export_common.h"
+#include "uavplan/io/mission_items.h"
 
 namespace uavplan {
 namespace {
@@ -482,7 +483,57 @@ void lift_flat(ExportedUav& e, const ExportOptions& opt) {
   if (e.end == MissionEnd::rtl) append_flight(e.plan.trajectory, {e.home}, e.spec->speed.cruise_mps);
 }
 
+bool flat_world(const Scenario& sc) {
+  return sc.world.bounds().max.z() - sc.world.bounds().min.z() <= kClearTolerance_m;
+}
+
+// Items a UAV's mission takes (a flat world's as lifted: with its climb and its landing).
+std::size_t items_needed(const Scenario& sc, const ExportedUav& e, const ExportOptions& opt) {
+  if (!flat_world(sc)) return mission_items(sc, e, opt).size();
+  ExportedUav lifted = e;
+  lift_flat(lifted, opt);
+  return mission_items(sc, lifted, opt).size();
+}
+
+// Missions over the firmware's store are flown as fewer chords: the tolerance doubles from a
+// centimetre until each fits and the chords hold with everything else that flies. Returns
+// {ID, why} for each UAV that never fits (its mission would be refused at upload).
+std::vector<std::pair<std::string, std::string>> fit_item_limit(const Scenario& sc, std::vector<ExportedUav>& uavs,
+                                                                const ExportOptions& opt) {
+  if (!opt.autopilot || !sc.origin) return {};
+  const auto limit = static_cast<std::size_t>(mission_item_limit(opt));
+  const auto over = [&](const ExportedUav& e) { return items_needed(sc, e, opt) > limit; };
+  if (std::none_of(uavs.begin(), uavs.end(), over)) return {};
+  const double diagonal_m = sc.world.bounds().extent().norm();
+  for (double tol_m = 0.01; tol_m < 2.0 * diagonal_m; tol_m *= 2.0) {
+    std::vector<ExportedUav> chords = uavs;
+    bool fits = true;
+    for (ExportedUav& e : chords)
+      if (over(e)) {
+        simplify_body(e, tol_m);
+        fits = fits && !over(e);
+      }
+    if (fits && verify_flights(sc, chords).empty()) {
+      uavs = std::move(chords);
+      return {};
+    }
+  }
+  std::vector<std::pair<std::string, std::string>> why;
+  for (const ExportedUav& e : uavs)
+    if (over(e))
+      why.emplace_back(e.spec->id, e.spec->id + ": its mission takes " + std::to_string(items_needed(sc, e, opt)) +
+                                       " items, more than the " + std::to_string(limit) + " the " +
+                                       (opt.firmware == Firmware::px4 ? "PX4" : "ArduPilot") +
+                                       " firmware stores (--max-items), and no chords of its flight that few hold");
+  return why;
+}
+
 }  // namespace
+
+int mission_item_limit(const ExportOptions& opt) {
+  if (opt.max_items > 0) return opt.max_items;
+  return opt.firmware == Firmware::px4 ? 500 : 650;
+}
 
 Trajectory exported_rows(const ExportedUav& e) {
   const Trajectory& tr = e.plan.trajectory;
@@ -543,6 +594,10 @@ VerifiedExport verified_export(const Scenario& sc, const Plan& plan, const Expor
   }
   // The added legs, with everything else that flies: a UAV whose legs do not hold goes.
   std::set<std::string> failed;
+  for (auto& [id, why] : fit_item_limit(sc, out.uavs, opt)) {
+    failed.insert(id);
+    out.left_out.push_back(std::move(why));
+  }
   for (Violation& v : verify_flights(sc, out.uavs)) {
     if (failed.insert(v.uav).second)
       out.left_out.push_back(v.uav + ": with its " + std::string(to_string(opt.end)) + " legs: " + describe(v));
@@ -555,7 +610,7 @@ VerifiedExport verified_export(const Scenario& sc, const Plan& plan, const Expor
         out.left_out.push_back(e.spec->id + ": " + why);
       }
   std::erase_if(out.uavs, [&](const ExportedUav& e) { return failed.count(e.spec->id) > 0; });
-  if (sc.world.bounds().max.z() - sc.world.bounds().min.z() <= kClearTolerance_m)
+  if (flat_world(sc))
     for (ExportedUav& e : out.uavs) lift_flat(e, opt);
   return out;
 }

@@ -68,6 +68,10 @@ struct ExportOptions {
   // columns at every height, so the distances verified in the plane hold up there; the take-off
   // climbs to it and the landing (or the return home) comes down from it.
   double flat_altitude_m = 20.0;
+  // The most mission items one UAV's mission may hold; 0: what the firmware stores
+  // (mission_item_limit). A mission over it is flown as fewer chords of its rows (as simplify_m,
+  // the tolerance doubled until it fits and the chords hold with everything else that flies).
+  int max_items = 0;
   // Whether a mission file for an autopilot is written (qgc, wpl). Without one (csv, geojson,
   // kml) a UAV whose take-off or end legs cannot be flown is still written, as planned, without
   // them (VerifiedExport::notes says so).
@@ -80,6 +84,10 @@ inline constexpr double kFixedWingGlide_deg = 5.0;  // PX4 FW_LND_ANG default: t
 inline constexpr double kFixedWingGlideFlown_deg = 4.9;
 inline constexpr double kFixedWingClimbOut_deg = 10.0;  // PX4 FW_TKO_PITCH_MIN default
 double fixed_wing_loiter_radius_m(Firmware f);          // NAV_LOITER_RAD 80 m / WP_LOITER_RAD 60 m
+// The mission items a UAV's mission may hold: options.max_items, else what the firmware stores:
+// ArduPilot 650 (its SITL's store: "Only 650 items are supported"; boards with 16 KB of storage
+// hold about as many), PX4 500 (NUM_MISSIONS_SUPPORTED on its NuttX boards).
+int mission_item_limit(const ExportOptions& options);
 
 struct ExportedUav {
   const UavSpec* spec = nullptr;
