@@ -11,9 +11,8 @@
 #include "uavplan/io/plan_io.h"
 
 namespace uavplan::cli {
-namespace {
 
-ExportOptions options_of(const Scenario& sc, const ExportArgs& a) {
+ExportOptions export_options_of(const Scenario& sc, const ExportArgs& a) {
   const std::string_view vehicle = !a.vehicle.empty() ? std::string_view(a.vehicle) : default_vehicle(sc);
   ExportOptions opt = export_options(a.firmware, vehicle, a.end, a.fence);  // CLI11 checked the spellings
   opt.flat_altitude_m = a.flat_altitude_m;
@@ -26,8 +25,6 @@ ExportOptions options_of(const Scenario& sc, const ExportArgs& a) {
   return opt;
 }
 
-}  // namespace
-
 std::optional<std::string> export_request_problem(const Scenario& sc, const ExportArgs& a) {
   if (a.formats.empty()) {
     if (a.options_given)
@@ -38,7 +35,7 @@ std::optional<std::string> export_request_problem(const Scenario& sc, const Expo
   }
   std::vector<ExportFormat> formats;
   for (const std::string& f : a.formats) formats.push_back(*export_format_from_string(f));
-  return uavplan::export_request_problem(sc, formats, options_of(sc, a));
+  return uavplan::export_request_problem(sc, formats, export_options_of(sc, a));
 }
 
 void add_export_options(CLI::App& cmd, ExportArgs& a, bool formats_required) {
@@ -108,7 +105,7 @@ std::string export_source(const std::string& scenario_path, const Plan& plan, co
 
 int prepare_exports(const std::string& scenario_path, const Scenario& sc, const Plan& plan, const ExportArgs& a,
                     PreparedExport& out) {
-  const ExportOptions opt = options_of(sc, a);
+  const ExportOptions opt = export_options_of(sc, a);
   out.source = export_source(scenario_path, plan, a);
   try {
     const VerifiedExport flights = verified_export(sc, plan, opt);

@@ -33,6 +33,7 @@ void add_bench_command(CLI::App& app, std::function<int()>& run);
 void add_export_command(CLI::App& app, std::function<int()>& run);
 void add_report_command(CLI::App& app, std::function<int()>& run);
 void add_batch_command(CLI::App& app, std::function<int()>& run);
+void add_fly_command(CLI::App& app, std::function<int()>& run);
 
 // Loads both and checks that every plan UAV is in the scenario; on bad input prints the one-line
 // error on stderr and returns false (the caller exits with kExitBadInput).
@@ -52,6 +53,8 @@ struct ExportArgs {
   bool options_given = false;  // --firmware, --vehicle, --end, --fence or --force on the command line
 };
 void add_export_options(CLI::App& cmd, ExportArgs& a, bool formats_required);
+// The library's options for what the command line asked.
+ExportOptions export_options_of(const Scenario& sc, const ExportArgs& a);
 // Why the export asked for cannot be made (checked before anything is planned or written).
 std::optional<std::string> export_request_problem(const Scenario& sc, const ExportArgs& a);
 // Verifies the plan with the legs the mission files add (flight_export.h); when every UAV holds

@@ -38,6 +38,7 @@ int run_command_line(int argc, char** argv) {
   add_export_command(app, run);
   add_report_command(app, run);
   add_batch_command(app, run);
+  add_fly_command(app, run);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

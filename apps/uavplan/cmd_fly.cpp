@@ -1,0 +1,310 @@
+// `uavplan fly`: a plan's ArduPilot export flown in ArduPilot's SITL, one ArduCopter per UAV
+// side by side (tools/sitl/uavplan_sitl.py drives them over MAVLink), the flown tracks read back
+// on the plan's clock and verified as a plan, and flown set beside planned.
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "commands.h"
+#include "uavplan/coordination/contract/separation.h"
+#include "uavplan/core/geometry.h"
+#include "uavplan/core/text.h"
+#include "uavplan/evaluation/verifier.h"
+#include "uavplan/io/export.h"
+#include "uavplan/io/files.h"
+#include "uavplan/io/flight_export.h"
+#include "uavplan/io/geo.h"
+#include "uavplan/io/plan_io.h"
+
+extern char** environ;
+
+namespace uavplan::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct FlyArgs {
+  std::string scenario, plan, sitl, out_dir = "out";
+  double speedup = 10.0;
+  bool keep_work = false;
+};
+
+// One UAV's mission as flown: its file, when its mission starts on the plan's clock (its
+// take-off before t = 0, or its departure) and the rows it was exported with.
+struct Flight {
+  const ExportedUav* exported = nullptr;
+  std::string file;  // the mission file's stem
+  double start_s = 0.0;
+  Trajectory planned, flown;
+};
+
+// The driver beside the program (build/uavplan -> tools/sitl/; bin/uavplan -> share/uavplan/).
+std::string driver_path() {
+  std::error_code ec;
+  const fs::path exe = fs::canonical("/proc/self/exe", ec).parent_path();
+  for (const fs::path& p : {exe / ".." / "tools" / "sitl" / "uavplan_sitl.py",
+                            exe / ".." / "share" / "uavplan" / "tools" / "sitl" / "uavplan_sitl.py"})
+    if (fs::is_regular_file(p, ec)) return p.lexically_normal().string();
+  return "";
+}
+
+// Runs the command (no shell: its words are passed as they are) and returns its exit status.
+int run_program(const std::vector<std::string>& words) {
+  std::vector<char*> argv;
+  argv.reserve(words.size() + 1);
+  for (const std::string& w : words) argv.push_back(const_cast<char*>(w.c_str()));
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  if (posix_spawnp(&pid, argv[0], nullptr, nullptr, argv.data(), environ) != 0) return 127;
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) return 127;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+// schedule.json: when each mission starts on the plan's clock (one common moment for all).
+std::string schedule_json(const std::vector<Flight>& flights) {
+  nlohmann::json uavs = nlohmann::json::array();
+  for (const Flight& f : flights)
+    uavs.push_back({{"id", f.exported->spec->id},
+                    {"file", f.file},
+                    {"start_s", f.start_s},
+                    {"flight_s", f.planned.back().t_s - f.start_s}});
+  return nlohmann::json{{"clock", "the plan's: each mission is started at start_s (its take-off included)"},
+                        {"uavs", uavs}}
+             .dump(2) +
+         "\n";
+}
+
+// A track file `t_s,lat_deg,lon_deg,alt_amsl_m` (t_s since its mission started) on the plan's
+// clock in the scenario's frame.
+Trajectory read_track(const std::string& path, const GeoFrame& frame, double start_s) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);  // the header
+  Trajectory tr;
+  while (std::getline(in, line)) {
+    std::istringstream row(line);
+    double v[4];
+    char comma = 0;
+    if (!(row >> v[0] >> comma >> v[1] >> comma >> v[2] >> comma >> v[3])) continue;
+    const double t = start_s + v[0];
+    if (!tr.empty() && t <= tr.back().t_s) continue;
+    tr.push_back({t, frame.to_local(v[1], v[2], v[3])});
+  }
+  return tr;
+}
+
+// The rows before its take-off and after its landing sit on the ground, as a plan's do: the
+// autopilot's height there (its estimate, a few centimetres off) is put on the scenario's ground
+// while it is within the body's radius of it.
+void settle_on_ground(Trajectory& tr, const World& world, double radius_m) {
+  const auto near_ground = [&](const TrajectorySample& s) {
+    return s.p.z() - world.ground_z(s.p.x(), s.p.y()) < std::max(radius_m, 0.1);
+  };
+  std::size_t first = 0, last = tr.size();
+  while (first < tr.size() && near_ground(tr[first])) ++first;
+  while (last > first && near_ground(tr[last - 1])) --last;
+  for (std::size_t k = 0; k < tr.size(); ++k)
+    if (k < first || k >= last) tr[k].p.z() = world.ground_z(tr[k].p.x(), tr[k].p.y());
+}
+
+// Distances of the flown rows from its planned legs, and from where the plan has it then; both
+// from the plan's t = 0 (its start point) to its planned end.
+struct Deviation {
+  double legs_p95_m = 0.0, legs_max_m = 0.0, clock_p95_m = 0.0, arrival_planned_s = 0.0, arrival_flown_s = 0.0;
+};
+
+double p95(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<std::size_t>(std::ceil(0.95 * v.size())) - 1)];
+}
+
+// From its start (the plan's first row) to its goal (the last row before its landing): the
+// take-off and the landing are the autopilot's own (their speeds are its parameters).
+Deviation deviation(const Flight& f) {
+  Deviation d;
+  std::vector<double> legs, clock;
+  const Trajectory& body = f.exported->plan.trajectory;
+  const TrajectorySample& goal = body[std::min(f.exported->body_end, body.size() - 1)];
+  const double from = body.front().t_s, to = goal.t_s;
+  for (const TrajectorySample& s : f.flown) {
+    if (s.t_s < from || s.t_s > to) continue;
+    double best = World::kInf;
+    for (std::size_t k = 1; k < f.planned.size(); ++k)
+      best = std::min(best, point_segment_distance(s.p, f.planned[k - 1].p, f.planned[k].p));
+    legs.push_back(best);
+    clock.push_back((s.p - position_at(f.planned, s.t_s)).norm());
+  }
+  d.legs_p95_m = p95(legs);
+  d.legs_max_m = legs.empty() ? 0.0 : *std::max_element(legs.begin(), legs.end());
+  d.clock_p95_m = p95(clock);
+  // Arrival: the first moment within 1 m of its goal.
+  d.arrival_planned_s = to;
+  d.arrival_flown_s = NAN;
+  for (const TrajectorySample& s : f.flown)
+    if ((s.p - goal.p).norm() <= 1.0) {
+      d.arrival_flown_s = s.t_s;
+      break;
+    }
+  return d;
+}
+
+// The smallest distance between two trajectories at the rows of either (both airborne or not).
+double closest_m(const Trajectory& a, const Trajectory& b) {
+  if (a.empty() || b.empty()) return World::kInf;
+  const double from = std::max(a.front().t_s, b.front().t_s), to = std::min(a.back().t_s, b.back().t_s);
+  double best = World::kInf;
+  for (const Trajectory* tr : {&a, &b})
+    for (const TrajectorySample& s : *tr)
+      if (s.t_s >= from && s.t_s <= to) best = std::min(best, (position_at(a, s.t_s) - position_at(b, s.t_s)).norm());
+  return best;
+}
+
+// Violations a flown track is held to: what keeps it and others safe. Where it starts and ends,
+// its turns, climbs and speed are measured against the plan instead (the table).
+bool safety(ViolationKind k) {
+  switch (k) {
+    case ViolationKind::bounds:
+    case ViolationKind::ceiling:
+    case ViolationKind::obstacle:
+    case ViolationKind::moving_obstacle:
+    case ViolationKind::separation:
+    case ViolationKind::runway:
+      return true;
+    default:
+      return false;
+  }
+}
+
+void print_table(const Scenario& sc, const std::vector<Flight>& flights) {
+  std::cout << "from each UAV's start to its goal (the take-off and the landing are the autopilot's):\n"
+            << strf("%-10s %12s %12s %14s %12s %12s\n", "uav", "legs_p95_m", "legs_max_m", "clock_p95_m",
+                    "arrival_plan", "arrival_flown");
+  for (const Flight& f : flights) {
+    const Deviation d = deviation(f);
+    std::cout << strf("%-10s %12.2f %12.2f %14.2f %12.1f %12.1f\n", f.exported->spec->id.c_str(), d.legs_p95_m,
+                      d.legs_max_m, d.clock_p95_m, d.arrival_planned_s, d.arrival_flown_s);
+  }
+  for (std::size_t i = 0; i < flights.size(); ++i)
+    for (std::size_t j = i + 1; j < flights.size(); ++j) {
+      const UavSpec &a = *flights[i].exported->spec, &b = *flights[j].exported->spec;
+      std::cout << strf("pair %s-%s: closest %.2f m flown, %.2f m planned (required %.2f m)\n", a.id.c_str(),
+                        b.id.c_str(), closest_m(flights[i].flown, flights[j].flown),
+                        closest_m(flights[i].planned, flights[j].planned), required_separation_m(sc, a, b));
+    }
+}
+
+int run_fly(const FlyArgs& a) {
+  check_output_dir(a.out_dir);
+  Scenario sc;
+  Plan plan;
+  if (!load_scenario_and_plan(a.scenario, a.plan, sc, plan)) return kExitBadInput;
+  if (default_vehicle(sc) != "multirotor") {
+    std::cerr << a.scenario << ": fly: a " << sc.mission.type
+              << " mission flies fixed wings; fly flies multirotors in ArduCopter\n";
+    return kExitBadInput;
+  }
+  const std::string copter = (fs::path(a.sitl) / "bin" / "arducopter").string(), driver = driver_path();
+  if (::access(copter.c_str(), X_OK) != 0) {
+    std::cerr << "fly: --sitl " << a.sitl << ": no executable bin/arducopter there\n";
+    return kExitBadInput;
+  }
+  if (driver.empty()) {
+    std::cerr << "fly: tools/sitl/uavplan_sitl.py is not installed beside this program\n";
+    return kExitBadInput;
+  }
+  ExportArgs ex;
+  ex.formats = {"wpl"};
+  ex.firmware = "ardupilot";
+  if (const auto problem = export_request_problem(sc, ex)) {
+    std::cerr << a.scenario << ": fly: " << *problem << "\n";
+    return kExitBadInput;
+  }
+  PreparedExport prepared;
+  if (const int rc = prepare_exports(a.scenario, sc, plan, ex, prepared); rc != kExitOk) return rc;
+  const VerifiedExport flights_out = verified_export(sc, plan, export_options_of(sc, ex));
+  std::vector<Flight> flights;
+  for (const ExportedUav& e : flights_out.uavs) {
+    Flight f;
+    f.exported = &e;
+    for (const ExportFile& file : prepared.files)
+      if (file.uav == e.spec->id) f.file = fs::path(file.name).stem().string();
+    f.planned = exported_rows(e);
+    f.start_s = f.planned.front().t_s;
+    flights.push_back(std::move(f));
+  }
+  const std::string missions = (fs::path(a.out_dir) / "missions").string();
+  std::vector<ExportFile> files = prepared.files;
+  files.push_back({"schedule.json", schedule_json(flights), ""});
+  write_export(missions, files, {}, prepared.source);
+  std::cerr << "fly: " << count_text(flights.size(), "mission") << " in " << missions
+            << " (schedule.json: when each starts); flying in SITL at " << num_text(a.speedup) << "x\n";
+
+  const fs::path work = fs::path(a.out_dir) / ".sitl-work";
+  fs::remove_all(work);
+  fs::create_directories(work / "tracks");
+  const int rc = run_program({"python3", driver, "--sitl", a.sitl, "--missions", missions, "--out",
+                              (work / "tracks").string(), "--work", work.string(), "--speedup", num_text(a.speedup)});
+  const GeoFrame frame(*sc.origin);
+  Plan flown;
+  flown.status = Status::solved;
+  flown.algorithm = "flown in ArduPilot SITL";
+  for (Flight& f : flights) {
+    f.flown = read_track((work / "tracks" / (f.file + ".csv")).string(), frame, f.start_s);
+    settle_on_ground(f.flown, sc.world, f.exported->spec->radius_m);
+    UavPlan u;
+    u.id = f.exported->spec->id;
+    u.status = f.flown.size() >= 2 ? Status::solved : Status::failed;
+    u.trajectory = f.flown;
+    flown.uavs.push_back(std::move(u));
+  }
+  const std::vector<Violation> all = verify_plan(sc, flown);
+  write_export(a.out_dir, {{"flown.json", plan_to_json(flown), ""}});
+  if (!a.keep_work) fs::remove_all(work);
+  print_table(sc, flights);
+  int unsafe = 0;
+  std::set<std::pair<std::string, ViolationKind>> said;  // the first of each kind per UAV
+  for (const Violation& v : all)
+    if (safety(v.kind) && ++unsafe && said.insert({v.uav, v.kind}).second)
+      std::cout << "flown: " << describe(v) << "\n";
+  const bool holds = rc == 0 && unsafe == 0;
+  std::cout << "flown plan written to " << a.out_dir << "/flown.json: "
+            << (rc != 0  ? "a flight did not finish"
+                : unsafe ? "does not hold"
+                         : "holds")
+            << "\n";
+  return holds ? kExitOk : kExitNotSolved;
+}
+
+}  // namespace
+
+void add_fly_command(CLI::App& app, std::function<int()>& run) {
+  auto args = std::make_shared<FlyArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "fly", "Fly a plan's ArduPilot export in ArduPilot's SITL (one ArduCopter per UAV) and verify the flight");
+  cmd->add_option("scenario", args->scenario, "Scenario file (with an origin)")->required();
+  cmd->add_option("plan", args->plan, "Plan file (plan.json)")->required();
+  cmd->add_option("--sitl", args->sitl,
+                  "ArduPilot SITL folder: bin/arducopter, params/copter.parm, python/pymavlink (its MAVLink codec)")
+      ->required();
+  cmd->add_option("-o,--out", args->out_dir, "Output directory: missions/, flown.json (default: out)");
+  cmd->add_option("--speedup", args->speedup, "Simulated seconds per wall second (default 10)")
+      ->check(CLI::Range(1.0, 100.0));
+  cmd->add_flag("--keep-work", args->keep_work, "Keep the simulators' folders (out/.sitl-work)");
+  cmd->footer("Example: uavplan fly scenarios/demo.yaml out/plan.json --sitl ../shared/tools/sitl -o flown");
+  cmd->callback([args, &run] { run = [args] { return run_fly(*args); }; });
+}
+
+}  // namespace uavplan::cli
