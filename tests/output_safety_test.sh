@@ -43,7 +43,7 @@ scenario "$sc" "three" "a b"
 # 1. Distinct names: three files, each written once, the renamed one saying whose it is.
 "$BIN" plan "$sc" -o "$TMP/o1" --export csv,qgc >"$TMP/stdout" 2>"$TMP/stderr"; check stems.plan 0 $?
 [ "$(ls "$TMP/o1" | grep -c '\.csv$')" = 3 ] || bad "stems: $(ls "$TMP/o1")"
-[ "$(grep -c '^wrote' "$TMP/stdout")" = 6 ] || bad "stems: wrote lines: $(cat "$TMP/stdout")"
+[ "$(grep -c '^wrote' "$TMP/stdout")" = 7 ] || bad "stems: wrote lines (3 csv, 3 .plan, schedule.json): $(cat "$TMP/stdout")"
 [ "$(grep '^wrote' "$TMP/stdout" | sort | uniq -d | wc -l)" = 0 ] || bad "stems: a file written twice"
 grep -q "(UAV 'a b')" "$TMP/stdout" || bad "stems: the renamed file does not name its UAV"
 # The file of 'a b' holds its route (y = 200), not another UAV's.

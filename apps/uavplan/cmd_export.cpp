@@ -7,6 +7,7 @@
 #include "uavplan/core/text.h"
 #include "uavplan/io/export.h"
 #include "uavplan/io/files.h"
+#include "uavplan/io/flight_schedule.h"
 #include "uavplan/io/mission_items.h"
 #include "uavplan/io/plan_io.h"
 
@@ -103,6 +104,25 @@ std::string export_source(const std::string& scenario_path, const Plan& plan, co
 
 }  // namespace
 
+namespace {
+
+// schedule.json beside the mission files, and a line on stderr saying the same.
+void add_schedule(const VerifiedExport& flights, const ExportOptions& opt, PreparedExport& out) {
+  const std::vector<ScheduledStart> schedule = flight_schedule(flights, opt);
+  std::vector<std::pair<std::string, std::string>> files;
+  for (const ExportFile& f : out.files)
+    if (!f.uav.empty()) files.emplace_back(f.uav, f.name);
+  out.files.push_back({"schedule.json", schedule_json(schedule, files), ""});
+  constexpr std::size_t kNamed = 8;
+  std::string line = "schedule.json: start each mission at its moment of the plan's clock (its take-off included):";
+  for (std::size_t k = 0; k < schedule.size() && k < kNamed; ++k)
+    line += (k ? ", " : " ") + schedule[k].id + " at " + num_text(schedule[k].start_s) + " s";
+  if (schedule.size() > kNamed) line += " and " + std::to_string(schedule.size() - kNamed) + " more";
+  out.notes.push_back(line);
+}
+
+}  // namespace
+
 int prepare_exports(const std::string& scenario_path, const Scenario& sc, const Plan& plan, const ExportArgs& a,
                     PreparedExport& out) {
   const ExportOptions opt = export_options_of(sc, a);
@@ -127,6 +147,7 @@ int prepare_exports(const std::string& scenario_path, const Scenario& sc, const 
       auto more = export_files(sc, flights, *export_format_from_string(name), opt, &out.notes);
       out.files.insert(out.files.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
     }
+    if (opt.autopilot) add_schedule(flights, opt, out);
     for (std::string& n : frame_notes(sc, flights)) out.notes.push_back(std::move(n));
     if (const auto n = altitude_note(sc, opt); n && opt.autopilot) out.notes.push_back(*n);
     out.notes.insert(out.notes.end(), flights.notes.begin(), flights.notes.end());

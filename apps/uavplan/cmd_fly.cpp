@@ -11,7 +11,6 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
@@ -23,6 +22,7 @@
 #include "uavplan/io/export.h"
 #include "uavplan/io/files.h"
 #include "uavplan/io/flight_export.h"
+#include "uavplan/io/flight_schedule.h"
 #include "uavplan/io/geo.h"
 #include "uavplan/io/plan_io.h"
 
@@ -70,20 +70,6 @@ int run_program(const std::vector<std::string>& words) {
   while (waitpid(pid, &status, 0) < 0)
     if (errno != EINTR) return 127;
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
-
-// schedule.json: when each mission starts on the plan's clock (one common moment for all).
-std::string schedule_json(const std::vector<Flight>& flights) {
-  nlohmann::json uavs = nlohmann::json::array();
-  for (const Flight& f : flights)
-    uavs.push_back({{"id", f.exported->spec->id},
-                    {"file", f.file},
-                    {"start_s", f.start_s},
-                    {"flight_s", f.planned.back().t_s - f.start_s}});
-  return nlohmann::json{{"clock", "the plan's: each mission is started at start_s (its take-off included)"},
-                        {"uavs", uavs}}
-             .dump(2) +
-         "\n";
 }
 
 // A track file `t_s,lat_deg,lon_deg,alt_amsl_m` (t_s since its mission started) on the plan's
@@ -242,13 +228,12 @@ int run_fly(const FlyArgs& a) {
     for (const ExportFile& file : prepared.files)
       if (file.uav == e.spec->id) f.file = fs::path(file.name).stem().string();
     f.planned = exported_rows(e);
-    f.start_s = f.planned.front().t_s;
     flights.push_back(std::move(f));
   }
+  const std::vector<ScheduledStart> schedule = flight_schedule(flights_out, export_options_of(sc, ex));
+  for (std::size_t k = 0; k < flights.size(); ++k) flights[k].start_s = schedule[k].start_s;
   const std::string missions = (fs::path(a.out_dir) / "missions").string();
-  std::vector<ExportFile> files = prepared.files;
-  files.push_back({"schedule.json", schedule_json(flights), ""});
-  write_export(missions, files, {}, prepared.source);
+  write_export(missions, prepared.files, {}, prepared.source);
   std::cerr << "fly: " << count_text(flights.size(), "mission") << " in " << missions
             << " (schedule.json: when each starts); flying in SITL at " << num_text(a.speedup) << "x\n";
 

@@ -84,7 +84,10 @@ class Vehicle(object):
         self.m = codec
         self.args = args
         self.id = uav['id']
-        self.stem = uav['file']
+        missions = [f for f in uav['files'] if f.endswith('.waypoints')]
+        if not missions:
+            raise ValueError('%s: no .waypoints file in the schedule' % self.id)
+        self.stem = os.path.splitext(os.path.basename(missions[0]))[0]
         self.limit_s = float(uav['flight_s']) * 2.0 + 120.0
         self.instance = instance
         self.rows = read_wpl(os.path.join(args.missions, self.stem + '.waypoints'))

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <set>
 
+#include "uavplan/io/flight_schedule.h"
 #include "uavplan/io/geo.h"
 #include "uavplan/io/gis_export.h"
 #include "uavplan/io/io_test_fixtures.h"
@@ -712,6 +713,32 @@ TEST(ExportItems, AMissionOverTheFirmwaresStoreIsFlownAsFewerChords) {
   ASSERT_FALSE(v.holds());
   EXPECT_NE(v.left_out.front().find("more than the 8 the PX4 firmware stores"), std::string::npos)
       << v.left_out.front();
+}
+
+}  // namespace
+}  // namespace uavplan
+
+namespace uavplan {
+namespace {
+
+// An airborne start 10 m above home: ArduCopter arms, lifts off after 4.5 s and climbs at
+// 2.5 m/s, so its mission starts 8.5 s before the plan's t = 0; PX4 keeps the export's timing
+// (the climb at cruise speed, 5 m/s). schedule.json lists each UAV's start and its files.
+TEST(ExportSchedule, MissionsStartSoThatTheTakeOffEndsAtThePlansStart) {
+  const Scenario sc = test::scenario_with();
+  const Plan plan = test::plan_of({test::sample_uav()});
+  ExportOptions ardupilot;
+  ardupilot.firmware = Firmware::ardupilot;
+  const std::vector<ScheduledStart> copter = flight_schedule(verified_export(sc, plan, ardupilot), ardupilot);
+  ASSERT_EQ(copter.size(), 1u);
+  EXPECT_NEAR(copter[0].start_s, -(kCopterLiftoff_s + 10.0 / kCopterClimb_mps), 1e-9);
+  EXPECT_NEAR(copter[0].flight_s, 36.0 - copter[0].start_s, 1e-9);  // its landing: 10 m at 5 m/s after 34 s
+  const std::vector<ScheduledStart> px4 = flight_schedule(verified_export(sc, plan, {}), {});
+  EXPECT_NEAR(px4[0].start_s, -10.0 / 5.0, 1e-9);
+  const nlohmann::json j = nlohmann::json::parse(schedule_json(copter, {{"a/1", "a_1.plan"}, {"b", "b.plan"}}));
+  EXPECT_EQ(j["uavs"][0]["id"], "a/1");
+  EXPECT_EQ(j["uavs"][0]["files"], nlohmann::json::array({"a_1.plan"}));
+  EXPECT_DOUBLE_EQ(j["uavs"][0]["start_s"].get<double>(), copter[0].start_s);
 }
 
 }  // namespace

@@ -159,9 +159,6 @@ std::string qgc_plan_json(const Scenario& sc, const ExportedUav& e, const Export
   j["fileType"] = "Plan";
   j["geoFence"] = fence_json(sc, e, frame, opt, notes);
   if (notes && opt.firmware == Firmware::px4) px4_distance_notes(frame, e.home, items, notes);
-  if (notes && e.departure_s > 0.0)
-    notes->push_back("start this mission at t = " + num_text(e.departure_s) +
-                     " s of the plan (its take-off waits on the ground until then: its verified departure)");
   j["groundStation"] = "uavplan";
   j["mission"] = {{"cruiseSpeed", e.spec->speed.cruise_mps},
                   {"firmwareType", opt.firmware == Firmware::px4 ? 12 : 3},

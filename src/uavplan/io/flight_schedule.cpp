@@ -1,0 +1,70 @@
+#include "uavplan/io/flight_schedule.h"
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+
+namespace uavplan {
+namespace {
+
+bool copter_model(const ExportOptions& opt) {
+  return opt.firmware == Firmware::ardupilot && opt.vehicle == VehicleKind::multirotor;
+}
+
+// A multirotor leg as ArduCopter flies it: the horizontal at the commanded speed, the vertical
+// within its climb and descent speeds, whichever takes longer.
+double copter_leg_s(const Vec3& a, const Vec3& b, double speed_mps) {
+  const double dz = b.z() - a.z();
+  const double vertical_s = dz > 0.0 ? dz / kCopterClimb_mps : -dz / kCopterDescent_mps;
+  return std::max((b - a).head<2>().norm() / std::max(speed_mps, 0.1), vertical_s);
+}
+
+}  // namespace
+
+double modelled_takeoff_s(const ExportedUav& e, const ExportOptions& opt) {
+  const Trajectory& tr = e.plan.trajectory;
+  if (!copter_model(opt) || tr.empty()) {  // the export's timing: its rows at cruise speed
+    if (!e.takeoff_before) return 0.0;
+    return tr.empty() ? 0.0 : tr.front().t_s - exported_rows(e).front().t_s;
+  }
+  const double climb_s = kCopterLiftoff_s + copter_leg_s(e.home, e.takeoff_to, e.spec->speed.cruise_mps);
+  if (!e.takeoff_before) return climb_s;
+  return climb_s + copter_leg_s(e.takeoff_to, tr.front().p, e.spec->speed.cruise_mps);
+}
+
+std::vector<ScheduledStart> flight_schedule(const VerifiedExport& flights, const ExportOptions& opt) {
+  std::vector<ScheduledStart> out;
+  for (const ExportedUav& e : flights.uavs) {
+    const Trajectory& tr = e.plan.trajectory;
+    if (tr.empty()) continue;
+    ScheduledStart s;
+    s.id = e.spec->id;
+    if (e.takeoff_before) {
+      s.start_s = tr.front().t_s - modelled_takeoff_s(e, opt);
+    } else {  // the plan's own climb from departure_s to the top: started earlier by the difference
+      const double planned_s = tr[std::min(e.body_begin, tr.size() - 1)].t_s - e.departure_s;
+      s.start_s = e.departure_s - std::max(0.0, modelled_takeoff_s(e, opt) - planned_s);
+    }
+    s.flight_s = tr.back().t_s - s.start_s;
+    out.push_back(s);
+  }
+  return out;
+}
+
+std::string schedule_json(const std::vector<ScheduledStart>& schedule,
+                          const std::vector<std::pair<std::string, std::string>>& files_by_uav) {
+  nlohmann::json uavs = nlohmann::json::array();
+  for (const ScheduledStart& s : schedule) {
+    nlohmann::json files = nlohmann::json::array();
+    for (const auto& [uav, file] : files_by_uav)
+      if (uav == s.id) files.push_back(file);
+    uavs.push_back({{"id", s.id}, {"start_s", s.start_s}, {"flight_s", s.flight_s}, {"files", files}});
+  }
+  const nlohmann::json j = {
+      {"clock",
+       "the plan's: start each mission (arm it in AUTO) at start_s on one clock common to all; its take-off is "
+       "included"},
+      {"uavs", uavs}};
+  return j.dump(2) + "\n";
+}
+
+}  // namespace uavplan

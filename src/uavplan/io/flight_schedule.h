@@ -1,0 +1,40 @@
+// When to start each exported mission: so that its UAV is where the plan has it when the plan's
+// clock says, its take-off included. The take-off is the autopilot's own (its spool-up, its climb
+// speed), not the plan's: an airborne start's take-off happens before t = 0 and takes what the
+// autopilot takes; a plan that takes off from the ground times its climb at cruise speed, so its
+// mission starts earlier by what the autopilot's climb takes more.
+// Time model (ArduCopter 4.7, measured in its SITL with its default parameters): 4.5 s from
+// arming to lifting off (the motors' spool-up), then the climb at WPNAV_SPEED_UP 2.5 m/s, a
+// descent at WPNAV_SPEED_DN 1.5 m/s, level legs at the commanded speed. Other firmwares and fixed
+// wings keep the export's own timing (each leg at cruise speed): no simulator here to measure them.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "uavplan/io/flight_export.h"
+
+namespace uavplan {
+
+inline constexpr double kCopterLiftoff_s = 4.5;    // arming to lifting off (ArduCopter SITL)
+inline constexpr double kCopterClimb_mps = 2.5;    // WPNAV_SPEED_UP default
+inline constexpr double kCopterDescent_mps = 1.5;  // WPNAV_SPEED_DN default
+
+struct ScheduledStart {
+  std::string id;
+  double start_s = 0.0;   // on the plan's clock: when the mission is started (armed, in AUTO)
+  double flight_s = 0.0;  // from its start to the end of its exported flight
+};
+
+// The time the autopilot takes from a mission's start to the top of its take-off and on to
+// where the plan's rows begin (an airborne start), or to the top of the take-off in the plan.
+double modelled_takeoff_s(const ExportedUav& uav, const ExportOptions& options);
+
+std::vector<ScheduledStart> flight_schedule(const VerifiedExport& flights, const ExportOptions& options);
+
+// schedule.json: {"clock": ..., "uavs": [{"id", "start_s", "flight_s", "files": [...]}]}, the
+// files each UAV's mission is in (by UAV id, from the export's files).
+std::string schedule_json(const std::vector<ScheduledStart>& schedule,
+                          const std::vector<std::pair<std::string, std::string>>& files_by_uav);
+
+}  // namespace uavplan
