@@ -45,8 +45,16 @@ struct Flight {
   const ExportedUav* exported = nullptr;
   std::string file;  // the mission file's stem
   double start_s = 0.0;
-  Trajectory planned, flown;
+  Trajectory planned, flown;  // the exported rows (take-off and landing included), the track
+  Trajectory body;            // the exported rows from its start to its goal and landing
 };
+
+// A flat world's plan is flown above it (--flat-altitude): its columns stand at every height,
+// so a flight is measured and checked in the world's plane.
+void flatten(Trajectory& tr, const World& world) {
+  if (world.bounds().max.z() > world.bounds().min.z()) return;
+  for (TrajectorySample& row : tr) row.p.z() = world.bounds().min.z();
+}
 
 // The driver beside the program (build/uavplan -> tools/sitl/; bin/uavplan -> share/uavplan/).
 std::string driver_path() {
@@ -122,7 +130,7 @@ double p95(std::vector<double> v) {
 Deviation deviation(const Flight& f) {
   Deviation d;
   std::vector<double> legs, clock;
-  const Trajectory& body = f.exported->plan.trajectory;
+  const Trajectory& body = f.body;
   const TrajectorySample& goal = body[std::min(f.exported->body_end, body.size() - 1)];
   const double from = body.front().t_s, to = goal.t_s;
   for (const TrajectorySample& s : f.flown) {
@@ -228,6 +236,9 @@ int run_fly(const FlyArgs& a) {
     for (const ExportFile& file : prepared.files)
       if (file.uav == e.spec->id) f.file = fs::path(file.name).stem().string();
     f.planned = exported_rows(e);
+    f.body = e.plan.trajectory;
+    flatten(f.planned, sc.world);
+    flatten(f.body, sc.world);
     flights.push_back(std::move(f));
   }
   const std::vector<ScheduledStart> schedule = flight_schedule(flights_out, export_options_of(sc, ex));
@@ -249,6 +260,7 @@ int run_fly(const FlyArgs& a) {
   for (Flight& f : flights) {
     f.flown = read_track((work / "tracks" / (f.file + ".csv")).string(), frame, f.start_s);
     settle_on_ground(f.flown, sc.world, f.exported->spec->radius_m);
+    flatten(f.flown, sc.world);
     UavPlan u;
     u.id = f.exported->spec->id;
     u.status = f.flown.size() >= 2 ? Status::solved : Status::failed;
