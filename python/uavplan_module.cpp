@@ -20,6 +20,7 @@
 #include "uavplan/experiments/plan_run.h"
 #include "uavplan/io/export.h"
 #include "uavplan/io/files.h"
+#include "uavplan/io/flight_schedule.h"
 #include "uavplan/io/input_error.h"
 #include "uavplan/io/plan_io.h"
 #include "uavplan/io/scenario_io.h"
@@ -131,8 +132,11 @@ py::dict violation_dict(const Violation& v) {
 std::vector<std::string> export_plan(const Scenario& sc, const Plan& plan, const std::vector<std::string>& formats,
                                      const std::string& dir, const std::string& firmware,
                                      const std::optional<std::string>& vehicle, const std::string& end,
-                                     const std::string& fence, bool force) {
+                                     const std::string& fence, bool force, int max_items) {
   ExportOptions opt = export_options(firmware, vehicle ? std::string_view(*vehicle) : default_vehicle(sc), end, fence);
+  if (max_items < 0 || (max_items > 0 && max_items < 8))
+    throw py::value_error("max_items: 0 (the firmware's) or 8 and more");
+  opt.max_items = max_items;
   check_output_dir(dir, "dir");
   if (formats.empty()) throw py::value_error("formats: name at least one of qgc, wpl, geojson, kml, csv");
   std::vector<ExportFormat> fs;
@@ -154,6 +158,7 @@ std::vector<std::string> export_plan(const Scenario& sc, const Plan& plan, const
     auto more = export_files(sc, flights, f, opt);
     files.insert(files.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
   }
+  if (opt.autopilot) files.push_back(schedule_file(flight_schedule(flights, opt), files));  // as the CLI
   write_export(dir, files);
   std::vector<std::string> written;
   for (const ExportFile& f : files) written.push_back(dir + "/" + f.name);
@@ -319,8 +324,9 @@ PYBIND11_MODULE(uavplan, m) {
       py::arg("plan"), "Every violation of the plan against the scenario");
   m.def("export", &export_plan, py::arg("scenario"), py::arg("plan"), py::arg("formats"), py::arg("dir"),
         py::arg("firmware") = "px4", py::arg("vehicle") = py::none(), py::arg("end") = "land",
-        py::arg("fence") = "bounds", py::arg("force") = false,
-        "Write mission files (qgc, wpl, geojson, kml, csv) of a verified plan; returns the paths");
+        py::arg("fence") = "bounds", py::arg("force") = false, py::arg("max_items") = 0,
+        "Write mission files (qgc, wpl, geojson, kml, csv) of a verified plan, with schedule.json beside mission "
+        "files; returns the paths");
   m.def(
       "planners",
       [] {

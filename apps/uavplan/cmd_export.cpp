@@ -109,10 +109,7 @@ namespace {
 // schedule.json beside the mission files, and a line on stderr saying the same.
 void add_schedule(const VerifiedExport& flights, const ExportOptions& opt, PreparedExport& out) {
   const std::vector<ScheduledStart> schedule = flight_schedule(flights, opt);
-  std::vector<std::pair<std::string, std::string>> files;
-  for (const ExportFile& f : out.files)
-    if (!f.uav.empty()) files.emplace_back(f.uav, f.name);
-  out.files.push_back({"schedule.json", schedule_json(schedule, files), ""});
+  out.files.push_back(schedule_file(schedule, out.files));
   constexpr std::size_t kNamed = 8;
   std::string line = "schedule.json: start each mission at its moment of the plan's clock (its take-off included):";
   for (std::size_t k = 0; k < schedule.size() && k < kNamed; ++k)

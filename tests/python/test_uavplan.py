@@ -134,7 +134,7 @@ def expect_the_clis_files(exe, scenario, formats, written, tmp_path):
 
 def test_export_writes_the_clis_files(root, exe, tmp_path, demo, demo_plan):
     written = uavplan.export(demo, demo_plan, ["qgc", "csv"], str(tmp_path / "py"))
-    assert len(written) == 6
+    assert len(written) == 7  # three .plan, three .csv and schedule.json, as the command line writes them
     expect_the_clis_files(exe, root / "scenarios/demo.yaml", "qgc,csv", written, tmp_path)
     qgc = json.loads((tmp_path / "py" / "u1.plan").read_text())
     assert qgc["fileType"] == "Plan" and len(qgc["mission"]["items"]) > 2
@@ -147,7 +147,7 @@ def test_a_formation_mission_exports_as_the_cli_does(root, exe, tmp_path):
     sc = uavplan.Scenario.load(str(root / "scenarios/p5_mission.yaml"))
     plan = uavplan.plan(sc)
     written = uavplan.export(sc, plan, ["qgc"], str(tmp_path / "py"))
-    assert len(written) == 4
+    assert len(written) == 5
     expect_the_clis_files(exe, root / "scenarios/p5_mission.yaml", "qgc", written, tmp_path)
     assert json.loads((tmp_path / "py" / "u1.plan").read_text())["mission"]["vehicleType"] == 1
 

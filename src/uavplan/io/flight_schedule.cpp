@@ -67,4 +67,11 @@ std::string schedule_json(const std::vector<ScheduledStart>& schedule,
   return j.dump(2) + "\n";
 }
 
+ExportFile schedule_file(const std::vector<ScheduledStart>& schedule, const std::vector<ExportFile>& files) {
+  std::vector<std::pair<std::string, std::string>> by_uav;
+  for (const ExportFile& f : files)
+    if (!f.uav.empty()) by_uav.emplace_back(f.uav, f.name);
+  return {"schedule.json", schedule_json(schedule, by_uav), ""};
+}
+
 }  // namespace uavplan

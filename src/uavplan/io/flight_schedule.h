@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "uavplan/io/export.h"
 #include "uavplan/io/flight_export.h"
 
 namespace uavplan {
@@ -36,5 +37,8 @@ std::vector<ScheduledStart> flight_schedule(const VerifiedExport& flights, const
 // files each UAV's mission is in (by UAV id, from the export's files).
 std::string schedule_json(const std::vector<ScheduledStart>& schedule,
                           const std::vector<std::pair<std::string, std::string>>& files_by_uav);
+
+// schedule.json as the file an export writes beside `files` (naming each UAV's among them).
+ExportFile schedule_file(const std::vector<ScheduledStart>& schedule, const std::vector<ExportFile>& files);
 
 }  // namespace uavplan
