@@ -200,6 +200,25 @@ void print_table(const Scenario& sc, const std::vector<Flight>& flights) {
     }
 }
 
+// The missions flown side by side in SITL, each track read back onto its flight on the plan's
+// clock; returns the driver's exit status.
+int fly_missions(const FlyArgs& a, const Scenario& sc, const std::string& driver, const std::string& missions,
+                 std::vector<Flight>& flights) {
+  const fs::path work = fs::path(a.out_dir) / ".sitl-work";
+  fs::remove_all(work);
+  fs::create_directories(work / "tracks");
+  const int rc = run_program({"python3", driver, "--sitl", a.sitl, "--missions", missions, "--out",
+                              (work / "tracks").string(), "--work", work.string(), "--speedup", num_text(a.speedup)});
+  const GeoFrame frame(*sc.origin);
+  for (Flight& f : flights) {
+    f.flown = read_track((work / "tracks" / (f.file + ".csv")).string(), frame, f.start_s);
+    settle_on_ground(f.flown, sc.world, f.exported->spec->radius_m);
+    flatten(f.flown, sc.world);
+  }
+  if (!a.keep_work) fs::remove_all(work);
+  return rc;
+}
+
 int run_fly(const FlyArgs& a) {
   check_output_dir(a.out_dir);
   Scenario sc;
@@ -248,19 +267,11 @@ int run_fly(const FlyArgs& a) {
   std::cerr << "fly: " << count_text(flights.size(), "mission") << " in " << missions
             << " (schedule.json: when each starts); flying in SITL at " << num_text(a.speedup) << "x\n";
 
-  const fs::path work = fs::path(a.out_dir) / ".sitl-work";
-  fs::remove_all(work);
-  fs::create_directories(work / "tracks");
-  const int rc = run_program({"python3", driver, "--sitl", a.sitl, "--missions", missions, "--out",
-                              (work / "tracks").string(), "--work", work.string(), "--speedup", num_text(a.speedup)});
-  const GeoFrame frame(*sc.origin);
+  const int rc = fly_missions(a, sc, driver, missions, flights);
   Plan flown;
   flown.status = Status::solved;
   flown.algorithm = "flown in ArduPilot SITL";
-  for (Flight& f : flights) {
-    f.flown = read_track((work / "tracks" / (f.file + ".csv")).string(), frame, f.start_s);
-    settle_on_ground(f.flown, sc.world, f.exported->spec->radius_m);
-    flatten(f.flown, sc.world);
+  for (const Flight& f : flights) {
     UavPlan u;
     u.id = f.exported->spec->id;
     u.status = f.flown.size() >= 2 ? Status::solved : Status::failed;
@@ -269,7 +280,6 @@ int run_fly(const FlyArgs& a) {
   }
   const std::vector<Violation> all = verify_plan(sc, flown);
   write_export(a.out_dir, {{"flown.json", plan_to_json(flown), ""}});
-  if (!a.keep_work) fs::remove_all(work);
   print_table(sc, flights);
   int unsafe = 0;
   std::set<std::pair<std::string, ViolationKind>> said;  // the first of each kind per UAV
