@@ -125,7 +125,8 @@ int prepare_exports(const std::string& scenario_path, const Scenario& sc, const 
   const ExportOptions opt = export_options_of(sc, a);
   out.source = export_source(scenario_path, plan, a);
   try {
-    const VerifiedExport flights = verified_export(sc, plan, opt);
+    out.flights = verified_export(sc, plan, opt);
+    const VerifiedExport& flights = out.flights;
     out.left_out = flights.left_out;
     if (flights.uavs.empty() || (!flights.holds() && !a.force)) {
       const std::size_t bad = plan.uavs.size() - flights.uavs.size();

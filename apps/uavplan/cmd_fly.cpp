@@ -19,6 +19,7 @@
 #include "uavplan/core/geometry.h"
 #include "uavplan/core/text.h"
 #include "uavplan/evaluation/verifier.h"
+#include "uavplan/experiments/results.h"
 #include "uavplan/io/export.h"
 #include "uavplan/io/files.h"
 #include "uavplan/io/flight_export.h"
@@ -119,12 +120,6 @@ struct Deviation {
   double legs_p95_m = 0.0, legs_max_m = 0.0, clock_p95_m = 0.0, arrival_planned_s = 0.0, arrival_flown_s = 0.0;
 };
 
-double p95(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<std::size_t>(std::ceil(0.95 * v.size())) - 1)];
-}
-
 // From its start (the plan's first row) to its goal (the last row before its landing): the
 // take-off and the landing are the autopilot's own (their speeds are its parameters).
 Deviation deviation(const Flight& f) {
@@ -141,9 +136,9 @@ Deviation deviation(const Flight& f) {
     legs.push_back(best);
     clock.push_back((s.p - position_at(f.planned, s.t_s)).norm());
   }
-  d.legs_p95_m = p95(legs);
+  d.legs_p95_m = quantile(legs, 0.95);
   d.legs_max_m = legs.empty() ? 0.0 : *std::max_element(legs.begin(), legs.end());
-  d.clock_p95_m = p95(clock);
+  d.clock_p95_m = quantile(clock, 0.95);
   // Arrival: the first moment within 1 m of its goal.
   d.arrival_planned_s = to;
   d.arrival_flown_s = NAN;
@@ -247,7 +242,7 @@ int run_fly(const FlyArgs& a) {
   }
   PreparedExport prepared;
   if (const int rc = prepare_exports(a.scenario, sc, plan, ex, prepared); rc != kExitOk) return rc;
-  const VerifiedExport flights_out = verified_export(sc, plan, export_options_of(sc, ex));
+  const VerifiedExport& flights_out = prepared.flights;
   std::vector<Flight> flights;
   for (const ExportedUav& e : flights_out.uavs) {
     Flight f;

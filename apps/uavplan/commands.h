@@ -63,7 +63,8 @@ std::optional<std::string> export_request_problem(const Scenario& sc, const Expo
 struct PreparedExport {
   std::vector<ExportFile> files;
   std::vector<std::string> notes, left_out;
-  std::string source;  // the fingerprint of the scenario, the plan and the options (export.h)
+  std::string source;      // the fingerprint of the scenario, the plan and the options (export.h)
+  VerifiedExport flights;  // what the files fly
 };
 int prepare_exports(const std::string& scenario_path, const Scenario& sc, const Plan& plan, const ExportArgs& a,
                     PreparedExport& out);

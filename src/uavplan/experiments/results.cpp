@@ -38,6 +38,8 @@ std::vector<const RunRecord*> by_run(const std::vector<RunRecord>& records) {
 nlohmann::json number_or_null(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
 double number_of(const nlohmann::json& j) { return j.is_number() ? j.get<double>() : std::nan(""); }
 
+}  // namespace
+
 double quantile(std::vector<double> v, double q) {
   if (v.empty()) return std::nan("");
   std::sort(v.begin(), v.end());
@@ -46,8 +48,6 @@ double quantile(std::vector<double> v, double q) {
   const std::size_t hi = std::min(lo + 1, v.size() - 1);
   return v[lo] + (pos - double(lo)) * (v[hi] - v[lo]);
 }
-
-}  // namespace
 
 std::string planner_name(const RunRecord& r) {
   return !r.spec.planner.empty() ? r.spec.planner : !r.outcome.algorithm.empty() ? r.outcome.algorithm : "(scenario's)";

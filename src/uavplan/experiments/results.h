@@ -29,6 +29,9 @@ std::optional<RunRecord> parse_journal_line(const std::string& line);
 // edited since, is not resumed (two versions of a file never mix in one results.csv).
 bool same_run(const RunSpec& a, const RunSpec& b);
 
+// The q-quantile of v, interpolated between its ranks (NaN for none).
+double quantile(std::vector<double> v, double q);
+
 // Per planner and scenario: runs, solved, verified, median and p95 plan time, mean length.
 std::string summary_table(const std::vector<RunRecord>& records);
 
