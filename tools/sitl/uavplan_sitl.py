@@ -289,6 +289,8 @@ def main():
     ap.add_argument('--speedup', type=float, default=10.0)
     ap.add_argument('--first-instance', type=int, default=0)
     args = ap.parse_args()
+    for name in ('sitl', 'missions', 'out', 'work'):  # the simulators run in folders of their own
+        setattr(args, name, os.path.abspath(getattr(args, name)))
     args.copter = os.path.join(args.sitl, 'bin', 'arducopter')
     codec = load_codec(args.sitl, args.work)
     with open(os.path.join(args.missions, 'schedule.json')) as f:

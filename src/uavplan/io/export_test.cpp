@@ -150,6 +150,34 @@ TEST(Export, SpeedChangesBelowTenPercentMerge) {
   EXPECT_DOUBLE_EQ(mission_items(sc, exported(sc, {}, u), fixed_wing)[1].params[0], 0.0);  // airspeed
 }
 
+// Legs a little faster than the current speed keep it only while the time gained stays within
+// speed_drift_s (0.5 s): at 5 m/s, a 54 m leg planned in 10 s would arrive 0.8 s late.
+TEST(Export, SpeedKeptOnlyWhileTheDriftStaysSmall) {
+  const Scenario sc = scenario_with();
+  UavPlan u = sample_uav();  // east at 5 m/s, then a zigzag at 5.4 m/s
+  u.trajectory = {{0.0, Vec3(0, 0, 10)},
+                  {10.0, Vec3(50, 0, 10)},
+                  {20.0, Vec3(50, 54, 10)},
+                  {30.0, Vec3(104, 54, 10)},
+                  {40.0, Vec3(104, 108, 10)}};
+  const auto items = mission_items(sc, exported(sc, {}, u), {});
+  EXPECT_EQ(commands(items), (std::vector<int>{kCmdTakeoff, kCmdChangeSpeed, kCmdWaypoint, kCmdChangeSpeed,
+                                               kCmdWaypoint, kCmdWaypoint, kCmdWaypoint, kCmdLand}));
+  EXPECT_NEAR(items[3].params[1], 5.4, 1e-9);
+}
+
+// ArduCopter flies WPNAV_SPEED horizontally (a climb on top): a leg climbing 40 m over 30 m in
+// 10 s is commanded 3 m/s there, 5 m/s (along the leg) for PX4.
+TEST(Export, ArduCopterSpeedsAreHorizontal) {
+  const Scenario sc = scenario_with();
+  UavPlan u = sample_uav();
+  u.trajectory = {{0.0, Vec3(0, 0, 10)}, {10.0, Vec3(30, 0, 50)}};
+  ExportOptions copter;
+  copter.firmware = Firmware::ardupilot;
+  EXPECT_NEAR(mission_items(sc, exported(sc, copter, u), copter)[1].params[1], 3.0, 1e-9);
+  EXPECT_NEAR(mission_items(sc, exported(sc, {}, u), {})[1].params[1], 5.0, 1e-9);
+}
+
 TEST(Export, EveryEndIsFlownAndVerified) {
   const Scenario sc = scenario_with();
   ExportOptions opt;
@@ -721,9 +749,11 @@ TEST(ExportItems, AMissionOverTheFirmwaresStoreIsFlownAsFewerChords) {
 namespace uavplan {
 namespace {
 
-// An airborne start 10 m above home: ArduCopter arms, lifts off after 4.5 s and climbs at
-// 2.5 m/s, so its mission starts 8.5 s before the plan's t = 0; PX4 keeps the export's timing
-// (the climb at cruise speed, 5 m/s). schedule.json lists each UAV's start and its files.
+// An airborne start 10 m above home: ArduCopter arms, lifts off after 4.2 s, climbs at 2.5 m/s
+// (1.8 s more to reach that speed and stop), rests 1 s and then falls sqrt(5) s behind a start at
+// 5 m/s on its jerk-limited ramp (a 4.47 s ramp: 1 m/s^3 to 2.24 m/s^2 and back), so its mission
+// starts 13.2 s before the plan's t = 0; PX4 keeps the export's timing (the climb at cruise speed,
+// 5 m/s). schedule.json lists each UAV's start and its files.
 TEST(ExportSchedule, MissionsStartSoThatTheTakeOffEndsAtThePlansStart) {
   const Scenario sc = test::scenario_with();
   const Plan plan = test::plan_of({test::sample_uav()});
@@ -731,8 +761,10 @@ TEST(ExportSchedule, MissionsStartSoThatTheTakeOffEndsAtThePlansStart) {
   ardupilot.firmware = Firmware::ardupilot;
   const std::vector<ScheduledStart> copter = flight_schedule(verified_export(sc, plan, ardupilot), ardupilot);
   ASSERT_EQ(copter.size(), 1u);
-  EXPECT_NEAR(copter[0].start_s, -(kCopterLiftoff_s + 10.0 / kCopterClimb_mps), 1e-9);
-  EXPECT_NEAR(copter[0].flight_s, 36.0 - copter[0].start_s, 1e-9);  // its landing: 10 m at 5 m/s after 34 s
+  EXPECT_NEAR(copter[0].start_s, -(4.2 + 10.0 / 2.5 + 1.8 + 1.0 + std::sqrt(5.0)), 1e-9);
+  EXPECT_NEAR(copter_ramp_lag_s(5.0), std::sqrt(5.0), 1e-12);
+  EXPECT_NEAR(copter_ramp_lag_s(10.0), 0.5 * (10.0 / 2.5 + 2.5 / 1.0), 1e-12);  // at 2.5 m/s^2 from 6.25 m/s
+  EXPECT_NEAR(copter[0].flight_s, 36.0 - copter[0].start_s, 1e-9);              // its landing: 10 m at 5 m/s after 34 s
   const std::vector<ScheduledStart> px4 = flight_schedule(verified_export(sc, plan, {}), {});
   EXPECT_NEAR(px4[0].start_s, -10.0 / 5.0, 1e-9);
   const nlohmann::json j = nlohmann::json::parse(schedule_json(copter, {{"a/1", "a_1.plan"}, {"b", "b.plan"}}));

@@ -52,8 +52,12 @@ struct ExportOptions {
   VehicleKind vehicle = VehicleKind::multirotor;
   MissionEnd end = MissionEnd::land;
   // Legs whose speeds differ by less than this fraction of the current mission speed fly at it
-  // (no DO_CHANGE_SPEED item): a group plan's speeds wobble by a few percent leg to leg.
+  // (no DO_CHANGE_SPEED item): a group plan's speeds wobble by a few percent leg to leg. A leg
+  // merged so keeps the speed while the time gained or lost on the plan, summed over the legs
+  // flown at it, stays within speed_drift_s; a new speed pays that time back (within the
+  // fraction of the leg's own speed).
   double speed_change_fraction = 0.10;
+  double speed_drift_s = 0.5;
   FenceMode fence = FenceMode::bounds;
   AltitudeFrame altitude = AltitudeFrame::standard;
   int max_fence_exclusions = 16;  // FenceMode::bounds: autopilots store few fence points

@@ -1,6 +1,7 @@
 #include "uavplan/io/flight_schedule.h"
 
 #include <algorithm>
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 namespace uavplan {
@@ -20,15 +21,27 @@ double copter_leg_s(const Vec3& a, const Vec3& b, double speed_mps) {
 
 }  // namespace
 
+double copter_ramp_lag_s(double speed_mps) {
+  const double v = std::max(speed_mps, 0.0), a = kCopterAccel_mps2, j = kCopterJerk_mps3;
+  // Symmetric acceleration profile: the distance is v T / 2, so the lag behind speed v is T / 2.
+  const double ramp_s = v <= a * a / j ? 2.0 * std::sqrt(v / j) : v / a + a / j;
+  return 0.5 * ramp_s;
+}
+
 double modelled_takeoff_s(const ExportedUav& e, const ExportOptions& opt) {
   const Trajectory& tr = e.plan.trajectory;
   if (!copter_model(opt) || tr.empty()) {  // the export's timing: its rows at cruise speed
     if (!e.takeoff_before) return 0.0;
     return tr.empty() ? 0.0 : tr.front().t_s - exported_rows(e).front().t_s;
   }
-  const double climb_s = kCopterLiftoff_s + copter_leg_s(e.home, e.takeoff_to, e.spec->speed.cruise_mps);
-  if (!e.takeoff_before) return climb_s;
-  return climb_s + copter_leg_s(e.takeoff_to, tr.front().p, e.spec->speed.cruise_mps);
+  const double cruise_mps = e.spec->speed.cruise_mps;
+  // From rest at the top of the climb: the pause there and the ramp to speed, on a leg to an
+  // airborne start beside it (carried through the start at speed) or on the route's first leg
+  // (started that much earlier, it is at speed on the plan's clock).
+  const double from_rest_s = kCopterWaypointPause_s + copter_ramp_lag_s(cruise_mps);
+  double s = kCopterLiftoff_s + copter_leg_s(e.home, e.takeoff_to, cruise_mps) + kCopterClimbRamps_s + from_rest_s;
+  if (e.takeoff_before) s += copter_leg_s(e.takeoff_to, tr.front().p, cruise_mps);
+  return s;
 }
 
 std::vector<ScheduledStart> flight_schedule(const VerifiedExport& flights, const ExportOptions& opt) {

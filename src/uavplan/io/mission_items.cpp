@@ -46,12 +46,35 @@ class Items {
     items_.push_back(it);
   }
   // A DO_CHANGE_SPEED before the first leg (the vehicle's own default speed is not the plan's)
-  // and wherever a leg's speed differs from the current one by the fraction or more. Fixed
+  // and wherever the leg from `a` to `b` in `dt_s` needs another (see speed_drift_s). Fixed
   // wing: airspeed (speed type 0, as QGroundControl writes it; ArduPlane's type 1 only sets a
   // minimum ground speed), equal to the planned ground speed in still air; multirotor: ground
-  // speed (type 1). Throttle unchanged (-1).
-  void speed(double mps) {
-    if (speed_mps_ > 0.0 && std::abs(mps - speed_mps_) < opt_.speed_change_fraction * speed_mps_) return;
+  // speed (type 1), along the leg, but ArduCopter's is horizontal (WPNAV_SPEED: a leg's climb or
+  // descent comes on top). Throttle unchanged (-1).
+  void speed(const Vec3& a, const Vec3& b, double dt_s) {
+    const bool horizontal = opt_.firmware == Firmware::ardupilot && opt_.vehicle == VehicleKind::multirotor;
+    const double len_m = horizontal ? (b - a).head<2>().norm() : (b - a).norm();
+    if (len_m < 1e-3 || dt_s <= 0.0) return;  // straight up or down: flown at the climb speeds
+    const double v = len_m / dt_s, fraction = opt_.speed_change_fraction;
+    if (speed_mps_ > 0.0 && std::abs(v - speed_mps_) < fraction * speed_mps_) {
+      const double drift_s = drift_s_ + len_m / speed_mps_ - dt_s;
+      if (std::abs(drift_s) <= opt_.speed_drift_s) {
+        drift_s_ = drift_s;
+        return;
+      }
+    }
+    // The leg's speed, paying back the drift so far within the fraction (0.9 of it: the checks'
+    // tolerance is the fraction of the commanded speed).
+    const double pay_back = len_m / std::max(dt_s - drift_s_, 1e-9);
+    const double mps = std::clamp(pay_back, v * (1.0 - 0.9 * fraction), v * (1.0 + 0.9 * fraction));
+    command_speed(mps);
+    drift_s_ += len_m / mps - dt_s;
+  }
+  // Cruise speed on legs off the plan's clock (to a start beside the take-off, home again).
+  void cruise(double mps) {
+    if (speed_mps_ <= 0.0 || std::abs(mps - speed_mps_) >= opt_.speed_change_fraction * speed_mps_) command_speed(mps);
+  }
+  void command_speed(double mps) {
     command(kCmdChangeSpeed, {opt_.vehicle == VehicleKind::fixed_wing ? 0.0 : 1.0, mps, -1.0, 0});
     speed_mps_ = mps;
   }
@@ -82,9 +105,7 @@ class Items {
         ++j;
       }
       // Commanded: the mean speed of the legs flown as one (what the leg's timing needs).
-      double len = 0.0;
-      for (std::size_t k = i; k < j; ++k) len += (tr[k + 1].p - tr[k].p).norm();
-      speed(len / std::max(tr[j].t_s - tr[i].t_s, 1e-12));
+      speed(a, tr[j].p, tr[j].t_s - tr[i].t_s);
       at(kCmdWaypoint, tr[j].p, {0, 0, 0, compass_yaw_deg(dir)});
       i = j;
     }
@@ -95,6 +116,7 @@ class Items {
   const GeoFrame& frame_;
   double home_amsl_m_;
   double speed_mps_ = 0.0;  // commanded so far (0: none yet)
+  double drift_s_ = 0.0;    // time lost (> 0) or gained on the plan's clock by the legs so far
   const ExportOptions& opt_;
   AltitudeFrame altitude_;
   const World& world_;
@@ -146,7 +168,7 @@ std::vector<MissionItem> mission_items(const Scenario& sc, const ExportedUav& e,
                                : 0.0;
   m.at(kCmdTakeoff, e.takeoff_to, {pitch_deg, 0, 0, compass_yaw_deg(first)});
   if ((tr[e.body_begin].p - e.takeoff_to).norm() > kHoldMove_m) {  // a take-off beside the start
-    m.speed(cruise);
+    m.cruise(cruise);
     m.at(kCmdWaypoint, tr[e.body_begin].p, {0, 0, 0, compass_yaw_deg(tr[e.body_begin].p - e.takeoff_to)});
   }
   m.body(tr, e.body_begin, e.body_end);
@@ -166,7 +188,7 @@ std::vector<MissionItem> mission_items(const Scenario& sc, const ExportedUav& e,
       m.at(kCmdLand, *e.touchdown, {0, 0, 0, 0});
       break;
     case MissionEnd::rtl: {
-      m.speed(cruise);
+      m.cruise(cruise);
       Vec3 from = tr[e.body_end].p;
       for (const Vec3& p : e.return_points) {
         m.at(kCmdWaypoint, p, {0, 0, 0, compass_yaw_deg(p - from)});
