@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <numbers>
 #include <set>
 #include <sstream>
 
@@ -28,6 +29,8 @@
 #include "uavplan/io/geo.h"
 #include "uavplan/io/plan_io.h"
 
+#include <nlohmann/json.hpp>
+
 extern char** environ;
 
 namespace uavplan::cli {
@@ -40,6 +43,39 @@ struct FlyArgs {
   double speedup = 10.0;
   bool keep_work = false;
 };
+
+// The ground for the simulators (ArduPilot's SITL flies over terrain it is sent, else over a plane
+// at its home's altitude): heights above sea level on a latitude-longitude grid over the world's
+// bounds and kTerrainMargin_m around them, rows from the south, at the terrain's cell size (10 m
+// at the finest, 2000 x 2000 points at the most). The driver answers the autopilot's
+// TERRAIN_REQUESTs from it.
+std::string terrain_json(const Scenario& sc) {
+  constexpr double kTerrainMargin_m = 500.0, kMetresPerDegree = 111320.0;
+  const GeoFrame frame(*sc.origin);
+  const Aabb& b = sc.world.bounds();
+  double lat0 = 90, lat1 = -90, lon0 = 180, lon1 = -180;
+  for (const double x : {b.min.x() - kTerrainMargin_m, b.max.x() + kTerrainMargin_m})
+    for (const double y : {b.min.y() - kTerrainMargin_m, b.max.y() + kTerrainMargin_m}) {
+      const LatLonAlt g = frame.to_wgs84(Vec3(x, y, 0.0));
+      lat0 = std::min(lat0, g.lat_deg), lat1 = std::max(lat1, g.lat_deg);
+      lon0 = std::min(lon0, g.lon_deg), lon1 = std::max(lon1, g.lon_deg);
+    }
+  const double step_m = std::max(10.0, sc.world.terrain()->cell_m());
+  const double dlat = step_m / kMetresPerDegree, dlon = dlat / std::cos(0.5 * (lat0 + lat1) * std::numbers::pi / 180.0);
+  const int rows = std::clamp(static_cast<int>(std::ceil((lat1 - lat0) / dlat)) + 1, 2, 2000);
+  const int cols = std::clamp(static_cast<int>(std::ceil((lon1 - lon0) / dlon)) + 1, 2, 2000);
+  std::vector<double> heights;
+  heights.reserve(static_cast<std::size_t>(rows) * cols);
+  for (int i = 0; i < rows; ++i)
+    for (int j = 0; j < cols; ++j) {
+      const Vec3 p = frame.to_local(lat0 + i * (lat1 - lat0) / (rows - 1), lon0 + j * (lon1 - lon0) / (cols - 1), 0.0);
+      const double x = std::clamp(p.x(), b.min.x(), b.max.x()), y = std::clamp(p.y(), b.min.y(), b.max.y());
+      heights.push_back(std::round(frame.to_wgs84(Vec3(x, y, sc.world.ground_z(x, y))).alt_m * 100.0) / 100.0);
+    }
+  const nlohmann::json j = {{"lat0", lat0}, {"lat1", lat1}, {"lon0", lon0},           {"lon1", lon1},
+                            {"rows", rows}, {"cols", cols}, {"heights_amsl", heights}};
+  return j.dump();
+}
 
 // One UAV's mission as flown: its file, when its mission starts on the plan's clock (its
 // take-off before t = 0, or its departure) and the rows it was exported with.
@@ -69,7 +105,8 @@ std::string driver_path() {
 }
 
 // Runs the command (no shell: its words are passed as they are) and returns its exit status.
-int run_program(const std::vector<std::string>& words) {
+int run_program(std::vector<std::string> words, const std::vector<std::string>& more = {}) {
+  words.insert(words.end(), more.begin(), more.end());
   std::vector<char*> argv;
   argv.reserve(words.size() + 1);
   for (const std::string& w : words) argv.push_back(const_cast<char*>(w.c_str()));
@@ -101,9 +138,10 @@ Trajectory read_track(const std::string& path, const GeoFrame& frame, double sta
   return tr;
 }
 
-// The rows before its take-off and after its landing sit on the ground, as a plan's do: the
+// The flight from lift-off to touch-down, on the ground at both ends as a plan's is: the
 // autopilot's height there (its estimate, a few centimetres off) is put on the scenario's ground
-// while it is within the body's radius of it.
+// while it is within the body's radius of it, and of the rows on the ground before it lifts off
+// (its motors spooling up) and after it touches down only the last and the first are kept.
 void settle_on_ground(Trajectory& tr, const World& world, double radius_m) {
   const auto near_ground = [&](const TrajectorySample& s) {
     return s.p.z() - world.ground_z(s.p.x(), s.p.y()) < std::max(radius_m, 0.1);
@@ -113,24 +151,26 @@ void settle_on_ground(Trajectory& tr, const World& world, double radius_m) {
   while (last > first && near_ground(tr[last - 1])) --last;
   for (std::size_t k = 0; k < tr.size(); ++k)
     if (k < first || k >= last) tr[k].p.z() = world.ground_z(tr[k].p.x(), tr[k].p.y());
+  if (first == tr.size()) return;  // never in the air
+  if (last < tr.size()) tr.erase(tr.begin() + static_cast<std::ptrdiff_t>(last) + 1, tr.end());
+  if (first > 1) tr.erase(tr.begin(), tr.begin() + static_cast<std::ptrdiff_t>(first) - 1);
 }
 
-// The autopilot's vertical take-off and landing drift by centimetres; the contract's take-off and
-// landing legs are vertical (the ground under them no collision, obstacles still are). Rows within
-// kColumn_m horizontally of where it lifted off (touched down), from the ground up to where it
-// first leaves that column (down from where it last entered it), are put on the column.
-void columns(Trajectory& tr) {
+// The autopilot's vertical take-off and landing drift by centimetres (and its GPS positions are
+// rounded to 1e-7 degrees); the contract's take-off and landing legs are vertical (the ground
+// under them no collision, obstacles still are). Rows within kColumn_m horizontally of the
+// exported home (touch-down), from the first row up to where it first leaves that column (back
+// from the last row to where it last entered it), are put on the column.
+void columns(Trajectory& tr, const Vec3& home, const Vec3& touchdown) {
   constexpr double kColumn_m = 0.5;
-  if (tr.size() < 2) return;
-  const auto snap = [&](auto first, auto last) {
-    const double x = first->p.x(), y = first->p.y();
-    for (auto it = first; it != last && std::hypot(it->p.x() - x, it->p.y() - y) <= kColumn_m; ++it) {
-      it->p.x() = x;
-      it->p.y() = y;
+  const auto snap = [](auto first, auto last, const Vec3& foot) {
+    for (auto it = first; it != last && std::hypot(it->p.x() - foot.x(), it->p.y() - foot.y()) <= kColumn_m; ++it) {
+      it->p.x() = foot.x();
+      it->p.y() = foot.y();
     }
   };
-  snap(tr.begin(), tr.end());
-  snap(tr.rbegin(), tr.rend());
+  snap(tr.begin(), tr.end(), home);
+  snap(tr.rbegin(), tr.rend(), touchdown);
 }
 
 // Distances of the flown rows from its planned legs, and from where the plan has it then; both
@@ -234,14 +274,20 @@ int fly_missions(const FlyArgs& a, const Scenario& sc, const std::string& driver
   const fs::path work = fs::absolute(fs::path(a.out_dir) / ".sitl-work");
   fs::remove_all(work);
   fs::create_directories(work / "tracks");
-  const int rc = run_program({"python3", driver, "--sitl", fs::absolute(a.sitl).string(), "--missions",
-                              fs::absolute(missions).string(), "--out", (work / "tracks").string(), "--work",
-                              work.string(), "--speedup", num_text(a.speedup)});
+  std::vector<std::string> terrain;
+  if (sc.world.terrain()) {
+    std::ofstream(work / "terrain.json") << terrain_json(sc);
+    terrain = {"--terrain", (work / "terrain.json").string()};
+  }
+  const int rc = run_program(
+      {"python3", driver, "--sitl", fs::absolute(a.sitl).string(), "--missions", fs::absolute(missions).string(),
+       "--out", (work / "tracks").string(), "--work", work.string(), "--speedup", num_text(a.speedup)},
+      terrain);
   const GeoFrame frame(*sc.origin);
   for (Flight& f : flights) {
     f.flown = read_track((work / "tracks" / (f.file + ".csv")).string(), frame, f.start_s);
+    columns(f.flown, f.planned.front().p, f.planned.back().p);
     settle_on_ground(f.flown, sc.world, f.exported->spec->radius_m);
-    columns(f.flown);
     flatten(f.flown, sc.world);
   }
   if (!a.keep_work) fs::remove_all(work);

@@ -77,6 +77,46 @@ def read_wpl(path):
     return rows
 
 
+class Terrain(object):
+    """Heights above sea level on a latitude-longitude grid (uavplan fly's terrain.json), read
+    bilinearly: the ground the simulators fly over, sent to each autopilot as it asks for it."""
+
+    SCALE_INV = 89.83204953368922  # ArduPilot's 1e7 degrees per metre (Location::offset)
+
+    def __init__(self, path):
+        with open(path) as f:
+            j = json.load(f)
+        self.lat0, self.lat1, self.lon0, self.lon1 = j['lat0'], j['lat1'], j['lon0'], j['lon1']
+        self.rows, self.cols, self.h = j['rows'], j['cols'], j['heights_amsl']
+
+    def height(self, lat, lon):
+        fi = min(max((lat - self.lat0) / (self.lat1 - self.lat0) * (self.rows - 1), 0.0), self.rows - 1.0)
+        fj = min(max((lon - self.lon0) / (self.lon1 - self.lon0) * (self.cols - 1), 0.0), self.cols - 1.0)
+        i, j = min(int(fi), self.rows - 2), min(int(fj), self.cols - 2)
+        u, v = fi - i, fj - j
+        at = lambda a, b: self.h[a * self.cols + b]
+        return ((1 - u) * ((1 - v) * at(i, j) + v * at(i, j + 1)) + u * ((1 - v) * at(i + 1, j) + v * at(i + 1, j + 1)))
+
+    def blocks(self, lat_e7, lon_e7, spacing_m, mask):
+        """TERRAIN_DATA for the requested 4 x 4 blocks: (gridbit, 16 heights), as ArduPilot lays
+        a grid out (8 x 7 blocks; a block's rows north, its columns east of its corner)."""
+        import math
+        out = []
+        scale = math.cos(math.radians(lat_e7 * 1e-7))
+        for bit in range(56):
+            if not mask & (1 << bit):
+                continue
+            data = []
+            for k in range(16):
+                north = spacing_m * (4 * (bit // 8) + k // 4)
+                east = spacing_m * (4 * (bit % 8) + k % 4)
+                lat = (lat_e7 + north * self.SCALE_INV) * 1e-7
+                lon = (lon_e7 + east * self.SCALE_INV / scale) * 1e-7
+                data.append(int(round(self.height(lat, lon))))
+            out.append((bit, data))
+        return out
+
+
 class Vehicle(object):
     """One SITL instance and its MAVLink connection; fly() runs in its own thread."""
 
@@ -89,6 +129,7 @@ class Vehicle(object):
             raise ValueError('%s: no .waypoints file in the schedule' % self.id)
         self.stem = os.path.splitext(os.path.basename(missions[0]))[0]
         self.limit_s = float(uav['flight_s']) * 2.0 + 120.0
+        self.parameters = uav.get('parameters', {})  # what the schedule's timing assumes
         self.instance = instance
         self.rows = read_wpl(os.path.join(args.missions, self.stem + '.waypoints'))
         self.dir = os.path.join(args.work, 'uav%d' % instance)
@@ -166,6 +207,10 @@ class Vehicle(object):
             self.last[t] = msg
             if t == 'HEARTBEAT' and msg.type != 6:  # not a GCS
                 self.armed = bool(msg.base_mode & MAV_MODE_FLAG_SAFETY_ARMED)
+            elif t == 'TERRAIN_REQUEST' and self.args.terrain_grid:
+                for bit, data in self.args.terrain_grid.blocks(msg.lat, msg.lon, msg.grid_spacing, msg.mask):
+                    self.send(self.make('terrain_data', lat=msg.lat, lon=msg.lon, grid_spacing=msg.grid_spacing,
+                                        gridbit=bit, data=data))
             elif t == 'GLOBAL_POSITION_INT':
                 self.t_boot_ms = msg.time_boot_ms
                 if self.t_auto_ms is not None:
@@ -237,6 +282,13 @@ class Vehicle(object):
             self.wait_for(lambda m: True if m.get_type() == 'HEARTBEAT' else None, 60, 'heartbeat')
             self.command(511, [33, 100000])
             self.set_param('AUTO_OPTIONS', 3)  # arm in AUTO, take off without a pilot's throttle
+            # The simulated quad reaches about 10.5 m/s at ArduCopter's default lean limit (30 deg).
+            self.set_param('ANGLE_MAX', 4500)
+            for name, value in sorted(self.parameters.items()):
+                self.set_param(name, value)
+            if self.args.terrain_grid:  # the ground sent at 30 m (ArduPilot's default 100 m is coarse)
+                self.set_param('TERRAIN_SPACING', 30)
+                self.command(511, [133, 200000])  # TERRAIN_REQUEST at up to 5 Hz (none by default on TCP)
             # A position first: the vehicle has settled enough to take a mission.
             self.wait_for(lambda m: True if m.get_type() == 'GLOBAL_POSITION_INT' and m.lat != 0 else None, 120,
                           'position')
@@ -288,10 +340,13 @@ def main():
     ap.add_argument('--work', required=True, help='a scratch folder (the simulators run there)')
     ap.add_argument('--speedup', type=float, default=10.0)
     ap.add_argument('--first-instance', type=int, default=0)
+    ap.add_argument('--terrain', help='the ground under the flights (terrain.json); else a plane at each home')
     args = ap.parse_args()
-    for name in ('sitl', 'missions', 'out', 'work'):  # the simulators run in folders of their own
-        setattr(args, name, os.path.abspath(getattr(args, name)))
+    for name in ('sitl', 'missions', 'out', 'work', 'terrain'):  # the simulators run in folders of their own
+        if getattr(args, name):
+            setattr(args, name, os.path.abspath(getattr(args, name)))
     args.copter = os.path.join(args.sitl, 'bin', 'arducopter')
+    args.terrain_grid = Terrain(args.terrain) if args.terrain else None
     codec = load_codec(args.sitl, args.work)
     with open(os.path.join(args.missions, 'schedule.json')) as f:
         schedule = json.load(f)

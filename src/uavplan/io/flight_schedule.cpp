@@ -13,13 +13,28 @@ bool copter_model(const ExportOptions& opt) {
 
 // A multirotor leg as ArduCopter flies it: the horizontal at the commanded speed, the vertical
 // within its climb and descent speeds, whichever takes longer.
-double copter_leg_s(const Vec3& a, const Vec3& b, double speed_mps) {
+double copter_leg_s(const Vec3& a, const Vec3& b, double speed_mps, const CopterVerticalSpeeds& v) {
   const double dz = b.z() - a.z();
-  const double vertical_s = dz > 0.0 ? dz / kCopterClimb_mps : -dz / kCopterDescent_mps;
+  const double vertical_s = dz > 0.0 ? dz / v.up_mps : -dz / v.down_mps;
   return std::max((b - a).head<2>().norm() / std::max(speed_mps, 0.1), vertical_s);
 }
 
+// Up to the next 10 cm/s, 10 % over what is needed.
+double with_room_mps(double needed_mps) { return std::ceil(needed_mps * 1.1 * 10.0 - 1e-9) / 10.0; }
+
 }  // namespace
+
+CopterVerticalSpeeds copter_vertical_speeds(const ExportedUav& e) {
+  CopterVerticalSpeeds v;
+  const Trajectory& tr = e.plan.trajectory;
+  for (std::size_t k = e.body_begin + 1; k <= std::min(e.body_end, tr.size() - 1); ++k) {
+    const double dt = tr[k].t_s - tr[k - 1].t_s, dz = tr[k].p.z() - tr[k - 1].p.z();
+    if (dt <= 0.0) continue;
+    if (dz > 0.0) v.up_mps = std::max(v.up_mps, with_room_mps(dz / dt));
+    if (dz < 0.0) v.down_mps = std::max(v.down_mps, with_room_mps(-dz / dt));
+  }
+  return v;
+}
 
 double copter_ramp_lag_s(double speed_mps) {
   const double v = std::max(speed_mps, 0.0), a = kCopterAccel_mps2, j = kCopterJerk_mps3;
@@ -35,12 +50,13 @@ double modelled_takeoff_s(const ExportedUav& e, const ExportOptions& opt) {
     return tr.empty() ? 0.0 : tr.front().t_s - exported_rows(e).front().t_s;
   }
   const double cruise_mps = e.spec->speed.cruise_mps;
-  // From rest at the top of the climb: the pause there and the ramp to speed, on a leg to an
-  // airborne start beside it (carried through the start at speed) or on the route's first leg
-  // (started that much earlier, it is at speed on the plan's clock).
+  const CopterVerticalSpeeds vertical = copter_vertical_speeds(e);
+  const double ramps_s = kCopterClimbRamps_s;
+  // From rest at the top of the climb: the pause there and the ramp to speed on the route's first
+  // leg (started that much earlier, it is at speed on the plan's clock).
   const double from_rest_s = kCopterWaypointPause_s + copter_ramp_lag_s(cruise_mps);
-  double s = kCopterLiftoff_s + copter_leg_s(e.home, e.takeoff_to, cruise_mps) + kCopterClimbRamps_s + from_rest_s;
-  if (e.takeoff_before) s += copter_leg_s(e.takeoff_to, tr.front().p, cruise_mps);
+  double s = kCopterLiftoff_s + copter_leg_s(e.home, e.takeoff_to, cruise_mps, vertical) + ramps_s + from_rest_s;
+  if (e.takeoff_before) s += copter_leg_s(e.takeoff_to, tr.front().p, cruise_mps, vertical);
   return s;
 }
 
@@ -58,6 +74,14 @@ std::vector<ScheduledStart> flight_schedule(const VerifiedExport& flights, const
       s.start_s = e.departure_s - std::max(0.0, modelled_takeoff_s(e, opt) - planned_s);
     }
     s.flight_s = tr.back().t_s - s.start_s;
+    if (copter_model(opt)) {
+      const CopterVerticalSpeeds v = copter_vertical_speeds(e);
+      s.parameters = {{"WPNAV_SPEED_UP", std::round(v.up_mps * 100.0)},
+                      {"WPNAV_SPEED_DN", std::round(v.down_mps * 100.0)},
+                      {"WPNAV_ACCEL", kCopterAccel_mps2 * 100.0},
+                      {"WPNAV_ACCEL_Z", kCopterAccelZ_mps2 * 100.0},
+                      {"WPNAV_JERK", kCopterJerk_mps3}};
+    }
     out.push_back(s);
   }
   return out;
@@ -70,12 +94,17 @@ std::string schedule_json(const std::vector<ScheduledStart>& schedule,
     nlohmann::json files = nlohmann::json::array();
     for (const auto& [uav, file] : files_by_uav)
       if (uav == s.id) files.push_back(file);
-    uavs.push_back({{"id", s.id}, {"start_s", s.start_s}, {"flight_s", s.flight_s}, {"files", files}});
+    nlohmann::json uav = {{"id", s.id}, {"start_s", s.start_s}, {"flight_s", s.flight_s}, {"files", files}};
+    if (!s.parameters.empty()) {
+      uav["parameters"] = nlohmann::json::object();
+      for (const auto& [name, value] : s.parameters) uav["parameters"][name] = value;
+    }
+    uavs.push_back(std::move(uav));
   }
   const nlohmann::json j = {
       {"clock",
        "the plan's: start each mission (arm it in AUTO) at start_s on one clock common to all; its take-off is "
-       "included"},
+       "included; set each UAV's parameters on its vehicle first (the timing assumes them)"},
       {"uavs", uavs}};
   return j.dump(2) + "\n";
 }

@@ -28,6 +28,7 @@ inline constexpr double kCopterClimbRamps_s = 1.8;     // a climb's S-curve to a
 inline constexpr double kCopterWaypointPause_s = 1.0;  // on a reached waypoint, to moving (measured)
 inline constexpr double kCopterAccel_mps2 = 2.5;       // WPNAV_ACCEL default
 inline constexpr double kCopterJerk_mps3 = 1.0;        // WPNAV_JERK default
+inline constexpr double kCopterAccelZ_mps2 = 2.5;      // WPNAV_ACCEL_Z (default 1): terrain-following slopes
 
 // How far behind a start at `speed_mps` a copter at rest falls while it reaches that speed on
 // its S-curve (jerk-limited, then acceleration-limited): half the ramp's duration.
@@ -37,7 +38,17 @@ struct ScheduledStart {
   std::string id;
   double start_s = 0.0;   // on the plan's clock: when the mission is started (armed, in AUTO)
   double flight_s = 0.0;  // from its start to the end of its exported flight
+  // The firmware parameters the timing assumes, to be set on the vehicle (ArduCopter's: by name,
+  // in the parameter's own units); empty where the export's own timing holds.
+  std::vector<std::pair<std::string, double>> parameters;
 };
+
+// ArduCopter's climb and descent speeds for a flight: its defaults, or what the steepest climb
+// and descent between its take-off and landing need (10 % over, in whole 10 cm/s).
+struct CopterVerticalSpeeds {
+  double up_mps = kCopterClimb_mps, down_mps = kCopterDescent_mps;
+};
+CopterVerticalSpeeds copter_vertical_speeds(const ExportedUav& uav);
 
 // The time the autopilot takes from a mission's start to the top of its take-off and on to
 // where the plan's rows begin (an airborne start), or to the top of the take-off in the plan.
