@@ -1,39 +1,60 @@
 #!/usr/bin/env bash
-# The bundled demo (three copters) planned, exported for ArduPilot and flown in ArduCopter SITL
-# by `uavplan fly`: every mission flown to its end, each UAV within 2 m of its planned legs (p95)
-# from its start to its goal, the flown plan written with every UAV. Whether the flight holds
-# (separation, clearances, the plan's clock) is printed; the flight's timing is the next step.
-# Usage: sitl_fly_test.sh UAVPLAN SOURCE_DIR SITL_DIR
+# A bundled scenario planned, exported for ArduPilot and flown in ArduCopter SITL by `uavplan fly`,
+# each mission started at its schedule.json moment.
+# - `strict`: the flight holds (fly exits 0: obstacles and terrain, separation, bounds), every
+#   UAV within 2 m of its planned legs and within 5 m of where the plan has it at each moment
+#   (p95, from its start to its goal), arriving within 3 s of the plan, every pair apart by its
+#   separation, no UAV's body nearer an obstacle than it planned less 0.5 m.
+# - `flown`: every mission flown to its end within 2 m of its legs (p95) and the flown plan
+#   written with every UAV; whether it holds and keeps the clock is printed (the corners and
+#   holds a plan does not time: docs/exports.md).
+# Usage: sitl_fly_test.sh UAVPLAN SOURCE_DIR SITL_DIR SCENARIO strict|flown FIRST_INSTANCE
 set -euo pipefail
-bin=$1 src=$2 sitl=$3
+bin=$1 src=$2 sitl=$3 scenario=$4 mode=$5 instance=$6
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-"$bin" plan "$src/scenarios/demo.yaml" -o "$tmp/plan" >/dev/null
+"$bin" plan "$src/scenarios/$scenario.yaml" -o "$tmp/plan" >/dev/null
 set +e
-"$bin" fly "$src/scenarios/demo.yaml" "$tmp/plan/plan.json" --sitl "$sitl" -o "$tmp/fly" >"$tmp/fly.txt" 2>"$tmp/fly.err"
+start=$(date +%s)
+"$bin" fly "$src/scenarios/$scenario.yaml" "$tmp/plan/plan.json" --sitl "$sitl" --instance "$instance" -o "$tmp/fly" >"$tmp/fly.txt" 2>"$tmp/fly.err"
 rc=$?
 set -e
 cat "$tmp/fly.txt"
+echo "flown in $(( $(date +%s) - start )) s of wall time"
 if [ "$rc" -gt 1 ] || grep -q "did not finish" "$tmp/fly.txt"; then
   cat "$tmp/fly.err"
   echo "FAIL fly exited $rc"
   exit 1
 fi
-python3 - "$tmp/fly.txt" "$tmp/fly/flown.json" <<'PY'
+if [ "$mode" = strict ] && [ "$rc" -ne 0 ]; then
+  echo "FAIL the flight does not hold"
+  exit 1
+fi
+python3 - "$tmp/fly.txt" "$tmp/fly/flown.json" "$tmp/plan/plan.json" "$mode" <<'PY'
 import json, sys
-rows = [l.split() for l in open(sys.argv[1]) if l.startswith('u') and not l.startswith('uav ')]
-assert len(rows) == 3, rows
-for r in rows:  # uav legs_p95 legs_max clock_p95 arrival_plan arrival_flown
-    assert float(r[1]) < 2.0, 'legs p95 %s m for %s' % (r[1], r[0])
-    # Started at its schedule.json moment, it keeps the plan's clock within the autopilot's
-    # acceleration and corners (a take-off timed at cruise speed left it 15 s late).
-    assert float(r[5]) - float(r[4]) < 8.0, 'arrives %.1f s late: %s' % (float(r[5]) - float(r[4]), r[0])
-for l in open(sys.argv[1]):
-    if l.startswith('pair '):  # closest flown, planned, required
-        w = l.replace(',', ' ').split()
-        flown, required = float(w[3]), float(w[10])
-        assert flown >= required, 'separation in flight: ' + l
-flown = json.load(open(sys.argv[2]))
-assert len(flown['uavs']) == 3 and all(len(u['trajectory']) > 100 for u in flown['uavs'])
-print('ok: three copters flown in SITL within 2 m of their legs, on the plan\'s clock within 8 s, apart')
+text, flown_file, plan_file, mode = sys.argv[1:5]
+n = len(json.load(open(plan_file))['uavs'])
+def number(w):
+    try:
+        return float(w) == float(w)
+    except ValueError:
+        return False
+rows = [l.split() for l in open(text)]
+rows = [w for w in rows if len(w) == 8 and all(number(x) for x in w[1:])]
+assert len(rows) == n, rows
+for r in rows:  # uav legs_p95 legs_max clock_p95 arrival_plan arrival_flown gap_plan gap_flown
+    uav, legs_p95, clock_p95, planned, flown = r[0], float(r[1]), float(r[3]), float(r[4]), float(r[5])
+    assert legs_p95 < 2.0, 'legs p95 %.2f m for %s' % (legs_p95, uav)
+    if mode == 'strict':
+        assert clock_p95 < 5.0, 'clock p95 %.2f m for %s' % (clock_p95, uav)
+        assert abs(flown - planned) < 3.0, '%s arrives at %.1f s, planned %.1f s' % (uav, flown, planned)
+        assert float(r[7]) > float(r[6]) - 0.5, 'gap flown %s m, planned %s m: %s' % (r[7], r[6], uav)
+if mode == 'strict':
+    for l in open(text):
+        if l.startswith('pair '):  # closest flown, planned, required
+            w = l.replace(',', ' ').split()
+            assert float(w[3]) >= float(w[10]), 'separation in flight: ' + l
+flown = json.load(open(flown_file))
+assert len(flown['uavs']) == n and all(len(u['trajectory']) > 100 for u in flown['uavs'])
+print('ok: %d copters flown in SITL (%s)' % (n, mode))
 PY

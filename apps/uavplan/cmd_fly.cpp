@@ -28,6 +28,7 @@
 #include "uavplan/io/flight_schedule.h"
 #include "uavplan/io/geo.h"
 #include "uavplan/io/plan_io.h"
+#include "uavplan/simulation/trajectory.h"
 
 #include <nlohmann/json.hpp>
 
@@ -41,6 +42,7 @@ namespace fs = std::filesystem;
 struct FlyArgs {
   std::string scenario, plan, sitl, out_dir = "out";
   double speedup = 10.0;
+  int instance = 0;  // the first SITL instance (TCP port 5760 + 10 N), one more per UAV
   bool keep_work = false;
 };
 
@@ -120,7 +122,10 @@ int run_program(std::vector<std::string> words, const std::vector<std::string>& 
 }
 
 // A track file `t_s,lat_deg,lon_deg,alt_amsl_m` (t_s since its mission started) on the plan's
-// clock in the scenario's frame.
+// clock in the scenario's frame. Its clock is set by its lift-off (the first row 0.2 m above the
+// first), kCopterLiftoff_s after its scheduled start as the schedule's model has it: the moment
+// the driver reads for the arming is late by the MAVLink link's delay, seconds of simulated time
+// when simulators side by side share the machine.
 Trajectory read_track(const std::string& path, const GeoFrame& frame, double start_s) {
   std::ifstream in(path);
   std::string line;
@@ -135,6 +140,13 @@ Trajectory read_track(const std::string& path, const GeoFrame& frame, double sta
     if (!tr.empty() && t <= tr.back().t_s) continue;
     tr.push_back({t, frame.to_local(v[1], v[2], v[3])});
   }
+  constexpr double kLifted_m = 0.2;
+  for (const TrajectorySample& s : tr)
+    if (s.p.z() > tr.front().p.z() + kLifted_m) {
+      const double shift_s = start_s + kCopterLiftoff_s - s.t_s;
+      for (TrajectorySample& row : tr) row.t_s += shift_s;
+      break;
+    }
   return tr;
 }
 
@@ -220,15 +232,11 @@ Deviation deviation(const Scenario& sc, const Flight& f) {
   return d;
 }
 
-// The smallest distance between two trajectories at the rows of either (both airborne or not).
+// The smallest distance between two trajectories while both fly (exact between their rows).
 double closest_m(const Trajectory& a, const Trajectory& b) {
   if (a.empty() || b.empty()) return World::kInf;
   const double from = std::max(a.front().t_s, b.front().t_s), to = std::min(a.back().t_s, b.back().t_s);
-  double best = World::kInf;
-  for (const Trajectory* tr : {&a, &b})
-    for (const TrajectorySample& s : *tr)
-      if (s.t_s >= from && s.t_s <= to) best = std::min(best, (position_at(a, s.t_s) - position_at(b, s.t_s)).norm());
-  return best;
+  return from <= to ? closest_approach_between(a, b, from, to).distance_m : World::kInf;
 }
 
 // Violations a flown track is held to: what keeps it and others safe. Where it starts and ends,
@@ -279,10 +287,11 @@ int fly_missions(const FlyArgs& a, const Scenario& sc, const std::string& driver
     std::ofstream(work / "terrain.json") << terrain_json(sc);
     terrain = {"--terrain", (work / "terrain.json").string()};
   }
-  const int rc = run_program(
-      {"python3", driver, "--sitl", fs::absolute(a.sitl).string(), "--missions", fs::absolute(missions).string(),
-       "--out", (work / "tracks").string(), "--work", work.string(), "--speedup", num_text(a.speedup)},
-      terrain);
+  const int rc =
+      run_program({"python3", driver, "--sitl", fs::absolute(a.sitl).string(), "--missions",
+                   fs::absolute(missions).string(), "--out", (work / "tracks").string(), "--work", work.string(),
+                   "--speedup", num_text(a.speedup), "--first-instance", std::to_string(a.instance)},
+                  terrain);
   const GeoFrame frame(*sc.origin);
   for (Flight& f : flights) {
     f.flown = read_track((work / "tracks" / (f.file + ".csv")).string(), frame, f.start_s);
@@ -388,6 +397,9 @@ void add_fly_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("-o,--out", args->out_dir, "Output directory: missions/, flown.json (default: out)");
   cmd->add_option("--speedup", args->speedup, "Simulated seconds per wall second (default 10)")
       ->check(CLI::Range(1.0, 100.0));
+  cmd->add_option("--instance", args->instance,
+                  "First SITL instance number: UAV k is instance N + k, MAVLink on TCP 5760 + 10 (N + k) (default 0)")
+      ->check(CLI::Range(0, 200));
   cmd->add_flag("--keep-work", args->keep_work, "Keep the simulators' folders (out/.sitl-work)");
   cmd->footer("Example: uavplan fly scenarios/demo.yaml out/plan.json --sitl ../shared/tools/sitl -o flown");
   cmd->callback([args, &run] { run = [args] { return run_fly(*args); }; });

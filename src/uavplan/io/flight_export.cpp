@@ -463,7 +463,7 @@ bool simplify_body(ExportedUav& e, double tol_m) {
 
 double simplify_tolerance_m(const ExportedUav& e, const ExportOptions& opt) {
   if (opt.simplify_m >= 0.0) return opt.simplify_m;
-  return e.spec->model ? e.spec->radius_m : 0.0;
+  return e.spec->model || opt.autopilot ? e.spec->radius_m : 0.0;
 }
 
 }  // namespace

@@ -61,12 +61,12 @@ struct ExportOptions {
   FenceMode fence = FenceMode::bounds;
   AltitudeFrame altitude = AltitudeFrame::standard;
   int max_fence_exclusions = 16;  // FenceMode::bounds: autopilots store few fence points
-  // A trajectory flown through a vehicle model (a row every fraction of a second along its
-  // arcs) is flown as a subset of its rows: each left-out row within this distance of where the
-  // UAV is at that time on the chord between the rows kept (synchronised distance, so timing
-  // holds too). Negative: the UAV's radius for model-flown UAVs, none for the others (their
-  // straight legs are one mission item already). The chords are verified with everything else
-  // that flies; if they do not hold, every UAV flies all its rows.
+  // A trajectory is flown as a subset of its rows: each left-out row within this distance of
+  // where the UAV is at that time on the chord between the rows kept (synchronised distance, so
+  // timing holds too). Negative: the UAV's radius for autopilot missions and model-flown UAVs
+  // (an autopilot slows at every waypoint: a planner's rows a metre apart are flown at a crawl;
+  // a model's arcs are rows every fraction of a second), none for the others. The chords are
+  // verified with everything else that flies; if they do not hold, every UAV flies all its rows.
   double simplify_m = -1.0;
   // A flat (2-D) world's plan is flown this high above its home (multirotors): its obstacles are
   // columns at every height, so the distances verified in the plane hold up there; the take-off
