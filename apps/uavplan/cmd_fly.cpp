@@ -313,6 +313,15 @@ int run_fly(const FlyArgs& a) {
               << " mission flies fixed wings; fly flies multirotors in ArduCopter\n";
     return kExitBadInput;
   }
+  // ArduCopter's waypoint speed (WPNAV_SPEED, and DO_CHANGE_SPEED with it) is at most 20 m/s.
+  constexpr double kCopterTopSpeed_mps = 20.0;
+  for (const UavSpec& u : sc.uavs)
+    if (u.speed.cruise_mps > kCopterTopSpeed_mps) {
+      std::cerr << a.scenario << ": fly: UAV '" << u.id << "' cruises at " << num_text(u.speed.cruise_mps)
+                << " m/s; ArduCopter flies waypoints at most " << num_text(kCopterTopSpeed_mps)
+                << " m/s (WPNAV_SPEED): no multirotor flies this plan's timing\n";
+      return kExitBadInput;
+    }
   const std::string copter = (fs::path(a.sitl) / "bin" / "arducopter").string(), driver = driver_path();
   if (::access(copter.c_str(), X_OK) != 0) {
     std::cerr << "fly: --sitl " << a.sitl << ": no executable bin/arducopter there\n";

@@ -178,6 +178,23 @@ TEST(Export, ArduCopterSpeedsAreHorizontal) {
   EXPECT_NEAR(mission_items(sc, exported(sc, {}, u), {})[1].params[1], 5.0, 1e-9);
 }
 
+// A hold between two legs at 5 m/s: ArduCopter stops and starts on its S-curves (sqrt(5) s of
+// lag each) and rests 1.3 s on the waypoint, so it loiters 10 - 5.77 s; PX4 the plan's 10 s.
+TEST(Export, ArduCopterHoldsLessTheStopAndTheStart) {
+  const Scenario sc = scenario_with();
+  UavPlan u = sample_uav();
+  u.trajectory = {{0.0, Vec3(0, 0, 10)}, {10.0, Vec3(50, 0, 10)}, {20.0, Vec3(50, 0, 10)}, {30.0, Vec3(50, 50, 10)}};
+  const auto loiter_s = [&](const ExportOptions& opt) {
+    for (const MissionItem& it : mission_items(sc, exported(sc, opt, u), opt))
+      if (it.command == kCmdLoiterTime) return it.params[0];
+    return -1.0;
+  };
+  ExportOptions copter;
+  copter.firmware = Firmware::ardupilot;
+  EXPECT_NEAR(loiter_s(copter), 10.0 - 2.0 * std::sqrt(5.0) - kCopterWaypointPause_s, 1e-3);
+  EXPECT_NEAR(loiter_s({}), 10.0, 1e-9);
+}
+
 TEST(Export, EveryEndIsFlownAndVerified) {
   const Scenario sc = scenario_with();
   ExportOptions opt;

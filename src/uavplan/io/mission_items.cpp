@@ -6,6 +6,7 @@
 
 #include "uavplan/core/text.h"
 #include "uavplan/io/export_common.h"
+#include "uavplan/io/flight_schedule.h"
 #include "uavplan/io/geo.h"
 #include "uavplan/io/input_error.h"
 
@@ -66,11 +67,23 @@ class Items {
     // The leg's speed, paying back the drift so far within the fraction (0.9 of it: the checks'
     // tolerance is the fraction of the commanded speed).
     const double pay_back = len_m / std::max(dt_s - drift_s_, 1e-9);
-    const double mps = std::clamp(pay_back, v * (1.0 - 0.9 * fraction), v * (1.0 + 0.9 * fraction));
+    const double mps = std::clamp(std::min(pay_back, std::max(v, max_speed_mps_)), v * (1.0 - 0.9 * fraction),
+                                  v * (1.0 + 0.9 * fraction));
     command_speed(mps);
     drift_s_ += len_m / mps - dt_s;
   }
   // Cruise speed on legs off the plan's clock (to a start beside the take-off, home again).
+  void set_max_speed(double mps) { max_speed_mps_ = mps; }
+  // A hold of hold_s where the plan stops between legs at v_in and v_out: ArduCopter stops and
+  // starts on its S-curves (and rests on the waypoint), so it loiters that much less; what the
+  // hold cannot take is time lost. Elsewhere (the first hold: the schedule times the start) and
+  // for the others, the hold as planned.
+  double flown_hold_s(double hold_s, bool first, double v_in_mps, double v_out_mps) {
+    if (first || opt_.firmware != Firmware::ardupilot || opt_.vehicle != VehicleKind::multirotor) return hold_s;
+    const double lost_s = copter_ramp_lag_s(v_in_mps) + kCopterWaypointPause_s + copter_ramp_lag_s(v_out_mps);
+    drift_s_ += std::max(0.0, lost_s - hold_s);
+    return std::max(0.0, hold_s - lost_s);
+  }
   void cruise(double mps) {
     if (speed_mps_ <= 0.0 || std::abs(mps - speed_mps_) >= opt_.speed_change_fraction * speed_mps_) command_speed(mps);
   }
@@ -84,12 +97,18 @@ class Items {
     while (i < to) {
       const Vec3 a = tr[i].p;
       if ((tr[i + 1].p - a).norm() <= kHoldMove_m) {
+        const std::size_t held_from = i;
         double hold_s = 0.0;  // consecutive holds are one loiter
         while (i < to && (tr[i + 1].p - tr[i].p).norm() <= kHoldMove_m) {
           hold_s += tr[i + 1].t_s - tr[i].t_s;
           ++i;
         }
-        if (hold_s > 0.0) at(kCmdLoiterTime, a, {hold_s, 0, 0, 0});
+        if (hold_s > 0.0) {
+          const double v_out = i + 1 <= to && i + 1 < tr.size()
+                                   ? (tr[i + 1].p - tr[i].p).norm() / std::max(tr[i + 1].t_s - tr[i].t_s, 1e-12)
+                                   : 0.0;
+          at(kCmdLoiterTime, a, {flown_hold_s(hold_s, held_from == from, speed_mps_, v_out), 0, 0, 0});
+        }
         continue;
       }
       // One straight leg at one speed, as long as the following legs keep direction and speed.
@@ -115,8 +134,9 @@ class Items {
  private:
   const GeoFrame& frame_;
   double home_amsl_m_;
-  double speed_mps_ = 0.0;  // commanded so far (0: none yet)
-  double drift_s_ = 0.0;    // time lost (> 0) or gained on the plan's clock by the legs so far
+  double speed_mps_ = 0.0;      // commanded so far (0: none yet)
+  double drift_s_ = 0.0;        // time lost (> 0) or gained on the plan's clock by the legs so far
+  double max_speed_mps_ = 0.0;  // no speed paying drift back goes over it (nor the leg's own)
   const ExportOptions& opt_;
   AltitudeFrame altitude_;
   const World& world_;
@@ -160,6 +180,7 @@ std::vector<MissionItem> mission_items(const Scenario& sc, const ExportedUav& e,
   const Trajectory& tr = e.plan.trajectory;
   const double cruise = e.spec->speed.cruise_mps;
   Items m(frame, frame.to_wgs84(e.home).alt_m, opt, altitude_frame(sc, opt), sc.world);
+  m.set_max_speed(e.spec->speed.max_mps);
   const Vec3 first = tr[std::min(e.body_begin + 1, tr.size() - 1)].p - tr[e.body_begin].p;
   // Fixed wing: param1 is the minimum pitch of the climb-out (ArduPlane climbs at it, else at a
   // few degrees; PX4 takes it as the minimum pitch too): the climb that was verified.
