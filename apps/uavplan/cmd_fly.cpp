@@ -303,34 +303,34 @@ int fly_missions(const FlyArgs& a, const Scenario& sc, const std::string& driver
   return rc;
 }
 
+// What keeps a scenario from being flown here ("" when nothing does).
+std::string fly_problem(const FlyArgs& a, const Scenario& sc) {
+  if (default_vehicle(sc) != "multirotor")
+    return a.scenario + ": fly: a " + sc.mission.type +
+           " mission flies fixed wings; fly flies multirotors in ArduCopter";
+  // ArduCopter's waypoint speed (WPNAV_SPEED, and DO_CHANGE_SPEED with it) is at most 20 m/s.
+  constexpr double kCopterTopSpeed_mps = 20.0;
+  for (const UavSpec& u : sc.uavs)
+    if (u.speed.cruise_mps > kCopterTopSpeed_mps)
+      return a.scenario + ": fly: UAV '" + u.id + "' cruises at " + num_text(u.speed.cruise_mps) +
+             " m/s; ArduCopter flies waypoints at most " + num_text(kCopterTopSpeed_mps) +
+             " m/s (WPNAV_SPEED): no multirotor flies this plan's timing";
+  const std::string copter = (fs::path(a.sitl) / "bin" / "arducopter").string();
+  if (::access(copter.c_str(), X_OK) != 0) return "fly: --sitl " + a.sitl + ": no executable bin/arducopter there";
+  if (driver_path().empty()) return "fly: tools/sitl/uavplan_sitl.py is not installed beside this program";
+  return "";
+}
+
 int run_fly(const FlyArgs& a) {
   check_output_dir(a.out_dir);
   Scenario sc;
   Plan plan;
   if (!load_scenario_and_plan(a.scenario, a.plan, sc, plan)) return kExitBadInput;
-  if (default_vehicle(sc) != "multirotor") {
-    std::cerr << a.scenario << ": fly: a " << sc.mission.type
-              << " mission flies fixed wings; fly flies multirotors in ArduCopter\n";
+  if (const std::string why = fly_problem(a, sc); !why.empty()) {
+    std::cerr << why << "\n";
     return kExitBadInput;
   }
-  // ArduCopter's waypoint speed (WPNAV_SPEED, and DO_CHANGE_SPEED with it) is at most 20 m/s.
-  constexpr double kCopterTopSpeed_mps = 20.0;
-  for (const UavSpec& u : sc.uavs)
-    if (u.speed.cruise_mps > kCopterTopSpeed_mps) {
-      std::cerr << a.scenario << ": fly: UAV '" << u.id << "' cruises at " << num_text(u.speed.cruise_mps)
-                << " m/s; ArduCopter flies waypoints at most " << num_text(kCopterTopSpeed_mps)
-                << " m/s (WPNAV_SPEED): no multirotor flies this plan's timing\n";
-      return kExitBadInput;
-    }
-  const std::string copter = (fs::path(a.sitl) / "bin" / "arducopter").string(), driver = driver_path();
-  if (::access(copter.c_str(), X_OK) != 0) {
-    std::cerr << "fly: --sitl " << a.sitl << ": no executable bin/arducopter there\n";
-    return kExitBadInput;
-  }
-  if (driver.empty()) {
-    std::cerr << "fly: tools/sitl/uavplan_sitl.py is not installed beside this program\n";
-    return kExitBadInput;
-  }
+  const std::string driver = driver_path();
   ExportArgs ex;
   ex.formats = {"wpl"};
   ex.firmware = "ardupilot";
