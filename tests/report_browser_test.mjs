@@ -5,7 +5,8 @@
 //  - every metric cell holds a value or says why it has none (never "-", empty, NaN);
 //  - a legend entry per UAV in its colour, axes labelled in metres, a north arrow, a scale bar,
 //    the altitude / speed / separation (log) charts and the height-above-ground profile;
-//  - radar shells and moving-obstacle tracks when the scenario has them;
+//  - radar shells and moving-obstacle tracks when the scenario has them; a flight's tracks when
+//    one is given (FLOWN_TRACKS: how many);
 //  - a phased mission's phases as bands on the time charts, named beside the time slider;
 //  - the page is no wider than the window.
 // The screenshot written is of the whole page.
@@ -106,6 +107,7 @@ try {
       logScale: [...document.querySelectorAll('.uplot .u-title')].some((t) => /log scale/.test(t.textContent)),
       flown: d.uavs.filter((u) => (u.trajectory || []).length > 1).length,
       profile: document.querySelectorAll('#profile .uplot').length,
+      flownGiven: (d.flown || []).filter((f) => f.trajectory.length > 1).length, flownDrawn: r.flownTracks,
       pageWidth: document.documentElement.scrollWidth, rows: document.querySelectorAll('#uav-metrics tr').length,
     };
   });
@@ -127,6 +129,10 @@ try {
   if (info.profiled && info.profile !== 1) fail('no height-above-ground profile');
   if (info.radars && info.shells < info.radars) fail(`${info.radars} radars but ${info.shells} range shells`);
   if (info.tracks !== info.moving) fail(`${info.moving} moving obstacles but ${info.tracks} tracks`);
+  // A flight given (report --flown): every flown track drawn, as many as the caller expects.
+  const flownExpected = Number(process.env.FLOWN_TRACKS || 0);
+  if (info.flownGiven !== flownExpected || info.flownDrawn !== flownExpected)
+    fail(`expected ${flownExpected} flown tracks: ${info.flownGiven} in the data, ${info.flownDrawn} drawn`);
   // What the mission asks for is on the map, for failed UAVs too: every start and goal, the via
   // points, the task points, the runway; the z labels one clear of the next.
   const dr = info.drawn;

@@ -303,6 +303,26 @@ int fly_missions(const FlyArgs& a, const Scenario& sc, const std::string& driver
   return rc;
 }
 
+// The flight as a plan file holds it: from the plan's t = 0 on (a plan's times start there; the
+// take-off flown before it is verified here, not written), a row put at t = 0 where it began
+// earlier.
+Plan from_plan_start(Plan flown) {
+  for (UavPlan& u : flown.uavs) {
+    Trajectory& tr = u.trajectory;
+    if (tr.empty() || tr.front().t_s >= 0.0) continue;
+    const auto first = std::find_if(tr.begin(), tr.end(), [](const TrajectorySample& s) { return s.t_s >= 0.0; });
+    if (first == tr.end()) {
+      tr.clear();
+      u.status = Status::failed;
+      continue;
+    }
+    const TrajectorySample at_zero{0.0, position_at(tr, 0.0)};
+    tr.erase(tr.begin(), first);
+    if (tr.front().t_s > 0.0) tr.insert(tr.begin(), at_zero);
+  }
+  return flown;
+}
+
 // What keeps a scenario from being flown here ("" when nothing does).
 std::string fly_problem(const FlyArgs& a, const Scenario& sc) {
   if (default_vehicle(sc) != "multirotor")
@@ -376,7 +396,7 @@ int run_fly(const FlyArgs& a) {
   Scenario bodies = sc;
   for (UavSpec& u : bodies.uavs) u.clearance_m = 0.0;
   const std::vector<Violation> all = verify_plan(bodies, flown);
-  write_export(a.out_dir, {{"flown.json", plan_to_json(flown), ""}});
+  write_export(a.out_dir, {{"flown.json", plan_to_json(from_plan_start(flown)), ""}});
   print_table(sc, flights);
   int unsafe = 0;
   std::set<std::pair<std::string, ViolationKind>> said;  // the first of each kind per UAV

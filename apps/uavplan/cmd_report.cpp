@@ -1,4 +1,5 @@
-// uavplan report SCENARIO PLAN -o FILE: the self-contained HTML report of a plan.
+// uavplan report SCENARIO PLAN [--flown FLOWN] -o FILE: the self-contained HTML report of a plan
+// (and of its flight, drawn beside it).
 #include <iostream>
 
 #include "commands.h"
@@ -11,7 +12,7 @@ namespace uavplan::cli {
 namespace {
 
 struct ReportArgs {
-  std::string scenario, plan, out = "out/report.html";
+  std::string scenario, plan, out = "out/report.html", flown;
 };
 
 int run_report(const ReportArgs& a) {
@@ -20,7 +21,14 @@ int run_report(const ReportArgs& a) {
   Plan plan;
   if (!load_scenario_and_plan(a.scenario, a.plan, sc, plan)) return kExitBadInput;
   const auto violations = verify_plan(sc, plan);
-  write_file_atomic(a.out, report_html(sc, plan, violations));
+  ReportOptions opt;
+  Scenario checked;  // the flown file's UAVs checked against the scenario as the plan's are
+  Plan flown;
+  if (!a.flown.empty()) {
+    if (!load_scenario_and_plan(a.scenario, a.flown, checked, flown)) return kExitBadInput;
+    opt.flown = &flown;
+  }
+  write_file_atomic(a.out, report_html(sc, plan, violations, opt));
   std::cout << "wrote " << a.out << " (" << count_text(plan.uavs.size(), "UAV") << ", "
             << (violations.empty() ? std::string("plan holds") : count_text(violations.size(), "violation")) << ")\n";
   return kExitOk;
@@ -35,6 +43,7 @@ void add_report_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("scenario", args->scenario, "Scenario file")->required();
   cmd->add_option("plan", args->plan, "Plan file (plan.json)")->required();
   cmd->add_option("-o,--out", args->out, "Report file (default: out/report.html)");
+  cmd->add_option("--flown", args->flown, "A flight of the plan (uavplan fly's flown.json): drawn beside the routes");
   cmd->footer("Example: uavplan report scenarios/demo.yaml out/plan.json -o out/report.html");
   cmd->callback([args, &run] { run = [args] { return run_report(*args); }; });
 }

@@ -382,6 +382,25 @@ for (const u of data.uavs) {
   uavMarkers.push({ u, dot });
 }
 
+// A flight of the plan (uavplan fly), when given: each UAV's flown track dashed in its colour.
+const colourById = Object.fromEntries(data.uavs.map((u) => [u.id, u.colour]));
+let flownTracks = 0;
+for (const f of data.flown || []) {
+  if (f.trajectory.length < 2 || !(f.id in colourById)) continue;
+  const pts = [];
+  for (const [, x, y, z] of simplified(f.trajectory, diag * 1e-4)) pts.push(x, y, z);
+  const g = new LineGeometry();
+  g.setPositions(pts);
+  const mat = new LineMaterial({ color: new THREE.Color(colourById[f.id]), linewidth: 2, worldUnits: false,
+    dashed: true, dashSize: diag * 0.01, gapSize: diag * 0.006 });
+  lineMaterials.push(mat);
+  const line = new Line2(g, mat);
+  line.computeLineDistances();
+  routeGroup.add(line);
+  flownTracks++;
+}
+if (flownTracks > 0) legend.append(el('span', { class: 'key dashed', style: { '--c': '#6b7280' } }, 'flown (in the UAV\'s colour)'));
+
 function positionAt(traj, t) {
   if (t <= traj[0][0]) return traj[0].slice(1);
   const last = traj[traj.length - 1];
@@ -602,6 +621,7 @@ window.uavplanReport = {
   uavs: data.uavs.length,
   radarShells: shellCount,
   movingTracks: movers.length,
+  flownTracks,
   phases: phases.length,
   chartsWithPhaseBands: () => chartsBanded.size,
   timeLabel: () => timeLabel.textContent,

@@ -221,6 +221,29 @@ ojson phases_json(const Plan& plan) {
 
 }  // namespace
 
+namespace {
+
+// Each flown UAV's track, every k-th row (its last kept) so that at most max_rows remain.
+ojson flown_json(const Plan& flown, int max_rows) {
+  ojson out = ojson::array();
+  for (const UavPlan& u : flown.uavs) {
+    const Trajectory& tr = u.trajectory;
+    if (tr.size() < 2) continue;
+    const std::size_t step = (tr.size() + static_cast<std::size_t>(std::max(max_rows, 2)) - 1) /
+                             static_cast<std::size_t>(std::max(max_rows, 2));
+    ojson rows = ojson::array();
+    for (std::size_t k = 0; k < tr.size(); k += std::max<std::size_t>(step, 1))
+      rows.push_back({round6(tr[k].t_s), round6(tr[k].p.x()), round6(tr[k].p.y()), round6(tr[k].p.z())});
+    if ((tr.size() - 1) % std::max<std::size_t>(step, 1) != 0)
+      rows.push_back(
+          {round6(tr.back().t_s), round6(tr.back().p.x()), round6(tr.back().p.y()), round6(tr.back().p.z())});
+    out.push_back({{"id", u.id}, {"trajectory", std::move(rows)}});
+  }
+  return out;
+}
+
+}  // namespace
+
 std::string report_data_json(const Scenario& sc, const Plan& plan_in, const std::vector<Violation>& violations,
                              const ReportOptions& opt) {
   // The metrics shown are those of the trajectories shown, whatever the plan file says.
@@ -256,6 +279,7 @@ std::string report_data_json(const Scenario& sc, const Plan& plan_in, const std:
   ojson vs = ojson::array();
   for (const Violation& v : violations) vs.push_back(describe(v));
   j["violations"] = std::move(vs);
+  if (opt.flown) j["flown"] = flown_json(*opt.flown, opt.max_flown_rows);
   return j.dump();
 }
 

@@ -18,10 +18,14 @@ struct ReportOptions {
   int series_samples = 600;        // time samples of the charts
   int profile_samples = 400;       // distance samples of each UAV's height profile
   int max_terrain_cells = 65'536;  // larger terrains are shown block-wise (each block's highest cell)
+  // A flight of the plan (`uavplan fly`'s flown.json): its tracks drawn beside the planned routes
+  // (dashed, in each UAV's colour), at most max_flown_rows rows each.
+  const Plan* flown = nullptr;
+  int max_flown_rows = 4000;
 };
 
 // The data the page draws, as JSON: world, trajectories, time series, height profiles, metrics
-// (computed from the trajectories, not read from the plan), verification.
+// (computed from the trajectories, not read from the plan), verification; the flown tracks.
 std::string report_data_json(const Scenario& sc, const Plan& plan, const std::vector<Violation>& violations,
                              const ReportOptions& opt = {});
 
