@@ -178,8 +178,8 @@ TEST(Export, ArduCopterSpeedsAreHorizontal) {
   EXPECT_NEAR(mission_items(sc, exported(sc, {}, u), {})[1].params[1], 5.0, 1e-9);
 }
 
-// A hold between two legs at 5 m/s: ArduCopter stops and starts on its S-curves (sqrt(5) s of
-// lag each) and rests 1.3 s on the waypoint, so it loiters 10 - 5.77 s; PX4 the plan's 10 s.
+// A hold between two legs at 5 m/s: ArduCopter stops and starts on its S-curves (0.625 s of lag
+// each) and rests 1.3 s on the waypoint, so it loiters 10 - 2.55 s; PX4 the plan's 10 s.
 TEST(Export, ArduCopterHoldsLessTheStopAndTheStart) {
   const Scenario sc = scenario_with();
   UavPlan u = sample_uav();
@@ -191,7 +191,7 @@ TEST(Export, ArduCopterHoldsLessTheStopAndTheStart) {
   };
   ExportOptions copter;
   copter.firmware = Firmware::ardupilot;
-  EXPECT_NEAR(loiter_s(copter), 10.0 - 2.0 * std::sqrt(5.0) - kCopterWaypointPause_s, 1e-3);
+  EXPECT_NEAR(loiter_s(copter), 10.0 - 2.0 * 0.625 - 1.3, 1e-3);
   EXPECT_NEAR(loiter_s({}), 10.0, 1e-9);
 }
 
@@ -773,9 +773,9 @@ namespace uavplan {
 namespace {
 
 // An airborne start 10 m above home: ArduCopter arms, lifts off after 4.2 s, climbs at 2.5 m/s
-// (0.4 s more to reach that speed and stop), rests 1.3 s and then falls sqrt(5) s behind a start
-// at 5 m/s on its jerk-limited ramp (a 4.47 s ramp: 1 m/s^3 to 2.24 m/s^2 and back), so its
-// mission starts 12.1 s before the plan's t = 0; PX4 keeps the export's timing (the climb at cruise speed,
+// (0.4 s more to reach that speed and stop), rests 1.3 s and then falls 0.625 s behind a start
+// at 5 m/s on its ramp (1.25 s: 20 m/s^3 to 5 m/s^2, held, and back), so its mission starts
+// 10.5 s before the plan's t = 0; PX4 keeps the export's timing (the climb at cruise speed,
 // 5 m/s). schedule.json lists each UAV's start and its files.
 TEST(ExportSchedule, MissionsStartSoThatTheTakeOffEndsAtThePlansStart) {
   const Scenario sc = test::scenario_with();
@@ -784,10 +784,10 @@ TEST(ExportSchedule, MissionsStartSoThatTheTakeOffEndsAtThePlansStart) {
   ardupilot.firmware = Firmware::ardupilot;
   const std::vector<ScheduledStart> copter = flight_schedule(verified_export(sc, plan, ardupilot), ardupilot);
   ASSERT_EQ(copter.size(), 1u);
-  EXPECT_NEAR(copter[0].start_s, -(4.2 + 10.0 / 2.5 + 0.4 + 1.3 + std::sqrt(5.0)), 1e-9);
-  EXPECT_NEAR(copter_ramp_lag_s(5.0), std::sqrt(5.0), 1e-12);
-  EXPECT_NEAR(copter_ramp_lag_s(10.0), 0.5 * (10.0 / 2.5 + 2.5 / 1.0), 1e-12);  // at 2.5 m/s^2 from 6.25 m/s
-  EXPECT_NEAR(copter[0].flight_s, 36.0 - copter[0].start_s, 1e-9);              // its landing: 10 m at 5 m/s after 34 s
+  EXPECT_NEAR(copter[0].start_s, -(4.2 + 10.0 / 2.5 + 0.4 + 1.3 + 0.625), 1e-9);
+  EXPECT_NEAR(copter_ramp_lag_s(5.0), 0.5 * (5.0 / 5.0 + 5.0 / 20.0), 1e-12);  // at 5 m/s^2 from 1.25 m/s
+  EXPECT_NEAR(copter_ramp_lag_s(1.0), std::sqrt(1.0 / 20.0), 1e-12);           // jerk-limited throughout
+  EXPECT_NEAR(copter[0].flight_s, 36.0 - copter[0].start_s, 1e-9);             // its landing: 10 m at 5 m/s after 34 s
   const std::vector<ScheduledStart> px4 = flight_schedule(verified_export(sc, plan, {}), {});
   EXPECT_NEAR(px4[0].start_s, -10.0 / 5.0, 1e-9);
   const nlohmann::json j = nlohmann::json::parse(schedule_json(copter, {{"a/1", "a_1.plan"}, {"b", "b.plan"}}));

@@ -7,10 +7,12 @@
 // docs/decisions/0020-flown-timing.md): 4.2 s from arming to lifting off (the motors' spool-up),
 // the climb at WPNAV_SPEED_UP (2.5 m/s, or what the route's climbs need) plus 0.4 s to reach that
 // speed and stop at the top (WPNAV_ACCEL_Z 2.5 m/s^2), 1.3 s there to the next leg's start, then
-// the leg's S-curve from rest (WPNAV_ACCEL 2.5 m/s^2, WPNAV_JERK 1 m/s^3), which leaves it behind
-// a start at cruise speed by half its duration: the mission is started that much earlier too, so
-// that it is on the plan's clock once at speed. Other firmwares and fixed wings keep the export's
-// own timing (each leg at cruise speed): no simulator here to measure them.
+// the leg's S-curve from rest (WPNAV_ACCEL 5 m/s^2, WPNAV_JERK 20 m/s^3: the top of their
+// ranges, the nearest an autopilot comes to the plan's speed changes; ArduCopter's defaults, 2.5
+// and 1, lose seconds at every turn), which leaves it behind a start at cruise speed by half its
+// duration: the mission is started that much earlier too, so that it is on the plan's clock once
+// at speed. Other firmwares and fixed wings keep the export's own timing (each leg at cruise
+// speed): no simulator here to measure them.
 #pragma once
 
 #include <string>
@@ -26,8 +28,8 @@ inline constexpr double kCopterClimb_mps = 2.5;        // WPNAV_SPEED_UP default
 inline constexpr double kCopterDescent_mps = 1.5;      // WPNAV_SPEED_DN default
 inline constexpr double kCopterClimbRamps_s = 0.4;     // a climb's S-curve to and from its speed (measured)
 inline constexpr double kCopterWaypointPause_s = 1.3;  // on a reached waypoint, to moving (measured)
-inline constexpr double kCopterAccel_mps2 = 2.5;       // WPNAV_ACCEL default
-inline constexpr double kCopterJerk_mps3 = 1.0;        // WPNAV_JERK default
+inline constexpr double kCopterAccel_mps2 = 5.0;       // WPNAV_ACCEL (default 2.5): the range's top
+inline constexpr double kCopterJerk_mps3 = 20.0;       // WPNAV_JERK (default 1): the range's top
 inline constexpr double kCopterAccelZ_mps2 = 2.5;      // WPNAV_ACCEL_Z (default 1): terrain-following slopes
 
 // How far behind a start at `speed_mps` a copter at rest falls while it reaches that speed on
