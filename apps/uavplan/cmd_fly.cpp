@@ -221,20 +221,15 @@ Deviation deviation(const Scenario& sc, const Flight& f) {
   d.legs_p95_m = quantile(legs, 0.95);
   d.legs_max_m = legs.empty() ? 0.0 : *std::max_element(legs.begin(), legs.end());
   d.clock_p95_m = quantile(clock, 0.95);
-  // Arrival: where it comes nearest its goal on its first pass within 1 m of it (the autopilot
-  // slows onto it; "within 1 m" alone is a second early at 1 m/s).
+  // Arrival: the first moment within a tenth of a second's flight of its goal (10 cm at least).
   d.arrival_planned_s = to;
   d.arrival_flown_s = NAN;
-  double nearest_m = 1.0;
-  for (const TrajectorySample& s : f.flown) {
-    const double gap = (s.p - goal.p).norm();
-    if (gap <= nearest_m) {
-      nearest_m = gap;
+  const double within_m = std::max(0.1, 0.1 * f.exported->spec->speed.cruise_mps);
+  for (const TrajectorySample& s : f.flown)
+    if ((s.p - goal.p).norm() <= within_m) {
       d.arrival_flown_s = s.t_s;
-    } else if (!std::isnan(d.arrival_flown_s)) {
       break;
     }
-  }
   return d;
 }
 

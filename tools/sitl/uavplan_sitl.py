@@ -155,12 +155,15 @@ class Vehicle(object):
         if os.path.exists(parm):
             cmd += ['--defaults', parm]
         self.log = open(os.path.join(self.dir, 'sitl.log'), 'wb')
+        self.messages = open(os.path.join(self.dir, 'messages.txt'), 'w')
         self.proc = subprocess.Popen(cmd, cwd=self.dir, stdout=self.log, stderr=subprocess.STDOUT,
                                      stdin=subprocess.DEVNULL, start_new_session=True)
 
     def stop(self):
         if self.sock:
             self.sock.close()
+        if getattr(self, 'messages', None):
+            self.messages.close()
         if self.proc and self.proc.poll() is None:
             os.killpg(self.proc.pid, signal.SIGTERM)
             try:
@@ -211,6 +214,8 @@ class Vehicle(object):
                 for bit, data in self.args.terrain_grid.blocks(msg.lat, msg.lon, msg.grid_spacing, msg.mask):
                     self.send(self.make('terrain_data', lat=msg.lat, lon=msg.lon, grid_spacing=msg.grid_spacing,
                                         gridbit=bit, data=data))
+            elif t == 'STATUSTEXT':  # the autopilot's messages, for a flight that goes wrong
+                self.messages.write('%.1f %s\n' % (self.t_boot_ms / 1000.0, msg.text))
             elif t == 'GLOBAL_POSITION_INT':
                 self.t_boot_ms = msg.time_boot_ms
                 if self.t_auto_ms is not None:

@@ -80,7 +80,9 @@ std::vector<ScheduledStart> flight_schedule(const VerifiedExport& flights, const
                       {"WPNAV_SPEED_DN", std::round(v.down_mps * 100.0)},
                       {"WPNAV_ACCEL", kCopterAccel_mps2 * 100.0},
                       {"WPNAV_ACCEL_Z", kCopterAccelZ_mps2 * 100.0},
-                      {"WPNAV_JERK", kCopterJerk_mps3}};
+                      {"WPNAV_JERK", kCopterJerk_mps3},
+                      // The landing's descent at ArduCopter's default, not at a steep route's.
+                      {"LAND_SPEED_HIGH", std::round(kCopterDescent_mps * 100.0)}};
     }
     out.push_back(s);
   }
