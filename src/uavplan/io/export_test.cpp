@@ -674,7 +674,8 @@ TEST(ExportSimplify, AModelFlownTrajectoryIsFlownAsVerifiedChords) {
   EXPECT_EQ(b.back().p, a.back().p);
 }
 
-TEST(ExportSimplify, ChordsThatDoNotHoldAreNotFlown) {
+// Chords that do not hold are not flown: the tolerance is halved until they do.
+TEST(ExportSimplify, ChordsThatDoNotHoldAreHalvedUntilTheyDo) {
   const ModelFlown m;
   ExportOptions coarse;
   coarse.simplify_m = 1e6;  // one chord from start to goal: through the no-fly cylinder
@@ -682,7 +683,9 @@ TEST(ExportSimplify, ChordsThatDoNotHoldAreNotFlown) {
   all_rows.simplify_m = 0.0;
   const VerifiedExport e = verified_export(m.sc, m.plan, coarse);
   ASSERT_TRUE(e.holds());
-  EXPECT_EQ(e.uavs[0].plan.trajectory.size(), verified_export(m.sc, m.plan, all_rows).uavs[0].plan.trajectory.size());
+  const std::size_t rows = e.uavs[0].plan.trajectory.size();
+  EXPECT_GT(rows, 2u);  // not the one chord through the cylinder
+  EXPECT_LT(rows, verified_export(m.sc, m.plan, all_rows).uavs[0].plan.trajectory.size());
 }
 
 // PX4 up to v1.14 refuses a first waypoint more than MIS_DIST_1WP (900 m) from home and legs

@@ -461,9 +461,33 @@ bool simplify_body(ExportedUav& e, double tol_m) {
   return true;
 }
 
+// An autopilot rounds its turns by about what it flies in this time (its S-curves at the
+// accelerations schedule.json asks for): chords within that distance cut corners it would not
+// fly, and spare it turns that cost it time (docs/decisions/0020-flown-timing.md).
+constexpr double kAutopilotChord_s = 0.3;
+
 double simplify_tolerance_m(const ExportedUav& e, const ExportOptions& opt) {
   if (opt.simplify_m >= 0.0) return opt.simplify_m;
-  return e.spec->model || opt.autopilot ? e.spec->radius_m : 0.0;
+  if (opt.autopilot) return std::max(e.spec->radius_m, kAutopilotChord_s * e.spec->speed.cruise_mps);
+  return e.spec->model ? e.spec->radius_m : 0.0;
+}
+
+// Each UAV flown as chords within its tolerance, every tolerance halved until the chords hold
+// with everything else that flies (down to a centimetre; else every row is flown).
+void fly_chords(const Scenario& sc, std::vector<ExportedUav>& uavs, const ExportOptions& opt) {
+  double widest_m = 0.0;
+  for (const ExportedUav& e : uavs) widest_m = std::max(widest_m, simplify_tolerance_m(e, opt));
+  for (double scale = 1.0; widest_m * scale >= 0.01; scale *= 0.5) {
+    std::vector<ExportedUav> chords = uavs;
+    bool changed = false;
+    for (ExportedUav& e : chords)
+      if (const double tol = simplify_tolerance_m(e, opt) * scale; tol > 0.0) changed |= simplify_body(e, tol);
+    if (!changed) return;
+    if (verify_flights(sc, chords).empty()) {
+      uavs = std::move(chords);
+      return;
+    }
+  }
 }
 
 }  // namespace
@@ -582,16 +606,9 @@ VerifiedExport verified_export(const Scenario& sc, const Plan& plan, const Expor
   }
   for (const Violation& v : out.violations)
     if (v.uav.empty()) out.left_out.push_back("the plan: " + describe(v));
-  // Model-flown trajectories flown as chords, when the chords hold with everything else.
-  // (Copied only when some UAV is to be simplified: most plans have none.)
-  if (std::any_of(out.uavs.begin(), out.uavs.end(),
-                  [&](const ExportedUav& e) { return simplify_tolerance_m(e, opt) > 0.0; })) {
-    std::vector<ExportedUav> chords = out.uavs;
-    bool changed = false;
-    for (ExportedUav& e : chords)
-      if (const double tol = simplify_tolerance_m(e, opt); tol > 0.0) changed |= simplify_body(e, tol);
-    if (changed && verify_flights(sc, chords).empty()) out.uavs = std::move(chords);
-  }
+  // Autopilot missions and model-flown trajectories flown as chords that hold with everything
+  // else that flies.
+  fly_chords(sc, out.uavs, opt);
   // The added legs, with everything else that flies: a UAV whose legs do not hold goes.
   std::set<std::string> failed;
   for (auto& [id, why] : fit_item_limit(sc, out.uavs, opt)) {

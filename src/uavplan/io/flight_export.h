@@ -63,10 +63,12 @@ struct ExportOptions {
   int max_fence_exclusions = 16;  // FenceMode::bounds: autopilots store few fence points
   // A trajectory is flown as a subset of its rows: each left-out row within this distance of
   // where the UAV is at that time on the chord between the rows kept (synchronised distance, so
-  // timing holds too). Negative: the UAV's radius for autopilot missions and model-flown UAVs
-  // (an autopilot slows at every waypoint: a planner's rows a metre apart are flown at a crawl;
-  // a model's arcs are rows every fraction of a second), none for the others. The chords are
-  // verified with everything else that flies; if they do not hold, every UAV flies all its rows.
+  // timing holds too). Negative: for autopilot missions the larger of the UAV's radius and what
+  // it flies at cruise speed in 0.3 s (an autopilot rounds its turns by about as much, and slows
+  // at every waypoint: a planner's rows a metre apart are flown at a crawl), the radius for
+  // model-flown UAVs (rows every fraction of a second along arcs), none for the others. The
+  // chords are verified with everything else that flies; where they do not hold the tolerances
+  // are halved (down to 1 cm), then every UAV flies all its rows.
   double simplify_m = -1.0;
   // A flat (2-D) world's plan is flown this high above its home (multirotors): its obstacles are
   // columns at every height, so the distances verified in the plane hold up there; the take-off
