@@ -107,8 +107,7 @@ std::string driver_path() {
 }
 
 // Runs the command (no shell: its words are passed as they are) and returns its exit status.
-int run_program(std::vector<std::string> words, const std::vector<std::string>& more = {}) {
-  words.insert(words.end(), more.begin(), more.end());
+int run_program(const std::vector<std::string>& words) {
   std::vector<char*> argv;
   argv.reserve(words.size() + 1);
   for (const std::string& w : words) argv.push_back(const_cast<char*>(w.c_str()));
@@ -283,16 +282,25 @@ int fly_missions(const FlyArgs& a, const Scenario& sc, const std::string& driver
   const fs::path work = fs::absolute(fs::path(a.out_dir) / ".sitl-work");
   fs::remove_all(work);
   fs::create_directories(work / "tracks");
-  std::vector<std::string> terrain;
+  std::vector<std::string> words = {"python3",
+                                    driver,
+                                    "--sitl",
+                                    fs::absolute(a.sitl).string(),
+                                    "--missions",
+                                    fs::absolute(missions).string(),
+                                    "--out",
+                                    (work / "tracks").string(),
+                                    "--work",
+                                    work.string(),
+                                    "--speedup",
+                                    num_text(a.speedup),
+                                    "--first-instance",
+                                    std::to_string(a.instance)};
   if (sc.world.terrain()) {
     std::ofstream(work / "terrain.json") << terrain_json(sc);
-    terrain = {"--terrain", (work / "terrain.json").string()};
+    words.insert(words.end(), {"--terrain", (work / "terrain.json").string()});
   }
-  const int rc =
-      run_program({"python3", driver, "--sitl", fs::absolute(a.sitl).string(), "--missions",
-                   fs::absolute(missions).string(), "--out", (work / "tracks").string(), "--work", work.string(),
-                   "--speedup", num_text(a.speedup), "--first-instance", std::to_string(a.instance)},
-                  terrain);
+  const int rc = run_program(words);
   const GeoFrame frame(*sc.origin);
   for (Flight& f : flights) {
     f.flown = read_track((work / "tracks" / (f.file + ".csv")).string(), frame, f.start_s);
@@ -374,8 +382,7 @@ int run_fly(const FlyArgs& a) {
     flatten(f.body, sc.world);
     flights.push_back(std::move(f));
   }
-  const std::vector<ScheduledStart> schedule = flight_schedule(flights_out, export_options_of(sc, ex));
-  for (std::size_t k = 0; k < flights.size(); ++k) flights[k].start_s = schedule[k].start_s;
+  for (std::size_t k = 0; k < flights.size(); ++k) flights[k].start_s = prepared.schedule[k].start_s;
   const std::string missions = (fs::path(a.out_dir) / "missions").string();
   write_export(missions, prepared.files, {}, prepared.source);
   std::cerr << "fly: " << count_text(flights.size(), "mission") << " in " << missions

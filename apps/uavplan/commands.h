@@ -17,6 +17,7 @@
 #include "uavplan/core/stop.h"
 #include "uavplan/experiments/plan_run.h"
 #include "uavplan/io/export.h"
+#include "uavplan/io/flight_schedule.h"
 
 namespace uavplan::cli {
 
@@ -38,6 +39,8 @@ void add_fly_command(CLI::App& app, std::function<int()>& run);
 // Loads both and checks that every plan UAV is in the scenario; on bad input prints the one-line
 // error on stderr and returns false (the caller exits with kExitBadInput).
 bool load_scenario_and_plan(const std::string& scenario_path, const std::string& plan_path, Scenario& sc, Plan& plan);
+// The same for a second plan of a scenario already loaded (a flight beside its plan).
+bool load_plan_of(const Scenario& sc, const std::string& scenario_path, const std::string& plan_path, Plan& plan);
 
 // Export options as the command line gives them (shared by `export` and `plan --export`).
 struct ExportArgs {
@@ -63,8 +66,9 @@ std::optional<std::string> export_request_problem(const Scenario& sc, const Expo
 struct PreparedExport {
   std::vector<ExportFile> files;
   std::vector<std::string> notes, left_out;
-  std::string source;      // the fingerprint of the scenario, the plan and the options (export.h)
-  VerifiedExport flights;  // what the files fly
+  std::string source;                    // the fingerprint of the scenario, the plan and the options (export.h)
+  VerifiedExport flights;                // what the files fly
+  std::vector<ScheduledStart> schedule;  // when each mission starts (autopilot formats: schedule.json)
 };
 int prepare_exports(const std::string& scenario_path, const Scenario& sc, const Plan& plan, const ExportArgs& a,
                     PreparedExport& out);

@@ -21,6 +21,7 @@ import contextlib
 import csv
 import glob
 import json
+import math
 import os
 import shutil
 import signal
@@ -100,7 +101,6 @@ class Terrain(object):
     def blocks(self, lat_e7, lon_e7, spacing_m, mask):
         """TERRAIN_DATA for the requested 4 x 4 blocks: (gridbit, 16 heights), as ArduPilot lays
         a grid out (8 x 7 blocks; a block's rows north, its columns east of its corner)."""
-        import math
         out = []
         scale = math.cos(math.radians(lat_e7 * 1e-7))
         for bit in range(56):

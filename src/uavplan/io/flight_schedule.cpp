@@ -7,10 +7,6 @@
 namespace uavplan {
 namespace {
 
-bool copter_model(const ExportOptions& opt) {
-  return opt.firmware == Firmware::ardupilot && opt.vehicle == VehicleKind::multirotor;
-}
-
 // A multirotor leg as ArduCopter flies it: the horizontal at the commanded speed, the vertical
 // within its climb and descent speeds, whichever takes longer.
 double copter_leg_s(const Vec3& a, const Vec3& b, double speed_mps, const CopterVerticalSpeeds& v) {
@@ -23,6 +19,10 @@ double copter_leg_s(const Vec3& a, const Vec3& b, double speed_mps, const Copter
 double with_room_mps(double needed_mps) { return std::ceil(needed_mps * 1.1 * 10.0 - 1e-9) / 10.0; }
 
 }  // namespace
+
+bool arducopter_timing(const ExportOptions& opt) {
+  return opt.firmware == Firmware::ardupilot && opt.vehicle == VehicleKind::multirotor;
+}
 
 CopterVerticalSpeeds copter_vertical_speeds(const ExportedUav& e) {
   CopterVerticalSpeeds v;
@@ -43,22 +43,28 @@ double copter_ramp_lag_s(double speed_mps) {
   return 0.5 * ramp_s;
 }
 
-double modelled_takeoff_s(const ExportedUav& e, const ExportOptions& opt) {
+namespace {
+
+// The time the autopilot takes from a mission's start to the top of its take-off and on to
+// where the plan's rows begin (an airborne start), or to the top of the take-off in the plan;
+// `vertical`: ArduCopter's climb and descent speeds for it.
+double modelled_takeoff_s(const ExportedUav& e, const ExportOptions& opt, const CopterVerticalSpeeds& vertical) {
   const Trajectory& tr = e.plan.trajectory;
-  if (!copter_model(opt) || tr.empty()) {  // the export's timing: its rows at cruise speed
+  if (!arducopter_timing(opt)) {  // the export's timing: its rows at cruise speed
     if (!e.takeoff_before) return 0.0;
-    return tr.empty() ? 0.0 : tr.front().t_s - exported_rows(e).front().t_s;
+    return tr.front().t_s - exported_rows(e).front().t_s;
   }
   const double cruise_mps = e.spec->speed.cruise_mps;
-  const CopterVerticalSpeeds vertical = copter_vertical_speeds(e);
-  const double ramps_s = kCopterClimbRamps_s;
   // From rest at the top of the climb: the pause there and the ramp to speed on the route's first
   // leg (started that much earlier, it is at speed on the plan's clock).
   const double from_rest_s = kCopterWaypointPause_s + copter_ramp_lag_s(cruise_mps);
-  double s = kCopterLiftoff_s + copter_leg_s(e.home, e.takeoff_to, cruise_mps, vertical) + ramps_s + from_rest_s;
+  double s =
+      kCopterLiftoff_s + copter_leg_s(e.home, e.takeoff_to, cruise_mps, vertical) + kCopterClimbRamps_s + from_rest_s;
   if (e.takeoff_before) s += copter_leg_s(e.takeoff_to, tr.front().p, cruise_mps, vertical);
   return s;
 }
+
+}  // namespace
 
 std::vector<ScheduledStart> flight_schedule(const VerifiedExport& flights, const ExportOptions& opt) {
   std::vector<ScheduledStart> out;
@@ -67,15 +73,16 @@ std::vector<ScheduledStart> flight_schedule(const VerifiedExport& flights, const
     if (tr.empty()) continue;
     ScheduledStart s;
     s.id = e.spec->id;
+    const CopterVerticalSpeeds v = copter_vertical_speeds(e);
+    const double takeoff_s = modelled_takeoff_s(e, opt, v);
     if (e.takeoff_before) {
-      s.start_s = tr.front().t_s - modelled_takeoff_s(e, opt);
+      s.start_s = tr.front().t_s - takeoff_s;
     } else {  // the plan's own climb from departure_s to the top: started earlier by the difference
       const double planned_s = tr[std::min(e.body_begin, tr.size() - 1)].t_s - e.departure_s;
-      s.start_s = e.departure_s - std::max(0.0, modelled_takeoff_s(e, opt) - planned_s);
+      s.start_s = e.departure_s - std::max(0.0, takeoff_s - planned_s);
     }
     s.flight_s = tr.back().t_s - s.start_s;
-    if (copter_model(opt)) {
-      const CopterVerticalSpeeds v = copter_vertical_speeds(e);
+    if (arducopter_timing(opt)) {
       s.parameters = {{"WPNAV_SPEED_UP", std::round(v.up_mps * 100.0)},
                       {"WPNAV_SPEED_DN", std::round(v.down_mps * 100.0)},
                       {"WPNAV_ACCEL", kCopterAccel_mps2 * 100.0},

@@ -45,16 +45,16 @@ struct ScheduledStart {
   std::vector<std::pair<std::string, double>> parameters;
 };
 
+// Whether a mission is timed as ArduCopter flies it (its horizontal waypoint speed, its ramps and
+// holds), else by the export's own timing.
+bool arducopter_timing(const ExportOptions& options);
+
 // ArduCopter's climb and descent speeds for a flight: its defaults, or what the steepest climb
 // and descent between its take-off and landing need (10 % over, in whole 10 cm/s).
 struct CopterVerticalSpeeds {
   double up_mps = kCopterClimb_mps, down_mps = kCopterDescent_mps;
 };
 CopterVerticalSpeeds copter_vertical_speeds(const ExportedUav& uav);
-
-// The time the autopilot takes from a mission's start to the top of its take-off and on to
-// where the plan's rows begin (an airborne start), or to the top of the take-off in the plan.
-double modelled_takeoff_s(const ExportedUav& uav, const ExportOptions& options);
 
 std::vector<ScheduledStart> flight_schedule(const VerifiedExport& flights, const ExportOptions& options);
 

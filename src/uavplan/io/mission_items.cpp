@@ -53,8 +53,7 @@ class Items {
   // speed (type 1), along the leg, but ArduCopter's is horizontal (WPNAV_SPEED: a leg's climb or
   // descent comes on top). Throttle unchanged (-1).
   void speed(const Vec3& a, const Vec3& b, double dt_s) {
-    const bool horizontal = opt_.firmware == Firmware::ardupilot && opt_.vehicle == VehicleKind::multirotor;
-    const double len_m = horizontal ? (b - a).head<2>().norm() : (b - a).norm();
+    const double len_m = arducopter_timing(opt_) ? (b - a).head<2>().norm() : (b - a).norm();
     if (len_m < 1e-3 || dt_s <= 0.0) return;  // straight up or down: flown at the climb speeds
     const double v = len_m / dt_s, fraction = opt_.speed_change_fraction;
     if (speed_mps_ > 0.0 && std::abs(v - speed_mps_) < fraction * speed_mps_) {
@@ -72,18 +71,18 @@ class Items {
     command_speed(mps);
     drift_s_ += len_m / mps - dt_s;
   }
-  // Cruise speed on legs off the plan's clock (to a start beside the take-off, home again).
   void set_max_speed(double mps) { max_speed_mps_ = mps; }
   // A hold of hold_s where the plan stops between legs at v_in and v_out: ArduCopter stops and
   // starts on its S-curves (and rests on the waypoint), so it loiters that much less; what the
   // hold cannot take is time lost. Elsewhere (the first hold: the schedule times the start) and
   // for the others, the hold as planned.
   double flown_hold_s(double hold_s, bool first, double v_in_mps, double v_out_mps) {
-    if (first || opt_.firmware != Firmware::ardupilot || opt_.vehicle != VehicleKind::multirotor) return hold_s;
+    if (first || !arducopter_timing(opt_)) return hold_s;
     const double lost_s = copter_ramp_lag_s(v_in_mps) + kCopterWaypointPause_s + copter_ramp_lag_s(v_out_mps);
     drift_s_ += std::max(0.0, lost_s - hold_s);
     return std::max(0.0, hold_s - lost_s);
   }
+  // Cruise speed on legs off the plan's clock (to a start beside the take-off, home again).
   void cruise(double mps) {
     if (speed_mps_ <= 0.0 || std::abs(mps - speed_mps_) >= opt_.speed_change_fraction * speed_mps_) command_speed(mps);
   }

@@ -229,14 +229,14 @@ ojson flown_json(const Plan& flown, int max_rows) {
   for (const UavPlan& u : flown.uavs) {
     const Trajectory& tr = u.trajectory;
     if (tr.size() < 2) continue;
-    const std::size_t step = (tr.size() + static_cast<std::size_t>(std::max(max_rows, 2)) - 1) /
-                             static_cast<std::size_t>(std::max(max_rows, 2));
+    const auto cap = static_cast<std::size_t>(std::max(max_rows, 2));
+    const std::size_t step = (tr.size() + cap - 3) / (cap - 1);  // ceil((n - 1) / (cap - 1)): with the last, cap
     ojson rows = ojson::array();
-    for (std::size_t k = 0; k < tr.size(); k += std::max<std::size_t>(step, 1))
-      rows.push_back({round6(tr[k].t_s), round6(tr[k].p.x()), round6(tr[k].p.y()), round6(tr[k].p.z())});
-    if ((tr.size() - 1) % std::max<std::size_t>(step, 1) != 0)
-      rows.push_back(
-          {round6(tr.back().t_s), round6(tr.back().p.x()), round6(tr.back().p.y()), round6(tr.back().p.z())});
+    const auto row = [&](const TrajectorySample& r) {
+      rows.push_back({round6(r.t_s), round6(r.p.x()), round6(r.p.y()), round6(r.p.z())});
+    };
+    for (std::size_t k = 0; k + 1 < tr.size(); k += step) row(tr[k]);
+    row(tr.back());
     out.push_back({{"id", u.id}, {"trajectory", std::move(rows)}});
   }
   return out;
