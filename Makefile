@@ -51,8 +51,9 @@ asan-build: deps
 # and the demo's read-back), and the MovingAI samples on the large maps (maze512-32-9, Complex:
 # 100 s under ASan; the searches run under ASan in their unit tests and on the small maps), and
 # the report in headless Chromium (it runs alone, the other core idle: 50 s; `uavplan report` runs
-# under ASan in the CLI test, the browser's side is the same in release).
-ASAN_SKIP ?= cli.threads_same_bytes|exports.matrix|movingai.maze512|movingai.Complex|report.browser
+# under ASan in the CLI test, the browser's side is the same in release), and the SITL flights but
+# the demo's (the simulators' wall time, not ours: `fly` runs under ASan on the demo's flight).
+ASAN_SKIP ?= cli.threads_same_bytes|exports.matrix|movingai.maze512|movingai.Complex|report.browser|sitl.movers_fly|sitl.group9_fly
 asan: asan-build
 	cd $(ASAN_BUILD) && ctest --output-on-failure -j $(JOBS) -E "$(ASAN_SKIP)"
 

@@ -74,6 +74,27 @@ TEST(P5Mission, TheLandingApproachFitsAWorldCutShortBehindTheRunway) {
       << failed.uavs.front().message;
 }
 
+// P5's mission flown by aircraft of ArduPlane's class (scenarios/p5_small.yaml: 20 m/s turning
+// at 6 deg/s in a 6 km world, 20 m apart): the departure, the landing cylinder and the form-up
+// layers at their scale, not P5's (15 km out, 1000 m up: outside this world), every phase done
+// and the plan verified; the landing circles at the least speed where the faster ones do not fit.
+TEST(P5Mission, SmallAircraftFlyTheMissionAtTheirScale) {
+  const Scenario sc = load_scenario(std::string(UAVPLAN_SOURCE_DIR) + "/scenarios/p5_small.yaml");
+  Plan plan = plan_mission(sc, MissionOptions{});
+  EXPECT_TRUE(finalize_plan(sc, plan).empty());
+  ASSERT_EQ(plan.status, Status::solved) << plan.message;
+  EXPECT_TRUE(verify_plan(sc, plan).empty());
+  ASSERT_TRUE(plan.formation);
+  ASSERT_EQ(plan.formation->phases.size(), 5u);
+  EXPECT_GE(plan.metrics.at("min_separation_m"), sc.mission.separation_m);
+  for (const UavPlan& u : plan.uavs) {
+    double top = 0.0;
+    for (const auto& row : u.trajectory) top = std::max(top, row.p.z());
+    EXPECT_LT(top, 400.0) << u.id;  // layers 40 m apart from 150 m up, the task points at 120 m
+    EXPECT_NEAR(u.trajectory.back().p.z(), 0.0, 1e-9) << u.id;
+  }
+}
+
 // The verified plan exports whole, as fixed wing (landed UAVs are gone, not parked on one
 // another at the runway's stop point): the take-off from the threshold along the runway, the
 // flight as planned, PX4's landing pattern onto the planned touch-down within FW_LND_ANG; a

@@ -34,8 +34,13 @@ LandingResult plan_landing(const Airfield& af, const AutopilotModel& model, cons
   best.message = "no conflict-free landing at any speed in [" + std::to_string(static_cast<int>(lim.min_mps)) + ", " +
                  std::to_string(static_cast<int>(lim.max_mps)) + "] m/s within " + std::to_string(o.max_holds) +
                  " holds";
+  // The speeds tried, from the fastest down by the step, and the least speed (the circle inside
+  // the cylinder may need it: fit_airfield sizes the cylinder for it).
+  std::vector<double> speeds;
+  for (double v = lim.max_mps; v >= lim.min_mps - 1e-9; v -= o.speed_step_mps) speeds.push_back(v);
+  if (speeds.empty() || speeds.back() > lim.min_mps + 1e-9) speeds.push_back(lim.min_mps);
   for (int holds = 0; holds <= o.max_holds; ++holds) {
-    for (double v = lim.max_mps; v >= lim.min_mps - 1e-9; v -= o.speed_step_mps) {
+    for (const double v : speeds) {
       const double r_turn = v / omega;
       if (r_turn > 0.8 * o.cylinder_radius_m) continue;  // cannot circle inside the cylinder
       const double r = std::clamp(1.25 * r_turn, 0.5 * o.cylinder_radius_m, 0.85 * o.cylinder_radius_m);

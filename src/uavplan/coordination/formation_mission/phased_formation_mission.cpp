@@ -161,15 +161,43 @@ FormationBody formation_body(const Scenario& sc, const std::vector<AutopilotMode
   return b;
 }
 
+// P5's lengths (the departure point 15 km past the runway, the dismiss trigger 30 km out,
+// waypoints passed within 300 m, the landing cylinder of 3 km 10 km out, the gate at 300 m 6 km
+// out: P5-notes 3-5) are its aircraft's: 150 m/s turning at 2.2 deg/s, a radius of 3.9 km. Other
+// aircraft get them in proportion to their turn radius (the formation's: its slowest cruise at
+// its slowest turn rate), as P5's scene drawn at their scale. The form-up's layers are twice the
+// separation apart (P5: 100 m for 50 m), the lowest layer's reference 50 s of the slowest climb
+// above the airfield (P5: 1000 m at 20 m/s) and above the layers. Values in planner.params stay.
+void scale_to_formation(FormationMissionOptions& o, const Params& given, const FormationBody& b, double separation_m,
+                        double climb_mps, std::size_t n) {
+  const double p5_radius_m = 150.0 / deg_to_rad(2.2);
+  double s = b.cruise_mps / b.turn_rate_rad_s / p5_radius_m;
+  if (!std::isfinite(s) || std::abs(s - 1.0) < 1e-9) s = 1.0;
+  const auto scaled = [&](const char* key, double& v, double by) {
+    if (!given.count(key)) v *= by;
+  };
+  o.departure_after_runway_m *= s;
+  o.steering_switch_m *= s;
+  scaled("dismiss_within_m", o.dismiss_within_m, s);
+  o.landing.cylinder_radius_m *= s;
+  o.landing.cylinder_before_threshold_m *= s;
+  o.landing.gate_before_threshold_m *= s;
+  o.landing.gate_height_m *= s;
+  constexpr double kLayersPerSeparation = 2.0, kFormUpClimb_s = 50.0;
+  if (!given.count("layer_spacing_m")) o.layer_spacing_m = kLayersPerSeparation * separation_m;
+  if (!given.count("form_up_height_m"))
+    o.form_up_height_m = std::max(kFormUpClimb_s * climb_mps, o.layer_spacing_m * static_cast<double>(n));
+}
+
 Vec3 runway_direction(const Airfield& af) {
   return {std::cos(af.runway_heading_rad), std::sin(af.runway_heading_rad), 0.0};
 }
 
-// P5's airfield geometry (the landing cylinder 10 km before the threshold, the gate 6 km out,
-// the departure point 15 km past the runway) is sized for its 1,000 km world. Where the cylinder
-// would leave the bounds, it and the gate come in toward the threshold in proportion (radius,
+// The airfield's geometry (scale_to_formation) fitted to the world: where the cylinder would
+// leave the bounds, it and the gate come in toward the threshold in proportion (radius,
 // distances and the gate's height: the glide keeps its slope), as far as every UAV can still
-// circle inside it at its least speed; the departure point comes in likewise. Empty when it
+// circle inside it at its least speed (where one cannot, they grow as far as it needs); the
+// departure point comes in likewise. Empty when it
 // fits, else why not.
 std::string fit_airfield(const Scenario& sc, const std::vector<AutopilotModel>& models, const FormationBody& b,
                          FormationMissionOptions& o) {
@@ -178,7 +206,7 @@ std::string fit_airfield(const Scenario& sc, const std::vector<AutopilotModel>& 
   const Vec3 dir = runway_direction(af);
   LandingOptions& l = o.landing;
   // The cylinder's disc, kept the widest body inside the bounds: scale k of (before, radius).
-  double k = 1.0;
+  double k = World::kInf;
   for (int a = 0; a < 2; ++a) {
     const double thr = af.position[a], back = l.cylinder_before_threshold_m * dir[a], r = l.cylinder_radius_m;
     if (back + r > 0.0) k = std::min(k, (thr - b.widest_m - box.min[a]) / (back + r));
@@ -196,6 +224,9 @@ std::string fit_airfield(const Scenario& sc, const std::vector<AutopilotModel>& 
            std::to_string(static_cast<long>(least_k * l.cylinder_before_threshold_m)) +
            " m before the threshold on the extended centreline) leaves the world's bounds; move the airfield "
            "further from the edge behind its threshold, or turn its runway";
+  // Grown only as far as the slowest circle needs, with room to circle on 1.25 turn radii
+  // (plan_landing's circle) where the bounds allow.
+  k = std::min(k, std::max(1.0, 1.25 * least_k));
   l.cylinder_before_threshold_m *= k;
   l.cylinder_radius_m *= k;
   l.gate_before_threshold_m *= k;
@@ -531,6 +562,9 @@ void PhasedFormationMission::plan(const Scenario& sc, const MissionContext& ctx,
     models.push_back(mission_model(sc.uavs[i], o));
   }
   const FormationBody body = formation_body(sc, models);
+  double climb_mps = World::kInf;
+  for (const AutopilotModel& m : models) climb_mps = std::min(climb_mps, m.limits().max_climb_rate_mps);
+  scale_to_formation(o, ctx.mission_params, body, sc.mission.separation_m, climb_mps, n);
   if (const std::string why = fit_airfield(sc, models, body, o); !why.empty()) {
     fail_all(sc, why, plan);
     return;

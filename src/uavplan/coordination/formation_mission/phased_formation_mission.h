@@ -19,6 +19,8 @@ namespace uavplan {
 
 // Mission parameters (planner.params / --set): layer_spacing_m, enlargement, shape_tolerance_m,
 // form_up_height_m, takeoff_interval_s, dismiss_within_m; the rest are fixed here.
+// The lengths below are P5's (its 150 m/s aircraft); plan() scales them to the formation's
+// (scale_to_formation) unless planner.params names them.
 struct FormationMissionOptions {
   double layer_spacing_m = 100.0;
   double enlargement = 3.0;
