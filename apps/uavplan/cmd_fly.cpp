@@ -1,5 +1,5 @@
-// `uavplan fly`: a plan's ArduPilot export flown in ArduPilot's SITL, one ArduCopter per UAV
-// side by side (tools/sitl/uavplan_sitl.py drives them over MAVLink), the flown tracks read back
+// `uavplan fly`: a plan's ArduPilot export flown in ArduPilot's SITL, one ArduCopter (ArduPlane
+// for a fixed wing) per UAV side by side (tools/sitl/uavplan_sitl.py drives them over MAVLink), the flown tracks read back
 // on the plan's clock and verified as a plan, and flown set beside planned.
 #include <spawn.h>
 #include <sys/wait.h>
@@ -122,10 +122,13 @@ int run_program(const std::vector<std::string>& words) {
 
 // A track file `t_s,lat_deg,lon_deg,alt_amsl_m` (t_s since its mission started) on the plan's
 // clock in the scenario's frame. Its clock is set by its lift-off (the first row 0.2 m above the
-// first), kCopterLiftoff_s after its scheduled start as the schedule's model has it: the moment
+// first) at `lift_off_s`: a multirotor's kCopterLiftoff_s after its scheduled start as the
+// schedule's model has it, a fixed wing's where its exported rows leave the runway. The moment
 // the driver reads for the arming is late by the MAVLink link's delay, seconds of simulated time
 // when simulators side by side share the machine.
-Trajectory read_track(const std::string& path, const GeoFrame& frame, double start_s) {
+constexpr double kLifted_m = 0.2;
+
+Trajectory read_track(const std::string& path, const GeoFrame& frame, double start_s, double lift_off_s) {
   std::ifstream in(path);
   std::string line;
   std::getline(in, line);  // the header
@@ -139,21 +142,29 @@ Trajectory read_track(const std::string& path, const GeoFrame& frame, double sta
     if (!tr.empty() && t <= tr.back().t_s) continue;
     tr.push_back({t, frame.to_local(v[1], v[2], v[3])});
   }
-  constexpr double kLifted_m = 0.2;
   for (const TrajectorySample& s : tr)
     if (s.p.z() > tr.front().p.z() + kLifted_m) {
-      const double shift_s = start_s + kCopterLiftoff_s - s.t_s;
+      const double shift_s = lift_off_s - s.t_s;
       for (TrajectorySample& row : tr) row.t_s += shift_s;
       break;
     }
   return tr;
 }
 
+// When the exported rows leave the ground (their first row above the first): a fixed wing's
+// lift-off at the end of its roll.
+double planned_lift_off_s(const Trajectory& rows) {
+  for (const TrajectorySample& s : rows)
+    if (s.p.z() > rows.front().p.z() + kLifted_m) return s.t_s;
+  return rows.front().t_s;
+}
+
 // The flight from lift-off to touch-down, on the ground at both ends as a plan's is: the
 // autopilot's height there (its estimate, a few centimetres off) is put on the scenario's ground
 // while it is within the body's radius of it, and of the rows on the ground before it lifts off
-// (its motors spooling up) and after it touches down only the last and the first are kept.
-void settle_on_ground(Trajectory& tr, const World& world, double radius_m) {
+// (its motors spooling up) and after it touches down only the last and the first are kept; a
+// fixed wing's (`rolls`) all: its take-off and landing rolls are on the runway.
+void settle_on_ground(Trajectory& tr, const World& world, double radius_m, bool rolls) {
   const auto near_ground = [&](const TrajectorySample& s) {
     return s.p.z() - world.ground_z(s.p.x(), s.p.y()) < std::max(radius_m, 0.1);
   };
@@ -163,8 +174,31 @@ void settle_on_ground(Trajectory& tr, const World& world, double radius_m) {
   for (std::size_t k = 0; k < tr.size(); ++k)
     if (k < first || k >= last) tr[k].p.z() = world.ground_z(tr[k].p.x(), tr[k].p.y());
   if (first == tr.size()) return;  // never in the air
+  if (rolls) {  // standing before its roll and after it stopped: the last and the first row
+    constexpr double kStanding_m = 0.5;
+    const auto standing = [&](const TrajectorySample& s, const TrajectorySample& at) {
+      return (s.p - at.p).head<2>().norm() < kStanding_m;
+    };
+    first = 0, last = tr.size();
+    while (first + 1 < tr.size() && standing(tr[first + 1], tr.front())) ++first;
+    while (last > first + 1 && standing(tr[last - 2], tr.back())) --last;
+    tr.erase(tr.begin() + static_cast<std::ptrdiff_t>(last), tr.end());
+    tr.erase(tr.begin(), tr.begin() + static_cast<std::ptrdiff_t>(first));
+    return;
+  }
   if (last < tr.size()) tr.erase(tr.begin() + static_cast<std::ptrdiff_t>(last) + 1, tr.end());
   if (first > 1) tr.erase(tr.begin(), tr.begin() + static_cast<std::ptrdiff_t>(first) - 1);
+}
+
+// A fixed wing's mission starts lined up on the runway: where the plan has it parked and
+// taxiing before (the ground crew's, not the autopilot's), the flight is the plan's until the
+// track begins.
+void ground_crew(Trajectory& flown, const Trajectory& plan) {
+  if (flown.empty() || plan.empty() || plan.front().t_s >= flown.front().t_s) return;
+  Trajectory before;
+  for (const TrajectorySample& s : plan)
+    if (s.t_s < flown.front().t_s) before.push_back(s);
+  flown.insert(flown.begin(), before.begin(), before.end());
 }
 
 // The autopilot's vertical take-off and landing drift by centimetres (and its GPS positions are
@@ -303,9 +337,12 @@ int fly_missions(const FlyArgs& a, const Scenario& sc, const std::string& driver
   const int rc = run_program(words);
   const GeoFrame frame(*sc.origin);
   for (Flight& f : flights) {
-    f.flown = read_track((work / "tracks" / (f.file + ".csv")).string(), frame, f.start_s);
-    columns(f.flown, f.planned.front().p, f.planned.back().p);
-    settle_on_ground(f.flown, sc.world, f.exported->spec->radius_m);
+    const bool plane = default_vehicle(sc) == "fixedwing";
+    const double lift_off_s = plane ? planned_lift_off_s(f.planned) : f.start_s + kCopterLiftoff_s;
+    f.flown = read_track((work / "tracks" / (f.file + ".csv")).string(), frame, f.start_s, lift_off_s);
+    if (!plane) columns(f.flown, f.planned.front().p, f.planned.back().p);
+    settle_on_ground(f.flown, sc.world, f.exported->spec->radius_m, plane);
+    if (plane) ground_crew(f.flown, f.exported->plan.trajectory);
     flatten(f.flown, sc.world);
   }
   if (!a.keep_work) fs::remove_all(work);
@@ -332,20 +369,26 @@ Plan from_plan_start(Plan flown) {
   return flown;
 }
 
-// What keeps a scenario from being flown here ("" when nothing does).
+// What keeps a scenario from being flown here ("" when nothing does): multirotors in
+// ArduCopter, fixed wings in ArduPlane, each within its simulated vehicle's speeds.
 std::string fly_problem(const FlyArgs& a, const Scenario& sc) {
-  if (default_vehicle(sc) != "multirotor")
-    return a.scenario + ": fly: a " + sc.mission.type +
-           " mission flies fixed wings; fly flies multirotors in ArduCopter";
-  // ArduCopter's waypoint speed (WPNAV_SPEED, and DO_CHANGE_SPEED with it) is at most 20 m/s.
-  constexpr double kCopterTopSpeed_mps = 20.0;
-  for (const UavSpec& u : sc.uavs)
-    if (u.speed.cruise_mps > kCopterTopSpeed_mps)
+  const bool plane = default_vehicle(sc) == "fixedwing";
+  // ArduCopter's waypoint speed (WPNAV_SPEED, and DO_CHANGE_SPEED with it) is at most 20 m/s;
+  // ArduPlane's SITL plane flies 10-30 m/s (plane.parm's AIRSPEED_MIN..AIRSPEED_MAX).
+  constexpr double kCopterTopSpeed_mps = 20.0, kPlaneLeast_mps = 10.0, kPlaneTop_mps = 30.0;
+  for (const UavSpec& u : sc.uavs) {
+    if (!plane && u.speed.cruise_mps > kCopterTopSpeed_mps)
       return a.scenario + ": fly: UAV '" + u.id + "' cruises at " + num_text(u.speed.cruise_mps) +
              " m/s; ArduCopter flies waypoints at most " + num_text(kCopterTopSpeed_mps) +
              " m/s (WPNAV_SPEED): no multirotor flies this plan's timing";
-  const std::string copter = (fs::path(a.sitl) / "bin" / "arducopter").string();
-  if (::access(copter.c_str(), X_OK) != 0) return "fly: --sitl " + a.sitl + ": no executable bin/arducopter there";
+    if (plane && (u.speed.min_mps < kPlaneLeast_mps || u.speed.max_mps > kPlaneTop_mps))
+      return a.scenario + ": fly: UAV '" + u.id + "' flies " + num_text(u.speed.min_mps) + "-" +
+             num_text(u.speed.max_mps) + " m/s; ArduPlane's SITL plane flies " + num_text(kPlaneLeast_mps) + "-" +
+             num_text(kPlaneTop_mps) + " m/s";
+  }
+  const std::string binary = plane ? "arduplane" : "arducopter";
+  if (::access((fs::path(a.sitl) / "bin" / binary).c_str(), X_OK) != 0)
+    return "fly: --sitl " + a.sitl + ": no executable bin/" + binary + " there";
   if (driver_path().empty()) return "fly: tools/sitl/uavplan_sitl.py is not installed beside this program";
   return "";
 }
@@ -424,12 +467,14 @@ int run_fly(const FlyArgs& a) {
 
 void add_fly_command(CLI::App& app, std::function<int()>& run) {
   auto args = std::make_shared<FlyArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "fly", "Fly a plan's ArduPilot export in ArduPilot's SITL (one ArduCopter per UAV) and verify the flight");
+  CLI::App* cmd = app.add_subcommand("fly",
+                                     "Fly a plan's ArduPilot export in ArduPilot's SITL (one ArduCopter or ArduPlane "
+                                     "per UAV) and verify the flight");
   cmd->add_option("scenario", args->scenario, "Scenario file (with an origin)")->required();
   cmd->add_option("plan", args->plan, "Plan file (plan.json)")->required();
   cmd->add_option("--sitl", args->sitl,
-                  "ArduPilot SITL folder: bin/arducopter, params/copter.parm, python/pymavlink (its MAVLink codec)")
+                  "ArduPilot SITL folder: bin/arducopter (bin/arduplane for fixed wings), params/, python/pymavlink "
+                  "(its MAVLink codec)")
       ->required();
   cmd->add_option("-o,--out", args->out_dir, "Output directory: missions/, flown.json (default: out)");
   cmd->add_option("--speedup", args->speedup, "Simulated seconds per wall second (default 10)")

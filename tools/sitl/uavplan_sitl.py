@@ -2,8 +2,9 @@
 """Flies ArduPilot missions in ArduPilot's SITL, one simulator per UAV, side by side.
 
 Called by `uavplan fly` (apps/uavplan/cmd_fly.cpp), which exports the missions and reads back
-the tracks. For each UAV of the schedule: a SITL instance in its own folder under --work with
-its home at the mission's row 0, the mission uploaded over MAVLink (its own TCP port), armed and
+the tracks. For each UAV of the schedule: a SITL instance (ArduCopter's quad, or ArduPlane's plane for a
+fixed wing, lined up with its take-off) in its own folder under --work with its home at the
+mission's row 0, the mission uploaded over MAVLink (its own TCP port), armed and
 started in AUTO; GLOBAL_POSITION_INT recorded on the simulator's own clock until the vehicle has
 landed and disarmed (or the flight limit passes). Each track is written as
 --out/<file stem>.csv: `t_s,lat_deg,lon_deg,alt_amsl_m`, t_s in simulated seconds since its
@@ -31,7 +32,7 @@ import sys
 import threading
 import time
 
-COPTER_AUTO = 3  # ArduCopter's custom mode number of AUTO
+AUTO_MODE = {'multirotor': 3, 'fixed_wing': 10}  # ArduCopter's and ArduPlane's custom mode AUTO
 MAV_MODE_FLAG_CUSTOM_MODE_ENABLED = 1
 MAV_MODE_FLAG_SAFETY_ARMED = 128
 
@@ -129,6 +130,7 @@ class Vehicle(object):
             raise ValueError('%s: no .waypoints file in the schedule' % self.id)
         self.stem = os.path.splitext(os.path.basename(missions[0]))[0]
         self.limit_s = float(uav['flight_s']) * 2.0 + 120.0
+        self.vehicle = uav.get('vehicle', 'multirotor')  # ArduCopter, or ArduPlane for a fixed wing
         self.parameters = uav.get('parameters', {})  # what the schedule's timing assumes
         self.instance = instance
         self.rows = read_wpl(os.path.join(args.missions, self.stem + '.waypoints'))
@@ -147,11 +149,14 @@ class Vehicle(object):
     # -- the simulator
     def start(self):
         home = self.rows[0]
-        hdg = 0
-        cmd = [self.args.copter, '--model', 'quad', '--home',
-               '%.9f,%.9f,%.3f,%d' % (home[8], home[9], home[10], hdg), '--speedup', str(self.args.speedup),
+        plane = self.vehicle == 'fixed_wing'
+        # A fixed wing stands on its runway, lined up with its take-off (NAV_TAKEOFF's yaw).
+        hdg = next((r[7] for r in self.rows[1:] if r[3] == 22), 0.0) if plane else 0.0
+        cmd = [os.path.join(self.args.sitl, 'bin', 'arduplane' if plane else 'arducopter'),
+               '--model', 'plane' if plane else 'quad', '--home',
+               '%.9f,%.9f,%.3f,%.1f' % (home[8], home[9], home[10], hdg), '--speedup', str(self.args.speedup),
                '-I', str(self.instance), '--wipe']
-        parm = os.path.join(self.args.sitl, 'params', 'copter.parm')
+        parm = os.path.join(self.args.sitl, 'params', 'plane.parm' if plane else 'copter.parm')
         if os.path.exists(parm):
             cmd += ['--defaults', parm]
         self.log = open(os.path.join(self.dir, 'sitl.log'), 'wb')
@@ -286,9 +291,12 @@ class Vehicle(object):
             # Positions at 10 Hz of the simulated clock (MAV_CMD_SET_MESSAGE_INTERVAL, 511).
             self.wait_for(lambda m: True if m.get_type() == 'HEARTBEAT' else None, 60, 'heartbeat')
             self.command(511, [33, 100000])
-            self.set_param('AUTO_OPTIONS', 3)  # arm in AUTO, take off without a pilot's throttle
-            # The simulated quad reaches about 10.5 m/s at ArduCopter's default lean limit (30 deg).
-            self.set_param('ANGLE_MAX', 4500)
+            if self.vehicle == 'fixed_wing':
+                self.set_param('LAND_DISARMDELAY', 3)  # disarmed 3 s after it has stopped (default 20)
+            else:
+                self.set_param('AUTO_OPTIONS', 3)  # arm in AUTO, take off without a pilot's throttle
+                # The simulated quad reaches about 10.5 m/s at ArduCopter's default lean limit (30 deg).
+                self.set_param('ANGLE_MAX', 4500)
             for name, value in sorted(self.parameters.items()):
                 self.set_param(name, value)
             if self.args.terrain_grid:  # the ground sent at 30 m (ArduPilot's default 100 m is coarse)
@@ -305,7 +313,7 @@ class Vehicle(object):
                     if attempt == 4:
                         raise
                     time.sleep(2.0)
-            self.command(176, [MAV_MODE_FLAG_CUSTOM_MODE_ENABLED, COPTER_AUTO])
+            self.command(176, [MAV_MODE_FLAG_CUSTOM_MODE_ENABLED, AUTO_MODE[self.vehicle]])
             t0 = time.time()
             while True:  # the pre-arm checks pass once GPS and the EKF have settled
                 if self.command(400, [1]) == 0:
@@ -339,7 +347,7 @@ class Vehicle(object):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument('--sitl', required=True, help='the SITL folder (bin/arducopter, params/, python/)')
+    ap.add_argument('--sitl', required=True, help='the SITL folder (bin/arducopter or bin/arduplane, params/, python/)')
     ap.add_argument('--missions', required=True, help='the folder of the .waypoints files and schedule.json')
     ap.add_argument('--out', required=True, help='where the tracks are written')
     ap.add_argument('--work', required=True, help='a scratch folder (the simulators run there)')
@@ -350,7 +358,6 @@ def main():
     for name in ('sitl', 'missions', 'out', 'work', 'terrain'):  # the simulators run in folders of their own
         if getattr(args, name):
             setattr(args, name, os.path.abspath(getattr(args, name)))
-    args.copter = os.path.join(args.sitl, 'bin', 'arducopter')
     args.terrain_grid = Terrain(args.terrain) if args.terrain else None
     codec = load_codec(args.sitl, args.work)
     with open(os.path.join(args.missions, 'schedule.json')) as f:

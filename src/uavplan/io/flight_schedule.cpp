@@ -18,6 +18,19 @@ double copter_leg_s(const Vec3& a, const Vec3& b, double speed_mps, const Copter
 // Up to the next 10 cm/s, 10 % over what is needed.
 double with_room_mps(double needed_mps) { return std::ceil(needed_mps * 1.1 * 10.0 - 1e-9) / 10.0; }
 
+// ArduPlane (4.7): its airspeed range the UAV's (it ignores a DO_CHANGE_SPEED outside
+// AIRSPEED_MIN..AIRSPEED_MAX, in m/s), its cruise the UAV's; RTL_AUTOLAND 2 where the mission
+// lands on a runway (it refuses to arm a mission holding DO_LAND_START without it; 2: a return
+// flies the landing sequence).
+std::vector<std::pair<std::string, double>> arduplane_parameters(const ExportedUav& e) {
+  const SpeedLimits& v = e.spec->speed;
+  std::vector<std::pair<std::string, double>> p = {{"AIRSPEED_MIN", std::floor(v.min_mps)},
+                                                   {"AIRSPEED_CRUISE", v.cruise_mps},
+                                                   {"AIRSPEED_MAX", std::ceil(v.max_mps)}};
+  if (e.end == MissionEnd::land) p.emplace_back("RTL_AUTOLAND", 2.0);
+  return p;
+}
+
 }  // namespace
 
 bool arducopter_timing(const ExportOptions& opt) {
@@ -91,6 +104,9 @@ std::vector<ScheduledStart> flight_schedule(const VerifiedExport& flights, const
                       // The landing's descent at ArduCopter's default, not at a steep route's.
                       {"LAND_SPEED_HIGH", std::round(kCopterDescent_mps * 100.0)}};
     }
+    if (opt.firmware == Firmware::ardupilot && opt.vehicle == VehicleKind::fixed_wing)
+      s.parameters = arduplane_parameters(e);
+    s.vehicle = opt.vehicle;
     out.push_back(s);
   }
   return out;
@@ -103,7 +119,11 @@ std::string schedule_json(const std::vector<ScheduledStart>& schedule,
     nlohmann::json files = nlohmann::json::array();
     for (const auto& [uav, file] : files_by_uav)
       if (uav == s.id) files.push_back(file);
-    nlohmann::json uav = {{"id", s.id}, {"start_s", s.start_s}, {"flight_s", s.flight_s}, {"files", files}};
+    nlohmann::json uav = {{"id", s.id},
+                          {"vehicle", s.vehicle == VehicleKind::fixed_wing ? "fixed_wing" : "multirotor"},
+                          {"start_s", s.start_s},
+                          {"flight_s", s.flight_s},
+                          {"files", files}};
     if (!s.parameters.empty()) {
       uav["parameters"] = nlohmann::json::object();
       for (const auto& [name, value] : s.parameters) uav["parameters"][name] = value;

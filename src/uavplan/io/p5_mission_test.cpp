@@ -5,6 +5,7 @@
 
 #include <fstream>
 #include <iterator>
+#include <nlohmann/json.hpp>
 
 #include "uavplan/coordination/contract/runway.h"
 #include "uavplan/coordination/contract/separation.h"
@@ -12,6 +13,7 @@
 #include "uavplan/coordination/mission_planner.h"
 #include "uavplan/evaluation/verifier.h"
 #include "uavplan/io/flight_export.h"
+#include "uavplan/io/flight_schedule.h"
 #include "uavplan/io/input_error.h"
 #include "uavplan/io/mission_items.h"
 #include "uavplan/io/plan_io.h"
@@ -93,6 +95,30 @@ TEST(P5Mission, SmallAircraftFlyTheMissionAtTheirScale) {
     EXPECT_LT(top, 400.0) << u.id;  // layers 40 m apart from 150 m up, the task points at 120 m
     EXPECT_NEAR(u.trajectory.back().p.z(), 0.0, 1e-9) << u.id;
   }
+}
+
+// Exported for ArduPlane, the schedule names each aircraft a fixed wing (fly starts ArduPlane for
+// it) and lists the parameters its flight needs: its airspeed range and cruise (ArduPlane ignores
+// a DO_CHANGE_SPEED outside AIRSPEED_MIN..AIRSPEED_MAX) and RTL_AUTOLAND (without it ArduPlane
+// refuses to arm a mission holding DO_LAND_START).
+TEST(P5Mission, TheArduPlaneScheduleListsTheParametersItsLandingAndSpeedsNeed) {
+  const Scenario sc = load_scenario(std::string(UAVPLAN_SOURCE_DIR) + "/scenarios/p5_small.yaml");
+  const Plan plan = plan_mission(sc, MissionOptions{});
+  ASSERT_EQ(plan.status, Status::solved) << plan.message;
+  ExportOptions opt;
+  opt.firmware = Firmware::ardupilot;
+  opt.vehicle = VehicleKind::fixed_wing;
+  const std::vector<ScheduledStart> schedule = flight_schedule(verified_export(sc, plan, opt), opt);
+  ASSERT_EQ(schedule.size(), sc.uavs.size());
+  const nlohmann::json j = nlohmann::json::parse(schedule_json(schedule, {}));
+  for (const nlohmann::json& u : j["uavs"]) {
+    EXPECT_EQ(u["vehicle"], "fixed_wing");
+    EXPECT_EQ(u["parameters"]["AIRSPEED_MIN"], 14.0);
+    EXPECT_EQ(u["parameters"]["AIRSPEED_CRUISE"], 20.0);
+    EXPECT_EQ(u["parameters"]["AIRSPEED_MAX"], 28.0);
+    EXPECT_EQ(u["parameters"]["RTL_AUTOLAND"], 2.0);
+  }
+  for (std::size_t k = 1; k < schedule.size(); ++k) EXPECT_GT(schedule[k].start_s, schedule[k - 1].start_s);
 }
 
 // The verified plan exports whole, as fixed wing (landed UAVs are gone, not parked on one
