@@ -174,7 +174,7 @@ void settle_on_ground(Trajectory& tr, const World& world, double radius_m, bool 
   for (std::size_t k = 0; k < tr.size(); ++k)
     if (k < first || k >= last) tr[k].p.z() = world.ground_z(tr[k].p.x(), tr[k].p.y());
   if (first == tr.size()) return;  // never in the air
-  if (rolls) {  // standing before its roll and after it stopped: the last and the first row
+  if (rolls) {                     // standing before its roll and after it stopped: the last and the first row
     constexpr double kStanding_m = 0.5;
     const auto standing = [&](const TrajectorySample& s, const TrajectorySample& at) {
       return (s.p - at.p).head<2>().norm() < kStanding_m;

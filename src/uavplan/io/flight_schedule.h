@@ -38,8 +38,8 @@ double copter_ramp_lag_s(double speed_mps);
 
 struct ScheduledStart {
   std::string id;
-  double start_s = 0.0;   // on the plan's clock: when the mission is started (armed, in AUTO)
-  double flight_s = 0.0;  // from its start to the end of its exported flight
+  double start_s = 0.0;                           // on the plan's clock: when the mission is started (armed, in AUTO)
+  double flight_s = 0.0;                          // from its start to the end of its exported flight
   VehicleKind vehicle = VehicleKind::multirotor;  // as exported
   // The firmware parameters the timing assumes, to be set on the vehicle (ArduCopter's: by name,
   // in the parameter's own units); empty where the export's own timing holds.
