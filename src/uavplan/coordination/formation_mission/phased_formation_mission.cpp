@@ -142,13 +142,13 @@ std::vector<double> climb_altitudes(double z_form, const std::vector<double>& la
 }
 
 // The formation as one body: its slots' mean, its half-width, the widest UAV, the slowest
-// cruise and the slowest turn rate.
+// cruise and the slowest turn rate (of its UAVs, and of its shape enlarged `enlargement` times).
 struct FormationBody {
   Vec3 mean_slot = Vec3::Zero();
   double half_width_m = 0.0, widest_m = 0.0, cruise_mps = World::kInf, turn_rate_rad_s = World::kInf;
 };
 
-FormationBody formation_body(const Scenario& sc, const std::vector<AutopilotModel>& models) {
+FormationBody formation_body(const Scenario& sc, const std::vector<AutopilotModel>& models, double enlargement) {
   const std::size_t n = sc.uavs.size();
   FormationBody b;
   for (const Vec3& s : formation_shape(sc)) b.mean_slot += s / static_cast<double>(n);
@@ -157,6 +157,14 @@ FormationBody formation_body(const Scenario& sc, const std::vector<AutopilotMode
     b.widest_m = std::max(b.widest_m, sc.uavs[i].radius_m);
     b.cruise_mps = std::min(b.cruise_mps, sc.uavs[i].speed.cruise_mps);
     b.turn_rate_rad_s = std::min(b.turn_rate_rad_s, models[i].limits().max_turn_rate_rad_s);
+  }
+  // Turning as a body at rate w, a UAV r from the shape's centre flies r w faster or slower than
+  // it: with the shape enlarged (form-up, dismiss), within its speeds (where they leave room).
+  for (std::size_t i = 0; i < n; ++i) {
+    const double r_m = enlargement * (formation_shape(sc)[i] - b.mean_slot).head<2>().norm();
+    const SpeedLimits& v = sc.uavs[i].speed;
+    const double room_mps = std::min(v.max_mps - b.cruise_mps, b.cruise_mps - v.min_mps);
+    if (r_m > 0.0 && room_mps > 0.0) b.turn_rate_rad_s = std::min(b.turn_rate_rad_s, room_mps / r_m);
   }
   return b;
 }
@@ -561,7 +569,7 @@ void PhasedFormationMission::plan(const Scenario& sc, const MissionContext& ctx,
     starts.push_back(ctx.ground.start.size() > i && ctx.ground.start[i] ? *ctx.ground.start[i] : sc.uavs[i].start);
     models.push_back(mission_model(sc.uavs[i], o));
   }
-  const FormationBody body = formation_body(sc, models);
+  const FormationBody body = formation_body(sc, models, o.enlargement);
   double climb_mps = World::kInf;
   for (const AutopilotModel& m : models) climb_mps = std::min(climb_mps, m.limits().max_climb_rate_mps);
   scale_to_formation(o, ctx.mission_params, body, sc.mission.separation_m, climb_mps, n);
