@@ -158,7 +158,7 @@ std::vector<std::string> export_plan(const Scenario& sc, const Plan& plan, const
     auto more = export_files(sc, flights, f, opt);
     files.insert(files.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
   }
-  if (opt.autopilot) files.push_back(schedule_file(flight_schedule(flights, opt), files));  // as the CLI
+  if (opt.autopilot) files.push_back(schedule_file(flight_schedule(sc, flights, opt), files));  // as the CLI
   write_export(dir, files);
   std::vector<std::string> written;
   for (const ExportFile& f : files) written.push_back(dir + "/" + f.name);

@@ -181,10 +181,16 @@ function checkAgainstCsv(file, plan, csvFile) {
           Math.abs(pts[k][6] - it.AMSLAltAboveTerrain) < 1e-3) return k;
     return -1;
   };
+  // A fixed wing's airspeed is equivalent airspeed: the true speed is it over sqrt(rho / rho0)
+  // (ISA troposphere) at the altitude of the item before it.
   let from = Math.max(0, at(plan.mission.items[0], 0)), speed = 0;
-  const horizontal = plan.mission.firmwareType === 3 && plan.mission.vehicleType !== 1;
+  let amsl = plan.mission.plannedHomePosition[2];
+  const wing = plan.mission.vehicleType === 1;
+  const eas = (h) => Math.pow(1 - 2.25577e-5 * Math.min(Math.max(h, -1000), 11000), 0.5 * 4.2559);
+  const horizontal = plan.mission.firmwareType === 3 && !wing;
   for (const it of plan.mission.items) {
-    if (it.command === 178) speed = it.params[1];
+    if (it.command === 178) speed = it.params[1] / (wing ? eas(amsl) : 1);
+    if (!NO_POSITION.has(it.command) && Number.isFinite(it.AMSLAltAboveTerrain)) amsl = it.AMSLAltAboveTerrain;
     if (it.command !== 16) continue;
     const found = at(it, from);
     if (found < 0) { fail(file, `waypoint (${it.params[4]}, ${it.params[5]}) is not on the trajectory after row ${from + 1}`); return; }
@@ -196,7 +202,7 @@ function checkAgainstCsv(file, plan, csvFile) {
     }
     const flown = moving > 0 ? len / moving : 0;
     if (flown > 0 && Math.abs(speed - flown) > 0.1 * speed + 1e-4)
-      fail(file, `the leg into waypoint ${it.doJumpId} is flown at ${flown.toFixed(3)} m/s, the mission commands ${speed} m/s`);
+      fail(file, `the leg into waypoint ${it.doJumpId} is flown at ${flown.toFixed(3)} m/s, the mission commands ${speed.toFixed(3)} m/s (true)`);
     from = found;
   }
   // The landing at the trajectory's end, or where its last run on the ground begins (a fixed

@@ -107,8 +107,8 @@ std::string export_source(const std::string& scenario_path, const Plan& plan, co
 namespace {
 
 // schedule.json beside the mission files, and a line on stderr saying the same.
-void add_schedule(const ExportOptions& opt, PreparedExport& out) {
-  out.schedule = flight_schedule(out.flights, opt);
+void add_schedule(const Scenario& sc, const ExportOptions& opt, PreparedExport& out) {
+  out.schedule = flight_schedule(sc, out.flights, opt);
   const std::vector<ScheduledStart>& schedule = out.schedule;
   out.files.push_back(schedule_file(schedule, out.files));
   constexpr std::size_t kNamed = 8;
@@ -146,7 +146,7 @@ int prepare_exports(const std::string& scenario_path, const Scenario& sc, const 
       auto more = export_files(sc, flights, *export_format_from_string(name), opt, &out.notes);
       out.files.insert(out.files.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
     }
-    if (opt.autopilot) add_schedule(opt, out);
+    if (opt.autopilot) add_schedule(sc, opt, out);
     for (std::string& n : frame_notes(sc, flights)) out.notes.push_back(std::move(n));
     if (const auto n = altitude_note(sc, opt); n && opt.autopilot) out.notes.push_back(*n);
     out.notes.insert(out.notes.end(), flights.notes.begin(), flights.notes.end());

@@ -785,18 +785,45 @@ TEST(ExportSchedule, MissionsStartSoThatTheTakeOffEndsAtThePlansStart) {
   const Plan plan = test::plan_of({test::sample_uav()});
   ExportOptions ardupilot;
   ardupilot.firmware = Firmware::ardupilot;
-  const std::vector<ScheduledStart> copter = flight_schedule(verified_export(sc, plan, ardupilot), ardupilot);
+  const std::vector<ScheduledStart> copter = flight_schedule(sc, verified_export(sc, plan, ardupilot), ardupilot);
   ASSERT_EQ(copter.size(), 1u);
   EXPECT_NEAR(copter[0].start_s, -(4.2 + 10.0 / 2.5 + 0.4 + 1.3 + 0.625), 1e-9);
   EXPECT_NEAR(copter_ramp_lag_s(5.0), 0.5 * (5.0 / 5.0 + 5.0 / 20.0), 1e-12);  // at 5 m/s^2 from 1.25 m/s
   EXPECT_NEAR(copter_ramp_lag_s(1.0), std::sqrt(1.0 / 20.0), 1e-12);           // jerk-limited throughout
   EXPECT_NEAR(copter[0].flight_s, 36.0 - copter[0].start_s, 1e-9);             // its landing: 10 m at 5 m/s after 34 s
-  const std::vector<ScheduledStart> px4 = flight_schedule(verified_export(sc, plan, {}), {});
+  const std::vector<ScheduledStart> px4 = flight_schedule(sc, verified_export(sc, plan, {}), {});
   EXPECT_NEAR(px4[0].start_s, -10.0 / 5.0, 1e-9);
   const nlohmann::json j = nlohmann::json::parse(schedule_json(copter, {{"a/1", "a_1.plan"}, {"b", "b.plan"}}));
   EXPECT_EQ(j["uavs"][0]["id"], "a/1");
   EXPECT_EQ(j["uavs"][0]["files"], nlohmann::json::array({"a_1.plan"}));
   EXPECT_DOUBLE_EQ(j["uavs"][0]["start_s"].get<double>(), copter[0].start_s);
+}
+
+// ISA: the equivalent airspeed of 1 m/s true, sqrt(rho / rho0): 1 at sea level, 0.7754 at
+// 5,000 m (rho 0.7361 kg/m^3 of 1.225), 0.5451 at the tropopause (0.3639), held above it.
+TEST(ExportSchedule, EquivalentAirspeedFollowsTheStandardAtmosphere) {
+  EXPECT_NEAR(equivalent_per_true_airspeed(0.0), 1.0, 1e-12);
+  EXPECT_NEAR(equivalent_per_true_airspeed(5000.0), std::sqrt(0.7361 / 1.225), 5e-4);
+  EXPECT_NEAR(equivalent_per_true_airspeed(11000.0), std::sqrt(0.3639 / 1.225), 5e-4);
+  EXPECT_DOUBLE_EQ(equivalent_per_true_airspeed(15000.0), equivalent_per_true_airspeed(11000.0));
+}
+
+// A fixed wing's DO_CHANGE_SPEED is the equivalent airspeed of the leg's planned speed at the
+// altitude it starts from: about 5 m/s true at 510 m above sea level (the origin's 500 + 10).
+TEST(ExportSchedule, AFixedWingIsCommandedItsEquivalentAirspeed) {
+  Scenario sc = test::scenario_with();
+  sc.world = World(WorldSpec{Aabb{Vec3(-1000, -1000, 0), Vec3(1000, 1000, 100)}, {}, {}, {}, {}, {}, {}});
+  sc.origin->alt_m = 500.0;
+  ExportOptions opt;
+  opt.firmware = Firmware::ardupilot;
+  opt.vehicle = VehicleKind::fixed_wing;
+  const std::vector<MissionItem> items = mission_items(sc, exported(sc, opt), opt);
+  std::size_t k = 1;  // the first: the plan's first leg, at 5 m/s
+  while (k < items.size() && items[k].command != kCmdChangeSpeed) ++k;
+  ASSERT_LT(k, items.size());
+  EXPECT_EQ(items[k].params[0], 0.0);  // airspeed
+  EXPECT_NEAR(items[k].params[1] / equivalent_per_true_airspeed(items[k - 1].amsl_m), 5.0, 0.25);
+  EXPECT_LT(items[k].params[1], 5.0 * 0.99);
 }
 
 }  // namespace

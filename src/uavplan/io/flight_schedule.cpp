@@ -18,20 +18,32 @@ double copter_leg_s(const Vec3& a, const Vec3& b, double speed_mps, const Copter
 // Up to the next 10 cm/s, 10 % over what is needed.
 double with_room_mps(double needed_mps) { return std::ceil(needed_mps * 1.1 * 10.0 - 1e-9) / 10.0; }
 
-// ArduPlane (4.7): its airspeed range the UAV's (it ignores a DO_CHANGE_SPEED outside
-// AIRSPEED_MIN..AIRSPEED_MAX, in m/s), its cruise the UAV's; RTL_AUTOLAND 2 where the mission
-// lands on a runway (it refuses to arm a mission holding DO_LAND_START without it; 2: a return
-// flies the landing sequence).
-std::vector<std::pair<std::string, double>> arduplane_parameters(const ExportedUav& e) {
+// ArduPlane (4.7): its airspeed range the UAV's as equivalent airspeed over the flight's
+// altitudes (it ignores a DO_CHANGE_SPEED outside AIRSPEED_MIN..AIRSPEED_MAX, in m/s: the least
+// where the air is thinnest, the most where it is densest), its cruise at home's; RTL_AUTOLAND 2
+// where the mission lands on a runway (it refuses to arm a mission holding DO_LAND_START without
+// it; 2: a return flies the landing sequence).
+std::vector<std::pair<std::string, double>> arduplane_parameters(const ExportedUav& e, double origin_amsl_m) {
   const SpeedLimits& v = e.spec->speed;
-  std::vector<std::pair<std::string, double>> p = {{"AIRSPEED_MIN", std::floor(v.min_mps)},
-                                                   {"AIRSPEED_CRUISE", v.cruise_mps},
-                                                   {"AIRSPEED_MAX", std::ceil(v.max_mps)}};
+  double low = e.home.z(), high = e.home.z();
+  for (const TrajectorySample& s : e.plan.trajectory) low = std::min(low, s.p.z()), high = std::max(high, s.p.z());
+  const auto eas = [&](double tas_mps, double z_m) { return tas_mps * equivalent_per_true_airspeed(origin_amsl_m + z_m); };
+  std::vector<std::pair<std::string, double>> p = {
+      {"AIRSPEED_MIN", std::floor(eas(v.min_mps, high))},
+      {"AIRSPEED_CRUISE", std::round(eas(v.cruise_mps, e.home.z()) * 100.0) / 100.0},
+      {"AIRSPEED_MAX", std::ceil(eas(v.max_mps, low))}};
   if (e.end == MissionEnd::land) p.emplace_back("RTL_AUTOLAND", 2.0);
   return p;
 }
 
 }  // namespace
+
+double equivalent_per_true_airspeed(double alt_amsl_m) {
+  // ISA troposphere: rho / rho0 = (1 - L h / T0)^(g / (R L) - 1), L h / T0 = 2.25577e-5 h.
+  constexpr double kLapsePerT0_per_m = 2.25577e-5, kDensityExponent = 4.2559, kTropopause_m = 11000.0;
+  const double h = std::clamp(alt_amsl_m, -1000.0, kTropopause_m);
+  return std::pow(1.0 - kLapsePerT0_per_m * h, 0.5 * kDensityExponent);
+}
 
 bool arducopter_timing(const ExportOptions& opt) {
   return opt.firmware == Firmware::ardupilot && opt.vehicle == VehicleKind::multirotor;
@@ -79,7 +91,8 @@ double modelled_takeoff_s(const ExportedUav& e, const ExportOptions& opt, const 
 
 }  // namespace
 
-std::vector<ScheduledStart> flight_schedule(const VerifiedExport& flights, const ExportOptions& opt) {
+std::vector<ScheduledStart> flight_schedule(const Scenario& sc, const VerifiedExport& flights,
+                                            const ExportOptions& opt) {
   std::vector<ScheduledStart> out;
   for (const ExportedUav& e : flights.uavs) {
     const Trajectory& tr = e.plan.trajectory;
@@ -105,7 +118,7 @@ std::vector<ScheduledStart> flight_schedule(const VerifiedExport& flights, const
                       {"LAND_SPEED_HIGH", std::round(kCopterDescent_mps * 100.0)}};
     }
     if (opt.firmware == Firmware::ardupilot && opt.vehicle == VehicleKind::fixed_wing)
-      s.parameters = arduplane_parameters(e);
+      s.parameters = arduplane_parameters(e, sc.origin ? sc.origin->alt_m : 0.0);
     s.vehicle = opt.vehicle;
     out.push_back(s);
   }

@@ -57,7 +57,14 @@ struct CopterVerticalSpeeds {
 };
 CopterVerticalSpeeds copter_vertical_speeds(const ExportedUav& uav);
 
-std::vector<ScheduledStart> flight_schedule(const VerifiedExport& flights, const ExportOptions& options);
+// Fixed wing: the firmwares hold an equivalent airspeed (ArduPlane's AIRSPEED_* and
+// DO_CHANGE_SPEED, PX4's FW_AIRSPD_*: what a pitot reads), the plan's speeds are true (over the
+// ground in still air). EAS = TAS sqrt(rho / rho0), rho in the ISA troposphere at the altitude
+// above sea level: 0.966 at 700 m, 0.776 at 5,000 m.
+double equivalent_per_true_airspeed(double alt_amsl_m);
+
+std::vector<ScheduledStart> flight_schedule(const Scenario& scenario, const VerifiedExport& flights,
+                                            const ExportOptions& options);
 
 // schedule.json: {"clock": ..., "uavs": [{"id", "start_s", "flight_s", "files": [...]}]}, the
 // files each UAV's mission is in (by UAV id, from the export's files).

@@ -24,7 +24,7 @@ double compass_yaw_deg(const Vec3& d) {
 class Items {
  public:
   Items(const GeoFrame& frame, double home_amsl_m, const ExportOptions& opt, AltitudeFrame altitude, const World& world)
-      : frame_(frame), home_amsl_m_(home_amsl_m), opt_(opt), altitude_(altitude), world_(world) {}
+      : frame_(frame), home_amsl_m_(home_amsl_m), at_amsl_m_(home_amsl_m), opt_(opt), altitude_(altitude), world_(world) {}
 
   void at(int command, const Vec3& p, std::array<double, 4> head) {
     const LatLonAlt g = frame_.to_wgs84(p);
@@ -38,6 +38,7 @@ class Items {
     it.params = {round_m(head[0]),     round_m(head[1]),     round_m(head[2]), round_m(head[3]),
                  round_deg(g.lat_deg), round_deg(g.lon_deg), round_m(alt)};
     items_.push_back(it);
+    at_amsl_m_ = g.alt_m;
   }
   void command(int command, std::array<double, 4> head = {}) {
     MissionItem it;
@@ -49,7 +50,8 @@ class Items {
   // A DO_CHANGE_SPEED before the first leg (the vehicle's own default speed is not the plan's)
   // and wherever the leg from `a` to `b` in `dt_s` needs another (see speed_drift_s). Fixed
   // wing: airspeed (speed type 0, as QGroundControl writes it; ArduPlane's type 1 only sets a
-  // minimum ground speed), equal to the planned ground speed in still air; multirotor: ground
+  // minimum ground speed), the equivalent airspeed of the planned ground speed in still air
+  // (command_speed); multirotor: ground
   // speed (type 1), along the leg, but ArduCopter's is horizontal (WPNAV_SPEED: a leg's climb or
   // descent comes on top). Throttle unchanged (-1).
   void speed(const Vec3& a, const Vec3& b, double dt_s) {
@@ -86,8 +88,11 @@ class Items {
   void cruise(double mps) {
     if (speed_mps_ <= 0.0 || std::abs(mps - speed_mps_) >= opt_.speed_change_fraction * speed_mps_) command_speed(mps);
   }
+  // `mps` true; a fixed wing's airspeed commanded as the equivalent airspeed the firmware holds
+  // (at the altitude of the waypoint the leg starts from).
   void command_speed(double mps) {
-    command(kCmdChangeSpeed, {opt_.vehicle == VehicleKind::fixed_wing ? 0.0 : 1.0, mps, -1.0, 0});
+    const bool wing = opt_.vehicle == VehicleKind::fixed_wing;
+    command(kCmdChangeSpeed, {wing ? 0.0 : 1.0, wing ? mps * equivalent_per_true_airspeed(at_amsl_m_) : mps, -1.0, 0});
     speed_mps_ = mps;
   }
   // Rows [from, to] of the trajectory: holds, straight legs, speed changes.
@@ -133,7 +138,8 @@ class Items {
  private:
   const GeoFrame& frame_;
   double home_amsl_m_;
-  double speed_mps_ = 0.0;      // commanded so far (0: none yet)
+  double at_amsl_m_;            // the last positioned item's altitude above sea level
+  double speed_mps_ = 0.0;      // commanded so far, true speed (0: none yet)
   double drift_s_ = 0.0;        // time lost (> 0) or gained on the plan's clock by the legs so far
   double max_speed_mps_ = 0.0;  // no speed paying drift back goes over it (nor the leg's own)
   const ExportOptions& opt_;

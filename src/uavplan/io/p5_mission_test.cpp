@@ -98,8 +98,8 @@ TEST(P5Mission, SmallAircraftFlyTheMissionAtTheirScale) {
 }
 
 // Exported for ArduPlane, the schedule names each aircraft a fixed wing (fly starts ArduPlane for
-// it) and lists the parameters its flight needs: its airspeed range and cruise (ArduPlane ignores
-// a DO_CHANGE_SPEED outside AIRSPEED_MIN..AIRSPEED_MAX) and RTL_AUTOLAND (without it ArduPlane
+// it) and lists the parameters its flight needs: its airspeed range and cruise as equivalent
+// airspeeds (ArduPlane ignores a DO_CHANGE_SPEED outside AIRSPEED_MIN..AIRSPEED_MAX) and RTL_AUTOLAND (without it ArduPlane
 // refuses to arm a mission holding DO_LAND_START).
 TEST(P5Mission, TheArduPlaneScheduleListsTheParametersItsLandingAndSpeedsNeed) {
   const Scenario sc = load_scenario(std::string(UAVPLAN_SOURCE_DIR) + "/scenarios/p5_small.yaml");
@@ -108,15 +108,22 @@ TEST(P5Mission, TheArduPlaneScheduleListsTheParametersItsLandingAndSpeedsNeed) {
   ExportOptions opt;
   opt.firmware = Firmware::ardupilot;
   opt.vehicle = VehicleKind::fixed_wing;
-  const std::vector<ScheduledStart> schedule = flight_schedule(verified_export(sc, plan, opt), opt);
+  const std::vector<ScheduledStart> schedule = flight_schedule(sc, verified_export(sc, plan, opt), opt);
   ASSERT_EQ(schedule.size(), sc.uavs.size());
   const nlohmann::json j = nlohmann::json::parse(schedule_json(schedule, {}));
+  // Equivalent airspeeds (ISA): 14 m/s true at the highest row, 28 at the airfield, 584 m up.
+  double top_m = 0.0;
+  for (const UavPlan& u : plan.uavs)
+    for (const auto& row : u.trajectory) top_m = std::max(top_m, row.p.z());
+  const double home_amsl = sc.origin->alt_m;
   for (const nlohmann::json& u : j["uavs"]) {
     EXPECT_EQ(u["vehicle"], "fixed_wing");
-    EXPECT_EQ(u["parameters"]["AIRSPEED_MIN"], 14.0);
-    EXPECT_EQ(u["parameters"]["AIRSPEED_CRUISE"], 20.0);
-    EXPECT_EQ(u["parameters"]["AIRSPEED_MAX"], 28.0);
-    EXPECT_EQ(u["parameters"]["RTL_AUTOLAND"], 2.0);
+    const nlohmann::json& p = u["parameters"];
+    EXPECT_LE(p["AIRSPEED_MIN"].get<double>(), 14.0 * equivalent_per_true_airspeed(home_amsl + top_m));
+    EXPECT_GT(p["AIRSPEED_MIN"].get<double>(), 14.0 * equivalent_per_true_airspeed(home_amsl + top_m) - 1.0);
+    EXPECT_NEAR(p["AIRSPEED_CRUISE"].get<double>(), 20.0 * equivalent_per_true_airspeed(home_amsl), 0.005);
+    EXPECT_GE(p["AIRSPEED_MAX"].get<double>(), 28.0 * equivalent_per_true_airspeed(home_amsl));
+    EXPECT_EQ(p["RTL_AUTOLAND"], 2.0);
   }
   for (std::size_t k = 1; k < schedule.size(); ++k) EXPECT_GT(schedule[k].start_s, schedule[k - 1].start_s);
 }
