@@ -87,6 +87,7 @@ struct Flight {
   double start_s = 0.0;
   Trajectory planned, flown;  // the exported rows (take-off and landing included), the track
   Trajectory body;            // the exported rows from its start to its goal and landing
+  bool fixed_wing = false;    // flown in ArduPlane: from and to its runway
 };
 
 // A flat world's plan is flown above it (--flat-altitude): its columns stand at every height,
@@ -233,6 +234,13 @@ double gap_m(const Scenario& sc, const UavSpec& spec, const Trajectory& tr) {
   return uav_metrics(sc, spec, u).min_clearance_m - spec.radius_m;
 }
 
+// The first row back on the ground after the last in the air (nan when it never flew).
+double touchdown_s(const World& world, const Trajectory& tr) {
+  for (std::size_t k = tr.size(); k-- > 1;)
+    if (tr[k - 1].p.z() - world.ground_z(tr[k - 1].p.x(), tr[k - 1].p.y()) > kLifted_m) return tr[k].t_s;
+  return NAN;
+}
+
 // From its start (the plan's first row) to its goal (the last row before its landing): the
 // take-off and the landing are the autopilot's own (their speeds are its parameters).
 Deviation deviation(const Scenario& sc, const Flight& f) {
@@ -254,9 +262,15 @@ Deviation deviation(const Scenario& sc, const Flight& f) {
   d.legs_p95_m = quantile(legs, 0.95);
   d.legs_max_m = legs.empty() ? 0.0 : *std::max_element(legs.begin(), legs.end());
   d.clock_p95_m = quantile(clock, 0.95);
-  // Arrival: the first moment within a tenth of a second's flight of its goal (10 cm at least).
+  // Arrival: the first moment within a tenth of a second's flight of its goal (10 cm at least);
+  // a fixed wing's, its touch-down (it lands where it ends, its goal the runway).
   d.arrival_planned_s = to;
   d.arrival_flown_s = NAN;
+  if (f.fixed_wing) {
+    d.arrival_planned_s = touchdown_s(sc.world, f.planned);
+    d.arrival_flown_s = touchdown_s(sc.world, f.flown);
+    return d;
+  }
   const double within_m = std::max(0.1, 0.1 * f.exported->spec->speed.cruise_mps);
   for (const TrajectorySample& s : f.flown)
     if ((s.p - goal.p).norm() <= within_m) {
@@ -337,7 +351,7 @@ int fly_missions(const FlyArgs& a, const Scenario& sc, const std::string& driver
   const int rc = run_program(words);
   const GeoFrame frame(*sc.origin);
   for (Flight& f : flights) {
-    const bool plane = default_vehicle(sc) == "fixedwing";
+    const bool plane = f.fixed_wing;
     const double lift_off_s = plane ? planned_lift_off_s(f.planned) : f.start_s + kCopterLiftoff_s;
     f.flown = read_track((work / "tracks" / (f.file + ".csv")).string(), frame, f.start_s, lift_off_s);
     if (!plane) columns(f.flown, f.planned.front().p, f.planned.back().p);
@@ -420,6 +434,7 @@ int run_fly(const FlyArgs& a) {
     for (const ExportFile& file : prepared.files)
       if (file.uav == e.spec->id) f.file = fs::path(file.name).stem().string();
     f.planned = exported_rows(e);
+    f.fixed_wing = default_vehicle(sc) == "fixedwing";
     f.body = e.plan.trajectory;
     flatten(f.planned, sc.world);
     flatten(f.body, sc.world);

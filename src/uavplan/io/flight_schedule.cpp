@@ -27,7 +27,9 @@ std::vector<std::pair<std::string, double>> arduplane_parameters(const ExportedU
   const SpeedLimits& v = e.spec->speed;
   double low = e.home.z(), high = e.home.z();
   for (const TrajectorySample& s : e.plan.trajectory) low = std::min(low, s.p.z()), high = std::max(high, s.p.z());
-  const auto eas = [&](double tas_mps, double z_m) { return tas_mps * equivalent_per_true_airspeed(origin_amsl_m + z_m); };
+  const auto eas = [&](double tas_mps, double z_m) {
+    return tas_mps * equivalent_per_true_airspeed(origin_amsl_m + z_m);
+  };
   std::vector<std::pair<std::string, double>> p = {
       {"AIRSPEED_MIN", std::floor(eas(v.min_mps, high))},
       {"AIRSPEED_CRUISE", std::round(eas(v.cruise_mps, e.home.z()) * 100.0) / 100.0},

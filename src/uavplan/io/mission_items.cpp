@@ -24,7 +24,12 @@ double compass_yaw_deg(const Vec3& d) {
 class Items {
  public:
   Items(const GeoFrame& frame, double home_amsl_m, const ExportOptions& opt, AltitudeFrame altitude, const World& world)
-      : frame_(frame), home_amsl_m_(home_amsl_m), at_amsl_m_(home_amsl_m), opt_(opt), altitude_(altitude), world_(world) {}
+      : frame_(frame),
+        home_amsl_m_(home_amsl_m),
+        at_amsl_m_(home_amsl_m),
+        opt_(opt),
+        altitude_(altitude),
+        world_(world) {}
 
   void at(int command, const Vec3& p, std::array<double, 4> head) {
     const LatLonAlt g = frame_.to_wgs84(p);

@@ -26,14 +26,18 @@ constexpr double kG_mps2 = 9.81;
 constexpr double kTaskPointMatch_m = 1.0;
 
 // The model a UAV flies through: its own, or papers.md P5's defaults (time constants; the turn rate of
-// a 30 deg bank at cruise; climb at most 20 m/s and within its climb angle at its least speed;
+// a 30 deg bank at cruise; climb at most 20 m/s (P5's gradient for slower aircraft) and within
+// its climb angle at its least speed;
 // the horizontal speed at most what leaves the maximum speed in 3-D while climbing; the vertical
 // acceleration at most max_vertical_accel_mps2).
 AutopilotModel mission_model(const UavSpec& u, const FormationMissionOptions& o) {
   const AutopilotModel own = autopilot_of(u);
   AutopilotLimits lim = own.limits();
   if (!u.max_turn_rate_rad_s) lim.max_turn_rate_rad_s = kG_mps2 * std::tan(deg_to_rad(o.bank_deg)) / u.speed.cruise_mps;
-  double climb = u.max_climb_rate_mps.value_or(o.max_climb_rate_mps);
+  // Without its own: P5's 20 m/s at its 150 m/s, the same climb gradient for slower aircraft.
+  constexpr double kP5Cruise_mps = 150.0;
+  double climb =
+      u.max_climb_rate_mps.value_or(o.max_climb_rate_mps * std::min(1.0, u.speed.cruise_mps / kP5Cruise_mps));
   if (u.max_climb_rad < kPi / 2 - kUnlimitedAngleSlack_rad)
     climb = std::min(climb, 0.95 * std::max(u.speed.min_mps, 1.0) * std::tan(u.max_climb_rad));
   lim.max_climb_rate_mps = climb;
@@ -191,6 +195,8 @@ void scale_to_formation(FormationMissionOptions& o, const Params& given, const F
   o.landing.cylinder_before_threshold_m *= s;
   o.landing.gate_before_threshold_m *= s;
   o.landing.gate_height_m *= s;
+  // The spiral's descent (P5: at most 10 m/s at 150 m/s) at the same gradient for slower aircraft.
+  o.landing.max_descent_mps *= std::min(1.0, b.cruise_mps / 150.0);
   constexpr double kLayersPerSeparation = 2.0, kFormUpClimb_s = 50.0;
   if (!given.count("layer_spacing_m")) o.layer_spacing_m = kLayersPerSeparation * separation_m;
   if (!given.count("form_up_height_m"))
