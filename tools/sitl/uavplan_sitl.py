@@ -308,8 +308,11 @@ class Vehicle(object):
                 self.set_param('ARSPD_RATIO', self.pitot_ratio())
             else:
                 self.set_param('AUTO_OPTIONS', 3)  # arm in AUTO, take off without a pilot's throttle
-                # The simulated quad reaches about 10.5 m/s at ArduCopter's default lean limit (30 deg).
-                self.set_param('ANGLE_MAX', 4500)
+                # The simulated quad reaches about 10.5 m/s at ArduCopter's default lean limit (30
+                # deg), 13.5 m/s at 45 deg; 60 deg for a mission commanding more than 12 m/s (at
+                # 60 deg the corners of slower missions are rounded wider).
+                fast = any(r[3] == 178 and r[5] > 12.0 for r in self.rows)
+                self.set_param('ANGLE_MAX', 6000 if fast else 4500)
             for name, value in sorted(self.parameters.items()):
                 self.set_param(name, value)
             if self.args.terrain_grid:  # the ground sent at 30 m (ArduPilot's default 100 m is coarse)
