@@ -226,6 +226,14 @@ grep -q "above mean sea level (MAV_FRAME_GLOBAL" "$TMP/stderr" && pass=$((pass +
   { echo "FAIL dem.amsl_note: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
 node "$SRC/tests/qgc_plan_check.mjs" "$TMP/alp" s1 s2 s3 s4 >/dev/null 2>&1; check dem.qgc_files 0 $?
 "$BIN" verify "$ALP" "$TMP/alp/plan.json" >/dev/null 2>&1; check dem.verify 0 $?
+# A home off the model's ground is refused with the ground's height to ten digits; that height
+# entered to six (within a millimetre) is put on the ground, and the flight from it holds.
+"$BIN" plan "$ALP" -o "$TMP/alp_home" --set 'uavs[0].home=[-2250, -1450, 0]' >/dev/null 2>"$TMP/stderr"
+check dem.home.off_ground 2 $?
+grep -q "the ground there, 704.6430664 m" "$TMP/stderr" && pass=$((pass + 1)) ||
+  { echo "FAIL dem.home.digits: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
+"$BIN" plan "$ALP" -o "$TMP/alp_home" --set 'uavs[0].home=[-2250, -1450, 704.643]' >/dev/null 2>&1
+check dem.home.six_digits 0 $?
 # Above the terrain is ArduPilot's frame: for PX4 (the default) refused before planning, nothing written.
 "$BIN" plan "$ALP" -o "$TMP/alp_px4" --format qgc --altitude terrain >/dev/null 2>"$TMP/stderr"; check dem.terrain_px4 2 $?
 [ "$(wc -l <"$TMP/stderr")" = 1 ] && grep -q "PX4 takes no mission item above the terrain" "$TMP/stderr" &&

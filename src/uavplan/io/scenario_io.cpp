@@ -475,10 +475,26 @@ void check_home(const At& ui, const Scenario& sc, const UavSpec& u) {
            " missions (a " + sc.mission.type + " mission's UAVs take off from their starts)");
   if (!w.in_bounds(*u.home)) h.fail("outside the world bounds");
   if (!w.on_ground(*u.home))
-    h.fail("must lie on the ground (z = the ground there, " + num_text(w.ground_z(u.home->x(), u.home->y())) + " m)");
+    h.fail("must lie on the ground (z = the ground there, " + strf("%.10g", w.ground_z(u.home->x(), u.home->y())) +
+           " m)");
   if (w.on_ground(u.start)) ui["start"].fail("is on the ground with a home: a UAV with a home starts in the air");
   if (u.goal && w.on_ground(*u.goal)) ui["goal"].fail("is on the ground with a home: a UAV with a home lands there");
   if (const std::string why = ground_column_problem(sc, u, *u.home); !why.empty()) h.fail("cannot take off: " + why);
+}
+
+// A start, goal or home on the ground (within World::on_ground's millimetre) is put exactly on
+// it: the verifier measures a body's clearance from the ground exactly, and a height copied
+// from a message to a few digits would leave the body micrometres inside it.
+void on_the_ground(Scenario& sc) {
+  const World& w = sc.world;
+  const auto settle = [&](Vec3& p) {
+    if (w.on_ground(p)) p.z() = w.ground_z(p.x(), p.y());
+  };
+  for (UavSpec& u : sc.uavs) {
+    settle(u.start);
+    if (u.goal) settle(*u.goal);
+    if (u.home) settle(*u.home);
+  }
 }
 
 void check_uavs_fit(const At& uavs, const Scenario& sc) {
@@ -816,6 +832,7 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
   if (top.has("mission")) read_mission(top["mission"], uavs, sc);
   check_flight_lengths(uavs, sc);
   sc.default_min_agl_m = default_min_agl_m(sc);
+  on_the_ground(sc);
   check_uavs_fit(uavs, sc);
   if (top.has("planner")) read_planner(top["planner"], sc);
   return sc;
