@@ -226,6 +226,10 @@ grep -q "above mean sea level (MAV_FRAME_GLOBAL" "$TMP/stderr" && pass=$((pass +
   { echo "FAIL dem.amsl_note: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
 node "$SRC/tests/qgc_plan_check.mjs" "$TMP/alp" s1 s2 s3 s4 >/dev/null 2>&1; check dem.qgc_files 0 $?
 "$BIN" verify "$ALP" "$TMP/alp/plan.json" >/dev/null 2>&1; check dem.verify 0 $?
+# P5's mission by small aircraft: their taxi turns on the ground are no reversals (the metric is
+# the flight's); in the air they fly none.
+"$BIN" plan "$SRC/scenarios/p5_small.yaml" -o "$TMP/p5s" 2>&1 | grep -q ", 0 reversals," && pass=$((pass + 1)) ||
+  { echo "FAIL p5_small.reversals: $("$BIN" plan "$SRC/scenarios/p5_small.yaml" -o "$TMP/p5s" 2>&1 | grep reversals)"; fails=$((fails + 1)); }
 # A home off the model's ground is refused with the ground's height to ten digits; that height
 # entered to six (within a millimetre) is put on the ground, and the flight from it holds.
 "$BIN" plan "$ALP" -o "$TMP/alp_home" --set 'uavs[0].home=[-2250, -1450, 0]' >/dev/null 2>"$TMP/stderr"

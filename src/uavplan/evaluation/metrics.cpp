@@ -137,7 +137,11 @@ UavMetrics uav_metrics(const Scenario& sc, const UavSpec& spec, const UavPlan& p
   }
   m.p1_cost = p1_route_cost(plan.waypoints, sc.world);
   m.p3 = p3_score(plan.waypoints, sc.world);
-  m.reversals = count_reversals(tr);
+  // In the air: a fixed wing's taxi to its runway turns as it must on the ground.
+  Trajectory air;
+  for (const TrajectorySample& s : tr)
+    if (!sc.world.on_ground(s.p)) air.push_back(s);
+  m.reversals = count_reversals(air);
   return m;
 }
 
