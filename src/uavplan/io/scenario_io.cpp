@@ -750,6 +750,7 @@ void read_mission(const At& m, const At& uavs, Scenario& sc) {
     for (const MissionKey& k : mission->declaration().keys)
       if (std::find(keys.begin(), keys.end(), k.key) == keys.end()) keys.push_back(k.key);
   std::vector<const char*> allowed;
+  allowed.reserve(keys.size());
   for (const std::string& k : keys) allowed.push_back(k.c_str());
   m.keys(allowed);
   const Mission& mission = *find_mission(sc.mission.type);
