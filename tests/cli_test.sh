@@ -608,6 +608,12 @@ process.exit(p.mission.vehicleType === 1 && c.includes(189) && c[c.length - 1] =
   "$TMP/open/fw1.plan"; check export.fixedwing.pattern 0 $?
 sed 's/^name: ground/name: ground\norigin: {lat: 52.5, lon: 13.4, alt: 34}/' "$TMP/ground.yaml" >"$TMP/ground_geo.yaml"
 "$BIN" plan "$TMP/ground_geo.yaml" -o "$TMP/ground_geo" --export qgc,wpl,csv >/dev/null 2>&1; check export.ground 0 $?
+# Flown 3 m up, its take-offs climb a few metres: PX4 up to v1.14 refuses that, and the export
+# says what to set.
+sed 's/min_agl: 10/min_agl: 3/' "$TMP/ground_geo.yaml" >"$TMP/ground_low.yaml"
+"$BIN" plan "$TMP/ground_low.yaml" -o "$TMP/ground_low" --export qgc >/dev/null 2>"$TMP/stderr"
+grep -q "PX4 up to v1.14 refuses a take-off below NAV_ACC_RAD + 1 m" "$TMP/stderr" && pass=$((pass + 1)) ||
+  { echo "FAIL export.ground.px4_takeoff: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
 node "$SRC/tests/qgc_plan_check.mjs" "$TMP/ground_geo" a b >/dev/null || { echo "FAIL export.ground check"; fails=$((fails + 1)); }
 "$BIN" plan "$TMP/ground_geo.yaml" -o "$TMP/ground_fw" --export qgc --vehicle fixedwing >/dev/null 2>"$TMP/stderr"; check export.ground.fixedwing 1 $?
 grep -q "cannot fly its planned vertical take-off" "$TMP/stderr" || { echo "FAIL export.ground.fixedwing message: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }

@@ -396,7 +396,7 @@ TEST(Export, FenceKeepsTheLargestExclusionsAndSaysWhatItDropped) {
   std::vector<std::string> notes;
   auto j = nlohmann::json::parse(qgc_plan_json(sc, exported(sc, opt), opt, &notes));
   ASSERT_EQ(j["geoFence"]["polygons"].size(), 17u);  // bounds and the 16 largest
-  ASSERT_EQ(notes.size(), 1u);
+  ASSERT_EQ(notes.size(), 2u);                       // and PX4's take-off height (Px4TakeoffHeightIsNamed)
   EXPECT_NE(notes[0].find("16 largest of 20"), std::string::npos) << notes[0];
   const GeoFrame f(*sc.origin);  // the smallest kept is tower 4 (footprint 14 x 14)
   EXPECT_NEAR(j["geoFence"]["polygons"][16]["polygon"][0][1].get<double>(), f.to_wgs84(Vec3(320, 500, 0)).lon_deg,
@@ -405,7 +405,8 @@ TEST(Export, FenceKeepsTheLargestExclusionsAndSaysWhatItDropped) {
   notes.clear();
   j = nlohmann::json::parse(qgc_plan_json(sc, exported(sc, opt), opt, &notes));
   EXPECT_EQ(j["geoFence"]["polygons"].size(), 21u);
-  EXPECT_TRUE(notes.empty());
+  ASSERT_EQ(notes.size(), 1u);  // nothing dropped: only the take-off's note
+  EXPECT_NE(notes[0].find("NAV_ACC_RAD"), std::string::npos) << notes[0];
   opt.fence = FenceMode::none;
   j = nlohmann::json::parse(qgc_plan_json(sc, exported(sc, opt), opt, &notes));
   EXPECT_TRUE(j["geoFence"]["polygons"].empty());
@@ -688,6 +689,28 @@ TEST(ExportSimplify, ChordsThatDoNotHoldAreHalvedUntilTheyDo) {
   EXPECT_LT(rows, verified_export(m.sc, m.plan, all_rows).uavs[0].plan.trajectory.size());
 }
 
+// PX4 up to v1.14 refuses a take-off below NAV_ACC_RAD + 1 m above home (11 m by default): a
+// take-off to 10 m is named with what to set; one to 12 m, or for ArduPilot, is not.
+TEST(Export, Px4TakeoffHeightIsNamed) {
+  const Scenario sc = scenario_with();
+  std::vector<std::string> notes;
+  qgc_plan_json(sc, exported(sc), {}, &notes);  // the sample starts 10 m up
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("climbs 10 m above home"), std::string::npos) << notes[0];
+  EXPECT_NE(notes[0].find("NAV_ACC_RAD to 9 m or less"), std::string::npos) << notes[0];
+  Scenario higher = sc;
+  higher.uavs[0].start.z() = 12.0;
+  UavPlan high = sample_uav();
+  for (auto& row : high.trajectory) row.p.z() = 12.0;
+  notes.clear();
+  qgc_plan_json(higher, exported(higher, {}, high), {}, &notes);
+  EXPECT_TRUE(notes.empty());
+  ExportOptions ardupilot;
+  ardupilot.firmware = Firmware::ardupilot;
+  qgc_plan_json(sc, exported(sc, ardupilot), ardupilot, &notes);
+  EXPECT_TRUE(notes.empty());
+}
+
 // PX4 up to v1.14 refuses a first waypoint more than MIS_DIST_1WP (900 m) from home and legs
 // longer than MIS_DIST_WPS (900 m): the export says so, naming the parameter; ArduPilot has no
 // such rule.
@@ -697,15 +720,22 @@ TEST(Export, Px4DistanceRulesAreNamed) {
   UavPlan u = sample_uav();
   u.trajectory = {{0.0, Vec3(0, 0, 10)}, {100.0, Vec3(500, 0, 10)}, {300.0, Vec3(500, 950, 10)}};
   std::vector<std::string> notes;
+  // The distance notes (a take-off to 10 m adds PX4's take-off note: Px4TakeoffHeightIsNamed).
+  const auto distance_notes = [&] {
+    std::vector<std::string> d;
+    for (const std::string& n : notes)
+      if (n.find("MIS_DIST") != std::string::npos) d.push_back(n);
+    return d;
+  };
   qgc_plan_json(sc, exported(sc, {}, u), {}, &notes);
-  ASSERT_EQ(notes.size(), 1u);
-  EXPECT_NE(notes[0].find("MIS_DIST_WPS"), std::string::npos) << notes[0];
-  EXPECT_NE(notes[0].find("950 m"), std::string::npos) << notes[0];
+  ASSERT_EQ(distance_notes().size(), 1u);
+  EXPECT_NE(distance_notes()[0].find("MIS_DIST_WPS"), std::string::npos) << distance_notes()[0];
+  EXPECT_NE(distance_notes()[0].find("950 m"), std::string::npos) << distance_notes()[0];
   u.trajectory = {{0.0, Vec3(0, 0, 10)}, {190.0, Vec3(950, 0, 10)}, {200.0, Vec3(950, 50, 10)}};
   notes.clear();
   qgc_plan_json(sc, exported(sc, {}, u), {}, &notes);
-  ASSERT_EQ(notes.size(), 1u);  // its legs are short
-  EXPECT_NE(notes[0].find("MIS_DIST_1WP"), std::string::npos) << notes[0];
+  ASSERT_EQ(distance_notes().size(), 1u);  // its legs are short
+  EXPECT_NE(distance_notes()[0].find("MIS_DIST_1WP"), std::string::npos) << distance_notes()[0];
   ExportOptions ardupilot;
   ardupilot.firmware = Firmware::ardupilot;
   notes.clear();

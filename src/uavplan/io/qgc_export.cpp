@@ -147,6 +147,20 @@ void px4_distance_notes(const GeoFrame& frame, const Vec3& home, const std::vect
                      " m: PX4 up to v1.14 refuses legs over MIS_DIST_WPS (default 900 m); raise it or set it to 0");
 }
 
+// PX4 up to v1.14 refuses a take-off that climbs less than NAV_ACC_RAD + 1 m above home (11 m
+// by default: "Takeoff altitude too low"). The take-off is the verified flight's, so it stays as
+// planned (docs/decisions/0022-px4-takeoff-height.md); the note says what to change.
+void px4_takeoff_note(const ExportedUav& e, const ExportOptions& opt, std::vector<std::string>* notes) {
+  constexpr double kPx4AcceptanceRadius_m = 10.0;  // NAV_ACC_RAD's default
+  const double climb_m = e.takeoff_to.z() - e.home.z();
+  if (opt.vehicle != VehicleKind::multirotor || climb_m >= kPx4AcceptanceRadius_m + 1.0) return;
+  const double radius_m = std::floor((climb_m - 1.0) * 10.0) / 10.0;  // the most that lets it pass
+  notes->push_back("the take-off climbs " + num_text(std::round(climb_m * 100.0) / 100.0) +
+                   " m above home: PX4 up to v1.14 refuses a take-off below NAV_ACC_RAD + 1 m (11 m by default); " +
+                   (radius_m > 0.0 ? "set NAV_ACC_RAD to " + num_text(radius_m) + " m or less, or " : std::string()) +
+                   "plan the UAV higher (min_agl 11)");
+}
+
 }  // namespace
 
 std::string qgc_plan_json(const Scenario& sc, const ExportedUav& e, const ExportOptions& opt,
@@ -158,7 +172,10 @@ std::string qgc_plan_json(const Scenario& sc, const ExportedUav& e, const Export
   ojson j;
   j["fileType"] = "Plan";
   j["geoFence"] = fence_json(sc, e, frame, opt, notes);
-  if (notes && opt.firmware == Firmware::px4) px4_distance_notes(frame, e.home, items, notes);
+  if (notes && opt.firmware == Firmware::px4) {
+    px4_distance_notes(frame, e.home, items, notes);
+    px4_takeoff_note(e, opt, notes);
+  }
   j["groundStation"] = "uavplan";
   j["mission"] = {{"cruiseSpeed", e.spec->speed.cruise_mps},
                   {"firmwareType", opt.firmware == Firmware::px4 ? 12 : 3},
