@@ -160,35 +160,49 @@ double planned_lift_off_s(const Trajectory& rows) {
   return rows.front().t_s;
 }
 
-// The flight from lift-off to touch-down, on the ground at both ends as a plan's is: the
-// autopilot's height there (its estimate, a few centimetres off) is put on the scenario's ground
-// while it is within the body's radius of it, and of the rows on the ground before it lifts off
-// (its motors spooling up) and after it touches down only the last and the first are kept; a
-// fixed wing's (`rolls`) all: its take-off and landing rolls are on the runway.
-void settle_on_ground(Trajectory& tr, const World& world, double radius_m, bool rolls) {
-  const auto near_ground = [&](const TrajectorySample& s) {
-    return s.p.z() - world.ground_z(s.p.x(), s.p.y()) < std::max(radius_m, 0.1);
-  };
+// Within the body's radius of the ground (10 cm at least): on it, as far as the autopilot's
+// height estimate tells.
+bool near_ground(const World& world, double radius_m, const TrajectorySample& s) {
+  return s.p.z() - world.ground_z(s.p.x(), s.p.y()) < std::max(radius_m, 0.1);
+}
+
+// On the ground at both ends as a plan's is: the autopilot's height there (its estimate, a few
+// centimetres off) is put on the scenario's ground while it is near it.
+void settle_on_ground(Trajectory& tr, const World& world, double radius_m) {
   std::size_t first = 0, last = tr.size();
-  while (first < tr.size() && near_ground(tr[first])) ++first;
-  while (last > first && near_ground(tr[last - 1])) --last;
+  while (first < tr.size() && near_ground(world, radius_m, tr[first])) ++first;
+  while (last > first && near_ground(world, radius_m, tr[last - 1])) --last;
   for (std::size_t k = 0; k < tr.size(); ++k)
     if (k < first || k >= last) tr[k].p.z() = world.ground_z(tr[k].p.x(), tr[k].p.y());
-  if (first == tr.size()) return;  // never in the air
-  if (rolls) {                     // standing before its roll and after it stopped: the last and the first row
-    constexpr double kStanding_m = 0.5;
-    const auto standing = [&](const TrajectorySample& s, const TrajectorySample& at) {
-      return (s.p - at.p).head<2>().norm() < kStanding_m;
-    };
-    first = 0, last = tr.size();
-    while (first + 1 < tr.size() && standing(tr[first + 1], tr.front())) ++first;
-    while (last > first + 1 && standing(tr[last - 2], tr.back())) --last;
-    tr.erase(tr.begin() + static_cast<std::ptrdiff_t>(last), tr.end());
-    tr.erase(tr.begin(), tr.begin() + static_cast<std::ptrdiff_t>(first));
+}
+
+// Of the rows at the start that `lead` holds for and at the end that `trail` holds for, only the
+// last and the first are kept: a multirotor's on the ground before it lifts off (its motors
+// spooling up) and after it touches down, a fixed wing's standing before its roll and after it
+// stopped (its rolls on the runway are kept). Nothing where `lead` holds for every row.
+template <class Lead, class Trail>
+void trim_ends(Trajectory& tr, Lead lead, Trail trail) {
+  std::size_t l = 0, t = 0;
+  while (l < tr.size() && lead(tr[l])) ++l;
+  if (l == tr.size()) return;
+  while (t < tr.size() && trail(tr[tr.size() - 1 - t])) ++t;
+  if (t > 1) tr.erase(tr.end() - static_cast<std::ptrdiff_t>(t - 1), tr.end());
+  if (l > 1) tr.erase(tr.begin(), tr.begin() + static_cast<std::ptrdiff_t>(l - 1));
+}
+
+// The flight as flown from lift-off (a fixed wing: from its roll) to touch-down (its stop).
+void trim_to_flight(Trajectory& tr, const World& world, double radius_m, bool fixed_wing) {
+  if (tr.empty()) return;
+  if (!fixed_wing) {
+    const auto on_ground = [&](const TrajectorySample& s) { return near_ground(world, radius_m, s); };
+    trim_ends(tr, on_ground, on_ground);
     return;
   }
-  if (last < tr.size()) tr.erase(tr.begin() + static_cast<std::ptrdiff_t>(last) + 1, tr.end());
-  if (first > 1) tr.erase(tr.begin(), tr.begin() + static_cast<std::ptrdiff_t>(first) - 1);
+  constexpr double kStanding_m = 0.5;
+  const TrajectorySample start = tr.front(), stop = tr.back();
+  trim_ends(
+      tr, [&](const TrajectorySample& s) { return (s.p - start.p).head<2>().norm() < kStanding_m; },
+      [&](const TrajectorySample& s) { return (s.p - stop.p).head<2>().norm() < kStanding_m; });
 }
 
 // A fixed wing's mission starts lined up on the runway: where the plan has it parked and
@@ -351,12 +365,12 @@ int fly_missions(const FlyArgs& a, const Scenario& sc, const std::string& driver
   const int rc = run_program(words);
   const GeoFrame frame(*sc.origin);
   for (Flight& f : flights) {
-    const bool plane = f.fixed_wing;
-    const double lift_off_s = plane ? planned_lift_off_s(f.planned) : f.start_s + kCopterLiftoff_s;
+    const double lift_off_s = f.fixed_wing ? planned_lift_off_s(f.planned) : f.start_s + kCopterLiftoff_s;
     f.flown = read_track((work / "tracks" / (f.file + ".csv")).string(), frame, f.start_s, lift_off_s);
-    if (!plane) columns(f.flown, f.planned.front().p, f.planned.back().p);
-    settle_on_ground(f.flown, sc.world, f.exported->spec->radius_m, plane);
-    if (plane) ground_crew(f.flown, f.exported->plan.trajectory);
+    if (!f.fixed_wing) columns(f.flown, f.planned.front().p, f.planned.back().p);
+    settle_on_ground(f.flown, sc.world, f.exported->spec->radius_m);
+    trim_to_flight(f.flown, sc.world, f.exported->spec->radius_m, f.fixed_wing);
+    if (f.fixed_wing) ground_crew(f.flown, f.exported->plan.trajectory);
     flatten(f.flown, sc.world);
   }
   if (!a.keep_work) fs::remove_all(work);
@@ -434,13 +448,15 @@ int run_fly(const FlyArgs& a) {
     for (const ExportFile& file : prepared.files)
       if (file.uav == e.spec->id) f.file = fs::path(file.name).stem().string();
     f.planned = exported_rows(e);
-    f.fixed_wing = default_vehicle(sc) == "fixedwing";
     f.body = e.plan.trajectory;
     flatten(f.planned, sc.world);
     flatten(f.body, sc.world);
     flights.push_back(std::move(f));
   }
-  for (std::size_t k = 0; k < flights.size(); ++k) flights[k].start_s = prepared.schedule[k].start_s;
+  for (std::size_t k = 0; k < flights.size(); ++k) {  // as exported: when it starts, and in what
+    flights[k].start_s = prepared.schedule[k].start_s;
+    flights[k].fixed_wing = prepared.schedule[k].vehicle == VehicleKind::fixed_wing;
+  }
   const std::string missions = (fs::path(a.out_dir) / "missions").string();
   write_export(missions, prepared.files, {}, prepared.source);
   std::cerr << "fly: " << count_text(flights.size(), "mission") << " in " << missions

@@ -24,6 +24,9 @@ namespace {
 constexpr double kG_mps2 = 9.81;
 // A route waypoint this near a task point is that task point (pso_mpc puts one on each).
 constexpr double kTaskPointMatch_m = 1.0;
+// P5's aircraft (P5-notes 3): 150 m/s turning at 2.2 deg/s. Its lengths and rates are scaled to
+// other aircraft from these.
+constexpr double kP5Cruise_mps = 150.0, kP5TurnRate_deg_s = 2.2;
 
 // The model a UAV flies through: its own, or papers.md P5's defaults (time constants; the turn rate of
 // a 30 deg bank at cruise; climb at most 20 m/s (P5's gradient for slower aircraft) and within
@@ -35,7 +38,6 @@ AutopilotModel mission_model(const UavSpec& u, const FormationMissionOptions& o)
   AutopilotLimits lim = own.limits();
   if (!u.max_turn_rate_rad_s) lim.max_turn_rate_rad_s = kG_mps2 * std::tan(deg_to_rad(o.bank_deg)) / u.speed.cruise_mps;
   // Without its own: P5's 20 m/s at its 150 m/s, the same climb gradient for slower aircraft.
-  constexpr double kP5Cruise_mps = 150.0;
   double climb =
       u.max_climb_rate_mps.value_or(o.max_climb_rate_mps * std::min(1.0, u.speed.cruise_mps / kP5Cruise_mps));
   if (u.max_climb_rad < kPi / 2 - kUnlimitedAngleSlack_rad)
@@ -182,21 +184,18 @@ FormationBody formation_body(const Scenario& sc, const std::vector<AutopilotMode
 // above the airfield (P5: 1000 m at 20 m/s) and above the layers. Values in planner.params stay.
 void scale_to_formation(FormationMissionOptions& o, const Params& given, const FormationBody& b, double separation_m,
                         double climb_mps, std::size_t n) {
-  const double p5_radius_m = 150.0 / deg_to_rad(2.2);
+  const double p5_radius_m = kP5Cruise_mps / deg_to_rad(kP5TurnRate_deg_s);
   double s = b.cruise_mps / b.turn_rate_rad_s / p5_radius_m;
   if (!std::isfinite(s) || std::abs(s - 1.0) < 1e-9) s = 1.0;
-  const auto scaled = [&](const char* key, double& v, double by) {
-    if (!given.count(key)) v *= by;
-  };
   o.departure_after_runway_m *= s;
   o.steering_switch_m *= s;
-  scaled("dismiss_within_m", o.dismiss_within_m, s);
+  if (!given.count("dismiss_within_m")) o.dismiss_within_m *= s;
   o.landing.cylinder_radius_m *= s;
   o.landing.cylinder_before_threshold_m *= s;
   o.landing.gate_before_threshold_m *= s;
   o.landing.gate_height_m *= s;
   // The spiral's descent (P5: at most 10 m/s at 150 m/s) at the same gradient for slower aircraft.
-  o.landing.max_descent_mps *= std::min(1.0, b.cruise_mps / 150.0);
+  o.landing.max_descent_mps *= std::min(1.0, b.cruise_mps / kP5Cruise_mps);
   constexpr double kLayersPerSeparation = 2.0, kFormUpClimb_s = 50.0;
   if (!given.count("layer_spacing_m")) o.layer_spacing_m = kLayersPerSeparation * separation_m;
   if (!given.count("form_up_height_m"))
