@@ -27,6 +27,11 @@ inline std::string point_text(const Vec3& p) {
 // "a, b or c" (conjunction "and": "a, b and c"); "" for none.
 std::string word_list(const std::vector<std::string>& words, const std::string& conjunction = "or");
 
+// The candidate a mistyped word most likely meant: the nearest by edit distance (a swap of two
+// neighbouring letters counts one), when it is within a third of the word's length (at least
+// one edit); "" when none is that near.
+std::string nearest_word(const std::string& word, const std::vector<std::string>& candidates);
+
 // "1 UAV", "3 UAVs": a count with its noun, plural but for one (the noun's plural adds "s").
 inline std::string count_text(std::size_t n, const std::string& noun) {
   return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");

@@ -27,5 +27,15 @@ TEST(Text, WordListsJoinWithCommasAndTheLastConjunction) {
   EXPECT_EQ(word_list({"a", "b", "c"}, "and"), "a, b and c");
 }
 
+TEST(Text, NearestWordNamesWhatATypoMeant) {
+  const std::vector<std::string> keys = {"speed", "separation", "start", "radius", "id"};
+  EXPECT_EQ(nearest_word("sped", keys), "speed");
+  EXPECT_EQ(nearest_word("seperation", keys), "separation");
+  EXPECT_EQ(nearest_word("raduis", keys), "radius");  // a swap is one edit
+  EXPECT_EQ(nearest_word("colour", keys), "");        // nothing near
+  EXPECT_EQ(nearest_word("ix", keys), "id");
+  EXPECT_EQ(nearest_word("xyz", keys), "");
+}
+
 }  // namespace
 }  // namespace uavplan

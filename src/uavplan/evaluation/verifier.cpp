@@ -23,22 +23,6 @@ std::string keep_off_text(const UavSpec& u) {
   return (u.clearance_m > 0.0 ? "the UAV radius plus clearance " : "the UAV radius ") + num_text(keep_off_m(u)) + " m";
 }
 
-// What the clearance at p is measured to, by name: "obstacle hangar" (its id), "obstacle 3 (box)"
-// when it has none, or "the terrain".
-std::string nearest_thing(const World& w, const Vec3& p) {
-  const auto& obstacles = w.obstacles();
-  double best = World::kInf;
-  std::string what = "an obstacle";
-  for (std::size_t k = 0; k < obstacles.size(); ++k) {
-    const double d = point_distance(obstacles[k], p);
-    if (d >= best) continue;
-    best = d;
-    what = w.obstacle_label(k);
-  }
-  if (const TerrainGrid* t = w.terrain(); t && t->point_distance(p, best) < best) what = "the terrain";
-  return what;
-}
-
 // Where along a segment the clearance is smallest (for the report only).
 double worst_param(const World& w, const Vec3& a, const Vec3& b) {
   double best_t = 0.0, best = World::kInf;
@@ -132,7 +116,7 @@ void check_segments(const Scenario& sc, const UavSpec& u, const Trajectory& tr, 
       const double f = worst_param(sc.world, a.p, b.p);
       const Vec3 at(a.p + f * (b.p - a.p));
       add_violation(out, ViolationKind::obstacle, id, a.t_s + f * dt, at,
-                    "clearance " + num_text(c) + " m to " + nearest_thing(sc.world, at) + ", below " + keep_text);
+                    "clearance " + num_text(c) + " m to " + sc.world.nearest_label(at) + ", below " + keep_text);
     }
     if (u.min_agl_m > 0.0 && !on_leg) {
       const double h = sc.world.lowest_height_above_ground(a.p, b.p);

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace uavplan {
 
@@ -21,6 +22,8 @@ class InputError : public std::runtime_error {
   // line is 1-based; 0 when unknown.
   InputError(const std::string& file, int line, const std::string& place, const std::string& what)
       : std::runtime_error(format(file, line, place, what)) {}
+  // Several errors of one input, one per line (each already an InputError's message).
+  explicit InputError(const std::vector<std::string>& messages) : std::runtime_error(join(messages)) {}
 
  private:
   static std::string format(const std::string& file, int line, const std::string& place, const std::string& what) {
@@ -36,6 +39,14 @@ class InputError : public std::runtime_error {
     }
     s.append(": ");
     s.append(printable(what));
+    return s;
+  }
+  static std::string join(const std::vector<std::string>& messages) {
+    std::string s;
+    for (const std::string& m : messages) {
+      if (!s.empty()) s.append("\n");
+      s.append(m);
+    }
     return s;
   }
 };

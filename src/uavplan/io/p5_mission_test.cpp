@@ -240,7 +240,7 @@ TEST(P5Mission, BadInputIsOneLineNamingThePlace) {
   expect_bad(
       replaced(good, "  airfield: {position: [50000, 50000, 0], runway_heading_deg: 0, runway_length: 3000}\n", ""),
       "airfield");
-  expect_bad(replaced(good, "[409000, 271000, 5000]", "[173000, 455000, 5000]"), "inside an obstacle");
+  expect_bad(replaced(good, "[409000, 271000, 5000]", "[173000, 455000, 5000]"), "inside obstacle nofly1");
   expect_bad(replaced(good, "[409000, 271000, 5000]", "[409000, 271000, 50000]"), "outside the world bounds");
   expect_bad(replaced(good, "start: [50200, 49800, 0]", "start: [50030, 49800, 0]"), "at least the separation");
   expect_bad(replaced(good, "start: [50400, 49800, 0]", "start: [51400, 50020, 0]"), "parked on the runway");

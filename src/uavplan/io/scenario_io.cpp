@@ -39,6 +39,8 @@ struct At {
   std::string path;
   const std::string* file;
   const Applied* applied = nullptr;
+  // Where unknown keys are collected, so that one run names every typo; null: the first fails.
+  std::vector<std::string>* unknown = nullptr;
 
   [[noreturn]] void fail(const std::string& what) const {
     // A value from the command line is named by its argument, not by a line of the file.
@@ -52,14 +54,14 @@ struct At {
   }
   bool has(const char* key) const { return node.IsMap() && node[key].IsDefined() && !node[key].IsNull(); }
   At operator[](const char* key) const {
-    return {node[key], path.empty() ? std::string(key) : path + "." + key, file, applied};
+    return {node[key], path.empty() ? std::string(key) : path + "." + key, file, applied, unknown};
   }
   At req(const char* key) const {
     if (!node.IsMap()) fail("expected a mapping");
     if (!has(key)) fail(std::string("missing required key '") + key + "'");
     return (*this)[key];
   }
-  At item(std::size_t i) const { return {node[i], path + "[" + std::to_string(i) + "]", file, applied}; }
+  At item(std::size_t i) const { return {node[i], path + "[" + std::to_string(i) + "]", file, applied, unknown}; }
   std::size_t size() const { return node.size(); }
 
   void expect_map() const {
@@ -74,17 +76,17 @@ struct At {
     for (const auto& kv : node) {
       const std::string k = kv.first.Scalar();
       if (std::none_of(allowed.begin(), allowed.end(), [&](const char* a) { return k == a; })) {
-        std::string list;
-        for (const char* a : allowed) {
-          if (!list.empty()) list += ", ";
-          list += a;
-        }
+        const std::vector<std::string> names(allowed.begin(), allowed.end());
+        const std::string near = nearest_word(k, names);
         std::string why = "unknown key '";
         why += k;
-        why += "' (expected one of: ";
-        why += list;
-        why += ")";
-        At{kv.first, path.empty() ? k : path + "." + k, file, applied}.fail(why);
+        why += near.empty() ? "' (expected one of: " + word_list(names) + ")" : "' (did you mean '" + near + "'?)";
+        try {
+          At{kv.first, path.empty() ? k : path + "." + k, file, applied}.fail(why);
+        } catch (const InputError& e) {
+          if (!unknown) throw;
+          unknown->push_back(e.what());
+        }
       }
     }
   }
@@ -317,8 +319,13 @@ void read_airspace_files(const At& a, const std::optional<GeoOrigin>& origin, Wo
       ws.obstacle_ids.push_back(zones.zone_ids[k]);
     }
     if (const auto& box = zones.inclusion_box) {
-      ws.bounds.min.head<2>() = ws.bounds.min.head<2>().cwiseMax(box->min.head<2>());
-      ws.bounds.max.head<2>() = ws.bounds.max.head<2>().cwiseMin(box->max.head<2>());
+      // To the micrometre, far below what 1e-7 degrees place (1 cm): a fence through the origin
+      // bounds the world at 0, not at the projection's -1.06e-09 or -0.
+      const auto micrometres = [](Vec2 v) -> Vec2 {
+        return v.unaryExpr([](double x) { return std::round(x * 1e6) / 1e6 + 0.0; });  // + 0: no -0
+      };
+      ws.bounds.min.head<2>() = ws.bounds.min.head<2>().cwiseMax(micrometres(box->min.head<2>()));
+      ws.bounds.max.head<2>() = ws.bounds.max.head<2>().cwiseMin(micrometres(box->max.head<2>()));
       if ((ws.bounds.max.head<2>().array() <= ws.bounds.min.head<2>().array()).any())
         e["file"].fail("the inclusion fence lies outside the world's bounds");
     }
@@ -813,18 +820,8 @@ void read_planner(const At& p, Scenario& sc) {
   }
 }
 
-}  // namespace
-
-Scenario parse_scenario(const std::string& text, const std::string& file, const Overrides& overrides,
-                        const StopCondition& stop) {
-  YAML::Node root = parse_yaml(text, file);
-  if (!root.IsMap()) throw InputError(file, 0, "", "the top level must be a mapping of scenario keys");
-  Applied applied;
-  for (const auto& [k, v] : overrides) applied.push_back(apply_override(root, k, v, file));
-  const At top{root, "", &file, &applied};
+void read_scenario(const At& top, Scenario& sc, const StopCondition& stop) {
   top.keys({"version", "name", "seed", "origin", "world", "uavs", "mission", "planner"});
-
-  Scenario sc;
   read_header(top, sc);
   const At w = top.req("world");
   sc.world = read_world(w, sc, stop);
@@ -836,6 +833,27 @@ Scenario parse_scenario(const std::string& text, const std::string& file, const 
   on_the_ground(sc);
   check_uavs_fit(uavs, sc);
   if (top.has("planner")) read_planner(top["planner"], sc);
+}
+
+}  // namespace
+
+Scenario parse_scenario(const std::string& text, const std::string& file, const Overrides& overrides,
+                        const StopCondition& stop) {
+  YAML::Node root = parse_yaml(text, file);
+  if (!root.IsMap()) throw InputError(file, 0, "", "the top level must be a mapping of scenario keys");
+  Applied applied;
+  for (const auto& [k, v] : overrides) applied.push_back(apply_override(root, k, v, file));
+  std::vector<std::string> unknown;
+  const At top{root, "", &file, &applied, &unknown};
+  Scenario sc;
+  try {
+    read_scenario(top, sc, stop);
+  } catch (const InputError& e) {
+    // The typos met before the error come first: they may be its cause (a required key mistyped).
+    unknown.push_back(e.what());
+    throw InputError(unknown);
+  }
+  if (!unknown.empty()) throw InputError(unknown);
   return sc;
 }
 

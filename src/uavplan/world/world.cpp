@@ -63,6 +63,19 @@ std::string World::obstacle_label(std::size_t k) const {
   return "obstacle " + std::to_string(k) + " (" + std::string(shape_name(spec_.obstacles.at(k))) + ")";
 }
 
+std::string World::nearest_label(const Vec3& p) const {
+  double best = kInf;
+  std::string what = "an obstacle";
+  for (std::size_t k = 0; k < spec_.obstacles.size(); ++k) {
+    const double d = point_distance(spec_.obstacles[k], p);
+    if (d >= best) continue;
+    best = d;
+    what = obstacle_label(k);
+  }
+  if (spec_.terrain && spec_.terrain->point_distance(p, best) < best) what = "the terrain";
+  return what;
+}
+
 double World::clearance(const Vec3& p, double cap) const {
   double best = cap;
   if (spec_.terrain) best = spec_.terrain->point_distance(p, best);

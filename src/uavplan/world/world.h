@@ -47,6 +47,9 @@ class World {
   bool in_bounds(const Vec3& p) const { return spec_.bounds.contains(p); }
   // Obstacle k in words: "obstacle hangar" (its id), "obstacle 3 (box)" when it has none.
   std::string obstacle_label(std::size_t k) const;
+  // What the clearance at p is measured to, by name: the nearest obstacle's label, or "the
+  // terrain".
+  std::string nearest_label(const Vec3& p) const;
 
   // Distance from p to the nearest static obstacle or terrain column (0 inside), capped at `cap`.
   double clearance(const Vec3& p, double cap = kInf) const;
