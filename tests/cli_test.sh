@@ -202,6 +202,18 @@ sed -i 's/fence.plan}/zones.kml}/' "$TMP/airbad/air.yaml" && echo '<kml><Documen
 bad_zone airspace.kml "$TMP/airbad/zones.kml" "GDAL cannot read it as KML"
 grep -v '^origin' "$AIR/air.yaml" | sed 's|{file: |{file: '"$AIR"'/|' >"$TMP/air_no_origin.yaml"
 expect_bad airspace.no_origin "$TMP/air_no_origin.yaml" "origin"
+# A fence through the origin (its corner written to 15 digits) bounds the world at 0, not at
+# the projection's -1.06e-09 or -0.
+mkdir -p "$TMP/air0" && cp "$AIR"/* "$TMP/air0/" && sed -i 's/min: \[0, 0, 0\]/min: [-50, -50, 0]/' "$TMP/air0/air.yaml"
+python3 - "$TMP/air0/fence.plan" <<'PY'
+import json, sys
+p = json.load(open(sys.argv[1]))
+ring = p["geoFence"]["polygons"][0]["polygon"]
+ring[0], ring[1], ring[3] = [47.397699999999986, 8.545599999999993], [47.3977, ring[1][1]], [ring[3][0], 8.5456]
+json.dump(p, open(sys.argv[1], "w"))
+PY
+"$BIN" info "$TMP/air0/air.yaml" | grep -q "^bounds    \[0, 0, 0\] \.\. " && pass=$((pass + 1)) ||
+  { echo "FAIL airspace.origin_bound: $("$BIN" info "$TMP/air0/air.yaml" 2>&1 | grep bounds)"; fails=$((fails + 1)); }
 # A fence read is the fence written: the .plan export's geoFence holds fence.plan's inclusion
 # polygon and exclusion circle corner for corner (and the GeoJSON zone the routes cannot pass over).
 "$BIN" export "$AIR/air.yaml" "$TMP/air/plan.json" -o "$TMP/air/exp" --format qgc >/dev/null 2>&1
@@ -238,6 +250,30 @@ grep -q "the ground there, 704.6430664 m" "$TMP/stderr" && pass=$((pass + 1)) ||
   { echo "FAIL dem.home.digits: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
 "$BIN" plan "$ALP" -o "$TMP/alp_home" --set 'uavs[0].home=[-2250, -1450, 704.643]' >/dev/null 2>&1
 check dem.home.six_digits 0 $?
+# Every typo of a file named in one run, each with the key it most likely meant; nothing written.
+sed -e 's/radius: 0.5, speed: 5/radius: 0.5, sped: 5/' -e 's/separation: 5/seperation: 5/' \
+  "$SRC/scenarios/demo.yaml" >"$TMP/typos.yaml"
+"$BIN" plan "$TMP/typos.yaml" -o "$TMP/typos" >/dev/null 2>"$TMP/stderr"; check typos.exit 2 $?
+[ "$(grep -c "did you mean 'speed'" "$TMP/stderr")" = 3 ] && grep -q "typos.yaml:38: mission.seperation: unknown key 'seperation' (did you mean 'separation'?)" "$TMP/stderr" &&
+  [ ! -e "$TMP/typos" ] && pass=$((pass + 1)) || { echo "FAIL typos.all_named: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
+# A wait on the ground is the departure's: depart_s + flight_s = the last movement, arrival_s
+# counts the wait (the second UAV leaves 3 s later to keep 10 m from the first).
+cat >"$TMP/cross.yaml" <<'EOF'
+version: 1
+name: cross
+world: {bounds: {min: [0, 0, 0], max: [200, 200, 40]}}
+uavs:
+  - {id: a, start: [10, 100, 0], goal: [190, 100, 0], radius: 0.5, speed: 5}
+  - {id: b, start: [100, 10, 0], goal: [100, 190, 0], radius: 0.5, speed: 5}
+mission: {type: independent, separation: 10}
+planner: {algorithm: astar}
+EOF
+"$BIN" plan "$TMP/cross.yaml" -o "$TMP/cross" >"$TMP/stdout" 2>&1
+grep -q "depart_s  flight_s arrival_s" "$TMP/stdout" && grep -Eq "^b +solved +[0-9.]+ +3.000000 +37.220000 +40.120000 " "$TMP/stdout" &&
+  pass=$((pass + 1)) || { echo "FAIL plan.departure: $(cat "$TMP/stdout")"; fails=$((fails + 1)); }
+# A start inside a building names it.
+sed 's/start: \[20, 20, 30\]/start: [230, 230, 30]/' "$SRC/scenarios/demo.yaml" >"$TMP/in_building.yaml"
+expect_bad start.in_building "$TMP/in_building.yaml" "uavs[0].start: start is inside obstacle tower_a"
 # Above the terrain is ArduPilot's frame: for PX4 (the default) refused before planning, nothing written.
 "$BIN" plan "$ALP" -o "$TMP/alp_px4" --format qgc --altitude terrain >/dev/null 2>"$TMP/stderr"; check dem.terrain_px4 2 $?
 [ "$(wc -l <"$TMP/stderr")" = 1 ] && grep -q "PX4 takes no mission item above the terrain" "$TMP/stderr" &&

@@ -39,16 +39,17 @@ std::optional<Overrides> parse_sets(const std::vector<std::string>& sets) {
 }
 
 void print_summary(const Plan& plan, const std::string& path) {
-  std::printf("%-12s %-8s %10s %9s %9s %9s %10s %10s\n", "uav", "status", "length_m", "time_s", "arrival_s", "turn_deg",
-              "climb_deg", "gap_m");
+  // depart_s + flight_s: the plan's clock at the last movement; a wait on the ground is before depart_s.
+  std::printf("%-12s %-8s %10s %9s %9s %9s %9s %10s %10s\n", "uav", "status", "length_m", "depart_s", "flight_s",
+              "arrival_s", "turn_deg", "climb_deg", "gap_m");
   for (const UavPlan& u : plan.uavs) {
     auto m = [&](const char* k) {
       const auto it = u.metrics.find(k);
       return it == u.metrics.end() ? std::string("-") : std::to_string(it->second).substr(0, 9);
     };
-    std::printf("%-12s %-8s %10s %9s %9s %9s %10s %10s\n", u.id.c_str(), std::string(to_string(u.status)).c_str(),
-                m("length_m").c_str(), m("flight_time_s").c_str(), m("arrival_s").c_str(), m("max_turn_deg").c_str(),
-                m("max_climb_deg").c_str(), m("min_gap_m").c_str());
+    std::printf("%-12s %-8s %10s %9s %9s %9s %9s %10s %10s\n", u.id.c_str(), std::string(to_string(u.status)).c_str(),
+                m("length_m").c_str(), m("departure_s").c_str(), m("flight_time_s").c_str(), m("arrival_s").c_str(),
+                m("max_turn_deg").c_str(), m("max_climb_deg").c_str(), m("min_gap_m").c_str());
   }
   // Why each UAV is not solved; the notes of solved ones (an anytime planner stopped with its best
   // route, a mission's counts), the first few.

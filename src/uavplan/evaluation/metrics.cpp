@@ -111,6 +111,7 @@ UavMetrics uav_metrics(const Scenario& sc, const UavSpec& spec, const UavPlan& p
       if (first == 0) first = i;
       last = i;
     }
+  if (!tr.empty()) m.departure_s = tr[first > 0 ? first - 1 : 0].t_s;
   if (last > 0) m.flight_time_s = tr[last].t_s - tr[first - 1].t_s;
   // Turn, climb, clearance and height as the verifier sees them: on the take-off and landing
   // legs only the distance to obstacles counts (not to the ground the UAV stands on).
@@ -234,6 +235,7 @@ void compute_metrics(const Scenario& sc, Plan& plan) {
     const UavMetrics m = uav_metrics(sc, *spec, up);
     up.length_m = m.length_m;
     up.metrics = {{"length_m", m.length_m},
+                  {"departure_s", m.departure_s},
                   {"flight_time_s", m.flight_time_s},
                   {"max_turn_deg", m.max_turn_deg},
                   {"max_climb_deg", m.max_climb_deg},

@@ -30,7 +30,8 @@ P3Score p3_score(std::span<const Vec3> points, const World& world, const P3Weigh
 
 struct UavMetrics {
   double length_m = 0.0;
-  double flight_time_s = 0.0;  // from departure to arrival
+  double departure_s = 0.0;    // its first movement on the plan's clock (a wait on the ground before)
+  double flight_time_s = 0.0;  // from departure to its last movement
   // Off the take-off and landing legs (ground_legs.h), as the verifier checks them:
   double max_turn_deg = 0.0;
   double max_climb_deg = 0.0;
