@@ -169,6 +169,17 @@ std::vector<std::string> export_plan(const Scenario& sc, const Plan& plan, const
 
 PYBIND11_MODULE(uavplan, m) {
   m.doc() = "uavplan: route planning for UAVs, UAV groups and formations, with verification";
+  // Trajectories are numpy arrays: say which python the module is built for rather than fail
+  // later with "No module named numpy" under another one.
+  try {
+    py::module_::import("numpy");
+  } catch (const py::error_already_set& e) {
+    if (!e.matches(PyExc_ImportError)) throw;
+    const auto exe = py::module_::import("sys").attr("executable").cast<std::string>();
+    throw py::import_error("uavplan's Python module needs numpy, and " + exe +
+                           " has none: it is built for Debian's python3 " PY_VERSION
+                           " (/usr/bin/python3) with Debian's python3-numpy, which scripts/install-deps.sh installs");
+  }
   py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
   py::register_exception<ExportError>(m, "ExportError", PyExc_RuntimeError);
   py::register_exception<OutputError>(m, "OutputError", PyExc_OSError);

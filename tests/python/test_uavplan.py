@@ -1,6 +1,7 @@
 """The Python module against the command line: same plans, same bytes, same messages."""
 import json
 import subprocess
+import sys
 import threading
 import time
 
@@ -290,3 +291,12 @@ def test_plan_and_export_follow_the_command_lines_rules(root, exe, tmp_path, dem
         uavplan.export(p5, uavplan.plan(p5), ["qgc"], str(tmp_path / "py"), vehicle="multirotor")
     assert str(e.value) in cli.stderr, (str(e.value), cli.stderr)
     assert not (tmp_path / "py").exists() or not any((tmp_path / "py").iterdir())
+
+
+def test_without_numpy_the_import_says_which_python_it_needs():
+    # numpy made unimportable, as under a python3 that is not Debian's
+    code = "import sys; sys.modules['numpy'] = None; import uavplan"
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert r.returncode != 0
+    assert "uavplan's Python module needs numpy, and " + sys.executable + " has none" in r.stderr
+    assert "Debian's python3 " in r.stderr and "python3-numpy" in r.stderr
