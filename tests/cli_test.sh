@@ -36,6 +36,23 @@ cmp -s "$TMP/a/plan.json" "$TMP/b/plan.json"; check demo.deterministic 0 $?
 sed -n '/<!-- mission-types: begin/,/<!-- mission-types: end/p' "$SRC/docs/formats.md" | sed '1d;$d' >"$TMP/missions.doc"
 cmp -s "$TMP/missions.md" "$TMP/missions.doc" && pass=$((pass + 1)) ||
   { echo "FAIL docs/formats.md's mission tables differ from uavplan info --missions --markdown"; fails=$((fails + 1)); }
+# The contract's opening example is YAML with the scenario's keys, each UAV key one the reader
+# knows (a formatter once ran it together into one line).
+sed 's/radius: 0.5, speed: 5/radius: 0.5, zzz: 1, speed: 5/' "$SRC/scenarios/demo.yaml" >"$TMP/zzz.yaml"
+/usr/bin/python3 - "$SRC/docs/formats.md" "$BIN" "$TMP/zzz.yaml" <<'PY' && pass=$((pass + 1)) || { echo "FAIL docs.example"; fails=$((fails + 1)); }
+import re, subprocess, sys, yaml
+text = open(sys.argv[1]).read()
+assert text.startswith("# File formats (public contract, version 1)\n"), text[:60]
+block = re.search(r"## Scenario \(YAML[^\n]*\n```yaml\n(.*?)\n```", text, re.S).group(1)
+doc = yaml.safe_load(block)
+assert list(doc) == ["version", "name", "seed", "origin", "world", "uavs", "mission", "planner"], list(doc)
+uav = doc["uavs"][0]
+assert {"id", "start", "goal", "radius", "speed", "max_turn_deg", "home", "model"} <= set(uav), sorted(uav)
+# every key the example lists is one the reader knows: its list for an unknown key
+r = subprocess.run([sys.argv[2], "info", sys.argv[3]], capture_output=True, text=True)
+known = re.search(r"expected one of: ([^)]*)\)", r.stderr).group(1).replace(" or ", ", ").split(", ")
+assert set(uav) <= set(known), (set(uav) - set(known), r.stderr)
+PY
 "$BIN" info --missions | grep -q "^rendezvous: P4's simultaneous arrival" && pass=$((pass + 1)) ||
   { echo "FAIL info --missions lists no rendezvous"; fails=$((fails + 1)); }
 # The planners' parameters as declared: docs/planners.md's tables are info's own output.
@@ -271,6 +288,36 @@ EOF
 "$BIN" plan "$TMP/cross.yaml" -o "$TMP/cross" >"$TMP/stdout" 2>&1
 grep -q "depart_s  flight_s arrival_s" "$TMP/stdout" && grep -Eq "^b +solved +[0-9.]+ +3.000000 +37.220000 +40.120000 " "$TMP/stdout" &&
   pass=$((pass + 1)) || { echo "FAIL plan.departure: $(cat "$TMP/stdout")"; fails=$((fails + 1)); }
+# Valid values that look like a unit or order mistake get a hint on stderr, and still plan: a
+# turn limit in radians, a speed in km/h, a world in kilometres, a GeoJSON zone with lat and lon
+# swapped (thousands of km away). The bundled scenarios get none.
+sed -e 's/max_turn_deg: 60/max_turn_deg: 1.57/' -e 's/speed: 5,/speed: 36,/' "$SRC/scenarios/demo.yaml" >"$TMP/units.yaml"
+"$BIN" plan "$TMP/units.yaml" -o "$TMP/units" >/dev/null 2>"$TMP/stderr"; check hints.plan 0 $?
+grep -q "units.yaml:33: uavs\[0\].max_turn_deg: hint: a turn limit of 1.57 degrees; if that is radians, write 89.9544" "$TMP/stderr" &&
+  grep -q "uavs\[2\].speed: hint: at 36 m/s (129.6 km/h) .* (if that is km/h, write 10)" "$TMP/stderr" &&
+  pass=$((pass + 1)) || { echo "FAIL hints.units: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
+cat >"$TMP/tiny.yaml" <<'EOF'
+version: 1
+name: tiny
+world: {bounds: {min: [0, 0, 0], max: [2, 2, 1]}}
+uavs: [{id: a, start: [0.5, 0.5, 0.5], goal: [1.5, 1.5, 0.5], radius: 0.2, speed: 5}]
+EOF
+"$BIN" info "$TMP/tiny.yaml" 2>&1 >/dev/null | grep -q "^.*tiny.yaml:4: uavs\[0\].radius: hint: the world is 2 m across, 10 times this UAV's radius" &&
+  pass=$((pass + 1)) || { echo "FAIL hints.world_size: $("$BIN" info "$TMP/tiny.yaml" 2>&1)"; fails=$((fails + 1)); }
+mkdir -p "$TMP/swapped" && cp "$AIR"/* "$TMP/swapped/"
+python3 - "$TMP/swapped/zones.geojson" <<'PY'
+import json, sys
+p = json.load(open(sys.argv[1]))
+swap = lambda c: [c[1], c[0]] + c[2:] if isinstance(c[0], (int, float)) else [swap(x) for x in c]
+for f in p["features"]:
+    f["geometry"]["coordinates"] = swap(f["geometry"]["coordinates"])
+json.dump(p, open(sys.argv[1], "w"))
+PY
+"$BIN" info "$TMP/swapped/air.yaml" 2>&1 >/dev/null | grep -q "airspace\[0\].file: hint: zones.geojson zone 0 lies 5653 km outside the world's bounds (lat and lon swapped?" &&
+  pass=$((pass + 1)) || { echo "FAIL hints.swapped: $("$BIN" info "$TMP/swapped/air.yaml" 2>&1 >/dev/null)"; fails=$((fails + 1)); }
+for s in "$SRC"/scenarios/*.yaml; do
+  "$BIN" info "$s" 2>&1 >/dev/null | grep -q "hint:" && { echo "FAIL hints.bundled: $s"; fails=$((fails + 1)); }
+done
 # A start inside a building names it.
 sed 's/start: \[20, 20, 30\]/start: [230, 230, 30]/' "$SRC/scenarios/demo.yaml" >"$TMP/in_building.yaml"
 expect_bad start.in_building "$TMP/in_building.yaml" "uavs[0].start: start is inside obstacle tower_a"

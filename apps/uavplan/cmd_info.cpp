@@ -99,6 +99,7 @@ int run_info(const std::string& path) {
     std::cerr << e.what() << "\n";
     return kExitBadInput;
   }
+  for (const std::string& hint : sc.hints) std::cerr << hint << "\n";
   print_world(sc);
   print_mission(sc);
   std::printf("uavs      %zu\n", sc.uavs.size());

@@ -130,6 +130,7 @@ int run_plan(const PlanArgs& a) {
     std::cerr << a.scenario << ": stopped: the time limit ran out while the scenario was loaded; nothing written\n";
     return kExitNotSolved;
   }
+  for (const std::string& hint : sc.hints) std::cerr << hint << "\n";
   // An export that cannot be made is bad input now, before planning writes anything.
   if (const auto problem = export_request_problem(sc, a.exp)) {
     std::cerr << a.scenario << ": export: " << *problem << "\n";

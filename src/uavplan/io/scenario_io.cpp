@@ -42,15 +42,16 @@ struct At {
   // Where unknown keys are collected, so that one run names every typo; null: the first fails.
   std::vector<std::string>* unknown = nullptr;
 
-  [[noreturn]] void fail(const std::string& what) const {
+  [[noreturn]] void fail(const std::string& what) const { throw error(what); }
+  InputError error(const std::string& what) const {
     // A value from the command line is named by its argument, not by a line of the file.
     if (applied)
       for (const auto& [place, arg] : *applied)
         if (path == place || path.rfind(place + ".", 0) == 0 || path.rfind(place + "[", 0) == 0)
-          throw InputError(*file, 0, arg, what);
+          return InputError(*file, 0, arg, what);
     int line = 0;
     if (node.IsDefined()) line = node.Mark().line >= 0 ? node.Mark().line + 1 : 0;
-    throw InputError(*file, line, path, what);
+    return InputError(*file, line, path, what);
   }
   bool has(const char* key) const { return node.IsMap() && node[key].IsDefined() && !node[key].IsNull(); }
   At operator[](const char* key) const {
@@ -81,12 +82,9 @@ struct At {
         std::string why = "unknown key '";
         why += k;
         why += near.empty() ? "' (expected one of: " + word_list(names) + ")" : "' (did you mean '" + near + "'?)";
-        try {
-          At{kv.first, path.empty() ? k : path + "." + k, file, applied}.fail(why);
-        } catch (const InputError& e) {
-          if (!unknown) throw;
-          unknown->push_back(e.what());
-        }
+        const InputError e = At{kv.first, path.empty() ? k : path + "." + k, file, applied}.error(why);
+        if (!unknown) throw e;
+        unknown->push_back(e.what());
       }
     }
   }
@@ -249,11 +247,26 @@ TerrainGrid read_terrain(const At& t) {
   return TerrainGrid(origin, cell, static_cast<int>(nx), static_cast<int>(rows.size()), std::move(h));
 }
 
+// How far a box lies outside the bounds in x, y (0 when they overlap).
+double outside_m(const Aabb& box, const Aabb& bounds) {
+  const double dx = std::max({0.0, bounds.min.x() - box.max.x(), box.min.x() - bounds.max.x()});
+  const double dy = std::max({0.0, bounds.min.y() - box.max.y(), box.min.y() - bounds.max.y()});
+  return std::hypot(dx, dy);
+}
+
+// "N m outside the world's bounds", and where that is far beyond any local map what it likely is.
+std::string outside_text(double m) {
+  constexpr double kFar_m = 50'000.0, kKilometres_m = 10'000.0;
+  return (m >= kKilometres_m ? At::fmt(std::round(m / 1000.0)) + " km" : At::fmt(m) + " m") +
+         " outside the world's bounds" +
+         (m > kFar_m ? " (lat and lon swapped? GeoJSON lists [lon, lat]; origin and a QGC .plan lat, lon)" : "");
+}
+
 // world.buildings: one GeoJSON file (a path, or {file, level_height, default_height}) or a
 // list of them; paths are relative to the scenario file. Footprints outside the bounds in x, y
-// are dropped.
-void read_buildings(const At& b, const std::optional<GeoOrigin>& origin, const Aabb& bounds,
-                    std::vector<Obstacle>& out) {
+// are dropped (a file none of whose footprints is inside gets a hint).
+void read_buildings(const At& b, const std::optional<GeoOrigin>& origin, const Aabb& bounds, std::vector<Obstacle>& out,
+                    std::vector<std::string>& hints) {
   if (!origin) b.fail("placing lon/lat footprints needs the scenario's 'origin'");
   const GeoFrame frame(*origin);
   const auto one = [&](const At& e) {
@@ -274,14 +287,22 @@ void read_buildings(const At& b, const std::optional<GeoOrigin>& origin, const A
     } catch (const InputError&) {
       (e.node.IsScalar() ? e : e["file"]).fail("cannot read the buildings file '" + path.string() + "'");
     }
+    std::size_t read = 0, kept = 0;
+    double nearest_m = World::kInf;
     for (Prism& p : buildings_from_geojson(text, path.string(), frame, opt)) {
       const Obstacle o = p;
-      const Aabb box = bounding_box(o);
-      if (box.max.x() < bounds.min.x() || box.min.x() > bounds.max.x() || box.max.y() < bounds.min.y() ||
-          box.min.y() > bounds.max.y())
-        continue;
+      ++read;
+      const double away_m = outside_m(bounding_box(o), bounds);
+      nearest_m = std::min(nearest_m, away_m);
+      if (away_m > 0.0) continue;
       out.push_back(std::move(p));
+      ++kept;
     }
+    if (read > 0 && kept == 0)
+      hints.push_back((e.node.IsScalar() ? e : e["file"])
+                          .error("hint: none of its " + count_text(read, "building") +
+                                 " is inside the world; the nearest is " + outside_text(nearest_m))
+                          .what());
   };
   if (b.node.IsSequence()) {
     for (std::size_t i = 0; i < b.size(); ++i) one(b.item(i));
@@ -294,7 +315,7 @@ void read_buildings(const At& b, const std::optional<GeoOrigin>& origin, const A
 // scenario file: exclusion zones become obstacles named after their file; an inclusion fence
 // bounds the world in x, y and closes the rest of its box.
 void read_airspace_files(const At& a, const std::optional<GeoOrigin>& origin, WorldSpec& ws,
-                         std::vector<FenceZone>& fence) {
+                         std::vector<FenceZone>& fence, std::vector<std::string>& hints) {
   a.expect_seq();
   if (!origin) a.fail("placing lon/lat zones needs the scenario's 'origin'");
   const GeoFrame frame(*origin);
@@ -315,6 +336,8 @@ void read_airspace_files(const At& a, const std::optional<GeoOrigin>& origin, Wo
       fence.push_back(std::move(z));
     }
     for (std::size_t k = 0; k < zones.zones.size(); ++k) {
+      if (const double away_m = outside_m(bounding_box(zones.zones[k]), ws.bounds); away_m > 0.0)
+        hints.push_back(e["file"].error("hint: " + zones.zone_ids[k] + " lies " + outside_text(away_m)).what());
       ws.obstacles.push_back(std::move(zones.zones[k]));
       ws.obstacle_ids.push_back(zones.zone_ids[k]);
     }
@@ -712,8 +735,8 @@ World read_world(const At& w, Scenario& sc, const StopCondition& stop) {
       ws.obstacle_ids.push_back(list.item(i).has("id") ? list.item(i)["id"].text() : std::string());
     }
   }
-  if (w.has("buildings")) read_buildings(w["buildings"], origin, ws.bounds, ws.obstacles);
-  if (w.has("airspace")) read_airspace_files(w["airspace"], origin, ws, sc.airspace);
+  if (w.has("buildings")) read_buildings(w["buildings"], origin, ws.bounds, ws.obstacles, sc.hints);
+  if (w.has("airspace")) read_airspace_files(w["airspace"], origin, ws, sc.airspace, sc.hints);
   if (w.has("threats")) read_threats(w["threats"], ws);
   if (w.has("terrain"))
     ws.terrain = w["terrain"].has("file") ? read_terrain_file(w["terrain"], origin, ws.bounds, sc.elevation, stop)
@@ -728,6 +751,28 @@ World read_world(const At& w, Scenario& sc, const StopCondition& stop) {
   }
 }
 
+// Valid values that look like a unit mistake: a turn limit in radians, a speed in km/h (a fast
+// UAV over its straight route in seconds), a world measured in kilometres (a few bodies across).
+void unit_hints(const At& u, const UavSpec& s, const World& world, std::vector<std::string>& hints) {
+  const auto hint = [&](const At& at, const std::string& what) { hints.push_back(at.error("hint: " + what).what()); };
+  if (u.has("max_turn_deg") && s.max_turn_rad <= deg_to_rad(kPi))
+    hint(u["max_turn_deg"], "a turn limit of " + At::fmt(rad_to_deg(s.max_turn_rad)) +
+                                " degrees; if that is radians, write " +
+                                At::fmt(rad_to_deg(rad_to_deg(s.max_turn_rad))) + " (the key is in degrees)");
+  constexpr double kFast_mps = 20.0, kQuick_s = 30.0;
+  const double cruise = s.speed.cruise_mps, route_m = s.goal ? (*s.goal - s.start).norm() : 0.0;
+  if (u.has("speed") && cruise >= kFast_mps && route_m > 0.0 && route_m / cruise < kQuick_s)
+    hint(u["speed"], "at " + At::fmt(cruise) + " m/s (" + At::fmt(cruise * 3.6) + " km/h) its " + At::fmt(route_m) +
+                         " m from start to goal take " + At::fmt(route_m / cruise) +
+                         " s; speeds are in m/s (if that is km/h, write " + At::fmt(cruise / 3.6) + ")");
+  const Vec3 extent = world.bounds().extent();
+  constexpr double kBodies = 20.0;
+  if (std::max(extent.x(), extent.y()) < kBodies * s.radius_m)
+    hint(u["radius"], "the world is " + At::fmt(std::max(extent.x(), extent.y())) + " m across, " +
+                          At::fmt(std::max(extent.x(), extent.y()) / s.radius_m) + " times this UAV's radius of " +
+                          At::fmt(s.radius_m) + " m; bounds and radius are in metres");
+}
+
 void read_uavs(const At& uavs, Scenario& sc) {
   uavs.expect_seq();
   if (uavs.size() == 0) uavs.fail("needs at least one UAV");
@@ -737,6 +782,7 @@ void read_uavs(const At& uavs, Scenario& sc) {
     if (sc.find_uav(s.id)) u["id"].fail("duplicate UAV id '" + s.id + "'");
     check_placed(u["start"], s.start, sc.world, "start");
     if (s.goal) check_placed(u["goal"], *s.goal, sc.world, "goal");
+    unit_hints(u, s, sc.world, sc.hints);
     sc.uavs.push_back(std::move(s));
   }
 }

@@ -110,6 +110,9 @@ struct Scenario {
   // off or lands (planning_view.h: default_min_agl_m; set by the scenario reader). Planning only:
   // the verifier checks the min_agl a scenario sets.
   double default_min_agl_m = 0.0;
+  // Values that are valid but look like a mistake of units or order (a turn limit in radians, a
+  // speed in km/h, lat and lon swapped), each "file:line: place: what"; printed, never an error.
+  std::vector<std::string> hints;
 
   const UavSpec* find_uav(std::string_view id) const {
     for (const auto& u : uavs)
