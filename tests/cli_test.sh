@@ -321,6 +321,46 @@ done
 # A start inside a building names it.
 sed 's/start: \[20, 20, 30\]/start: [230, 230, 30]/' "$SRC/scenarios/demo.yaml" >"$TMP/in_building.yaml"
 expect_bad start.in_building "$TMP/in_building.yaml" "uavs[0].start: start is inside obstacle tower_a"
+# max_agl is measured from the lowest ground under a UAV: a 5 m pit in a 40 m cell of an
+# elevation model lowers the band's top there (min_agl keeps the cell's highest pixel). A level
+# flight 30 m above the cell's height is 50 m above the pit: a violation; the plan dips over it.
+mkdir -p "$TMP/pit"
+python3 - "$TMP/pit" <<'PY'
+import sys
+d = sys.argv[1]
+rows = [" ".join("380" if (r, c) == (99, 100) else "400" for c in range(200)) for r in range(200)]
+open(d + "/pit.asc", "w").write("ncols 200\nnrows 200\nxllcorner -500\nyllcorner -500\ncellsize 5\n"
+                                "NODATA_value -9999\n" + "\n".join(rows) + "\n")
+open(d + "/pit.prj", "w").write(
+    'PROJCS["local aeqd",GEOGCS["WGS 84",DATUM["WGS_1984",SPHEROID["WGS 84",6378137,298.257223563]],'
+    'PRIMEM["Greenwich",0],UNIT["degree",0.0174532925199433]],PROJECTION["Azimuthal_Equidistant"],'
+    'PARAMETER["latitude_of_center",47],PARAMETER["longitude_of_center",8],PARAMETER["false_easting",0],'
+    'PARAMETER["false_northing",0],UNIT["metre",1]]')
+PY
+cat >"$TMP/pit/pit.yaml" <<'EOF'
+version: 1
+name: pit
+origin: {lat: 47, lon: 8, alt: 380}
+world:
+  bounds: {min: [-400, -100, 0], max: [400, 100, 200]}
+  terrain: {file: pit.asc, cell: 40}
+uavs:
+  - {id: a, start: [-300, 2, 50], goal: [300, 2, 50], radius: 1, speed: 10, min_agl: 10, max_agl: 40}
+planner: {algorithm: astar}
+EOF
+"$BIN" plan "$TMP/pit/pit.yaml" -o "$TMP/pit/o" >/dev/null 2>&1; check max_agl.pit_plan 0 $?
+python3 - "$TMP/pit/o/plan.json" "$TMP/pit/level.json" <<'PY'
+import json, sys
+p = json.load(open(sys.argv[1]))
+over = [r[3] for r in p["uavs"][0]["trajectory"] if 0 <= r[1] <= 5]
+assert over and max(over) <= 40 - 1 + 1e-6, over  # the body under the band's top over the pit
+p["uavs"][0]["trajectory"] = [[0, -300, 2, 50], [60, 300, 2, 50]]
+json.dump(p, open(sys.argv[2], "w"))
+PY
+[ $? = 0 ] && pass=$((pass + 1)) || { echo "FAIL max_agl.pit_dips"; fails=$((fails + 1)); }
+"$BIN" verify "$TMP/pit/pit.yaml" "$TMP/pit/level.json" >"$TMP/stdout" 2>&1; check max_agl.pit_level 1 $?
+grep -q "high_altitude .*height 50 m above the lowest ground under it, above max_agl 40 m" "$TMP/stdout" &&
+  pass=$((pass + 1)) || { echo "FAIL max_agl.pit_message: $(cat "$TMP/stdout")"; fails=$((fails + 1)); }
 # Above the terrain is ArduPilot's frame: for PX4 (the default) refused before planning, nothing written.
 "$BIN" plan "$ALP" -o "$TMP/alp_px4" --format qgc --altitude terrain >/dev/null 2>"$TMP/stderr"; check dem.terrain_px4 2 $?
 [ "$(wc -l <"$TMP/stderr")" = 1 ] && grep -q "PX4 takes no mission item above the terrain" "$TMP/stderr" &&

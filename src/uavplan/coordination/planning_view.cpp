@@ -15,18 +15,22 @@ namespace {
 World raised(const World& w, double by_m) {
   WorldSpec s = w.spec();
   const Aabb& b = s.bounds;
-  if (s.terrain) {
-    std::vector<double> h;
-    for (int j = 0; j < s.terrain->ny(); ++j)
-      for (int i = 0; i < s.terrain->nx(); ++i) h.push_back(s.terrain->height(i, j) + by_m);
-    s.terrain = TerrainGrid(s.terrain->origin(), s.terrain->cell_m(), s.terrain->nx(), s.terrain->ny(), std::move(h));
+  if (const auto& t = s.terrain) {
+    std::vector<double> h, lows;
+    for (int j = 0; j < t->ny(); ++j)
+      for (int i = 0; i < t->nx(); ++i) {
+        h.push_back(t->height(i, j) + by_m);
+        if (t->has_lows()) lows.push_back(t->low(i, j) + by_m);
+      }
+    s.terrain = TerrainGrid(t->origin(), t->cell_m(), t->nx(), t->ny(), std::move(h), std::move(lows));
   }
   s.obstacles.push_back(
       Box{Vec3(b.min.x() - 1, b.min.y() - 1, b.min.z() - 1), Vec3(b.max.x() + 1, b.max.y() + 1, b.min.z() + by_m)});
   return World(std::move(s));
 }
 
-// The sky more than `agl_m` above terrain `t` closed: a box over each of its cells and over the
+// The sky more than `agl_m` above terrain `t` closed: a box over each of its cells (from its lowest
+// ground: max_agl is measured from what is below) and over the
 // floor beside the grid, from that height to above the bounds (without terrain: a ceiling). Where
 // the band's top is above the bounds there is nothing to close: no box.
 void close_sky(WorldSpec& s, const TerrainGrid& t, double agl_m) {
@@ -40,7 +44,7 @@ void close_sky(WorldSpec& s, const TerrainGrid& t, double agl_m) {
   };
   for (int j = 0; j < t.ny(); ++j)
     for (int i = 0; i < t.nx(); ++i)
-      add(Box{Vec3(x0 + i * c, y0 + j * c, std::max(t.height(i, j), b.min.z()) + agl_m),
+      add(Box{Vec3(x0 + i * c, y0 + j * c, std::max(t.low(i, j), b.min.z()) + agl_m),
               Vec3(x0 + (i + 1) * c, y0 + (j + 1) * c, top)});
   // Beside the grid: four strips over the floor.
   const Vec3 lo(b.min.x() - 1, b.min.y() - 1, floor), hi(b.max.x() + 1, b.max.y() + 1, top);

@@ -128,7 +128,8 @@ void check_segments(const Scenario& sc, const UavSpec& u, const Trajectory& tr, 
       const double h = sc.world.highest_height_above_ground(a.p, b.p);
       if (h > *u.max_agl_m + kDistanceTolerance_m)
         add_violation(out, ViolationKind::high_altitude, id, a.t_s, a.p,
-                      "height " + num_text(h) + " m above the ground, above max_agl " + num_text(*u.max_agl_m) + " m");
+                      "height " + num_text(h) + " m above the lowest ground under it, above max_agl " +
+                          num_text(*u.max_agl_m) + " m");
     }
   }
 }

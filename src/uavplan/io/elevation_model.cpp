@@ -309,11 +309,15 @@ void check_window(const Raster& r, const Window& win, const Cells& cells, const 
   }
 }
 
-// Each cell's height: the highest pixel its corners' pixel box touches (NaN where all are NoData),
-// the window read a strip at a time.
-std::vector<double> highest_pixels(const Raster& r, const Cells& cells, const std::vector<double>& px,
-                                   const std::vector<double>& py, const Window& win, const ElevationReadOptions& o) {
+// Each cell's highest and lowest pixel of those its corners' pixel box touches (NaN where all are
+// NoData), the window read a strip at a time.
+struct CellPixels {
+  std::vector<double> high, low;
+};
+CellPixels cell_pixels(const Raster& r, const Cells& cells, const std::vector<double>& px,
+                       const std::vector<double>& py, const Window& win, const ElevationReadOptions& o) {
   std::vector<double> h(static_cast<std::size_t>(cells.nx) * cells.ny, std::nan(""));
+  std::vector<double> lows = h;
   std::vector<std::pair<int, int>> row_span(cells.ny, {win.h, 0});  // pixel rows a row of cells touches
   for (int j = 0; j < cells.ny; ++j) {
     if (j % 256 == 0) o.stop.throw_if_stopped();
@@ -343,15 +347,17 @@ std::vector<double> highest_pixels(const Raster& r, const Cells& cells, const st
       for (int i = 0; i < cells.nx; ++i) {
         const PixelBox b = cell_box(cells, px, py, win, i, j);
         double& top = h[static_cast<std::size_t>(j) * cells.nx + i];
+        double& bottom = lows[static_cast<std::size_t>(j) * cells.nx + i];
         for (int y = std::max(b.b0, s0); y < std::min(b.b1, s1); ++y)
           for (int x = b.a0; x < b.a1; ++x) {
             const double z = strip[static_cast<std::size_t>(y - s0) * win.w + x];
             if (!std::isnan(z) && !(z <= top)) top = z;
+            if (!std::isnan(z) && !(z >= bottom)) bottom = z;
           }
       }
     }
   }
-  return h;
+  return {std::move(h), std::move(lows)};
 }
 
 // The corners of the world's cells in the raster's pixels, every kStride-th corner (a knot)
@@ -430,15 +436,19 @@ ElevationModel read_elevation_model(const std::string& path, const std::string& 
   check_window(r, win, cells, o);  // before the corners, the strip and the cells are allocated
   std::vector<double> px, py;      // the cells' corners in pixels
   corners_to_pixels(knots, cells, px, py);
-  std::vector<double> h = highest_pixels(r, cells, px, py, win, o);
+  auto [h, lows] = cell_pixels(r, cells, px, py, win, o);
   if (std::all_of(h.begin(), h.end(), [](double z) { return std::isnan(z); }))
     r.fail("the elevation model has no height within the world's bounds (every pixel there is NoData)");
   src.nodata_filled = fill_gaps(h, cells.nx, cells.ny);
   const auto [h_lo, h_hi] = std::minmax_element(h.begin(), h.end());
   src.min_amsl_m = *h_lo;
   src.max_amsl_m = *h_hi;
-  for (double& z : h) z -= frame.origin().alt_m;
-  return {TerrainGrid(cells.lo, cells.c, cells.nx, cells.ny, std::move(h)), std::move(src)};
+  for (std::size_t k = 0; k < h.size(); ++k) {
+    if (std::isnan(lows[k])) lows[k] = h[k];  // a filled cell is flat at its fill
+    h[k] -= frame.origin().alt_m;
+    lows[k] -= frame.origin().alt_m;
+  }
+  return {TerrainGrid(cells.lo, cells.c, cells.nx, cells.ny, std::move(h), std::move(lows)), std::move(src)};
 }
 
 }  // namespace uavplan

@@ -14,12 +14,21 @@ constexpr double kFarBelow_m = -1e12;
 int clamp_cell(double v, int n) { return static_cast<int>(std::clamp(std::floor(v), 0.0, static_cast<double>(n - 1))); }
 }  // namespace
 
-TerrainGrid::TerrainGrid(Vec2 origin, double cell_m, int nx, int ny, std::vector<double> heights)
-    : origin_(std::move(origin)), cell_m_(cell_m), nx_(nx), ny_(ny), heights_(std::move(heights)) {
+TerrainGrid::TerrainGrid(Vec2 origin, double cell_m, int nx, int ny, std::vector<double> heights,
+                         std::vector<double> lows)
+    : origin_(std::move(origin)),
+      cell_m_(cell_m),
+      nx_(nx),
+      ny_(ny),
+      heights_(std::move(heights)),
+      lows_(std::move(lows)) {
   if (!(cell_m_ > 0.0) || !std::isfinite(cell_m_)) throw std::invalid_argument("terrain cell size must be positive");
   if (nx_ <= 0 || ny_ <= 0) throw std::invalid_argument("terrain grid must have at least one cell");
   if (heights_.size() != static_cast<std::size_t>(nx_) * ny_)
     throw std::invalid_argument("terrain heights do not match the grid size");
+  if (!lows_.empty() && lows_.size() != heights_.size())
+    throw std::invalid_argument("terrain lows do not match the grid size");
+  for (std::size_t k = 0; k < lows_.size(); ++k) lows_[k] = std::min(lows_[k], heights_[k]);
   max_height_ = *std::max_element(heights_.begin(), heights_.end());
 }
 
@@ -142,8 +151,9 @@ double TerrainGrid::highest_height_above(const Vec3& a, const Vec3& b, double fl
   double best = -std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
     const Vec3 m = a + 0.5 * (cuts[k] + cuts[k + 1]) * (b - a);
-    const double h = height_at(m.x(), m.y());
-    const double ground = std::isfinite(h) ? std::max(h, floor_z) : floor_z;
+    const double fi = std::floor((m.x() - origin_.x()) / cell_m_), fj = std::floor((m.y() - origin_.y()) / cell_m_);
+    const bool on_grid = fi >= 0 && fj >= 0 && fi < nx_ && fj < ny_;
+    const double ground = on_grid ? std::max(low(static_cast<int>(fi), static_cast<int>(fj)), floor_z) : floor_z;
     best = std::max({best, a.z() + cuts[k] * (b.z() - a.z()) - ground, a.z() + cuts[k + 1] * (b.z() - a.z()) - ground});
   }
   return best;

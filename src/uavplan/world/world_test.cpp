@@ -90,6 +90,22 @@ TEST(World, TerrainHeightAndCollision) {
   EXPECT_NEAR(w.segment_clearance(Vec3(2, 5, 10), Vec3(9, 5, 10), 100), 1.0, 1e-9);
 }
 
+// A cell's lowest ground (an elevation model's lowest pixel in it) is what max_agl is measured
+// from; collisions and min_agl keep its height.
+TEST(World, HeightAboveTheGroundIsFromACellsLowestPoint) {
+  WorldSpec ws;
+  ws.bounds = Aabb{Vec3(0, 0, 0), Vec3(20, 10, 50)};
+  ws.terrain = TerrainGrid(Vec2(0, 0), 10.0, 2, 1, {5.0, 30.0}, {2.0, 31.0});  // a low above its height is its height
+  const World w(std::move(ws));
+  EXPECT_DOUBLE_EQ(w.terrain()->low(0, 0), 2.0);
+  EXPECT_DOUBLE_EQ(w.terrain()->low(1, 0), 30.0);
+  EXPECT_NEAR(w.highest_height_above_ground(Vec3(1, 5, 40), Vec3(9, 5, 40)), 38.0, 1e-12);
+  EXPECT_NEAR(w.highest_height_above_ground(Vec3(11, 5, 40), Vec3(19, 5, 40)), 10.0, 1e-12);
+  EXPECT_NEAR(w.lowest_height_above_ground(Vec3(1, 5, 40), Vec3(9, 5, 40)), 35.0, 1e-12);
+  EXPECT_TRUE(w.point_collides(Vec3(5, 5, 5.4), 0.5));
+  EXPECT_THROW(TerrainGrid(Vec2(0, 0), 10.0, 2, 1, {5.0, 30.0}, {2.0}), std::invalid_argument);
+}
+
 TEST(World, MovingObstacleClearanceIsExactInTime) {
   WorldSpec ws;
   ws.bounds = Aabb{Vec3(-100, -100, 0), Vec3(100, 100, 50)};
