@@ -318,6 +318,31 @@ PY
 for s in "$SRC"/scenarios/*.yaml; do
   "$BIN" info "$s" 2>&1 >/dev/null | grep -q "hint:" && { echo "FAIL hints.bundled: $s"; fails=$((fails + 1)); }
 done
+# A formation that flies most of its way out of shape (single file through a canyon narrower than
+# its shape) is valid, and says so for each UAV; P1's formation keeps its shape and says nothing.
+cat >"$TMP/canyon.yaml" <<'EOF'
+version: 1
+name: canyon
+world:
+  bounds: {min: [0, 0, 0], max: [600, 200, 0]}
+  obstacles:
+    - {type: prism, id: north_wall, polygon: [[50, 104], [550, 104], [550, 200], [50, 200]], z_min: 0, z_max: 1}
+    - {type: prism, id: south_wall, polygon: [[50, 0], [550, 0], [550, 96], [50, 96]], z_min: 0, z_max: 1}
+uavs:
+  - {id: lead, start: [20, 100, 0], goal: [580, 100, 0], radius: 0.5, speed: 5, sensor_range: 20}
+  - {id: left, start: [14, 106, 0], goal: [574, 106, 0], radius: 0.5, speed: 5, sensor_range: 20}
+  - {id: right, start: [14, 94, 0], goal: [574, 94, 0], radius: 0.5, speed: 5, sensor_range: 20}
+mission:
+  type: formation
+  separation: 2
+  shape: [[0, 0, 0], [-6, 6, 0], [-6, -6, 0]]
+planner: {algorithm: aco_voronoi}
+EOF
+"$BIN" plan "$TMP/canyon.yaml" -o "$TMP/canyon" >/dev/null 2>"$TMP/stderr"; check formation.canyon 0 $?
+[ "$(grep -c "note: [a-z]* kept its slot [0-9]* s of the [0-9]* s in formation ([0-9]* %, 1 break): out of shape for most of the flight" "$TMP/stderr")" = 3 ] &&
+  pass=$((pass + 1)) || { echo "FAIL formation.out_of_shape: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
+"$BIN" plan "$SRC/scenarios/p1_formation.yaml" -o "$TMP/p1f" 2>&1 >/dev/null | grep -q "out of shape" &&
+  { echo "FAIL formation.p1_in_shape"; fails=$((fails + 1)); } || pass=$((pass + 1))
 # A start inside a building names it.
 sed 's/start: \[20, 20, 30\]/start: [230, 230, 30]/' "$SRC/scenarios/demo.yaml" >"$TMP/in_building.yaml"
 expect_bad start.in_building "$TMP/in_building.yaml" "uavs[0].start: start is inside obstacle tower_a"

@@ -9,6 +9,7 @@
 #include "uavplan/coordination/contract/separation.h"
 #include "uavplan/coordination/mission.h"
 #include "uavplan/core/geometry.h"
+#include "uavplan/core/text.h"
 #include "uavplan/core/units.h"
 #include "uavplan/evaluation/ground_legs.h"
 #include "uavplan/simulation/trajectory.h"
@@ -165,6 +166,14 @@ void add_formation_metrics(Plan& plan, const std::vector<const UavPlan*>& flown)
     up.metrics["time_in_shape_s"] = held;
     up.metrics["breaks"] = breaks;
     up.metrics["backing_up_m"] = backed;
+    // Valid, but not what a formation is flown for: said, not hidden in a total.
+    constexpr double kMostOfTheFlight = 0.5;
+    if (const double span = w.to_s - w.from_s; span > 0.0 && held < kMostOfTheFlight * span)
+      plan.notes.push_back(
+          strf("%s kept its slot %.0f s of the %.0f s in formation (%.0f %%, %s): out of shape for "
+               "most of the flight",
+               up.id.c_str(), held, span, 100.0 * held / span,
+               count_text(static_cast<std::size_t>(breaks), "break").c_str()));
     in_shape += held, back += backed;
   }
   plan.metrics["time_in_shape_s"] = in_shape;
