@@ -109,6 +109,12 @@ try {
       profile: document.querySelectorAll('#profile .uplot').length,
       flownGiven: (d.flown || []).filter((f) => f.trajectory.length > 1).length, flownDrawn: r.flownTracks,
       pageWidth: document.documentElement.scrollWidth, rows: document.querySelectorAll('#uav-metrics tr').length,
+      zonesInData: { airspace: d.obstacles.filter((o) => o.kind === 'airspace').length,
+        fence: d.obstacles.filter((o) => o.kind === 'fence').length,
+        named: d.obstacles.filter((o) => o.kind === 'airspace' && o.id).length },
+      zonesDrawn: r.zones, keys: [...document.querySelectorAll('#legend span.key')].map((s) => s.textContent),
+      bare: d.uavs.filter((u) => !(u.clearance > 0)).length,
+      clearanceNote: document.getElementById('clearance-note')?.textContent || '',
     };
   });
   const expectedCharts = 2 + (info.uavs.length > 1 ? 1 : 0) + (info.profiled ? 1 : 0);
@@ -135,6 +141,16 @@ try {
     fail(`expected ${flownExpected} flown tracks: ${info.flownGiven} in the data, ${info.flownDrawn} drawn`);
   // What the mission asks for is on the map, for failed UAVs too: every start and goal, the via
   // points, the task points, the runway; the z labels one clear of the next.
+  // Airspace apart from obstacles: every no-fly zone and the fence's outside drawn in its own
+  // colour with a legend key, every zone named; where no clearance is set the report says so.
+  for (const k of ['airspace', 'fence', 'named'])
+    if (info.zonesDrawn[k] !== info.zonesInData[k]) fail(`${info.zonesInData[k]} ${k} zones in the data, ${info.zonesDrawn[k]} drawn`);
+  if (info.zonesInData.airspace && !info.keys.some((t) => t.startsWith('no-fly zone'))) fail('no legend key for the no-fly zones');
+  if (info.zonesInData.fence && !info.keys.some((t) => t.startsWith('outside the geofence'))) fail('no legend key for the fence');
+  if (process.env.EXPECT_ZONES && !(info.zonesInData.airspace > 0)) fail('no airspace zone in the data of a scenario with zones');
+  if (info.bare && !/^No clearance set for .*docs|^No clearance set for /.test(info.clearanceNote))
+    fail(`${info.bare} UAVs without clearance and no note saying so`);
+  if (!info.bare && info.clearanceNote) fail('a clearance note where every UAV has one');
   const dr = info.drawn;
   if (dr.starts !== info.uavs.length) fail(`${info.uavs.length} UAVs but ${dr.starts} start markers`);
   if (dr.goals !== info.goals) fail(`${info.goals} goals but ${dr.goals} goal markers`);

@@ -25,6 +25,7 @@ function el(tag, attrs = {}, ...children) {
 const fmt = (v, d = 3) => (Number.isInteger(v) ? String(v) : v.toFixed(d));
 // A metric cell says why a value is missing instead of showing a dash.
 function metricText(u, key) {
+  if (key === 'kept_off_m') return `${fmt(u.radius + (u.clearance || 0))} (radius ${fmt(u.radius)} + clearance ${fmt(u.clearance || 0)})`;
   const v = u.metrics[key];
   if (typeof v === 'number') return fmt(v);
   if (u.trajectory.length < 2) return `not flown (${u.status})`;
@@ -63,7 +64,10 @@ left.append(view,
     el('label', {}, routesToggle, ' routes')));
 const legend = el('div', { class: 'legend', id: 'legend' });
 for (const u of data.uavs) legend.append(el('span', { class: 'uav', style: { '--c': u.colour } }, `${u.id} (${u.status})`));
-if (data.obstacles.length) legend.append(el('span', { class: 'key', style: { '--c': '#a4abb5' } }, 'obstacle'));
+const kinds = new Set(data.obstacles.map((o) => o.kind || 'obstacle'));
+if (kinds.has('obstacle')) legend.append(el('span', { class: 'key', style: { '--c': '#a4abb5' } }, 'obstacle'));
+if (kinds.has('airspace')) legend.append(el('span', { class: 'key', style: { '--c': '#dc2626' } }, 'no-fly zone (airspace file), named'));
+if (kinds.has('fence')) legend.append(el('span', { class: 'key', style: { '--c': '#d97706' } }, 'outside the geofence'));
 if (data.terrain) legend.append(el('span', { class: 'key', style: { '--c': terrainBrown } }, 'terrain'));
 if (data.threats.length)
   legend.append(el('span', { class: 'key ring', style: { '--c': '#c2410c' } }, 'radar: threat cost = 1, 0.1, 0.01 x distance'));
@@ -219,17 +223,38 @@ if (data.terrain) {
   scene.add(ground);
 }
 
-const obstacleMaterial = new THREE.MeshLambertMaterial({ color: 0xa4abb5, transparent: true, opacity: 0.85 });
-const edgeMaterial = new THREE.LineBasicMaterial({ color: 0x59626d });
+// Obstacles grey; airspace translucent: no-fly zones red, the world outside the fence amber.
+const solidLook = {
+  obstacle: [new THREE.MeshLambertMaterial({ color: 0xa4abb5, transparent: true, opacity: 0.85 }),
+    new THREE.LineBasicMaterial({ color: 0x59626d })],
+  airspace: [new THREE.MeshLambertMaterial({ color: 0xdc2626, transparent: true, opacity: 0.25, depthWrite: false }),
+    new THREE.LineBasicMaterial({ color: 0xb91c1c })],
+  fence: [new THREE.MeshLambertMaterial({ color: 0xd97706, transparent: true, opacity: 0.15, depthWrite: false }),
+    new THREE.LineBasicMaterial({ color: 0xb45309 })],
+};
+const zones = { airspace: 0, fence: 0, named: 0 };
+let solidKind = 'obstacle';
 function addSolid(geometry, position) {
-  const m = new THREE.Mesh(geometry, obstacleMaterial);
+  const [material, edges] = solidLook[solidKind] || solidLook.obstacle;
+  const m = new THREE.Mesh(geometry, material);
   m.position.copy(position);
   scene.add(m);
-  const e = new THREE.LineSegments(new THREE.EdgesGeometry(geometry, 30), edgeMaterial);
+  const e = new THREE.LineSegments(new THREE.EdgesGeometry(geometry, 30), edges);
   e.position.copy(position);
   scene.add(e);
 }
+// A zone's name over its top, at its middle.
+function zoneLabel(o) {
+  const c = o.center || (o.min && o.max ? o.min.map((v, k) => 0.5 * (v + o.max[k])) : null) ||
+    o.polygon.reduce((a, [x, y]) => [a[0] + x / o.polygon.length, a[1] + y / o.polygon.length], [0, 0]);
+  const top = o.z_max ?? (o.max ? o.max[2] : (o.center ? o.center[2] + o.radius : bmax.z));
+  label(o.id, new THREE.Vector3(c[0], c[1], Math.min(top, bmax.z)), diag * 0.02);
+  zones.named++;
+}
 for (const o of data.obstacles) {
+  solidKind = o.kind || 'obstacle';
+  if (solidKind in zones) zones[solidKind]++;
+  if (solidKind === 'airspace' && o.id) zoneLabel(o);
   if (o.shape === 'box') {
     const a = new THREE.Vector3(...o.min), b = new THREE.Vector3(...o.max);
     addSolid(new THREE.BoxGeometry(b.x - a.x, b.y - a.y, b.z - a.z), a.clone().add(b).multiplyScalar(0.5));
@@ -556,9 +581,10 @@ if (profiled.length) {
 
 // ---- metrics and verification ----
 left.append(el('h2', {}, 'Metrics per UAV'));
-const cols = [['length_m', 'length (m)'], ['flight_time_s', 'flight time (s)'], ['arrival_s', 'arrival (s)'],
-  ['max_turn_deg', 'max turn (deg)'], ['max_climb_deg', 'max climb (deg)'], ['min_gap_m', 'min gap to obstacles (m)'],
-  ['min_agl_m', 'min AGL (m)'], ['reversals', 'reversals']];
+const cols = [['length_m', 'length (m)'], ['departure_s', 'departure (s)'], ['flight_time_s', 'flight time (s)'],
+  ['arrival_s', 'arrival (s)'], ['max_turn_deg', 'max turn (deg)'], ['max_climb_deg', 'max climb (deg)'],
+  ['kept_off_m', 'kept off obstacles (m)'], ['min_gap_m', 'min gap to obstacles (m)'], ['min_agl_m', 'min AGL (m)'],
+  ['reversals', 'reversals']];
 if (data.uavs.some((u) => 'time_in_shape_s' in u.metrics)) cols.push(['time_in_shape_s', 'in shape (s)'], ['breaks', 'breaks'], ['backing_up_m', 'backing up (m)']);
 const table = el('table', { id: 'uav-metrics' },
   el('tr', {}, el('th', {}, 'uav'), el('th', {}, 'status'), ...cols.map(([, h]) => el('th', {}, h))));
@@ -567,6 +593,11 @@ for (const u of data.uavs)
 left.append(el('div', { class: 'scroll' }, table));
 // The route's metrics leave the vertical take-off and landing legs out (evaluation/metrics.cpp).
 left.append(el('p', { class: 'muted' }, 'max turn, max climb and min AGL: the route between take-off and landing (the vertical legs are left out).'));
+// No margin is added by default (docs/decisions/0013): say so where the routes keep only the body.
+const bare = data.uavs.filter((u) => !(u.clearance > 0)).map((u) => u.id);
+if (bare.length)
+  left.append(el('p', { class: 'muted', id: 'clearance-note' }, `No clearance set for ${bare.join(', ')}: routes keep only the body's radius from ` +
+    'obstacles and airspace zones (the contract; min gap shows how close each comes). Set clearance for room for the autopilot\'s tracking.'));
 left.append(el('h2', {}, 'Plan metrics'));
 const planTable = el('table', { id: 'plan-metrics' });
 for (const [k, v] of Object.entries(data.metrics)) planTable.append(el('tr', {}, el('td', {}, k), el('td', {}, fmt(v, 4))));
@@ -620,6 +651,8 @@ window.uavplanReport = {
   ready: true,
   uavs: data.uavs.length,
   radarShells: shellCount,
+  // Airspace drawn apart from obstacles: no-fly zones and the fence's outside, zones named.
+  zones,
   movingTracks: movers.length,
   flownTracks,
   phases: phases.length,

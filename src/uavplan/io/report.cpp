@@ -106,6 +106,20 @@ ojson profile_json(const World& w, const Trajectory& tr, int samples) {
   return {{"s_m", std::move(s_m)}, {"z_m", std::move(z_m)}, {"ground_m", std::move(ground_m)}};
 }
 
+// Each obstacle's name and what it is: a no-fly zone of an airspace file ("airspace"), the world
+// outside an inclusion fence ("fence"), or an obstacle; drawn apart, the zones named.
+void mark_airspace(ojson& j, const Scenario& sc) {
+  ojson& obstacles = j["obstacles"];
+  const auto& ids = sc.world.spec().obstacle_ids;
+  for (std::size_t k = 0; k < obstacles.size(); ++k) {
+    obstacles[k]["id"] = k < ids.size() ? ids[k] : std::string();
+    obstacles[k]["kind"] = "obstacle";
+  }
+  for (const FenceZone& z : sc.airspace)
+    for (const std::size_t k : z.obstacles)
+      if (k < obstacles.size()) obstacles[k]["kind"] = z.inclusion ? "fence" : "airspace";
+}
+
 // The world: bounds, obstacles, threats, moving obstacles, terrain.
 void add_world(ojson& j, const World& w, const ReportOptions& opt) {
   j["bounds"] = {{"min", vec(w.bounds().min)}, {"max", vec(w.bounds().max)}};
@@ -158,6 +172,7 @@ ojson uav_json(const Scenario& sc, const UavPlan& u, std::size_t k, const Report
           {"message", u.message},
           {"colour", uav_colour(k)},
           {"radius", spec ? spec->radius_m : 0.0},
+          {"clearance", spec ? spec->clearance_m : 0.0},
           {"min_agl", spec ? spec->min_agl_m : 0.0},
           {"max_agl", spec && spec->max_agl_m ? ojson(*spec->max_agl_m) : ojson(nullptr)},
           {"length_m", u.length_m},
@@ -258,6 +273,7 @@ std::string report_data_json(const Scenario& sc, const Plan& plan_in, const std:
   j["mission"] = sc.mission.type;
   j["separation_m"] = sc.mission.separation_m;
   add_world(j, sc.world, opt);
+  mark_airspace(j, sc);
   add_mission_places(j, sc);
   std::vector<const UavPlan*> flown;
   double t_end = 0.0;
