@@ -343,6 +343,19 @@ EOF
   pass=$((pass + 1)) || { echo "FAIL formation.out_of_shape: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
 "$BIN" plan "$SRC/scenarios/p1_formation.yaml" -o "$TMP/p1f" 2>&1 >/dev/null | grep -q "out of shape" &&
   { echo "FAIL formation.p1_in_shape"; fails=$((fails + 1)); } || pass=$((pass + 1))
+# mission.cruise_agl: a fleet from the ground cruises at least that high between take-off and
+# landing (without it, at the 2.5 m default); info says so.
+sed 's/mission: {type: independent, separation: 10}/mission: {type: independent, separation: 10, cruise_agl: 30}/' \
+  "$TMP/cross.yaml" >"$TMP/cruise.yaml"
+"$BIN" info "$TMP/cruise.yaml" | grep -q "^min_agl   30 m above the ground for every UAV while planning (mission.cruise_agl 30 m)" &&
+  pass=$((pass + 1)) || { echo "FAIL cruise_agl.info: $("$BIN" info "$TMP/cruise.yaml" | grep min_agl)"; fails=$((fails + 1)); }
+"$BIN" plan "$TMP/cruise.yaml" -o "$TMP/cruise" >/dev/null 2>&1; check cruise_agl.plan 0 $?
+python3 - "$TMP/cruise/plan.json" "$TMP/cross/plan.json" <<'PY' && pass=$((pass + 1)) || { echo "FAIL cruise_agl.height"; fails=$((fails + 1)); }
+import json, sys
+high, low = (json.load(open(f)) for f in sys.argv[1:])
+assert all(u["metrics"]["min_agl_m"] >= 30 for u in high["uavs"]), [u["metrics"]["min_agl_m"] for u in high["uavs"]]
+assert all(u["metrics"]["min_agl_m"] < 5 for u in low["uavs"]), [u["metrics"]["min_agl_m"] for u in low["uavs"]]
+PY
 # A start inside a building names it.
 sed 's/start: \[20, 20, 30\]/start: [230, 230, 30]/' "$SRC/scenarios/demo.yaml" >"$TMP/in_building.yaml"
 expect_bad start.in_building "$TMP/in_building.yaml" "uavs[0].start: start is inside obstacle tower_a"

@@ -104,11 +104,17 @@ int run_info(const std::string& path) {
   print_mission(sc);
   std::printf("uavs      %zu\n", sc.uavs.size());
   for (const auto& u : sc.uavs) print_uav(u);
-  if (sc.default_min_agl_m > 0.0 && planning_min_agl_m(sc) == sc.default_min_agl_m)
-    std::printf(
-        "min_agl   %g m above the ground for every UAV while planning (the default where a UAV takes off or "
-        "lands and none sets min_agl; min_agl: 0 flies lower)\n",
-        sc.default_min_agl_m);
+  if (sc.default_min_agl_m > 0.0 && planning_min_agl_m(sc) == sc.default_min_agl_m) {
+    if (sc.mission.cruise_agl_m)
+      std::printf("min_agl   %g m above the ground for every UAV while planning (mission.cruise_agl %g m%s)\n",
+                  sc.default_min_agl_m, *sc.mission.cruise_agl_m,
+                  sc.default_min_agl_m < *sc.mission.cruise_agl_m ? ", less where the scenario has less room" : "");
+    else
+      std::printf(
+          "min_agl   %g m above the ground for every UAV while planning (the default where a UAV takes off or "
+          "lands and none sets min_agl; min_agl: 0 flies lower, mission.cruise_agl higher)\n",
+          sc.default_min_agl_m);
+  }
   print_planners(sc);
   return kExitOk;
 }

@@ -79,8 +79,11 @@ double default_min_agl_m(const Scenario& sc) {
   const World& w = sc.world;
   if (w.bounds().extent().z() <= 0.0 || own_ground(sc)) return 0.0;
   const Placed placed = placed_points(sc);
-  if (!placed.defaulted) return 0.0;
-  double agl = kDefaultMinAgl_m;
+  // The fleet's cruise height when the scenario asks for one, else the default where a UAV
+  // without min_agl takes off or lands; either gives way to the scenario's room below.
+  const std::optional<double> cruise = sc.mission.cruise_agl_m;
+  if (!placed.defaulted && !cruise) return 0.0;
+  double agl = cruise.value_or(kDefaultMinAgl_m);
   for (const auto& [u, p] : placed.air)
     agl = std::min(agl, w.lowest_height_above_ground(p, p) - keep_off_m(*u) - kLiftMargin_m);
   for (const auto& [u, p] : placed.ground) {

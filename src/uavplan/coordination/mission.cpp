@@ -47,6 +47,9 @@ const std::vector<MissionKey>& common_mission_keys() {
       {"step_s", "number", num_text(defaults.step_s), "s", "the sensing and control period of flights in the loop"},
       {"goal_spacing", "number", "the separation", "m",
        "UAVs whose goals lie closer than this arrive at distinct points this far apart"},
+      {"cruise_agl", "number", "2.5 where a UAV takes off or lands", "m",
+       "the height above the ground planners keep the fleet at between take-off and landing (a preference: less "
+       "where the scenario has less room; the verifier checks min_agl)"},
   };
   return keys;
 }

@@ -810,6 +810,7 @@ void read_mission(const At& m, const At& uavs, Scenario& sc) {
   if (m.has("separation")) sc.mission.separation_m = m["separation"].non_negative();
   if (m.has("step_s")) sc.mission.step_s = m["step_s"].in_range(kMinStep_s, 3600.0);
   if (m.has("goal_spacing")) sc.mission.goal_spacing_m = m["goal_spacing"].non_negative();
+  if (m.has("cruise_agl")) sc.mission.cruise_agl_m = m["cruise_agl"].non_negative();
   mission.read_section(AtSection(m), AtSection(uavs), sc);
 }
 

@@ -38,6 +38,10 @@ struct MissionSpec {
   // UAVs whose goals lie closer than this arrive at distinct points this far apart (0: they
   // meet at the goal); default the separation. Not for rendezvous (one goal by design).
   std::optional<double> goal_spacing_m;
+  // The height above the ground the planners keep the fleet at between take-off and landing
+  // (a planning preference, as the 2.5 m default it replaces: less where the scenario has less
+  // room; not a rule the verifier checks).
+  std::optional<double> cruise_agl_m;
   // The airfield the UAVs take off from and land on (formation_mission): the exports fly its
   // runway and the verifier's airfield rule reads it.
   std::optional<Airfield> airfield;
