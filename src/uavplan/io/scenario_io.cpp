@@ -344,7 +344,7 @@ void read_airspace_files(const At& a, const std::optional<GeoOrigin>& origin, Wo
     if (const auto& box = zones.inclusion_box) {
       // To the micrometre, far below what 1e-7 degrees place (1 cm): a fence through the origin
       // bounds the world at 0, not at the projection's -1.06e-09 or -0.
-      const auto micrometres = [](Vec2 v) -> Vec2 {
+      const auto micrometres = [](const Vec2& v) -> Vec2 {
         return v.unaryExpr([](double x) { return std::round(x * 1e6) / 1e6 + 0.0; });  // + 0: no -0
       };
       ws.bounds.min.head<2>() = ws.bounds.min.head<2>().cwiseMax(micrometres(box->min.head<2>()));
