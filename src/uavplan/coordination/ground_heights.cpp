@@ -84,8 +84,15 @@ double default_min_agl_m(const Scenario& sc) {
   const std::optional<double> cruise = sc.mission.cruise_agl_m;
   if (!placed.defaulted && !cruise) return 0.0;
   double agl = cruise.value_or(kDefaultMinAgl_m);
-  for (const auto& [u, p] : placed.air)
-    agl = std::min(agl, w.lowest_height_above_ground(p, p) - keep_off_m(*u) - kLiftMargin_m);
+  for (const auto& [u, p] : placed.air) {
+    // The ground within the body's reach counts, not only the cell under it: on a slope the
+    // cell beside a point in the air is higher, and the planners keep the body off it raised.
+    const double keep = keep_off_m(*u);
+    const TerrainGrid* t = w.terrain();
+    const double reach_ground = t ? std::max(w.ground_z(p.x(), p.y()), t->highest_near(p.head<2>(), keep)) : 0.0;
+    const double room = t ? p.z() - reach_ground : w.lowest_height_above_ground(p, p);
+    agl = std::min(agl, room - keep - kLiftMargin_m);
+  }
   for (const auto& [u, p] : placed.ground) {
     const double roof = std::min(w.bounds().max.z(), u->ceiling_m.value_or(w.bounds().max.z()));
     agl = std::min(agl, roof - w.ground_z(p.x(), p.y()) - keep_off_m(*u) - 2 * kLiftMargin_m);

@@ -33,6 +33,29 @@ TEST(DefaultMinAgl, LessWhereTheScenarioHasLessRoom) {
   EXPECT_EQ(default_min_agl_m(from_the_ground(50, 0.4)), 0.0);
 }
 
+// mission.cruise_agl: the fleet's height for every UAV, airborne starts and min_agl given too;
+// on a slope a point in the air leaves room to the ground within its body's reach, not only
+// below it (the planners keep the body off the cell beside it, raised).
+TEST(DefaultMinAgl, TheFleetsCruiseHeightGivesWayToTheGroundWithinReach) {
+  Scenario airborne = from_the_ground(200, 100);
+  airborne.uavs[0].start.z() = 100;
+  airborne.uavs[0].min_agl_given = true;
+  airborne.mission.cruise_agl_m = 30.0;
+  EXPECT_DOUBLE_EQ(default_min_agl_m(airborne), 30.0);
+  // Terrain rising 20 m a cell (10 m) east: the start at (10, 10) is 1 m from the 20 m cell.
+  WorldSpec ws = airborne.world.spec();
+  std::vector<double> h(20 * 20);
+  for (int j = 0; j < 20; ++j)
+    for (int i = 0; i < 20; ++i) h[j * 20 + i] = 20.0 * i;
+  ws.terrain = TerrainGrid(Vec2(0, 0), 10.0, 20, 20, std::move(h));
+  airborne.world = World(std::move(ws));
+  airborne.uavs[0].goal = Vec3(185, 185, 410);  // 50 m above its cell and its neighbours
+  airborne.uavs[0].start = Vec3(9, 10, 60);     // 60 m above its cell, 40 above the next 1 m away
+  EXPECT_DOUBLE_EQ(default_min_agl_m(airborne), 30.0);
+  airborne.uavs[0].start = Vec3(9.8, 10, 45);  // 25 m above the next cell 0.2 m away, within the body
+  EXPECT_NEAR(default_min_agl_m(airborne), 45.0 - 20.0 - 0.5 - 0.05, 1e-9);
+}
+
 TEST(DefaultMinAgl, NoneWhereTheScenarioSaysOrNoOneTouchesTheGround) {
   Scenario given = from_the_ground(50, 0);
   given.uavs[0].min_agl_given = true;  // min_agl: 0 written: flown as written
