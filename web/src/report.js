@@ -25,7 +25,7 @@ function el(tag, attrs = {}, ...children) {
 const fmt = (v, d = 3) => (Number.isInteger(v) ? String(v) : v.toFixed(d));
 // A metric cell says why a value is missing instead of showing a dash.
 function metricText(u, key) {
-  if (key === 'kept_off_m') return `${fmt(u.radius + (u.clearance || 0))} (radius ${fmt(u.radius)} + clearance ${fmt(u.clearance || 0)})`;
+  if (key === 'kept_off_m') return `${fmt(u.radius + (u.clearance || 0))} = ${u.radius} + ${u.clearance || 0}`;
   const v = u.metrics[key];
   if (typeof v === 'number') return fmt(v);
   if (u.trajectory.length < 2) return `not flown (${u.status})`;
@@ -583,7 +583,7 @@ if (profiled.length) {
 left.append(el('h2', {}, 'Metrics per UAV'));
 const cols = [['length_m', 'length (m)'], ['departure_s', 'departure (s)'], ['flight_time_s', 'flight time (s)'],
   ['arrival_s', 'arrival (s)'], ['max_turn_deg', 'max turn (deg)'], ['max_climb_deg', 'max climb (deg)'],
-  ['kept_off_m', 'kept off obstacles (m)'], ['min_gap_m', 'min gap to obstacles (m)'], ['min_agl_m', 'min AGL (m)'],
+  ['kept_off_m', 'kept off obstacles (m): radius + clearance'], ['min_gap_m', 'min gap to obstacles (m)'], ['min_agl_m', 'min AGL (m)'],
   ['reversals', 'reversals']];
 if (data.uavs.some((u) => 'time_in_shape_s' in u.metrics)) cols.push(['time_in_shape_s', 'in shape (s)'], ['breaks', 'breaks'], ['backing_up_m', 'backing up (m)']);
 const table = el('table', { id: 'uav-metrics' },

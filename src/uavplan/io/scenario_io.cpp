@@ -535,7 +535,7 @@ void check_uavs_fit(const At& uavs, const Scenario& sc) {
     const UavSpec& u = sc.uavs[i];
     const At ui = uavs.item(i);
     if (goals_needed && !u.goal)
-      ui.fail("missing required key 'goal' (a " + sc.mission.type + " mission needs every UAV's goal)");
+      ui.fail("missing required key 'goal' (every UAV of a mission of type " + sc.mission.type + " needs one)");
     for (const MovingObstacle& m : w.moving())
       if ((m.position_at(0.0) - u.start).norm() < m.radius_m + u.radius_m)
         ui["start"].fail("inside moving obstacle '" + m.id + "' at t = 0");
