@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "uavplan/coordination/contract/arrival_points.h"
+#include "uavplan/coordination/contract/separation.h"
 #include "uavplan/coordination/formation/formation_flight.h"
 #include "uavplan/coordination/routes/local_layer.h"
 #include "uavplan/coordination/timing.h"
@@ -138,9 +139,13 @@ void FormationMission::plan(const Scenario& sc, const MissionContext& ctx, Plan&
     throw std::invalid_argument("a formation mission needs one slot per UAV");
   const PlanResult ref = reference_route(sc, ctx, centroid(starts), centroid(goals));
   if (ref.status != Status::solved) return fail_all(sc, "the formation's reference route: " + ref.message, plan);
-  FormationScheduleOptions so{cruise, approach_m(sc, cruise), {}};
+  FormationScheduleOptions so{cruise, approach_m(sc, cruise), {}, {}};
   so.slot_clear = [&sc](std::size_t i, const Vec3& a, const Vec3& b) {
     return sc.world.segment_valid(a, b, keep_off_m(sc.uavs[i]));
+  };
+  so.pair_need_m = [&sc](std::size_t i, std::size_t j) {
+    constexpr double kRoom_m = 0.5;  // the flight follows the schedule in steps: room beyond the need
+    return required_separation_m(sc, sc.uavs[i], sc.uavs[j]) + kRoom_m;
   };
   const FormationSchedule sched = formation_schedule(ref.route.waypoints, formation_shape(sc), starts, goals, so);
 

@@ -313,6 +313,19 @@ class Builder {
     const int chords = std::max(1, static_cast<int>(std::ceil(std::abs(turn) / (M_PI / 9.0) - kWholeNumberSlack)));
     for (int c = 1; c <= chords; ++c) leg(slots_at(p, from + turn * c / chords));
   }
+  // Whether every UAV flying straight from `from` to `to` in one leg (all arriving together) is
+  // clear of obstacles and keeps every pair at least its need apart.
+  bool apart_and_clear(const std::vector<Vec3>& from, const std::vector<Vec3>& to) const {
+    for (std::size_t i = 0; i < to.size(); ++i) {
+      if (opt_.slot_clear && !opt_.slot_clear(i, from[i], to[i])) return false;
+      for (std::size_t j = i + 1; j < to.size(); ++j) {
+        const Vec3 d0 = from[i] - from[j], dd = (to[i] - to[j]) - d0;
+        const double f = dd.squaredNorm() > 0.0 ? std::clamp(-d0.dot(dd) / dd.squaredNorm(), 0.0, 1.0) : 0.0;
+        if ((d0 + f * dd).norm() < (opt_.pair_need_m ? opt_.pair_need_m(i, j) : 0.0)) return false;
+      }
+    }
+    return true;
+  }
   // Whether every slot's chord between consecutive poses is clear.
   bool clear(const std::vector<Pose>& poses) const {
     if (!opt_.slot_clear || poses.empty()) return true;
@@ -390,12 +403,19 @@ FormationSchedule formation_schedule(const std::vector<Vec3>& route, const std::
   Approach a = split_for_approach(route, opt.approach_m);
   a.cruise = without_wiggles(a.cruise, kWiggleOfReach * b.reach_m(), clear);
   const std::vector<double> psi = a.cruise.size() > 1 ? headings(a.cruise) : std::vector<double>{route_psi.front()};
-  // Form-up: into the shape as the starts lie, then turned to the route's first heading.
+  // Form-up: straight into the slots at the route's first heading where those moves keep the
+  // pairs apart and clear; else into the shape as the starts lie, then turned as a rigid body
+  // (a jog into the fitted shape and a turn back reads as a reversal where it can be avoided).
   b.start(starts);
-  const double start_heading = fitted_heading(shape, b.centroid(), starts, psi.front());
-  b.pose({route.front(), start_heading});
-  if (std::abs(turn_between(start_heading, psi.front())) > 1e-9)
-    b.turn_about(route.front(), start_heading, psi.front());
+  const std::vector<Vec3> direct = b.slots_at(route.front(), psi.front());
+  if (b.apart_and_clear(starts, direct)) {
+    b.leg(direct);
+  } else {
+    const double start_heading = fitted_heading(shape, b.centroid(), starts, psi.front());
+    b.pose({route.front(), start_heading});
+    if (std::abs(turn_between(start_heading, psi.front())) > 1e-9)
+      b.turn_about(route.front(), start_heading, psi.front());
+  }
   b.schedule().form_up_knot = b.schedule().knots_s.size() - 1;
   const double cruise_heading = fly_cruise(b, a.cruise, psi, shape);
   fly_approach(b, a, cruise_heading, fitted_heading(shape, b.centroid(), goals, route_psi.back()), goals);

@@ -48,6 +48,9 @@ struct FormationScheduleOptions {
   // Whether UAV i may fly straight from a to b (static obstacles, bounds); a corner's arc cuts
   // inside the route, so it is flown only where every slot's chords are clear (none: all are).
   std::function<bool(std::size_t i, const Vec3& a, const Vec3& b)> slot_clear;
+  // The least distance UAVs i and j keep (none: 0). The form-up flies each UAV straight into its
+  // slot at the route's first heading where that keeps every pair apart.
+  std::function<double(std::size_t i, std::size_t j)> pair_need_m;
 };
 FormationSchedule formation_schedule(const std::vector<Vec3>& route, const std::vector<Vec3>& shape,
                                      const std::vector<Vec3>& starts, const std::vector<Vec3>& goals,

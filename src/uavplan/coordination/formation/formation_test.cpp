@@ -28,7 +28,7 @@ TEST(FormationSchedule, SlotsTurnWithTheRouteAndShareOneClock) {
     starts.push_back(route[0] + (o - c));
     goals.push_back(route[2] + Vec3(-(o - c).y(), (o - c).x(), 0));  // heading north: forward is +y
   }
-  const FormationSchedule s = formation_schedule(route, kWedge, starts, goals, {5.0, 0.0, {}});
+  const FormationSchedule s = formation_schedule(route, kWedge, starts, goals, {5.0, 0.0, {}, {}});
   ASSERT_EQ(s.slots.size(), 3u);
   for (const auto& p : s.slots) EXPECT_EQ(p.size(), s.knots_s.size());
   EXPECT_NEAR(s.knots_s[s.form_up_knot], 0.0, 1e-12);  // already in their slots
@@ -63,6 +63,29 @@ TEST(FormationSchedule, SlotsTurnWithTheRouteAndShareOneClock) {
     EXPECT_GE(schedule_gap_m(s, 1, 2, k), 10.0 * std::cos(M_PI / 18.0) - 1e-9);
 }
 
+// The form-up: the wedge's starts lie heading north, the route leaves east. Where flying each UAV
+// straight into its east-facing slot keeps the pairs apart, that is one leg (no jog into the
+// north-facing shape and turn back); where it would not, the shape forms as the starts lie and
+// turns as a rigid body.
+TEST(FormationSchedule, TheFormUpFliesStraightIntoTheSlotsWhereThatKeepsThePairsApart) {
+  const std::vector<Vec3> route{{0, 0, 0}, {100, 0, 0}};
+  const Vec3 c(-10.0 / 3.0, 0, 0);
+  std::vector<Vec3> starts, goals;
+  for (const Vec3& o : kWedge) {
+    starts.push_back(Vec3(-(o - c).y(), (o - c).x(), 0));  // heading north
+    goals.push_back(route[1] + (o - c));
+  }
+  FormationScheduleOptions opt{5.0, 0.0, {}, {}};
+  opt.pair_need_m = [](std::size_t, std::size_t) { return 2.0; };
+  const FormationSchedule direct = formation_schedule(route, kWedge, starts, goals, opt);
+  EXPECT_EQ(direct.form_up_knot, 1u);
+  for (std::size_t i = 0; i < 3; ++i) EXPECT_LT((direct.slots[i][1] - (route[0] + kWedge[i] - c)).norm(), 1e-9);
+  opt.pair_need_m = [](std::size_t, std::size_t) { return 6.0; };  // the straight moves pass closer
+  const FormationSchedule turned = formation_schedule(route, kWedge, starts, goals, opt);
+  EXPECT_GT(turned.form_up_knot, 1u);
+  EXPECT_NEAR(wedge_heading(turned, 1), M_PI / 2, 1e-6);  // formed heading north first
+}
+
 // Where a smooth path or an arc would cut into an obstacle, the shape turns with the route
 // itself, about the corner.
 TEST(FormationSchedule, AboutTheCornerWhereNothingElseIsClear) {
@@ -70,7 +93,7 @@ TEST(FormationSchedule, AboutTheCornerWhereNothingElseIsClear) {
   std::vector<Vec3> starts, goals;
   const Vec3 c(-10.0 / 3.0, 0, 0);
   for (const Vec3& o : kWedge) starts.push_back(o - c), goals.push_back(route[2] + Vec3(-(o - c).y(), (o - c).x(), 0));
-  FormationScheduleOptions opt{5.0, 0.0, {}};
+  FormationScheduleOptions opt{5.0, 0.0, {}, {}};
   opt.slot_clear = [](std::size_t, const Vec3& a, const Vec3& b) {
     return std::max(a.y(), b.y()) < 1.0 || a.x() > 99.0;
   };
@@ -86,7 +109,7 @@ TEST(FormationSchedule, AnApproachWhereNoneWaitsAtItsGoal) {
   std::vector<Vec3> starts, goals;
   const Vec3 c(-10.0 / 3.0, 0, 0);
   for (const Vec3& o : kWedge) starts.push_back(o - c), goals.push_back(route[2] + Vec3(-(o - c).y(), (o - c).x(), 0));
-  const FormationSchedule s = formation_schedule(route, kWedge, starts, goals, {5.0, 30.0, {}});
+  const FormationSchedule s = formation_schedule(route, kWedge, starts, goals, {5.0, 30.0, {}, {}});
   // The last 30 m of the route in shape, into the goals at 5 m/s (the pursued path meets the
   // route where the approach begins, heading north to within a degree).
   EXPECT_NEAR(s.end_s() - s.knots_s[s.final_knot], 30.0 / 5.0, 1e-2);
@@ -102,7 +125,7 @@ TEST(FormationSchedule, AColumnTurningRoundNeverRunsThroughItself) {
   const std::vector<Vec3> route{{0, 0, 0}, {100, 0, 0}, {100, 1e-9, 0}, {0, 1e-9, 0}};
   std::vector<Vec3> starts, goals;
   for (const Vec3& o : column) starts.push_back(Vec3(6, 0, 0) + o), goals.push_back(Vec3(-6, 0, 0) - o);
-  const FormationSchedule s = formation_schedule(route, column, starts, goals, {5.0, 0.0, {}});
+  const FormationSchedule s = formation_schedule(route, column, starts, goals, {5.0, 0.0, {}, {}});
   for (std::size_t k = 0; k + 1 < s.knots_s.size(); ++k)
     for (std::size_t i = 0; i < 3; ++i)
       for (std::size_t j = i + 1; j < 3; ++j)
