@@ -291,6 +291,18 @@ Deviation deviation(const Scenario& sc, const Flight& f) {
       d.arrival_flown_s = s.t_s;
       break;
     }
+  // A multirotor's gaps from its start to its goal, as the table says: the autopilot's take-off
+  // and landing beside a slope pass within centimetres of the terrain there, drifting off the
+  // vertical legs the metrics leave out.
+  const auto between = [](const Trajectory& tr, double t0_s, double t1_s) {
+    Trajectory out;
+    for (const TrajectorySample& s : tr)
+      if (s.t_s >= t0_s && s.t_s <= t1_s) out.push_back(s);
+    return out.size() < 2 ? tr : out;
+  };
+  d.gap_planned_m = gap_m(sc, *f.exported->spec, between(f.planned, from, to));
+  if (std::isfinite(d.arrival_flown_s))
+    d.gap_flown_m = gap_m(sc, *f.exported->spec, between(f.flown, from, d.arrival_flown_s));
   return d;
 }
 
