@@ -315,6 +315,13 @@ json.dump(p, open(sys.argv[1], "w"))
 PY
 "$BIN" info "$TMP/swapped/air.yaml" 2>&1 >/dev/null | grep -q "airspace\[0\].file: hint: zones.geojson zone 0 lies 5653 km outside the world's bounds (lat and lon swapped?" &&
   pass=$((pass + 1)) || { echo "FAIL hints.swapped: $("$BIN" info "$TMP/swapped/air.yaml" 2>&1 >/dev/null)"; fails=$((fails + 1)); }
+# An origin with lat and lon swapped puts the elevation model thousands of km away: the error says so.
+mkdir -p "$TMP/alp_swapped" && cp -r "$SRC/scenarios/data" "$TMP/alp_swapped/"
+sed 's/origin: {lat: 46.8195, lon: 9.8291, alt: 1500}/origin: {lat: 9.8291, lon: 46.8195, alt: 1500}/' \
+  "$SRC/scenarios/alpine_survey.yaml" >"$TMP/alp_swapped/alp.yaml"
+"$BIN" info "$TMP/alp_swapped/alp.yaml" >/dev/null 2>"$TMP/stderr"; check hints.origin_swapped 2 $?
+grep -q "davosdorf.tif: terrain: .* it lies 5376 km from the world: is the scenario's origin right (lat and lon swapped?)" "$TMP/stderr" &&
+  pass=$((pass + 1)) || { echo "FAIL hints.origin_swapped: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
 for s in "$SRC"/scenarios/*.yaml; do
   "$BIN" info "$s" 2>&1 >/dev/null | grep -q "hint:" && { echo "FAIL hints.bundled: $s"; fails=$((fails + 1)); }
 done

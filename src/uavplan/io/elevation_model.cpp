@@ -234,6 +234,18 @@ struct Window {
   int x0 = 0, y0 = 0, w = 1, h = 1;
 };
 
+// Where the model lies far beyond the world (farther than any local map reaches), what that
+// most likely is: an origin with lat and lon swapped or wrong.
+std::string far_away_hint(const Cells& cells, const ElevationSource& src) {
+  constexpr double kFar_m = 50'000.0;
+  const double dx = std::max({0.0, src.extent_min.x() - cells.hi.x(), cells.lo.x() - src.extent_max.x()});
+  const double dy = std::max({0.0, src.extent_min.y() - cells.hi.y(), cells.lo.y() - src.extent_max.y()});
+  const double away_m = std::hypot(dx, dy);
+  if (away_m <= kFar_m) return {};
+  return "; it lies " + num_text(std::round(away_m / 1000.0)) +
+         " km from the world: is the scenario's origin right (lat and lon swapped?)";
+}
+
 Window window_under(const Raster& r, const std::vector<double>& px, const std::vector<double>& py, const Cells& cells,
                     const ElevationSource& src) {
   const auto [px_lo, px_hi] = std::minmax_element(px.begin(), px.end());
@@ -243,7 +255,8 @@ Window window_under(const Raster& r, const std::vector<double>& px, const std::v
            num_text(cells.lo.y()) + ".." + num_text(cells.hi.y()) +
            ") reach beyond the elevation model, which covers x " + num_text(std::round(src.extent_min.x())) + ".." +
            num_text(std::round(src.extent_max.x())) + ", y " + num_text(std::round(src.extent_min.y())) + ".." +
-           num_text(std::round(src.extent_max.y())) + " m in the scenario's frame (its footprint's box)");
+           num_text(std::round(src.extent_max.y())) + " m in the scenario's frame (its footprint's box)" +
+           far_away_hint(cells, src));
   Window w;
   w.x0 = std::max(0, static_cast<int>(std::floor(*px_lo + kEdge_px)));
   w.y0 = std::max(0, static_cast<int>(std::floor(*py_lo + kEdge_px)));
