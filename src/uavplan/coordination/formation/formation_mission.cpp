@@ -121,6 +121,20 @@ void check_flown(const Scenario& sc, const ArrivalSpread& spread, Plan& plan) {
     }
 }
 
+// The schedule at the formation's cruise speed, each slot's chords clear of obstacles with its
+// UAV's body, the form-up's pairs kept apart.
+FormationScheduleOptions schedule_options(const Scenario& sc, double cruise_mps) {
+  FormationScheduleOptions so{cruise_mps, approach_m(sc, cruise_mps), {}, {}};
+  so.slot_clear = [&sc](std::size_t i, const Vec3& a, const Vec3& b) {
+    return sc.world.segment_valid(a, b, keep_off_m(sc.uavs[i]));
+  };
+  so.pair_need_m = [&sc](std::size_t i, std::size_t j) {
+    constexpr double kRoom_m = 0.5;  // the flight follows the schedule in steps: room beyond the need
+    return required_separation_m(sc, sc.uavs[i], sc.uavs[j]) + kRoom_m;
+  };
+  return so;
+}
+
 }  // namespace
 
 void FormationMission::plan(const Scenario& sc, const MissionContext& ctx, Plan& plan) const {
@@ -139,15 +153,8 @@ void FormationMission::plan(const Scenario& sc, const MissionContext& ctx, Plan&
     throw std::invalid_argument("a formation mission needs one slot per UAV");
   const PlanResult ref = reference_route(sc, ctx, centroid(starts), centroid(goals));
   if (ref.status != Status::solved) return fail_all(sc, "the formation's reference route: " + ref.message, plan);
-  FormationScheduleOptions so{cruise, approach_m(sc, cruise), {}, {}};
-  so.slot_clear = [&sc](std::size_t i, const Vec3& a, const Vec3& b) {
-    return sc.world.segment_valid(a, b, keep_off_m(sc.uavs[i]));
-  };
-  so.pair_need_m = [&sc](std::size_t i, std::size_t j) {
-    constexpr double kRoom_m = 0.5;  // the flight follows the schedule in steps: room beyond the need
-    return required_separation_m(sc, sc.uavs[i], sc.uavs[j]) + kRoom_m;
-  };
-  const FormationSchedule sched = formation_schedule(ref.route.waypoints, formation_shape(sc), starts, goals, so);
+  const FormationSchedule sched =
+      formation_schedule(ref.route.waypoints, formation_shape(sc), starts, goals, schedule_options(sc, cruise));
 
   RollingWindowOptions rw;
   rw.step_s = sc.mission.step_s;
