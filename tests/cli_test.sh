@@ -363,6 +363,15 @@ high, low = (json.load(open(f)) for f in sys.argv[1:])
 assert all(u["metrics"]["min_agl_m"] >= 30 for u in high["uavs"]), [u["metrics"]["min_agl_m"] for u in high["uavs"]]
 assert all(u["metrics"]["min_agl_m"] < 5 for u in low["uavs"]), [u["metrics"]["min_agl_m"] for u in low["uavs"]]
 PY
+# A home whose take-off column comes near something names it: a building, or the terrain rising
+# within the body's reach (then what lets it lift off).
+"$BIN" plan "$SRC/scenarios/demo.yaml" -o "$TMP/home_near" --set 'uavs[0].home=[199.8, 230, 8]' >/dev/null 2>"$TMP/stderr"
+check home.near_building 2 $?
+grep -q "cannot take off: .* comes within 0.2 m of obstacle tower_a beside it" "$TMP/stderr" && pass=$((pass + 1)) ||
+  { echo "FAIL home.near_building: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
+"$BIN" plan "$SRC/scenarios/demo.yaml" -o "$TMP/home_near" --set 'uavs[0].home=[99.8, 50, 0]' >/dev/null 2>"$TMP/stderr"
+grep -q "comes within 0.2 m of the terrain beside it (radius plus clearance 1.5 m); the ground rises within the body's reach: a flatter spot or a smaller radius lifts off" "$TMP/stderr" &&
+  pass=$((pass + 1)) || { echo "FAIL home.on_a_step: $(cat "$TMP/stderr")"; fails=$((fails + 1)); }
 # A start inside a building names it.
 sed 's/start: \[20, 20, 30\]/start: [230, 230, 30]/' "$SRC/scenarios/demo.yaml" >"$TMP/in_building.yaml"
 expect_bad start.in_building "$TMP/in_building.yaml" "uavs[0].start: start is inside obstacle tower_a"

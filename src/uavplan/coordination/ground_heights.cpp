@@ -19,8 +19,14 @@ std::string column_problem(const Scenario& sc, const UavSpec& u, const Vec3& p, 
     return "the world is not high enough to lift off there (" + num_text(top.z() - ground) + " m needed)";
   const double c = sc.world.ground_leg_clearance(foot, top, keep, ground);
   if (c >= keep - 1e-6) return {};  // touching the ground it stands on at exactly keep_m above it
+  // What it comes near, named where the column is lowest off the ground (a slope's rise beside
+  // it, a wall): the body's reach above the foot.
+  const std::string what = sc.world.nearest_label(Vec3(p.x(), p.y(), ground + keep));
   return "its vertical column up to " + num_text(top.z() - ground) + " m above the ground comes within " + num_text(c) +
-         " m of an obstacle or the terrain beside it (radius plus clearance " + num_text(keep) + " m)";
+         " m of " + what + " beside it (radius plus clearance " + num_text(keep) + " m)" +
+         (what == "the terrain"
+              ? "; the ground rises within the body's reach: a flatter spot or a smaller radius lifts off"
+              : "");
 }
 
 // The points of the scenario on the ground (take-offs and landings) and in the air (to stay
