@@ -1,6 +1,7 @@
 #include "uavplan/coordination/ground_heights.h"
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 #include <vector>
 
@@ -95,8 +96,9 @@ double default_min_agl_m(const Scenario& sc) {
     // cell beside a point in the air is higher, and the planners keep the body off it raised.
     const double keep = keep_off_m(*u);
     const TerrainGrid* t = w.terrain();
-    const double reach_ground = t ? std::max(w.ground_z(p.x(), p.y()), t->highest_near(p.head<2>(), keep)) : 0.0;
-    const double room = t ? p.z() - reach_ground : w.lowest_height_above_ground(p, p);
+    const bool over_grid = t && std::isfinite(t->height_at(p.x(), p.y()));  // beside it: the floor
+    const double room = over_grid ? p.z() - std::max(w.ground_z(p.x(), p.y()), t->highest_near(p.head<2>(), keep))
+                                  : w.lowest_height_above_ground(p, p);
     agl = std::min(agl, room - keep - kLiftMargin_m);
   }
   for (const auto& [u, p] : placed.ground) {
