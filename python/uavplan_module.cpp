@@ -14,6 +14,7 @@
 #include <future>
 #include <memory>
 #include <optional>
+#include <sstream>
 
 #include "uavplan/coordination/mission_planner.h"
 #include "uavplan/evaluation/verifier.h"
@@ -199,15 +200,23 @@ PYBIND11_MODULE(uavplan, m) {
             try {
               return std::make_shared<Scenario>(parse_scenario(text, "<dict>"));
             } catch (const InputError& e) {
-              // The dict was dumped on one line: its line number says nothing, its key path all.
-              std::string why = e.what();
-              const auto at = why.find(": ");
-              if (why.rfind("<dict>", 0) == 0 && at != std::string::npos) why = why.substr(at + 2);
-              throw InputError("Scenario.from_dict", 0, "", why);
+              // The dict was dumped on one line: its line number says nothing, its key path all
+              // (one line per error: every unknown key is named).
+              std::vector<std::string> lines;
+              std::istringstream all(e.what());
+              for (std::string why; std::getline(all, why);) {
+                const auto at = why.find(": ");
+                if (why.rfind("<dict>", 0) == 0 && at != std::string::npos) why = why.substr(at + 2);
+                lines.push_back("Scenario.from_dict: " + why);
+              }
+              throw InputError(lines);
             }
           },
           py::arg("scenario"), "A scenario from a dict of the scenario file's structure")
       .def_property_readonly("name", [](const Scenario& s) { return s.name; })
+      .def_property_readonly(
+          "hints", [](const Scenario& s) { return s.hints; },
+          "Valid values that look like a mistake of units or order, as plan and info print them")
       .def_property_readonly("uav_ids",
                              [](const Scenario& s) {
                                std::vector<std::string> ids;

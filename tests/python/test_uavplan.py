@@ -300,3 +300,19 @@ def test_without_numpy_the_import_says_which_python_it_needs():
     assert r.returncode != 0
     assert "uavplan's Python module needs numpy, and " + sys.executable + " has none" in r.stderr
     assert "Debian's python3 " in r.stderr and "python3-numpy" in r.stderr
+
+
+def test_from_dict_names_every_typo_and_hints_are_kept():
+    scenario = {
+        "version": 1, "name": "py",
+        "world": {"bounds": {"min": [0, 0, 0], "max": [200, 200, 50]}},
+        "uavs": [{"id": "a", "start": [20, 20, 10], "goal": [180, 20, 10], "sped": 5, "max_turn_deg": 1.57}],
+        "mission": {"type": "independent", "seperation": 5}}
+    with pytest.raises(ValueError) as e:
+        uavplan.Scenario.from_dict(scenario)
+    lines = str(e.value).splitlines()
+    assert lines == ["Scenario.from_dict: uavs[0].sped: unknown key 'sped' (did you mean 'speed'?)",
+                     "Scenario.from_dict: mission.seperation: unknown key 'seperation' (did you mean 'separation'?)"]
+    del scenario["uavs"][0]["sped"], scenario["mission"]["seperation"]
+    sc = uavplan.Scenario.from_dict(scenario)
+    assert len(sc.hints) == 1 and "uavs[0].max_turn_deg: hint: a turn limit of 1.57 degrees" in sc.hints[0]
