@@ -237,11 +237,11 @@ struct Window {
 // Where the model lies far beyond the world (farther than any local map reaches), what that
 // most likely is: an origin with lat and lon swapped or wrong.
 std::string far_away_hint(const Cells& cells, const ElevationSource& src) {
-  constexpr double kFar_m = 50'000.0;
-  const double dx = std::max({0.0, src.extent_min.x() - cells.hi.x(), cells.lo.x() - src.extent_max.x()});
-  const double dy = std::max({0.0, src.extent_min.y() - cells.hi.y(), cells.lo.y() - src.extent_max.y()});
-  const double away_m = std::hypot(dx, dy);
-  if (away_m <= kFar_m) return {};
+  const Aabb world{Vec3(cells.lo.x(), cells.lo.y(), 0.0), Vec3(cells.hi.x(), cells.hi.y(), 0.0)};
+  const Aabb model{Vec3(src.extent_min.x(), src.extent_min.y(), 0.0),
+                   Vec3(src.extent_max.x(), src.extent_max.y(), 0.0)};
+  const double away_m = world.distance(model);
+  if (away_m <= kFarBeyondAnyMap_m) return {};
   return "; it lies " + num_text(std::round(away_m / 1000.0)) +
          " km from the world: is the scenario's origin right (lat and lon swapped?)";
 }

@@ -6,6 +6,10 @@
 
 namespace uavplan {
 
+// Farther than any local map reaches from its origin: a file placed this far from the world is
+// most likely placed through lat and lon swapped (here or in the origin).
+inline constexpr double kFarBeyondAnyMap_m = 50'000.0;
+
 struct LatLonAlt {
   double lat_deg = 0.0, lon_deg = 0.0;
   double alt_m = 0.0;  // origin.alt + z: metres above the origin's datum (mean sea level)

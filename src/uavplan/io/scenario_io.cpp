@@ -248,18 +248,18 @@ TerrainGrid read_terrain(const At& t) {
 }
 
 // How far a box lies outside the bounds in x, y (0 when they overlap).
-double outside_m(const Aabb& box, const Aabb& bounds) {
-  const double dx = std::max({0.0, bounds.min.x() - box.max.x(), box.min.x() - bounds.max.x()});
-  const double dy = std::max({0.0, bounds.min.y() - box.max.y(), box.min.y() - bounds.max.y()});
-  return std::hypot(dx, dy);
+double outside_m(Aabb box, Aabb bounds) {
+  box.min.z() = box.max.z() = bounds.min.z() = bounds.max.z() = 0.0;
+  return box.distance(bounds);
 }
 
 // "N m outside the world's bounds", and where that is far beyond any local map what it likely is.
 std::string outside_text(double m) {
-  constexpr double kFar_m = 50'000.0, kKilometres_m = 10'000.0;
+  constexpr double kKilometres_m = 10'000.0;
   return (m >= kKilometres_m ? At::fmt(std::round(m / 1000.0)) + " km" : At::fmt(m) + " m") +
          " outside the world's bounds" +
-         (m > kFar_m ? " (lat and lon swapped? GeoJSON lists [lon, lat]; origin and a QGC .plan lat, lon)" : "");
+         (m > kFarBeyondAnyMap_m ? " (lat and lon swapped? GeoJSON lists [lon, lat]; origin and a QGC .plan lat, lon)"
+                                 : "");
 }
 
 // world.buildings: one GeoJSON file (a path, or {file, level_height, default_height}) or a

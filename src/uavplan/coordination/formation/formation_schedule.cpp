@@ -318,10 +318,9 @@ class Builder {
   bool apart_and_clear(const std::vector<Vec3>& from, const std::vector<Vec3>& to) const {
     for (std::size_t i = 0; i < to.size(); ++i) {
       if (opt_.slot_clear && !opt_.slot_clear(i, from[i], to[i])) return false;
-      for (std::size_t j = i + 1; j < to.size(); ++j) {
-        const Vec3 d0 = from[i] - from[j], dd = (to[i] - to[j]) - d0;
-        const double f = dd.squaredNorm() > 0.0 ? std::clamp(-d0.dot(dd) / dd.squaredNorm(), 0.0, 1.0) : 0.0;
-        if ((d0 + f * dd).norm() < (opt_.pair_need_m ? opt_.pair_need_m(i, j) : 0.0)) return false;
+      for (std::size_t j = i + 1; j < to.size(); ++j) {  // their offset moves linearly: its least length
+        const double closest_m = point_segment_distance(Vec3::Zero(), from[i] - from[j], to[i] - to[j]);
+        if (closest_m < (opt_.pair_need_m ? opt_.pair_need_m(i, j) : 0.0)) return false;
       }
     }
     return true;
