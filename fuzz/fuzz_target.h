@@ -2,6 +2,7 @@
 // (a clear message); anything else escaping the reader, or a crash, is a bug the fuzzer reports.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -18,10 +19,19 @@ int run_reader(F&& read) {
   try {
     read();
   } catch (const InputError& e) {
+    // The promise: one line per error, none empty, no control byte from the input inside one.
     const std::string msg = e.what();
-    if (msg.find('\n') != std::string::npos) {  // the one-line promise
-      std::fprintf(stderr, "error message spans lines: %s\n", msg.c_str());
-      std::abort();
+    std::size_t begin = 0;
+    while (begin <= msg.size()) {
+      const std::size_t end = std::min(msg.find('\n', begin), msg.size());
+      const std::string line = msg.substr(begin, end - begin);
+      const bool control = std::any_of(line.begin(), line.end(),
+                                       [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; });
+      if (line.empty() || control) {
+        std::fprintf(stderr, "error message line not printable: %s\n", printable(msg).c_str());
+        std::abort();
+      }
+      begin = end + 1;
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "escaped as %s\n", e.what());

@@ -44,7 +44,7 @@ for t in "${TARGETS[@]}"; do
   if [ "$rc" -ne 0 ]; then
     echo "$t: crash (exit $rc); the input and the report:"
     ls "$BUILD"/crash-"$t"-* 2>/dev/null
-    grep -m5 -E 'ERROR|SUMMARY|escaped|spans lines' "$log"
+    grep -m5 -E 'ERROR|SUMMARY|escaped|not printable' "$log"
     status=1
   fi
 done
