@@ -694,7 +694,8 @@ void read_moving(const At& list, WorldSpec& ws) {
       mo.path = read_timed_path(m["trajectory"]);
       mo.position = mo.path.front().p;
     } else {
-      mo.position = m.req("position").vec3();
+      if (!m.has("position")) m.fail("needs a 'position' (and a 'velocity') or a 'trajectory' of [t, x, y, z] rows");
+      mo.position = m["position"].vec3();
       mo.velocity_mps = m.has("velocity") ? m["velocity"].vec3() : Vec3::Zero();
     }
     ws.moving.push_back(std::move(mo));

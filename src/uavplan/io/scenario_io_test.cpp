@@ -195,6 +195,10 @@ TEST(ScenarioIo, SensingAndPathObstacles) {
                {"world.moving_obstacles[0].velocity", "not both"});
   expect_error(with_m("{id: m1, radius: 1, position: [0, 0, 10], trajectory: [[0, 0, 0, 10], [1, 1, 0, 10]]}"),
                {"world.moving_obstacles[0].position"});
+  // Neither: both ways named (a 'path' is the usual guess).
+  expect_error(with_m("{id: m1, radius: 1, path: [[0, 0, 0, 10], [1, 1, 0, 10]]}"),
+               {"world.moving_obstacles[0].path: unknown key 'path'", "\n",
+                "world.moving_obstacles[0]: needs a 'position'", "or a 'trajectory' of [t, x, y, z] rows"});
   const std::string climb = "    max_climb_deg: 30\n";
   expect_error(replace(kGood, climb, climb + "    sensor_range: 0\n"), {"uavs[0].sensor_range", "positive"});
   expect_error(replace(kGood, climb, climb + "    sensor_range: -4\n"), {"uavs[0].sensor_range", "positive"});
