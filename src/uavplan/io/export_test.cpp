@@ -195,6 +195,40 @@ TEST(Export, ArduCopterHoldsLessTheStopAndTheStart) {
   EXPECT_NEAR(loiter_s({}), 10.0, 1e-9);
 }
 
+// ArduCopter takes up a new speed only on a long leg (docs/decisions/0020): a zigzag of 10 m legs
+// at 4 and 5 m/s after a 50 m leg is flown as one stretch at its mean speed, retimed within a
+// second of the plan's clock, one speed commanded; PX4 keeps the plan's speed changes.
+TEST(Export, ArduCopterFliesShortLegsAtOneSpeed) {
+  const Scenario sc = scenario_with();
+  UavPlan u = sample_uav();
+  u.trajectory = {{0.0, Vec3(0, 0, 10)}, {10.0, Vec3(50, 0, 10)}};
+  for (int k = 1; k <= 6; ++k) {
+    const Vec3 step(10.0 * std::cos(k % 2 ? 0.5 : -0.5), 10.0 * std::sin(k % 2 ? 0.5 : -0.5), 0.0);
+    u.trajectory.push_back({u.trajectory.back().t_s + (k % 2 ? 2.5 : 2.0), u.trajectory.back().p + step});
+  }
+  const auto speeds = [&](const ExportOptions& opt) {
+    std::vector<double> v;
+    for (const MissionItem& it : mission_items(sc, exported(sc, opt, u), opt))
+      if (it.command == kCmdChangeSpeed) v.push_back(it.params[1]);
+    return v;
+  };
+  ExportOptions copter;
+  copter.firmware = Firmware::ardupilot;
+  const ExportedUav e = exported(sc, copter, u);
+  ASSERT_EQ(e.body_end + 1, u.trajectory.size());  // the landing after it
+  double length_m = 0.0;
+  for (std::size_t k = 1; k < u.trajectory.size(); ++k) {
+    length_m += (u.trajectory[k].p - u.trajectory[k - 1].p).norm();
+    const double share = length_m / 110.0;  // every row on one clock: 110 m in the plan's 23.5 s
+    EXPECT_NEAR(e.plan.trajectory[k].t_s, 23.5 * share, 1e-9) << k;
+    EXPECT_LE(std::abs(e.plan.trajectory[k].t_s - u.trajectory[k].t_s) * 5.0, 5.0) << k;
+  }
+  const std::vector<double> copter_speeds = speeds(copter);
+  ASSERT_EQ(copter_speeds.size(), 1u);
+  EXPECT_NEAR(copter_speeds[0], 110.0 / 23.5, 1e-3);
+  EXPECT_GT(speeds({}).size(), 2u);
+}
+
 TEST(Export, EveryEndIsFlownAndVerified) {
   const Scenario sc = scenario_with();
   ExportOptions opt;

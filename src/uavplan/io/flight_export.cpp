@@ -12,6 +12,7 @@
 #include "uavplan/core/units.h"
 #include "uavplan/evaluation/ground_legs.h"
 #include "uavplan/io/export_common.h"
+#include "uavplan/io/flight_schedule.h"
 #include "uavplan/io/mission_items.h"
 
 namespace uavplan {
@@ -461,10 +462,93 @@ bool simplify_body(ExportedUav& e, double tol_m) {
   return true;
 }
 
+// Where rows [i, j] put the UAV at time t_s (times[k] the time of row k; t_s within them).
+Vec3 position_at(const Trajectory& tr, const std::vector<double>& times, std::size_t i, std::size_t j, double t_s) {
+  std::size_t k = i;
+  while (k + 1 < j && times[k + 1] < t_s) ++k;
+  const double span = times[k + 1] - times[k];
+  const double f = span > 0.0 ? std::clamp((t_s - times[k]) / span, 0.0, 1.0) : 0.0;
+  return tr[k].p + f * (tr[k + 1].p - tr[k].p);
+}
+
+// Rows [i, j] retimed at one horizontal speed (ArduCopter's waypoint speed), their ends kept;
+// returns the farthest the retimed UAV is from where the plan has it at the same moment, and the
+// row where, in `worst`.
+double retimed(const Trajectory& tr, std::size_t i, std::size_t j, std::vector<double>& times, std::size_t& worst) {
+  double total_m = 0.0;
+  for (std::size_t k = i; k < j; ++k) total_m += (tr[k + 1].p - tr[k].p).head<2>().norm();
+  double along_m = 0.0, farthest_m = 0.0;
+  for (std::size_t k = i + 1; k < j; ++k) {
+    along_m += (tr[k].p - tr[k - 1].p).head<2>().norm();
+    times[k] = tr[i].t_s + (tr[j].t_s - tr[i].t_s) * along_m / total_m;
+  }
+  std::vector<double> planned(tr.size());
+  for (std::size_t k = i; k <= j; ++k) planned[k] = tr[k].t_s;
+  worst = i;
+  for (std::size_t k = i + 1; k < j; ++k) {  // each row against the other clock, both ways
+    const double off_m = std::max((position_at(tr, times, i, j, tr[k].t_s) - tr[k].p).norm(),
+                                  (position_at(tr, planned, i, j, times[k]) - tr[k].p).norm());
+    if (off_m > farthest_m) farthest_m = off_m, worst = k;
+  }
+  return farthest_m;
+}
+
+// ArduCopter takes up a speed commanded as a leg begins only on a long leg
+// (copter_speed_change_leg_m): elsewhere a slow-down is flown late and a speed-up a leg late. So
+// its rows are flown in stretches at one speed, each beginning where it can take that speed up
+// (a long leg, the body's start, a hold, a vertical leg), retimed at one horizontal speed, within
+// tol_m of where the plan has the UAV at every moment (else split at the farthest row, a speed
+// change on a short leg kept). The retimed rows are verified with everything else that flies.
+// Returns whether a row's time changed.
+bool copter_stretches(ExportedUav& e, double tol_m) {
+  Trajectory& tr = e.plan.trajectory;
+  const std::size_t begin = e.body_begin, end = e.body_end;
+  if (end <= begin + 1) return false;
+  std::vector<char> cut(tr.size(), 0);
+  cut[begin] = cut[end] = 1;
+  for (std::size_t k = begin; k < end; ++k) {
+    const double h_m = (tr[k + 1].p - tr[k].p).head<2>().norm(), dt = tr[k + 1].t_s - tr[k].t_s;
+    const double before_mps =
+        k > begin ? (tr[k].p - tr[k - 1].p).head<2>().norm() / std::max(tr[k].t_s - tr[k - 1].t_s, 1e-12) : 0.0;
+    if (h_m <= kHoldMove_m || dt <= 0.0) {  // a hold or a vertical leg: flown as planned
+      cut[k] = cut[k + 1] = 1;
+      continue;
+    }
+    if (h_m >= copter_speed_change_leg_m(std::max(before_mps, h_m / dt))) cut[k] = 1;
+  }
+  std::vector<double> times(tr.size());
+  for (std::size_t k = 0; k < tr.size(); ++k) times[k] = tr[k].t_s;
+  std::vector<std::pair<std::size_t, std::size_t>> stack;
+  for (std::size_t i = begin, j = begin + 1; j <= end; ++j)
+    if (cut[j]) {
+      stack.push_back({i, j});
+      i = j;
+    }
+  bool changed = false;
+  while (!stack.empty()) {
+    const auto [i, j] = stack.back();
+    stack.pop_back();
+    if (j <= i + 1) continue;
+    std::size_t worst = i;
+    if (retimed(tr, i, j, times, worst) > tol_m) {
+      for (std::size_t k = i + 1; k < j; ++k) times[k] = tr[k].t_s;
+      stack.push_back({i, worst});
+      stack.push_back({worst, j});
+      continue;
+    }
+    for (std::size_t k = i + 1; k < j; ++k) changed |= times[k] != tr[k].t_s;
+  }
+  for (std::size_t k = begin; k <= end; ++k) tr[k].t_s = times[k];
+  return changed;
+}
+
 // An autopilot rounds its turns by about what it flies in this time (its S-curves at the
 // accelerations schedule.json asks for): chords within that distance cut corners it would not
 // fly, and spare it turns that cost it time (docs/decisions/0020-flown-timing.md).
 constexpr double kAutopilotChord_s = 0.3;
+// ArduCopter's stretches at one speed keep within what it flies in this time of where the plan
+// has it (copter_stretches): a second of the plan's clock.
+constexpr double kCopterStretch_s = 1.0;
 
 double simplify_tolerance_m(const ExportedUav& e, const ExportOptions& opt) {
   if (opt.simplify_m >= 0.0) return opt.simplify_m;
@@ -485,6 +569,27 @@ void fly_chords(const Scenario& sc, std::vector<ExportedUav>& uavs, const Export
     if (!changed) return;
     if (verify_flights(sc, chords).empty()) {
       uavs = std::move(chords);
+      return;
+    }
+  }
+}
+
+// ArduCopter missions' rows in stretches at one speed (copter_stretches) within what each UAV flies
+// in kCopterStretch_s, every tolerance halved until the stretches hold with everything else that
+// flies (down to a centimetre; else the rows keep the plan's times).
+void fly_copter_stretches(const Scenario& sc, std::vector<ExportedUav>& uavs) {
+  const auto tolerance_m = [](const ExportedUav& e) {
+    return std::max(e.spec->radius_m, kCopterStretch_s * e.spec->speed.cruise_mps);
+  };
+  double widest_m = 0.0;
+  for (const ExportedUav& e : uavs) widest_m = std::max(widest_m, tolerance_m(e));
+  for (double scale = 1.0; widest_m * scale >= 0.01; scale *= 0.5) {
+    std::vector<ExportedUav> stretched = uavs;
+    bool changed = false;
+    for (ExportedUav& e : stretched) changed |= copter_stretches(e, tolerance_m(e) * scale);
+    if (!changed) return;
+    if (verify_flights(sc, stretched).empty()) {
+      uavs = std::move(stretched);
       return;
     }
   }
@@ -609,6 +714,7 @@ VerifiedExport verified_export(const Scenario& sc, const Plan& plan, const Expor
   // Autopilot missions and model-flown trajectories flown as chords that hold with everything
   // else that flies.
   fly_chords(sc, out.uavs, opt);
+  if (arducopter_timing(opt)) fly_copter_stretches(sc, out.uavs);
   // The added legs, with everything else that flies: a UAV whose legs do not hold goes.
   std::set<std::string> failed;
   for (auto& [id, why] : fit_item_limit(sc, out.uavs, opt)) {

@@ -70,6 +70,11 @@ double copter_ramp_lag_s(double speed_mps) {
   return 0.5 * ramp_s;
 }
 
+double copter_speed_change_leg_m(double speed_mps) {
+  constexpr double kLeastLeg_m = 25.0, kLeastLeg_s = 5.0;
+  return std::max(kLeastLeg_m, kLeastLeg_s * speed_mps);
+}
+
 namespace {
 
 // The time the autopilot takes from a mission's start to the top of its take-off and on to

@@ -36,6 +36,11 @@ inline constexpr double kCopterAccelZ_mps2 = 2.5;      // WPNAV_ACCEL_Z (default
 // its S-curve (jerk-limited, then acceleration-limited): half the ramp's duration.
 double copter_ramp_lag_s(double speed_mps);
 
+// The shortest leg on which ArduCopter was measured to take up a speed commanded as the leg
+// begins, from `speed_mps` (docs/decisions/0020-flown-timing.md): 25 m, or 5 s at that speed. On
+// a shorter leg flown through a slow-down comes at the leg's end and a speed-up a leg late.
+double copter_speed_change_leg_m(double speed_mps);
+
 struct ScheduledStart {
   std::string id;
   double start_s = 0.0;                           // on the plan's clock: when the mission is started (armed, in AUTO)
