@@ -15,10 +15,12 @@ set -euo pipefail
 bin=$1 src=$2 sitl=$3 scenario=$4 mode=$5 instance=$6 speedup=${7:-10}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-"$bin" plan "$src/scenarios/$scenario.yaml" -o "$tmp/plan" >/dev/null
+# SCENARIO: a bundled scenario's name, or a path under SOURCE_DIR without .yaml.
+case "$scenario" in */*) file="$src/$scenario.yaml" ;; *) file="$src/scenarios/$scenario.yaml" ;; esac
+"$bin" plan "$file" -o "$tmp/plan" >/dev/null
 set +e
 start=$(date +%s)
-"$bin" fly "$src/scenarios/$scenario.yaml" "$tmp/plan/plan.json" --sitl "$sitl" --instance "$instance" --speedup "$speedup" -o "$tmp/fly" >"$tmp/fly.txt" 2>"$tmp/fly.err"
+"$bin" fly "$file" "$tmp/plan/plan.json" --sitl "$sitl" --instance "$instance" --speedup "$speedup" -o "$tmp/fly" >"$tmp/fly.txt" 2>"$tmp/fly.err"
 rc=$?
 set -e
 cat "$tmp/fly.txt"
