@@ -53,7 +53,7 @@ asan-build: deps
 # the report in headless Chromium (it runs alone, the other core idle: 50 s; `uavplan report` runs
 # under ASan in the CLI test, the browser's side is the same in release), and the SITL flights but
 # the demo's (the simulators' wall time, not ours: `fly` runs under ASan on the demo's flight).
-ASAN_SKIP ?= cli.threads_same_bytes|exports.matrix|movingai.maze512|movingai.Complex|report.browser|sitl.movers_fly|sitl.group9_fly|sitl.p5_small_fly
+ASAN_SKIP ?= cli.threads_same_bytes|exports.matrix|movingai.maze512|movingai.Complex|report.browser|sitl.movers_fly|sitl.group9_fly|sitl.p5_small_fly|sitl.swap_fly|sitl.formation_fly
 asan: asan-build
 	cd $(ASAN_BUILD) && ctest --output-on-failure -j $(JOBS) -E "$(ASAN_SKIP)"
 
