@@ -471,10 +471,11 @@ Vec3 position_at(const Trajectory& tr, const std::vector<double>& times, std::si
   return tr[k].p + f * (tr[k + 1].p - tr[k].p);
 }
 
-// Rows [i, j] retimed at one horizontal speed (ArduCopter's waypoint speed), their ends kept;
-// returns the farthest the retimed UAV is from where the plan has it at the same moment, and the
-// row where, in `worst`.
-double retimed(const Trajectory& tr, std::size_t i, std::size_t j, std::vector<double>& times, std::size_t& worst) {
+// Rows [i, j] retimed (`times`) at one horizontal speed (ArduCopter's waypoint speed), their ends
+// kept; returns the farthest the retimed UAV is from where the plan (`planned`, the rows' times)
+// has it at the same moment, and the row where, in `worst`.
+double retimed(const Trajectory& tr, const std::vector<double>& planned, std::size_t i, std::size_t j,
+               std::vector<double>& times, std::size_t& worst) {
   double total_m = 0.0;
   for (std::size_t k = i; k < j; ++k) total_m += (tr[k + 1].p - tr[k].p).head<2>().norm();
   double along_m = 0.0, farthest_m = 0.0;
@@ -482,8 +483,6 @@ double retimed(const Trajectory& tr, std::size_t i, std::size_t j, std::vector<d
     along_m += (tr[k].p - tr[k - 1].p).head<2>().norm();
     times[k] = tr[i].t_s + (tr[j].t_s - tr[i].t_s) * along_m / total_m;
   }
-  std::vector<double> planned(tr.size());
-  for (std::size_t k = i; k <= j; ++k) planned[k] = tr[k].t_s;
   worst = i;
   for (std::size_t k = i + 1; k < j; ++k) {  // each row against the other clock, both ways
     const double off_m = std::max((position_at(tr, times, i, j, tr[k].t_s) - tr[k].p).norm(),
@@ -516,8 +515,9 @@ bool copter_stretches(ExportedUav& e, double tol_m) {
     }
     if (h_m >= copter_speed_change_leg_m(std::max(before_mps, h_m / dt))) cut[k] = 1;
   }
-  std::vector<double> times(tr.size());
-  for (std::size_t k = 0; k < tr.size(); ++k) times[k] = tr[k].t_s;
+  std::vector<double> planned(tr.size());
+  for (std::size_t k = 0; k < tr.size(); ++k) planned[k] = tr[k].t_s;
+  std::vector<double> times = planned;
   std::vector<std::pair<std::size_t, std::size_t>> stack;
   for (std::size_t i = begin, j = begin + 1; j <= end; ++j)
     if (cut[j]) {
@@ -530,13 +530,13 @@ bool copter_stretches(ExportedUav& e, double tol_m) {
     stack.pop_back();
     if (j <= i + 1) continue;
     std::size_t worst = i;
-    if (retimed(tr, i, j, times, worst) > tol_m) {
-      for (std::size_t k = i + 1; k < j; ++k) times[k] = tr[k].t_s;
+    if (retimed(tr, planned, i, j, times, worst) > tol_m) {
+      for (std::size_t k = i + 1; k < j; ++k) times[k] = planned[k];
       stack.push_back({i, worst});
       stack.push_back({worst, j});
       continue;
     }
-    for (std::size_t k = i + 1; k < j; ++k) changed |= times[k] != tr[k].t_s;
+    for (std::size_t k = i + 1; k < j; ++k) changed |= times[k] != planned[k];
   }
   for (std::size_t k = begin; k <= end; ++k) tr[k].t_s = times[k];
   return changed;
