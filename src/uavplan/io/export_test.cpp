@@ -854,9 +854,12 @@ TEST(ExportSchedule, MissionsStartSoThatTheTakeOffEndsAtThePlansStart) {
   EXPECT_NEAR(copter[0].start_s, -(4.2 + 10.0 / 2.5 + 0.4 + 1.3 + 0.625), 1e-9);
   EXPECT_NEAR(copter_ramp_lag_s(5.0), 0.5 * (5.0 / 5.0 + 5.0 / 20.0), 1e-12);  // at 5 m/s^2 from 1.25 m/s
   EXPECT_NEAR(copter_ramp_lag_s(1.0), std::sqrt(1.0 / 20.0), 1e-12);           // jerk-limited throughout
-  EXPECT_NEAR(copter[0].flight_s, 36.0 - copter[0].start_s, 1e-9);             // its landing: 10 m at 5 m/s after 34 s
+  // Its landing after 34 s: 10 m, all below LAND_ALT_LOW, at LAND_SPEED 0.5 m/s as NAV_LAND
+  // descends; PX4's at cruise speed (5 m/s).
+  EXPECT_NEAR(copter[0].flight_s, 34.0 + 10.0 / 0.5 - copter[0].start_s, 1e-9);
   const std::vector<ScheduledStart> px4 = flight_schedule(sc, verified_export(sc, plan, {}), {});
   EXPECT_NEAR(px4[0].start_s, -10.0 / 5.0, 1e-9);
+  EXPECT_NEAR(px4[0].flight_s, 34.0 + 10.0 / 5.0 - px4[0].start_s, 1e-9);
   const nlohmann::json j = nlohmann::json::parse(schedule_json(copter, {{"a/1", "a_1.plan"}, {"b", "b.plan"}}));
   EXPECT_EQ(j["uavs"][0]["id"], "a/1");
   EXPECT_EQ(j["uavs"][0]["files"], nlohmann::json::array({"a_1.plan"}));

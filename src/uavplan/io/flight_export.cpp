@@ -35,6 +35,22 @@ void append_flight(Trajectory& tr, const std::vector<Vec3>& pts, double v_mps) {
     if (row.t_s > from_s) tr.push_back(row);
 }
 
+// A multirotor's landing: level to above `down`, then down to it, at cruise speed; an ArduCopter
+// mission's descent as NAV_LAND flies it (LAND_SPEED_HIGH, the descent speed schedule.json asks
+// for, to LAND_ALT_LOW above the touch-down, then LAND_SPEED), so that the UAVs still flying are
+// verified against the landing that is flown (at cruise speed a 60 m descent took 7.5 s of the 53
+// ArduCopter takes).
+void append_landing(Trajectory& tr, const Vec3& top, const Vec3& down, double cruise_mps, bool arducopter) {
+  if (!arducopter) {
+    append_flight(tr, {top, down}, cruise_mps);
+    return;
+  }
+  append_flight(tr, {top}, cruise_mps);
+  const Vec3 low(down.x(), down.y(), std::min(top.z(), down.z() + kCopterLandAltLow_m));
+  append_flight(tr, {low}, kCopterDescent_mps);
+  append_flight(tr, {down}, kCopterLandSpeed_mps);
+}
+
 // Horizontal unit direction of the last leg that moves horizontally, else of the heading, else east.
 Vec3 final_heading(const Trajectory& tr, std::size_t last, const UavSpec& u) {
   for (std::size_t k = last; k > 0; --k) {
@@ -204,7 +220,7 @@ class Builder {
       down = spot->second;
     }
     e.touchdown = down;
-    append_flight(tr, {top, down}, u.speed.cruise_mps);
+    append_landing(tr, top, down, u.speed.cruise_mps, arducopter_timing(opt_));
     return {};
   }
 
@@ -606,9 +622,8 @@ void lift_flat(ExportedUav& e, const ExportOptions& opt) {
   e.takeoff_to.z() += lift;
   for (Vec3& p : e.return_points) p.z() += lift;
   if (e.end == MissionEnd::land && e.touchdown)  // level to above the touch-down (none: straight down), down
-    append_flight(e.plan.trajectory,
-                  {Vec3(e.touchdown->x(), e.touchdown->y(), e.plan.trajectory.back().p.z()), *e.touchdown},
-                  e.spec->speed.cruise_mps);
+    append_landing(e.plan.trajectory, Vec3(e.touchdown->x(), e.touchdown->y(), e.plan.trajectory.back().p.z()),
+                   *e.touchdown, e.spec->speed.cruise_mps, arducopter_timing(opt));
   if (e.end == MissionEnd::rtl) append_flight(e.plan.trajectory, {e.home}, e.spec->speed.cruise_mps);
 }
 

@@ -11,9 +11,10 @@
 //    turns back within the turn limit, flies straight to above home at the goal's height and
 //    comes down (multirotor) or circles there (fixed wing); `loiter` holds at the goal
 //    (multirotor) or circles it at the autopilot's loiter radius (fixed wing: 80 m PX4, 60 m
-//    ArduPilot); `none` adds nothing. End legs are flown at cruise speed from the arrival and
-//    verified with every other exported UAV's trajectory (separation, obstacles, terrain,
-//    moving obstacles, bounds, limits).
+//    ArduPilot); `none` adds nothing. End legs are flown at cruise speed from the arrival (an
+//    ArduCopter mission's vertical landing as NAV_LAND descends: LAND_SPEED_HIGH, then LAND_SPEED
+//    below LAND_ALT_LOW) and verified with every other exported UAV's trajectory (separation,
+//    obstacles, terrain, moving obstacles, bounds, limits).
 // A UAV is left out, with the reason, when it is not solved, has a violation, or an added leg
 // does not hold. A fixed-wing UAV cannot fly a vertical take-off or landing: such plans are left
 // out with what to change.

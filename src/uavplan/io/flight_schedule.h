@@ -31,6 +31,8 @@ inline constexpr double kCopterWaypointPause_s = 1.3;  // on a reached waypoint,
 inline constexpr double kCopterAccel_mps2 = 5.0;       // WPNAV_ACCEL (default 2.5): the range's top
 inline constexpr double kCopterJerk_mps3 = 20.0;       // WPNAV_JERK (default 1): the range's top
 inline constexpr double kCopterAccelZ_mps2 = 2.5;      // WPNAV_ACCEL_Z (default 1): terrain-following slopes
+inline constexpr double kCopterLandAltLow_m = 10.0;    // LAND_ALT_LOW default: NAV_LAND's slow final metres
+inline constexpr double kCopterLandSpeed_mps = 0.5;    // LAND_SPEED default: below LAND_ALT_LOW
 
 // How far behind a start at `speed_mps` a copter at rest falls while it reaches that speed on
 // its S-curve (jerk-limited, then acceleration-limited): half the ramp's duration.
