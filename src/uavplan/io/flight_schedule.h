@@ -39,8 +39,9 @@ inline constexpr double kCopterLandSpeed_mps = 0.5;    // LAND_SPEED default: be
 double copter_ramp_lag_s(double speed_mps);
 
 // The shortest leg on which ArduCopter was measured to take up a speed commanded as the leg
-// begins, from `speed_mps` (docs/decisions/0020-flown-timing.md): 25 m, or 5 s at that speed. On
-// a shorter leg flown through a slow-down comes at the leg's end and a speed-up a leg late.
+// begins, from `speed_mps` (docs/decisions/0020-flown-timing.md): the longer of 25 m and 5 s at
+// that speed. On a shorter leg flown through a slow-down comes at the leg's end and a speed-up a
+// leg late.
 double copter_speed_change_leg_m(double speed_mps);
 
 struct ScheduledStart {
