@@ -478,9 +478,9 @@ bool simplify_body(ExportedUav& e, double tol_m) {
   return true;
 }
 
-// Where rows [i, j] put the UAV at time t_s (times[k] the time of row k; t_s within them).
-Vec3 position_at(const Trajectory& tr, const std::vector<double>& times, std::size_t i, std::size_t j, double t_s) {
-  std::size_t k = i;
+// Where rows up to j put the UAV at time t_s (times[k] the time of row k), from row k on: k
+// advances to the row before t_s (later times ask on from there).
+Vec3 position_at(const Trajectory& tr, const std::vector<double>& times, std::size_t& k, std::size_t j, double t_s) {
   while (k + 1 < j && times[k + 1] < t_s) ++k;
   const double span = times[k + 1] - times[k];
   const double f = span > 0.0 ? std::clamp((t_s - times[k]) / span, 0.0, 1.0) : 0.0;
@@ -500,9 +500,10 @@ double retimed(const Trajectory& tr, const std::vector<double>& planned, std::si
     times[k] = tr[i].t_s + (tr[j].t_s - tr[i].t_s) * along_m / total_m;
   }
   worst = i;
-  for (std::size_t k = i + 1; k < j; ++k) {  // each row against the other clock, both ways
-    const double off_m = std::max((position_at(tr, times, i, j, tr[k].t_s) - tr[k].p).norm(),
-                                  (position_at(tr, planned, i, j, times[k]) - tr[k].p).norm());
+  std::size_t on_retimed = i, on_planned = i;  // both clocks increase with k
+  for (std::size_t k = i + 1; k < j; ++k) {    // each row against the other clock, both ways
+    const double off_m = std::max((position_at(tr, times, on_retimed, j, planned[k]) - tr[k].p).norm(),
+                                  (position_at(tr, planned, on_planned, j, times[k]) - tr[k].p).norm());
     if (off_m > farthest_m) farthest_m = off_m, worst = k;
   }
   return farthest_m;
@@ -572,43 +573,39 @@ double simplify_tolerance_m(const ExportedUav& e, const ExportOptions& opt) {
   return e.spec->model ? e.spec->radius_m : 0.0;
 }
 
-// Each UAV flown as chords within its tolerance, every tolerance halved until the chords hold
-// with everything else that flies (down to a centimetre; else every row is flown).
-void fly_chords(const Scenario& sc, std::vector<ExportedUav>& uavs, const ExportOptions& opt) {
+// Each UAV's rows changed by `apply(e, tolerance)` within its `tolerance_m(e)`, every tolerance
+// halved until what is changed holds with everything else that flies (down to a centimetre; else
+// the rows stay as they are).
+template <class Tolerance, class Apply>
+void halved_until_flights_hold(const Scenario& sc, std::vector<ExportedUav>& uavs, Tolerance tolerance_m, Apply apply) {
   double widest_m = 0.0;
-  for (const ExportedUav& e : uavs) widest_m = std::max(widest_m, simplify_tolerance_m(e, opt));
+  for (const ExportedUav& e : uavs) widest_m = std::max(widest_m, tolerance_m(e));
   for (double scale = 1.0; widest_m * scale >= 0.01; scale *= 0.5) {
-    std::vector<ExportedUav> chords = uavs;
+    std::vector<ExportedUav> changed_uavs = uavs;
     bool changed = false;
-    for (ExportedUav& e : chords)
-      if (const double tol = simplify_tolerance_m(e, opt) * scale; tol > 0.0) changed |= simplify_body(e, tol);
+    for (ExportedUav& e : changed_uavs)
+      if (const double tol = tolerance_m(e) * scale; tol > 0.0) changed |= apply(e, tol);
     if (!changed) return;
-    if (verify_flights(sc, chords).empty()) {
-      uavs = std::move(chords);
+    if (verify_flights(sc, changed_uavs).empty()) {
+      uavs = std::move(changed_uavs);
       return;
     }
   }
 }
 
+// Each UAV flown as chords within its tolerance (else every row is flown).
+void fly_chords(const Scenario& sc, std::vector<ExportedUav>& uavs, const ExportOptions& opt) {
+  halved_until_flights_hold(
+      sc, uavs, [&opt](const ExportedUav& e) { return simplify_tolerance_m(e, opt); }, simplify_body);
+}
+
 // ArduCopter missions' rows in stretches at one speed (copter_stretches) within what each UAV flies
-// in kCopterStretch_s, every tolerance halved until the stretches hold with everything else that
-// flies (down to a centimetre; else the rows keep the plan's times).
+// in kCopterStretch_s (else the rows keep the plan's times).
 void fly_copter_stretches(const Scenario& sc, std::vector<ExportedUav>& uavs) {
-  const auto tolerance_m = [](const ExportedUav& e) {
-    return std::max(e.spec->radius_m, kCopterStretch_s * e.spec->speed.cruise_mps);
-  };
-  double widest_m = 0.0;
-  for (const ExportedUav& e : uavs) widest_m = std::max(widest_m, tolerance_m(e));
-  for (double scale = 1.0; widest_m * scale >= 0.01; scale *= 0.5) {
-    std::vector<ExportedUav> stretched = uavs;
-    bool changed = false;
-    for (ExportedUav& e : stretched) changed |= copter_stretches(e, tolerance_m(e) * scale);
-    if (!changed) return;
-    if (verify_flights(sc, stretched).empty()) {
-      uavs = std::move(stretched);
-      return;
-    }
-  }
+  halved_until_flights_hold(
+      sc, uavs,
+      [](const ExportedUav& e) { return std::max(e.spec->radius_m, kCopterStretch_s * e.spec->speed.cruise_mps); },
+      copter_stretches);
 }
 
 }  // namespace
