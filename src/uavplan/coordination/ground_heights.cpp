@@ -25,7 +25,7 @@ std::string column_problem(const Scenario& sc, const UavSpec& u, const Vec3& p, 
   const std::string what = sc.world.nearest_label(Vec3(p.x(), p.y(), ground + keep));
   return "its vertical column up to " + num_text(top.z() - ground) + " m above the ground comes within " + num_text(c) +
          " m of " + what + " beside it (radius plus clearance " + num_text(keep) + " m)" +
-         (what == "the terrain"
+         (what == World::kTerrainLabel
               ? "; the ground rises within the body's reach: a flatter spot or a smaller radius lifts off"
               : "");
 }

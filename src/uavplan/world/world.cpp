@@ -72,7 +72,7 @@ std::string World::nearest_label(const Vec3& p) const {
     best = d;
     what = obstacle_label(k);
   }
-  if (spec_.terrain && spec_.terrain->point_distance(p, best) < best) what = "the terrain";
+  if (spec_.terrain && spec_.terrain->point_distance(p, best) < best) what = kTerrainLabel;
   return what;
 }
 

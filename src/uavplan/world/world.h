@@ -47,8 +47,9 @@ class World {
   bool in_bounds(const Vec3& p) const { return spec_.bounds.contains(p); }
   // Obstacle k in words: "obstacle hangar" (its id), "obstacle 3 (box)" when it has none.
   std::string obstacle_label(std::size_t k) const;
-  // What the clearance at p is measured to, by name: the nearest obstacle's label, or "the
-  // terrain".
+  // What the clearance at p is measured to, by name: the nearest obstacle's label, or
+  // kTerrainLabel.
+  static constexpr const char* kTerrainLabel = "the terrain";
   std::string nearest_label(const Vec3& p) const;
 
   // Distance from p to the nearest static obstacle or terrain column (0 inside), capped at `cap`.
